@@ -1,0 +1,548 @@
+//! Each block kind, checked: values in range, defaults filled in, the result
+//! a piece of the checked [`Scene`](super::scene::Scene).
+
+use super::codes;
+use super::params::{Params, Val, MATERIAL, SHAPE_COMMON};
+use super::scene::*;
+use crate::diag::{Diagnostic, Diagnostics};
+use crate::span::Span;
+use crate::syntax::ast::BlockKind;
+use glam::{DMat4, DVec3};
+use std::path::Path;
+
+/// The largest image side accepted.
+pub const MAX_SIDE: f64 = 16384.0;
+/// The largest image area accepted, so a film always fits in memory.
+pub const MAX_PIXELS: f64 = 8192.0 * 8192.0;
+
+fn range_error(what: &str, name: &str, span: Span, needs: &str, help: String) -> Diagnostic {
+    Diagnostic::error(
+        codes::OUT_OF_RANGE,
+        format!("`{name}` of `{what}` must be {needs}"),
+        span,
+    )
+    .with_label(format!("must be {needs}"))
+    .with_help(help)
+}
+
+/// Typed getters with range checks over [`Params`].
+pub struct Reader<'a> {
+    /// The checked parameters.
+    pub p: &'a Params,
+    /// Where problems go.
+    pub diags: &'a mut Diagnostics,
+}
+
+impl Reader<'_> {
+    /// A number, if given.
+    pub fn num(&mut self, name: &str) -> Option<(f64, Span)> {
+        match self.p.get(name) {
+            Some((Val::Num(x), s)) => Some((*x, *s)),
+            _ => None,
+        }
+    }
+
+    /// A number in `[lo, hi]` (with `open_lo`, `lo` excluded), or the default.
+    pub fn num_in(&mut self, name: &str, lo: f64, hi: f64, open_lo: bool, default: f64) -> f64 {
+        match self.num(name) {
+            Some((x, s)) => {
+                let ok = (if open_lo { x > lo } else { x >= lo }) && x <= hi;
+                if ok {
+                    x
+                } else {
+                    let needs = match (open_lo, hi.is_finite()) {
+                        (true, false) => format!("greater than {lo}"),
+                        (false, false) => format!("at least {lo}"),
+                        (true, true) => format!("greater than {lo} and at most {hi}"),
+                        (false, true) => format!("between {lo} and {hi}"),
+                    };
+                    let what = self.p.what.clone();
+                    self.diags.push(range_error(
+                        &what,
+                        name,
+                        s,
+                        &needs,
+                        format!("`{name}` is {x} here"),
+                    ));
+                    default
+                }
+            }
+            None => default,
+        }
+    }
+
+    /// A vector of 3, if given.
+    pub fn vec3(&mut self, name: &str) -> Option<(DVec3, Span)> {
+        match self.p.get(name) {
+            Some((Val::Vector(v), s)) if v.len() == 3 => Some((DVec3::new(v[0], v[1], v[2]), *s)),
+            _ => None,
+        }
+    }
+
+    /// A required vector of 3.
+    pub fn vec3_req(&mut self, name: &'static str, schema: &[super::params::ParamSpec]) -> Option<(DVec3, Span)> {
+        self.p.require(name, schema, self.diags)?;
+        self.vec3(name)
+    }
+
+    /// A required number.
+    pub fn num_req(&mut self, name: &'static str, schema: &[super::params::ParamSpec]) -> Option<(f64, Span)> {
+        self.p.require(name, schema, self.diags)?;
+        self.num(name)
+    }
+
+    /// A non-zero vector of 3 (a direction).
+    pub fn direction(&mut self, name: &'static str, schema: &[super::params::ParamSpec]) -> Option<DVec3> {
+        let (v, s) = self.vec3_req(name, schema)?;
+        if v.length_squared() == 0.0 {
+            let what = self.p.what.clone();
+            self.diags.push(range_error(
+                &what,
+                name,
+                s,
+                "a non-zero vector",
+                "a direction needs a length; e.g. `<0, 1, 0>`".into(),
+            ));
+            return None;
+        }
+        Some(v.normalize())
+    }
+
+    /// A colour with non-negative components, or the default.
+    pub fn color(&mut self, name: &str, default: Rgb) -> Rgb {
+        match self.p.get(name) {
+            Some((Val::Color(c), s)) => {
+                if c.iter().any(|x| *x < 0.0) {
+                    let what = self.p.what.clone();
+                    self.diags.push(range_error(
+                        &what,
+                        name,
+                        *s,
+                        "non-negative",
+                        "colour components are ≥ 0".into(),
+                    ));
+                    default
+                } else {
+                    *c
+                }
+            }
+            _ => default,
+        }
+    }
+
+    /// A boolean, or the default.
+    pub fn boolean(&mut self, name: &str, default: bool) -> bool {
+        match self.p.get(name) {
+            Some((Val::Bool(b), _)) => *b,
+            _ => default,
+        }
+    }
+}
+
+/// `render { }` → settings.
+pub fn render_settings(p: &Params, base_dir: &Path, diags: &mut Diagnostics) -> RenderSettings {
+    let mut r = Reader { p, diags };
+    let d = RenderSettings::default();
+    let (mut width, mut height) = (d.width, d.height);
+    if let Some((Val::Vector(v), s)) = p.get("resolution") {
+        let ok_side = |x: f64| x.fract() == 0.0 && (1.0..=MAX_SIDE).contains(&x);
+        if !ok_side(v[0]) || !ok_side(v[1]) {
+            r.diags.push(range_error(
+                "render",
+                "resolution",
+                *s,
+                "whole numbers from 1 to 16384",
+                format!("the image is {} × {} here; try `resolution <512, 512>`", v[0], v[1]),
+            ));
+        } else if v[0] * v[1] > MAX_PIXELS {
+            r.diags.push(range_error(
+                "render",
+                "resolution",
+                *s,
+                "at most 67,108,864 pixels (8192 × 8192)",
+                format!("{} × {} pixels would not fit in memory; render a smaller image", v[0], v[1]),
+            ));
+        } else {
+            width = v[0] as u32;
+            height = v[1] as u32;
+        }
+    }
+    let integrator = match p.get("integrator") {
+        Some((Val::Word(w), _)) => IntegratorKind::from_name(w).unwrap_or(d.integrator),
+        _ => d.integrator,
+    };
+    let clamp = r.num("clamp").map(|_| r.num_in("clamp", 0.0, f64::INFINITY, true, f64::INFINITY));
+    RenderSettings {
+        width,
+        height,
+        samples: r.num_in("samples", 1.0, 1_000_000.0, false, d.samples as f64) as u32,
+        max_depth: r.num_in("max_depth", 1.0, 1024.0, false, d.max_depth as f64) as u32,
+        integrator,
+        seed: r.num_in("seed", 0.0, 4_294_967_295.0, false, 0.0) as u64,
+        ambient: r.color("ambient", d.ambient),
+        rr_depth: r.num_in("rr_depth", 1.0, 1024.0, false, d.rr_depth as f64) as u32,
+        output: match p.get("output") {
+            Some((Val::Str(s), _)) => Some(base_dir.join(s)),
+            _ => None,
+        },
+        hybrid_weight: r.num_in("hybrid_weight", 0.0, 1.0, false, d.hybrid_weight),
+        clamp: clamp.filter(|c| c.is_finite()),
+        light_sampling: r.boolean("light_sampling", true),
+        light_samples: r.num_in("light_samples", 0.0, 1024.0, false, d.light_samples as f64) as u32,
+        exposure: r.num_in("exposure", -32.0, 32.0, false, 0.0),
+    }
+}
+
+/// `camera { }` → camera.
+pub fn camera(p: &Params, span: Span, diags: &mut Diagnostics) -> Option<Camera> {
+    let schema = super::params::CAMERA;
+    let mut r = Reader { p, diags };
+    let position = r.vec3_req("position", schema);
+    let look_at = r.vec3_req("look_at", schema);
+    let up = r.vec3("up").map(|v| v.0).unwrap_or(DVec3::Y);
+    let fov = r.num_in("fov", 0.0, 179.0, true, 40.0);
+    let aperture = r.num_in("aperture", 0.0, f64::INFINITY, false, 0.0);
+    let focus = r.num("focus_distance").map(|_| r.num_in("focus_distance", 0.0, f64::INFINITY, true, 1.0));
+    let mut shutter = (0.0, 0.0);
+    if let Some((Val::Vector(v), s)) = p.get("shutter") {
+        if v[0] > v[1] {
+            r.diags.push(range_error(
+                "camera",
+                "shutter",
+                *s,
+                "an interval <open, close> with open ≤ close",
+                format!("swap them: `shutter <{}, {}>`", v[1], v[0]),
+            ));
+        } else {
+            shutter = (v[0], v[1]);
+        }
+    }
+    let (position, pspan) = position?;
+    let (look_at, _) = look_at?;
+    let dir = look_at - position;
+    if dir.length_squared() == 0.0 {
+        r.diags.push(
+            Diagnostic::error(codes::DEGENERATE, "the camera looks at its own position", pspan)
+                .with_label("`position` equals `look_at`")
+                .with_help("move `look_at` to the point the camera should face"),
+        );
+        return None;
+    }
+    if dir.normalize().cross(up.normalize_or_zero()).length_squared() < 1e-12 {
+        let s = p.get("up").map(|v| v.1).unwrap_or(p.head);
+        r.diags.push(
+            Diagnostic::error(codes::DEGENERATE, "the camera's `up` is parallel to its view direction", s)
+                .with_label("`up` points along the view")
+                .with_help("pick an `up` that is not parallel to `look_at - position`, e.g. `up <0, 0, 1>`"),
+        );
+        return None;
+    }
+    Some(Camera {
+        position,
+        look_at,
+        up,
+        fov,
+        aperture,
+        focus_distance: focus.unwrap_or(dir.length()),
+        shutter,
+        span,
+    })
+}
+
+/// `material { }` → material.
+pub fn material(p: &Params, name: Option<String>, span: Span, diags: &mut Diagnostics) -> Material {
+    let mut r = Reader { p, diags };
+    let diffuse_given = p.given("diffuse");
+    let mut m = Material {
+        name,
+        diffuse: r.color("diffuse", if diffuse_given { [0.5; 3] } else { [0.0; 3] }),
+        reflection: r.color("reflection", [0.0; 3]),
+        gloss: r.num_in("gloss", 0.0, 1.0, false, 0.0),
+        transmission: r.num_in("transmission", 0.0, 1.0, false, 0.0),
+        ior: r.num_in("ior", 1.0, 10.0, false, 1.5),
+        absorption: r.color("absorption", [0.0; 3]),
+        emission: r.color("emission", [0.0; 3]),
+        two_sided: r.boolean("two_sided", false),
+        span,
+    };
+    // A material with no lobe at all is the default grey diffuse (unless it only emits).
+    let any_lobe = ["diffuse", "reflection", "transmission", "emission"]
+        .iter()
+        .any(|n| p.given(n));
+    if !any_lobe {
+        m.diffuse = [0.5; 3];
+    }
+    if let Some((_, s)) = p.get("diffuse") {
+        if m.diffuse.iter().any(|c| *c > 1.0) {
+            diags.push(
+                Diagnostic::warning(codes::ENERGY_GAIN, "diffuse albedo above 1", *s)
+                    .with_label("a surface cannot reflect more light than it receives")
+                    .with_help("keep every component of `diffuse` at most 1"),
+            );
+        }
+    }
+    let max = |c: Rgb| c.iter().cloned().fold(0.0, f64::max);
+    let total = max(m.diffuse) + max(m.reflection) + m.transmission;
+    if total > 1.0 + 1e-9 && p.given("diffuse") as u8 + p.given("reflection") as u8 + p.given("transmission") as u8 > 1 {
+        diags.push(
+            Diagnostic::warning(
+                codes::ENERGY_GAIN,
+                format!("the lobes of this material add up to {total:.3}, more than 1"),
+                p.head,
+            )
+            .with_label("diffuse + reflection + transmission > 1")
+            .with_help("ptsc scales the lobes down to sum to 1; lower them to silence this"),
+        );
+    }
+    if let Some((_, s)) = p.get("gloss") {
+        if max(m.reflection) == 0.0 {
+            diags.push(
+                Diagnostic::warning(codes::NO_EFFECT, "`gloss` has no effect without `reflection`", *s)
+                    .with_label("ignored")
+                    .with_help("add `reflection rgb 1` to make the surface a glossy reflector"),
+            );
+        }
+    }
+    if let Some((_, s)) = p.get("absorption") {
+        if m.transmission == 0.0 {
+            diags.push(
+                Diagnostic::warning(codes::NO_EFFECT, "`absorption` has no effect without `transmission`", *s)
+                    .with_label("ignored")
+                    .with_help("absorption acts inside transparent objects: add `transmission 1`"),
+            );
+        }
+    }
+    m
+}
+
+/// The object-to-world transform from `translate`, `rotate`, `scale` and `matrix` in order.
+pub fn transform(p: &Params, diags: &mut Diagnostics) -> DMat4 {
+    let mut m = DMat4::IDENTITY;
+    for (name, val, span) in &p.ordered {
+        let Val::Vector(v) = val else { continue };
+        let step = match *name {
+            "translate" => DMat4::from_translation(DVec3::new(v[0], v[1], v[2])),
+            // POV-Ray order: about x, then y, then z, in degrees.
+            "rotate" => {
+                DMat4::from_rotation_z(v[2].to_radians())
+                    * DMat4::from_rotation_y(v[1].to_radians())
+                    * DMat4::from_rotation_x(v[0].to_radians())
+            }
+            "scale" => {
+                if v.iter().any(|x| *x == 0.0) {
+                    diags.push(
+                        Diagnostic::error(codes::SINGULAR_TRANSFORM, "scale by zero", *span)
+                            .with_label("flattens the object to nothing")
+                            .with_help("every scale factor must be non-zero"),
+                    );
+                    continue;
+                }
+                DMat4::from_scale(DVec3::new(v[0], v[1], v[2]))
+            }
+            "matrix" => {
+                if v.len() == 16 && (v[12] != 0.0 || v[13] != 0.0 || v[14] != 0.0 || v[15] != 1.0) {
+                    diags.push(
+                        Diagnostic::error(codes::SINGULAR_TRANSFORM, "projective matrices are not supported", *span)
+                            .with_label("the last row must be 0, 0, 0, 1")
+                            .with_help("give the 12 numbers of the 3 × 4 affine part, row by row"),
+                    );
+                    continue;
+                }
+                let mm = DMat4::from_cols_array(&[
+                    v[0], v[4], v[8], 0.0, v[1], v[5], v[9], 0.0, v[2], v[6], v[10], 0.0, v[3], v[7], v[11], 1.0,
+                ]);
+                if mm.determinant().abs() < 1e-12 {
+                    diags.push(
+                        Diagnostic::error(codes::SINGULAR_TRANSFORM, "the matrix cannot be inverted", *span)
+                            .with_label("determinant is zero")
+                            .with_help("a transform must keep the object three-dimensional"),
+                    );
+                    continue;
+                }
+                mm
+            }
+            _ => continue,
+        };
+        m = step * m;
+    }
+    m
+}
+
+/// A shape block → its shape (before transforms).
+pub fn shape(kind: BlockKind, p: &Params, base_dir: &Path, diags: &mut Diagnostics) -> Option<Shape> {
+    let schema = super::params::shape_schema(kind);
+    let mut r = Reader { p, diags };
+    let what = kind.keyword();
+    let positive = |r: &mut Reader, name: &'static str| -> Option<f64> {
+        let (x, s) = r.num_req(name, schema)?;
+        if x > 0.0 {
+            Some(x)
+        } else {
+            r.diags.push(range_error(
+                what,
+                name,
+                s,
+                "greater than 0",
+                format!("`{name}` is {x} here; give a positive size"),
+            ));
+            None
+        }
+    };
+    let shape = match kind {
+        BlockKind::Sphere => {
+            let c = r.vec3_req("center", schema);
+            let rad = positive(&mut r, "radius");
+            Shape::Sphere { center: c?.0, radius: rad? }
+        }
+        BlockKind::Plane => {
+            let point = r.vec3("point").map(|v| v.0).unwrap_or(DVec3::ZERO);
+            let n = r.direction("normal", schema)?;
+            Shape::Plane { point, normal: n }
+        }
+        BlockKind::Quad => {
+            let c = r.vec3_req("corner", schema);
+            let e1 = r.vec3_req("edge1", schema);
+            let e2 = r.vec3_req("edge2", schema);
+            let (e1, s1) = e1?;
+            let (e2, s2) = e2?;
+            if e1.cross(e2).length_squared() == 0.0 {
+                r.diags.push(
+                    Diagnostic::error(codes::DEGENERATE, "the quad has no area", s1.join(s2))
+                        .with_label("`edge1` and `edge2` are parallel or zero")
+                        .with_help("the two edges must span a parallelogram, e.g. `edge1 <1, 0, 0>` and `edge2 <0, 0, 1>`"),
+                );
+                return None;
+            }
+            Shape::Quad { corner: c?.0, edge1: e1, edge2: e2 }
+        }
+        BlockKind::Disk => {
+            let c = r.vec3_req("center", schema);
+            let n = r.direction("normal", schema);
+            let rad = positive(&mut r, "radius");
+            Shape::Disk { center: c?.0, normal: n?, radius: rad? }
+        }
+        BlockKind::Triangle => {
+            let a = r.vec3_req("v0", schema);
+            let b = r.vec3_req("v1", schema);
+            let c = r.vec3_req("v2", schema);
+            let (a, sa) = a?;
+            let (b, _) = b?;
+            let (c, sc) = c?;
+            if (b - a).cross(c - a).length_squared() == 0.0 {
+                r.diags.push(
+                    Diagnostic::error(codes::DEGENERATE, "the triangle has no area", sa.join(sc))
+                        .with_label("these vertices are on one line")
+                        .with_help("move one vertex off the line through the other two"),
+                );
+                return None;
+            }
+            Shape::Triangle { v: [a, b, c] }
+        }
+        BlockKind::Box => {
+            let lo = r.vec3_req("min", schema);
+            let hi = r.vec3_req("max", schema);
+            let (lo, s0) = lo?;
+            let (hi, s1) = hi?;
+            if lo.cmpge(hi).any() {
+                r.diags.push(
+                    Diagnostic::error(codes::DEGENERATE, "the box's `min` is not below its `max`", s0.join(s1))
+                        .with_label("every component of `min` must be smaller than `max`")
+                        .with_help("swap the components that are in the wrong order"),
+                );
+                return None;
+            }
+            Shape::Box { min: lo, max: hi }
+        }
+        BlockKind::Mesh => {
+            p.require("file", schema, r.diags)?;
+            let Some((Val::Str(f), s)) = p.get("file") else { return None };
+            let path = base_dir.join(f);
+            let ext = path
+                .extension()
+                .and_then(|e| e.to_str())
+                .map(|e| e.to_ascii_lowercase());
+            if !matches!(ext.as_deref(), Some("obj") | Some("ply")) {
+                r.diags.push(
+                    Diagnostic::error(codes::MESH_FILE, format!("unknown mesh format `{f}`"), *s)
+                        .with_label("not an .obj or .ply file")
+                        .with_help("meshes are read from Wavefront OBJ (.obj) or PLY (.ply) files"),
+                );
+                return None;
+            }
+            if !path.is_file() {
+                r.diags.push(
+                    Diagnostic::error(codes::MESH_FILE, format!("mesh file `{f}` not found"), *s)
+                        .with_label(format!("looked for {}", path.display()))
+                        .with_help("mesh paths are relative to the scene file that names them"),
+                );
+                return None;
+            }
+            Shape::Mesh { path, path_span: *s, smooth: r.boolean("smooth", false) }
+        }
+        _ => unreachable!("not a shape: {kind:?}"),
+    };
+    Some(shape)
+}
+
+/// The velocity of an object (linear motion per unit shutter time).
+pub fn velocity(p: &Params) -> DVec3 {
+    match p.get("velocity") {
+        Some((Val::Vector(v), _)) => DVec3::new(v[0], v[1], v[2]),
+        _ => DVec3::ZERO,
+    }
+}
+
+/// A light block → light.
+pub fn light(kind: BlockKind, p: &Params, diags: &mut Diagnostics) -> Option<Light> {
+    let schema = super::params::shape_schema(kind);
+    let mut r = Reader { p, diags };
+    let need_color = |r: &mut Reader, name: &'static str| -> Option<Rgb> {
+        r.p.require(name, schema, r.diags)?;
+        Some(r.color(name, [0.0; 3]))
+    };
+    match kind {
+        BlockKind::PointLight => {
+            let pos = r.vec3_req("position", schema);
+            let i = need_color(&mut r, "intensity");
+            Some(Light::Point { position: pos?.0, intensity: i? })
+        }
+        BlockKind::SpotLight => {
+            let pos = r.vec3_req("position", schema);
+            let at = r.vec3_req("look_at", schema);
+            let i = need_color(&mut r, "intensity");
+            let angle = r.num_in("angle", 0.0, 90.0, true, 30.0);
+            let falloff = r.num_in("falloff", 0.0, angle, false, angle);
+            let (pos, s) = pos?;
+            let dir = at?.0 - pos;
+            if dir.length_squared() == 0.0 {
+                r.diags.push(
+                    Diagnostic::error(codes::DEGENERATE, "the spot light points at its own position", s)
+                        .with_label("`position` equals `look_at`")
+                        .with_help("aim `look_at` at the lit point"),
+                );
+                return None;
+            }
+            Some(Light::Spot { position: pos, direction: dir.normalize(), intensity: i?, angle, falloff })
+        }
+        BlockKind::DirectionalLight => {
+            let d = r.direction("direction", schema);
+            let e = need_color(&mut r, "irradiance");
+            Some(Light::Directional { direction: d?, irradiance: e? })
+        }
+        _ => unreachable!("not a light: {kind:?}"),
+    }
+}
+
+/// The schemas a shape block is checked against.
+pub fn shape_schemas(kind: BlockKind) -> Vec<&'static [super::params::ParamSpec]> {
+    if kind.is_shape() {
+        vec![super::params::shape_schema(kind), SHAPE_COMMON]
+    } else {
+        vec![super::params::shape_schema(kind)]
+    }
+}
+
+/// The material schema (for inline and named materials).
+pub fn material_schema() -> Vec<&'static [super::params::ParamSpec]> {
+    vec![MATERIAL]
+}

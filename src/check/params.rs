@@ -1,0 +1,439 @@
+//! Per-block parameter schemas and the collector that checks a block's
+//! entries against one: unknown, duplicate and ill-typed parameters.
+
+use super::codes;
+use super::eval::{eval, Env, Value};
+use crate::diag::{did_you_mean, Diagnostic, Diagnostics};
+use crate::span::Span;
+use crate::syntax::ast::{Block, Entry, ExprKind};
+use std::collections::HashMap;
+
+/// The type a parameter expects.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Ty {
+    /// Any finite number.
+    Num,
+    /// A whole number.
+    Int,
+    /// `<a, b>`
+    Vec2,
+    /// `<x, y, z>`
+    Vec3,
+    /// `rgb …`
+    Color,
+    /// `"…"`
+    Str,
+    /// `true` / `false`
+    Bool,
+    /// One of a fixed set of words.
+    Word(&'static [&'static str]),
+    /// A number (uniform) or a vector of 3.
+    NumOrVec3,
+    /// 12 or 16 numbers, row-major.
+    Matrix,
+}
+
+impl Ty {
+    /// The type's name in messages.
+    pub fn describe(self) -> String {
+        match self {
+            Ty::Num => "a number".into(),
+            Ty::Int => "a whole number".into(),
+            Ty::Vec2 => "a vector of 2".into(),
+            Ty::Vec3 => "a vector of 3".into(),
+            Ty::Color => "a colour".into(),
+            Ty::Str => "a string".into(),
+            Ty::Bool => "a boolean".into(),
+            Ty::Word(ws) => format!("one of {}", ws.join(", ")),
+            Ty::NumOrVec3 => "a number or a vector of 3".into(),
+            Ty::Matrix => "a vector of 12 or 16 numbers".into(),
+        }
+    }
+}
+
+/// One parameter of a block.
+#[derive(Debug, Clone, Copy)]
+pub struct ParamSpec {
+    /// Its name.
+    pub name: &'static str,
+    /// Its type.
+    pub ty: Ty,
+    /// An example value, used in help lines.
+    pub example: &'static str,
+    /// Whether it may appear several times (transforms; order matters).
+    pub repeat: bool,
+}
+
+const fn p(name: &'static str, ty: Ty, example: &'static str) -> ParamSpec {
+    ParamSpec {
+        name,
+        ty,
+        example,
+        repeat: false,
+    }
+}
+
+const fn t(name: &'static str, ty: Ty, example: &'static str) -> ParamSpec {
+    ParamSpec {
+        name,
+        ty,
+        example,
+        repeat: true,
+    }
+}
+
+/// Parameters every shape accepts besides `material`.
+pub const SHAPE_COMMON: &[ParamSpec] = &[
+    t("translate", Ty::Vec3, "<0, 1, 0>"),
+    t("rotate", Ty::Vec3, "<0, 45, 0>"),
+    t("scale", Ty::NumOrVec3, "2"),
+    t("matrix", Ty::Matrix, "<1,0,0, 0,1,0, 0,0,1, 0,0,0>"),
+    p("velocity", Ty::Vec3, "<1, 0, 0>"),
+];
+
+/// Integrator names accepted by `render { integrator … }`.
+pub const INTEGRATORS: &[&str] = &["path", "whitted", "hybrid", "normals", "albedo", "depth"];
+
+/// `render { }`
+pub const RENDER: &[ParamSpec] = &[
+    p("resolution", Ty::Vec2, "<512, 512>"),
+    p("samples", Ty::Int, "64"),
+    p("max_depth", Ty::Int, "8"),
+    p("integrator", Ty::Word(INTEGRATORS), "path"),
+    p("seed", Ty::Int, "1"),
+    p("ambient", Ty::Color, "rgb 0.1"),
+    p("rr_depth", Ty::Int, "5"),
+    p("output", Ty::Str, "\"out.png\""),
+    p("hybrid_weight", Ty::Num, "0.5"),
+    p("clamp", Ty::Num, "10"),
+    p("light_sampling", Ty::Bool, "true"),
+    p("light_samples", Ty::Int, "4"),
+    p("exposure", Ty::Num, "0"),
+];
+
+/// `camera { }`
+pub const CAMERA: &[ParamSpec] = &[
+    p("position", Ty::Vec3, "<0, 1, 5>"),
+    p("look_at", Ty::Vec3, "<0, 0, 0>"),
+    p("up", Ty::Vec3, "<0, 1, 0>"),
+    p("fov", Ty::Num, "40"),
+    p("aperture", Ty::Num, "0.05"),
+    p("focus_distance", Ty::Num, "5"),
+    p("shutter", Ty::Vec2, "<0, 1>"),
+];
+
+/// `material { }`
+pub const MATERIAL: &[ParamSpec] = &[
+    p("diffuse", Ty::Color, "rgb <0.8, 0.8, 0.8>"),
+    p("reflection", Ty::Color, "rgb 1"),
+    p("gloss", Ty::Num, "0.3"),
+    p("transmission", Ty::Num, "1"),
+    p("ior", Ty::Num, "1.5"),
+    p("absorption", Ty::Color, "rgb <0.5, 0.1, 0.1>"),
+    p("emission", Ty::Color, "rgb 10"),
+    p("two_sided", Ty::Bool, "true"),
+];
+
+/// The parameters of each shape, without [`SHAPE_COMMON`].
+pub fn shape_schema(kind: crate::syntax::ast::BlockKind) -> &'static [ParamSpec] {
+    use crate::syntax::ast::BlockKind::*;
+    match kind {
+        Sphere => {
+            const S: &[ParamSpec] = &[p("center", Ty::Vec3, "<0, 1, 0>"), p("radius", Ty::Num, "1")];
+            S
+        }
+        Plane => {
+            const S: &[ParamSpec] = &[p("point", Ty::Vec3, "<0, 0, 0>"), p("normal", Ty::Vec3, "<0, 1, 0>")];
+            S
+        }
+        Quad => {
+            const S: &[ParamSpec] = &[
+                p("corner", Ty::Vec3, "<-1, 0, -1>"),
+                p("edge1", Ty::Vec3, "<0, 0, 2>"),
+                p("edge2", Ty::Vec3, "<2, 0, 0>"),
+            ];
+            S
+        }
+        Disk => {
+            const S: &[ParamSpec] = &[
+                p("center", Ty::Vec3, "<0, 0, 0>"),
+                p("normal", Ty::Vec3, "<0, 1, 0>"),
+                p("radius", Ty::Num, "1"),
+            ];
+            S
+        }
+        Triangle => {
+            const S: &[ParamSpec] = &[
+                p("v0", Ty::Vec3, "<0, 0, 0>"),
+                p("v1", Ty::Vec3, "<1, 0, 0>"),
+                p("v2", Ty::Vec3, "<0, 1, 0>"),
+            ];
+            S
+        }
+        Box => {
+            const S: &[ParamSpec] = &[p("min", Ty::Vec3, "<-1, -1, -1>"), p("max", Ty::Vec3, "<1, 1, 1>")];
+            S
+        }
+        Mesh => {
+            const S: &[ParamSpec] = &[p("file", Ty::Str, "\"bunny.ply\""), p("smooth", Ty::Bool, "true")];
+            S
+        }
+        PointLight => {
+            const S: &[ParamSpec] = &[
+                p("position", Ty::Vec3, "<0, 5, 0>"),
+                p("intensity", Ty::Color, "rgb 100"),
+            ];
+            S
+        }
+        SpotLight => {
+            const S: &[ParamSpec] = &[
+                p("position", Ty::Vec3, "<0, 5, 0>"),
+                p("look_at", Ty::Vec3, "<0, 0, 0>"),
+                p("intensity", Ty::Color, "rgb 100"),
+                p("angle", Ty::Num, "30"),
+                p("falloff", Ty::Num, "25"),
+            ];
+            S
+        }
+        DirectionalLight => {
+            const S: &[ParamSpec] = &[
+                p("direction", Ty::Vec3, "<0, -1, 0>"),
+                p("irradiance", Ty::Color, "rgb 3"),
+            ];
+            S
+        }
+        Render => RENDER,
+        Camera => CAMERA,
+    }
+}
+
+/// A checked parameter value.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Val {
+    /// A number (or whole number).
+    Num(f64),
+    /// A vector.
+    Vector(Vec<f64>),
+    /// A colour.
+    Color([f64; 3]),
+    /// A string.
+    Str(String),
+    /// A boolean.
+    Bool(bool),
+    /// A word from a fixed set.
+    Word(String),
+}
+
+/// The checked parameters of one block.
+pub struct Params {
+    /// What the block is called in messages (`sphere`, `material glass`).
+    pub what: String,
+    /// Where the block's keyword or name is (missing-parameter errors point there).
+    pub head: Span,
+    values: HashMap<&'static str, (Val, Span)>,
+    /// Repeatable parameters (transforms) in source order.
+    pub ordered: Vec<(&'static str, Val, Span)>,
+    /// Names that were given (well-typed or not), so a later "missing" is not reported twice.
+    given: Vec<&'static str>,
+}
+
+impl Params {
+    /// Checks `block` against `schema` (plus `extra`), evaluating values.
+    /// Entries that are `material` references are left to the caller.
+    pub fn collect(
+        what: impl Into<String>,
+        head: Span,
+        block: &Block,
+        schemas: &[&'static [ParamSpec]],
+        env: &mut Env,
+        diags: &mut Diagnostics,
+    ) -> Params {
+        let what = what.into();
+        let mut params = Params {
+            what: what.clone(),
+            head,
+            values: HashMap::new(),
+            ordered: Vec::new(),
+            given: Vec::new(),
+        };
+        let mut first_seen: HashMap<&'static str, Span> = HashMap::new();
+        for entry in &block.entries {
+            let Entry::Param { name, value, .. } = entry else {
+                continue;
+            };
+            let Some(spec) = schemas.iter().flat_map(|s| s.iter()).find(|s| s.name == name.name) else {
+                let all: Vec<&str> = schemas
+                    .iter()
+                    .flat_map(|s| s.iter().map(|p| p.name))
+                    .collect();
+                let help = match did_you_mean(&name.name, all.iter().copied()) {
+                    Some(s) => format!("did you mean `{s}`?"),
+                    None => format!("`{what}` accepts {}", all.join(", ")),
+                };
+                diags.push(
+                    Diagnostic::error(
+                        codes::UNKNOWN_PARAM,
+                        format!("unknown parameter `{}` in `{what}`", name.name),
+                        name.span,
+                    )
+                    .with_label("not a parameter of this block")
+                    .with_help(help),
+                );
+                continue;
+            };
+            if !spec.repeat {
+                if let Some(first) = first_seen.get(spec.name) {
+                    diags.push(
+                        Diagnostic::error(
+                            codes::DUPLICATE_PARAM,
+                            format!("parameter `{}` given twice in `{what}`", spec.name),
+                            name.span,
+                        )
+                        .with_label("given again here")
+                        .with_secondary(*first, "first given here")
+                        .with_help("remove one of them"),
+                    );
+                    continue;
+                }
+                first_seen.insert(spec.name, name.span);
+            }
+            params.given.push(spec.name);
+            let Some(val) = typed_value(spec, value, env, diags) else {
+                continue;
+            };
+            if spec.repeat {
+                params.ordered.push((spec.name, val, value.span));
+            } else {
+                params.values.insert(spec.name, (val, value.span));
+            }
+        }
+        params
+    }
+
+    /// The value of an optional parameter.
+    pub fn get(&self, name: &str) -> Option<&(Val, Span)> {
+        self.values.get(name)
+    }
+
+    /// Whether the parameter was written (even if its value had an error).
+    pub fn given(&self, name: &str) -> bool {
+        self.given.contains(&name)
+    }
+
+    /// A required parameter; reports it missing (once) if absent.
+    pub fn require(&self, spec_name: &'static str, schema: &[ParamSpec], diags: &mut Diagnostics) -> Option<&(Val, Span)> {
+        if let Some(v) = self.values.get(spec_name) {
+            return Some(v);
+        }
+        if !self.given(spec_name) {
+            let example = schema
+                .iter()
+                .find(|s| s.name == spec_name)
+                .map(|s| s.example)
+                .unwrap_or("…");
+            diags.push(
+                Diagnostic::error(
+                    codes::MISSING_PARAM,
+                    format!("`{}` needs a `{spec_name}`", self.what),
+                    self.head,
+                )
+                .with_label(format!("`{spec_name}` is missing"))
+                .with_help(format!("add `{spec_name} {example}` inside the braces")),
+            );
+        }
+        None
+    }
+}
+
+/// Evaluates one parameter value and checks its type against the spec.
+fn typed_value(
+    spec: &ParamSpec,
+    value: &crate::syntax::ast::Expr,
+    env: &mut Env,
+    diags: &mut Diagnostics,
+) -> Option<Val> {
+    if let Ty::Word(words) = spec.ty {
+        let ExprKind::Name(w) = &value.kind else {
+            diags.push(
+                Diagnostic::error(
+                    codes::TYPE_MISMATCH,
+                    format!("`{}` expects {}", spec.name, spec.ty.describe()),
+                    value.span,
+                )
+                .with_label("not one of the accepted words")
+                .with_help(format!("write e.g. `{} {}`", spec.name, spec.example)),
+            );
+            return None;
+        };
+        if words.contains(&w.as_str()) {
+            return Some(Val::Word(w.clone()));
+        }
+        let help = match did_you_mean(w, words.iter().copied()) {
+            Some(s) => format!("did you mean `{s}`?"),
+            None => format!("use one of {}", words.join(", ")),
+        };
+        diags.push(
+            Diagnostic::error(
+                codes::UNKNOWN_WORD,
+                format!("unknown {} `{w}`", spec.name),
+                value.span,
+            )
+            .with_label(format!("not a known {}", spec.name))
+            .with_help(help),
+        );
+        return None;
+    }
+    let v = eval(value, env, diags)?;
+    let ok = match (&spec.ty, v) {
+        (Ty::Num, Value::Num(x)) => Some(Val::Num(x)),
+        (Ty::Int, Value::Num(x)) if x.fract() == 0.0 => Some(Val::Num(x)),
+        (Ty::Int, Value::Num(x)) => {
+            diags.push(
+                Diagnostic::error(
+                    codes::TYPE_MISMATCH,
+                    format!("`{}` must be a whole number, found {x}", spec.name),
+                    value.span,
+                )
+                .with_label("has a fractional part")
+                .with_help(format!("write e.g. `{} {}`", spec.name, spec.example)),
+            );
+            return None;
+        }
+        (Ty::Vec2, Value::Vector(v)) if v.len() == 2 => Some(Val::Vector(v)),
+        (Ty::Vec3, Value::Vector(v)) if v.len() == 3 => Some(Val::Vector(v)),
+        (Ty::NumOrVec3, Value::Num(x)) => Some(Val::Vector(vec![x; 3])),
+        (Ty::NumOrVec3, Value::Vector(v)) if v.len() == 3 => Some(Val::Vector(v)),
+        (Ty::Matrix, Value::Vector(v)) if v.len() == 12 || v.len() == 16 => Some(Val::Vector(v)),
+        (Ty::Color, Value::Color(c)) => Some(Val::Color(c)),
+        (Ty::Str, Value::Str(s)) => Some(Val::Str(s)),
+        (Ty::Bool, Value::Bool(b)) => Some(Val::Bool(b)),
+        (ty, other) => {
+            let help = match (ty, &other) {
+                (Ty::Color, Value::Vector(v)) if v.len() == 3 => format!(
+                    "colours are written with `rgb`: `{} rgb <{}, {}, {}>`",
+                    spec.name, v[0], v[1], v[2]
+                ),
+                (Ty::Color, Value::Num(x)) => {
+                    format!("colours are written with `rgb`: `{} rgb {x}`", spec.name)
+                }
+                _ => format!("write e.g. `{} {}`", spec.name, spec.example),
+            };
+            diags.push(
+                Diagnostic::error(
+                    codes::TYPE_MISMATCH,
+                    format!(
+                        "`{}` expects {}, found {}",
+                        spec.name,
+                        ty.describe(),
+                        other.type_name()
+                    ),
+                    value.span,
+                )
+                .with_label(format!("this is {}", other.type_name()))
+                .with_help(help),
+            );
+            return None;
+        }
+    };
+    ok
+}

@@ -1,0 +1,288 @@
+//! The checked scene: every expression evaluated, every name resolved, every
+//! value in range. Lowering turns it into the render IR.
+
+use crate::span::Span;
+use glam::{DMat4, DVec3};
+use std::path::PathBuf;
+
+/// Linear RGB triple.
+pub type Rgb = [f64; 3];
+
+/// Which light-transport algorithm renders the scene.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum IntegratorKind {
+    /// Unbiased path tracing with next-event estimation and MIS.
+    Path,
+    /// Recursive ray tracing with shadow rays.
+    Whitted,
+    /// The paper's blend of Whitted and path tracing.
+    Hybrid,
+    /// Debug: shading normals as colours.
+    Normals,
+    /// Debug: the albedo of the first hit.
+    Albedo,
+    /// Debug: distance to the first hit.
+    Depth,
+}
+
+impl IntegratorKind {
+    /// Every integrator with its `.pts` name.
+    pub const NAMES: [(&'static str, IntegratorKind); 6] = [
+        ("path", IntegratorKind::Path),
+        ("whitted", IntegratorKind::Whitted),
+        ("hybrid", IntegratorKind::Hybrid),
+        ("normals", IntegratorKind::Normals),
+        ("albedo", IntegratorKind::Albedo),
+        ("depth", IntegratorKind::Depth),
+    ];
+
+    /// Looks an integrator up by name.
+    pub fn from_name(name: &str) -> Option<Self> {
+        Self::NAMES.iter().find(|(n, _)| *n == name).map(|(_, k)| *k)
+    }
+}
+
+/// The `render { }` block, defaults filled in.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RenderSettings {
+    /// Image width and height in pixels.
+    pub width: u32,
+    /// Image height in pixels.
+    pub height: u32,
+    /// Samples (camera paths) per pixel.
+    pub samples: u32,
+    /// Path segments at most (Mitsuba convention).
+    pub max_depth: u32,
+    /// Light transport algorithm.
+    pub integrator: IntegratorKind,
+    /// Seed of every random stream.
+    pub seed: u64,
+    /// The paper's constant ambient term (biased), added at diffuse hits.
+    pub ambient: Rgb,
+    /// Path depth (in segments) from which Russian roulette may end a path.
+    pub rr_depth: u32,
+    /// Output file named in the scene, relative to the scene file.
+    pub output: Option<PathBuf>,
+    /// Weight of the Whitted estimate in the hybrid blend.
+    pub hybrid_weight: f64,
+    /// Largest luminance a sample may contribute (biased; `None` = off).
+    pub clamp: Option<f64>,
+    /// Whether the path integrator samples lights directly (NEE + MIS); `false` is the paper's naive mode.
+    pub light_sampling: bool,
+    /// Shadow rays per area light and hit in the Whitted integrator.
+    pub light_samples: u32,
+    /// Exposure in stops applied when writing PNG.
+    pub exposure: f64,
+}
+
+impl Default for RenderSettings {
+    fn default() -> Self {
+        RenderSettings {
+            width: 512,
+            height: 512,
+            samples: 16,
+            max_depth: 8,
+            integrator: IntegratorKind::Path,
+            seed: 0,
+            ambient: [0.0; 3],
+            rr_depth: 5,
+            output: None,
+            hybrid_weight: 0.5,
+            clamp: None,
+            light_sampling: true,
+            light_samples: 4,
+            exposure: 0.0,
+        }
+    }
+}
+
+/// The `camera { }` block.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Camera {
+    /// Eye position.
+    pub position: DVec3,
+    /// Point looked at.
+    pub look_at: DVec3,
+    /// Up direction.
+    pub up: DVec3,
+    /// Full vertical field of view in degrees.
+    pub fov: f64,
+    /// Lens radius (0 = pinhole).
+    pub aperture: f64,
+    /// Distance of the plane in focus.
+    pub focus_distance: f64,
+    /// Shutter open and close times.
+    pub shutter: (f64, f64),
+    /// Where the block is.
+    pub span: Span,
+}
+
+/// A material, resolved.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Material {
+    /// Name (`None` for inline materials).
+    pub name: Option<String>,
+    /// Lambertian albedo.
+    pub diffuse: Rgb,
+    /// Specular (mirror or glossy) reflectance.
+    pub reflection: Rgb,
+    /// Roughness of the reflection lobe, 0 = mirror.
+    pub gloss: f64,
+    /// Weight of the smooth dielectric lobe.
+    pub transmission: f64,
+    /// Index of refraction inside.
+    pub ior: f64,
+    /// Beer's-law absorption coefficient per unit length inside.
+    pub absorption: Rgb,
+    /// Emitted radiance.
+    pub emission: Rgb,
+    /// Whether emission leaves both sides.
+    pub two_sided: bool,
+    /// Where it is declared.
+    pub span: Span,
+}
+
+impl Material {
+    /// The default material of an object without one: grey diffuse.
+    pub fn default_at(span: Span) -> Material {
+        Material {
+            name: None,
+            diffuse: [0.5; 3],
+            reflection: [0.0; 3],
+            gloss: 0.0,
+            transmission: 0.0,
+            ior: 1.5,
+            absorption: [0.0; 3],
+            emission: [0.0; 3],
+            two_sided: false,
+            span,
+        }
+    }
+
+    /// Whether it emits light.
+    pub fn is_emissive(&self) -> bool {
+        self.emission.iter().any(|&c| c > 0.0)
+    }
+}
+
+/// A shape before transforms.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Shape {
+    /// Centre and radius.
+    Sphere {
+        /// Centre.
+        center: DVec3,
+        /// Radius.
+        radius: f64,
+    },
+    /// Infinite plane through a point.
+    Plane {
+        /// A point on the plane.
+        point: DVec3,
+        /// Normal.
+        normal: DVec3,
+    },
+    /// Parallelogram `corner + s·edge1 + t·edge2`.
+    Quad {
+        /// Corner.
+        corner: DVec3,
+        /// First edge.
+        edge1: DVec3,
+        /// Second edge.
+        edge2: DVec3,
+    },
+    /// Disk.
+    Disk {
+        /// Centre.
+        center: DVec3,
+        /// Normal.
+        normal: DVec3,
+        /// Radius.
+        radius: f64,
+    },
+    /// Triangle with counter-clockwise vertices.
+    Triangle {
+        /// Vertices.
+        v: [DVec3; 3],
+    },
+    /// Axis-aligned box.
+    Box {
+        /// Minimum corner.
+        min: DVec3,
+        /// Maximum corner.
+        max: DVec3,
+    },
+    /// Triangle mesh from a file.
+    Mesh {
+        /// Resolved path.
+        path: PathBuf,
+        /// Where the file name is written.
+        path_span: Span,
+        /// Interpolate vertex normals when the file has them.
+        smooth: bool,
+    },
+}
+
+/// An object: a shape with a material, a transform and optional motion.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Object {
+    /// The shape in object space.
+    pub shape: Shape,
+    /// Index into [`Scene::materials`].
+    pub material: usize,
+    /// Object-to-world transform.
+    pub transform: DMat4,
+    /// Linear motion per unit of shutter time.
+    pub velocity: DVec3,
+    /// Where the object is.
+    pub span: Span,
+}
+
+/// A light that is not a shape.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Light {
+    /// Isotropic point light with intensity in W/sr.
+    Point {
+        /// Position.
+        position: DVec3,
+        /// Radiant intensity.
+        intensity: Rgb,
+    },
+    /// Spot light.
+    Spot {
+        /// Position.
+        position: DVec3,
+        /// Unit direction of the cone's axis.
+        direction: DVec3,
+        /// Radiant intensity on the axis.
+        intensity: Rgb,
+        /// Half-angle of the cone, degrees.
+        angle: f64,
+        /// Half-angle where the fall-off starts, degrees.
+        falloff: f64,
+    },
+    /// Light from a direction at infinity.
+    Directional {
+        /// Unit direction the light travels in.
+        direction: DVec3,
+        /// Irradiance on a surface facing the light.
+        irradiance: Rgb,
+    },
+}
+
+/// A checked scene, ready to lower.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Scene {
+    /// Settings.
+    pub render: RenderSettings,
+    /// The camera.
+    pub camera: Camera,
+    /// Background radiance.
+    pub background: Rgb,
+    /// Materials (named and inline), referenced by index.
+    pub materials: Vec<Material>,
+    /// Objects.
+    pub objects: Vec<Object>,
+    /// Lights that are not shapes.
+    pub lights: Vec<(Light, Span)>,
+}

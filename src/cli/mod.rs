@@ -1,0 +1,65 @@
+//! The command line: `ptsc check`, `ptsc render`, `ptsc watch`.
+
+mod check;
+
+use clap::{Parser, Subcommand};
+use std::process::ExitCode;
+
+/// Exit code: the scene is fine (warnings allowed).
+pub const EXIT_OK: u8 = 0;
+/// Exit code: the scene has errors.
+pub const EXIT_SCENE_ERROR: u8 = 1;
+/// Exit code: bad usage or an I/O error.
+pub const EXIT_USAGE: u8 = 2;
+
+/// ptsc: compile and render `.pts` scenes.
+#[derive(Debug, Parser)]
+#[command(name = "ptsc", version, about)]
+pub struct Cli {
+    /// What to do.
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+/// How diagnostics are printed.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum Format {
+    /// For people, with the source underlined.
+    Human,
+    /// One JSON object per diagnostic, for editors and scripts.
+    Json,
+}
+
+/// The subcommands.
+#[derive(Debug, Subcommand)]
+pub enum Command {
+    /// Parse and check a scene; print every problem.
+    Check {
+        /// The scene file.
+        file: std::path::PathBuf,
+        /// Output format of the diagnostics.
+        #[arg(long, value_enum, default_value = "human")]
+        format: Format,
+    },
+}
+
+/// Runs the command line and returns the process exit code.
+pub fn run() -> ExitCode {
+    let cli = match Cli::try_parse() {
+        Ok(c) => c,
+        Err(e) => {
+            let _ = e.print();
+            return ExitCode::from(if e.use_stderr() { EXIT_USAGE } else { EXIT_OK });
+        }
+    };
+    let code = match cli.command {
+        Command::Check { file, format } => check::run(&file, format),
+    };
+    ExitCode::from(code)
+}
+
+/// Whether stderr is a terminal (colours, progress bars).
+pub fn stderr_is_terminal() -> bool {
+    use std::io::IsTerminal;
+    std::io::stderr().is_terminal()
+}

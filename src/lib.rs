@@ -1,0 +1,17 @@
+//! # ptsc: a compiler and path tracer for `.pts` scenes
+//!
+//! The pipeline, one public function per stage:
+//!
+//! ```text
+//! text ──parse──▶ ast::File ──check──▶ check::Scene ──lower──▶ ir::Scene ──render──▶ Film ──write──▶ image
+//!      (syntax)             (check: diagnostics)    (ir: BVH, meshes)   (integrator, render)
+//! ```
+#![forbid(unsafe_code)]
+#![warn(missing_docs)]
+
+pub mod check;
+pub mod cli;
+pub mod diag;
+pub mod source;
+pub mod span;
+pub mod syntax;

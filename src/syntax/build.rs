@@ -1,0 +1,270 @@
+//! pest pairs → AST. One `build_*` function per rule; rules that the grammar
+//! makes impossible at a place are `unreachable!`.
+
+use super::ast::*;
+use super::parser::Rule;
+use crate::source::FileId;
+use crate::span::Span;
+use pest::iterators::Pair;
+
+/// Builds AST nodes from the pairs of one file.
+pub struct Builder {
+    /// The file the pairs come from.
+    pub file: FileId,
+}
+
+impl Builder {
+    fn span(&self, pair: &Pair<Rule>) -> Span {
+        let s = pair.as_span();
+        Span::new(self.file, s.start(), s.end())
+    }
+
+    /// `file`
+    pub fn build_file(&self, pair: Pair<Rule>) -> File {
+        let statements = pair
+            .into_inner()
+            .filter(|p| p.as_rule() != Rule::EOI)
+            .map(|p| self.build_statement(p))
+            .collect();
+        File { statements }
+    }
+
+    fn build_ident(&self, pair: Pair<Rule>) -> Ident {
+        Ident {
+            name: pair.as_str().to_string(),
+            span: self.span(&pair),
+        }
+    }
+
+    fn build_statement(&self, pair: Pair<Rule>) -> Statement {
+        let span = self.span(&pair);
+        let rule = pair.as_rule();
+        let mut inner = pair.into_inner();
+        match rule {
+            Rule::let_stmt => {
+                inner.next(); // kw_let
+                let name = self.build_ident(inner.next().unwrap());
+                inner.next(); // =
+                let value = self.build_expr(inner.next().unwrap());
+                Statement::Let { name, value, span }
+            }
+            Rule::include_stmt => {
+                inner.next(); // kw_include
+                let s = inner.next().unwrap();
+                let path_span = self.span(&s);
+                Statement::Include {
+                    path: unescape(s.into_inner().next().unwrap().as_str()),
+                    path_span,
+                    span,
+                }
+            }
+            Rule::for_stmt => {
+                inner.next(); // kw_for
+                let var = self.build_ident(inner.next().unwrap());
+                inner.next(); // kw_in
+                let start = self.build_expr(inner.next().unwrap());
+                inner.next(); // ..
+                let end = self.build_expr(inner.next().unwrap());
+                inner.next(); // {
+                let body = inner
+                    .filter(|p| p.as_rule() != Rule::rbrace)
+                    .map(|p| self.build_statement(p))
+                    .collect();
+                Statement::For {
+                    var,
+                    start,
+                    end,
+                    body,
+                    span,
+                }
+            }
+            Rule::background_stmt => {
+                inner.next(); // kw_background
+                let value = self.build_expr(inner.next().unwrap());
+                Statement::Background { value, span }
+            }
+            Rule::material_decl => {
+                inner.next(); // kw_material
+                let name = self.build_ident(inner.next().unwrap());
+                let block = self.build_block(inner.next().unwrap());
+                Statement::Material { name, block, span }
+            }
+            Rule::block_stmt => {
+                let kind_pair = inner.next().unwrap();
+                let kind_span = self.span(&kind_pair);
+                let kw = kind_pair.into_inner().next().unwrap();
+                let kind = match kw.as_rule() {
+                    Rule::kw_render => BlockKind::Render,
+                    Rule::kw_camera => BlockKind::Camera,
+                    Rule::kw_sphere => BlockKind::Sphere,
+                    Rule::kw_plane => BlockKind::Plane,
+                    Rule::kw_quad => BlockKind::Quad,
+                    Rule::kw_disk => BlockKind::Disk,
+                    Rule::kw_triangle => BlockKind::Triangle,
+                    Rule::kw_box => BlockKind::Box,
+                    Rule::kw_mesh => BlockKind::Mesh,
+                    Rule::kw_point_light => BlockKind::PointLight,
+                    Rule::kw_spot_light => BlockKind::SpotLight,
+                    Rule::kw_directional_light => BlockKind::DirectionalLight,
+                    r => unreachable!("block_kind holds only keywords, got {r:?}"),
+                };
+                let block = self.build_block(inner.next().unwrap());
+                Statement::Block {
+                    kind,
+                    kind_span,
+                    block,
+                    span,
+                }
+            }
+            r => unreachable!("not a statement: {r:?}"),
+        }
+    }
+
+    fn build_block(&self, pair: Pair<Rule>) -> Block {
+        let span = self.span(&pair);
+        let entries = pair
+            .into_inner()
+            .filter(|p| !matches!(p.as_rule(), Rule::lbrace | Rule::rbrace))
+            .map(|p| self.build_entry(p))
+            .collect();
+        Block { entries, span }
+    }
+
+    fn build_entry(&self, pair: Pair<Rule>) -> Entry {
+        let span = self.span(&pair);
+        let rule = pair.as_rule();
+        let mut inner = pair.into_inner();
+        match rule {
+            Rule::param => {
+                let name = self.build_ident(inner.next().unwrap());
+                let value = self.build_expr(inner.next().unwrap());
+                Entry::Param { name, value, span }
+            }
+            Rule::material_entry => {
+                inner.next(); // kw_material
+                let m = inner.next().unwrap();
+                let material = match m.as_rule() {
+                    Rule::block => MaterialRef::Inline(self.build_block(m)),
+                    Rule::ident => MaterialRef::Named(self.build_ident(m)),
+                    r => unreachable!("material entry holds a block or a name, got {r:?}"),
+                };
+                Entry::Material { material, span }
+            }
+            r => unreachable!("not an entry: {r:?}"),
+        }
+    }
+
+    /// `expr`, `term`, `factor` and the primaries.
+    fn build_expr(&self, pair: Pair<Rule>) -> Expr {
+        let span = self.span(&pair);
+        match pair.as_rule() {
+            Rule::expr | Rule::term => {
+                let mut inner = pair.into_inner();
+                let mut lhs = self.build_expr(inner.next().unwrap());
+                while let Some(op) = inner.next() {
+                    let op = match op.as_str() {
+                        "+" => BinOp::Add,
+                        "-" => BinOp::Sub,
+                        "*" => BinOp::Mul,
+                        "/" => BinOp::Div,
+                        o => unreachable!("operator {o}"),
+                    };
+                    let rhs = self.build_expr(inner.next().unwrap());
+                    let span = lhs.span.join(rhs.span);
+                    lhs = Expr {
+                        kind: ExprKind::Binary {
+                            op,
+                            lhs: Box::new(lhs),
+                            rhs: Box::new(rhs),
+                        },
+                        span,
+                    };
+                }
+                lhs
+            }
+            Rule::factor => {
+                let parts: Vec<Pair<Rule>> = pair.into_inner().collect();
+                let (last, negs) = parts.split_last().unwrap();
+                let mut e = self.build_expr(last.clone());
+                for n in negs.iter().rev() {
+                    let nspan = self.span(n).join(e.span);
+                    e = Expr {
+                        kind: ExprKind::Neg(Box::new(e)),
+                        span: nspan,
+                    };
+                }
+                e
+            }
+            Rule::number => Expr {
+                kind: ExprKind::Number(pair.as_str().parse().unwrap_or(f64::INFINITY)),
+                span,
+            },
+            Rule::string => Expr {
+                kind: ExprKind::Str(unescape(pair.into_inner().next().unwrap().as_str())),
+                span,
+            },
+            Rule::boolean => Expr {
+                kind: ExprKind::Bool(pair.as_str() == "true"),
+                span,
+            },
+            Rule::vector => Expr {
+                kind: ExprKind::Vector(
+                    pair.into_inner()
+                        .filter(|p| p.as_rule() == Rule::expr)
+                        .map(|p| self.build_expr(p))
+                        .collect(),
+                ),
+                span,
+            },
+            Rule::color => {
+                let f = pair.into_inner().nth(1).unwrap();
+                Expr {
+                    kind: ExprKind::Color(Box::new(self.build_expr(f))),
+                    span,
+                }
+            }
+            Rule::call => {
+                let mut inner = pair.into_inner();
+                let func = self.build_ident(inner.next().unwrap());
+                let args = inner
+                    .filter(|p| p.as_rule() == Rule::expr)
+                    .map(|p| self.build_expr(p))
+                    .collect();
+                Expr {
+                    kind: ExprKind::Call { func, args },
+                    span,
+                }
+            }
+            Rule::ident => Expr {
+                kind: ExprKind::Name(pair.as_str().to_string()),
+                span,
+            },
+            Rule::paren => {
+                let inner = pair.into_inner().nth(1).unwrap();
+                let mut e = self.build_expr(inner);
+                e.span = span;
+                e
+            }
+            r => unreachable!("not an expression: {r:?}"),
+        }
+    }
+}
+
+/// Resolves `\"`, `\\`, `\n` and `\t` escapes; other escaped characters stand for themselves.
+pub fn unescape(s: &str) -> String {
+    let mut out = String::with_capacity(s.len());
+    let mut chars = s.chars();
+    while let Some(c) = chars.next() {
+        if c == '\\' {
+            match chars.next() {
+                Some('n') => out.push('\n'),
+                Some('t') => out.push('\t'),
+                Some(other) => out.push(other),
+                None => {}
+            }
+        } else {
+            out.push(c);
+        }
+    }
+    out
+}

@@ -1,0 +1,253 @@
+//! The pest parser and the translation of pest errors into ptsc diagnostics
+//! with human words (never `Rule::expr`).
+
+use crate::diag::Diagnostic;
+use crate::source::FileId;
+use crate::span::Span;
+use pest::error::{ErrorVariant, InputLocation};
+use pest_derive::Parser;
+
+pub use generated::{PtsParser, Rule};
+
+mod generated {
+    #![allow(missing_docs)]
+    use super::Parser;
+
+    /// The parser generated from `grammar/pts.pest`.
+    #[derive(Parser)]
+    #[grammar = "../grammar/pts.pest"]
+    pub struct PtsParser;
+}
+
+/// How a rule is called in an error message ("expected …").
+/// Exhaustive on purpose: a new rule must get a human name.
+pub fn rule_name(rule: Rule) -> &'static str {
+    match rule {
+        Rule::EOI => "end of file",
+        Rule::WHITESPACE | Rule::COMMENT => "a blank or comment",
+        Rule::file | Rule::statement => "a statement",
+        Rule::let_stmt | Rule::kw_let => "`let`",
+        Rule::include_stmt | Rule::kw_include => "`include`",
+        Rule::for_stmt | Rule::kw_for => "`for`",
+        Rule::kw_in => "`in`",
+        Rule::background_stmt | Rule::kw_background => "`background`",
+        Rule::material_decl | Rule::material_entry | Rule::kw_material => "`material`",
+        Rule::block_stmt | Rule::block_kind => "a block such as `sphere { … }`",
+        Rule::block => "a block `{ … }`",
+        Rule::entry | Rule::param => "a parameter name",
+        Rule::expr | Rule::term | Rule::factor | Rule::primary => {
+            "a value (number, vector, colour, string or name)"
+        }
+        Rule::paren | Rule::lparen => "`(`",
+        Rule::rparen => "`)`",
+        Rule::call => "a function call",
+        Rule::vector | Rule::langle => "a vector `<x, y, z>`",
+        Rule::rangle => "`>`",
+        Rule::color | Rule::kw_rgb => "a colour `rgb …`",
+        Rule::boolean | Rule::kw_true | Rule::kw_false => "`true` or `false`",
+        Rule::number => "a number",
+        Rule::string | Rule::string_body => "a string",
+        Rule::ident => "a name",
+        Rule::keyword => "a keyword",
+        Rule::boundary => "the end of a word",
+        Rule::add_op => "`+` or `-`",
+        Rule::mul_op => "`*` or `/`",
+        Rule::neg => "`-`",
+        Rule::equals => "`=`",
+        Rule::semicolon => "`;`",
+        Rule::range_dots => "`..`",
+        Rule::lbrace => "`{`",
+        Rule::rbrace => "`}`",
+        Rule::comma => "`,`",
+        Rule::kw_render => "`render`",
+        Rule::kw_camera => "`camera`",
+        Rule::kw_sphere => "`sphere`",
+        Rule::kw_plane => "`plane`",
+        Rule::kw_quad => "`quad`",
+        Rule::kw_disk => "`disk`",
+        Rule::kw_triangle => "`triangle`",
+        Rule::kw_box => "`box`",
+        Rule::kw_mesh => "`mesh`",
+        Rule::kw_point_light => "`point_light`",
+        Rule::kw_spot_light => "`spot_light`",
+        Rule::kw_directional_light => "`directional_light`",
+    }
+}
+
+/// Joins names as "a, b or c".
+pub fn join_or(names: &[&str]) -> String {
+    match names {
+        [] => String::new(),
+        [one] => one.to_string(),
+        [init @ .., last] => format!("{} or {}", init.join(", "), last),
+    }
+}
+
+/// Describes what stands at byte `pos` of `text`, for "found …".
+fn describe_found(text: &str, pos: usize) -> String {
+    let rest = &text[pos.min(text.len())..];
+    let Some(c) = rest.chars().next() else {
+        return "end of file".into();
+    };
+    if c.is_alphabetic() || c == '_' {
+        let word: String = rest
+            .chars()
+            .take_while(|c| c.is_alphanumeric() || *c == '_')
+            .collect();
+        return format!("`{word}`");
+    }
+    if c.is_ascii_digit() {
+        let num: String = rest
+            .chars()
+            .take_while(|c| c.is_ascii_alphanumeric() || *c == '.')
+            .collect();
+        return format!("`{num}`");
+    }
+    if c.is_control() || c == '\u{FFFD}' {
+        return format!("the character U+{:04X}", c as u32);
+    }
+    format!("`{c}`")
+}
+
+/// Converts a pest error into a diagnostic pointing at the failing token.
+pub fn convert_error(err: pest::error::Error<Rule>, file: FileId, text: &str) -> Diagnostic {
+    let pos = match err.location {
+        InputLocation::Pos(p) => p,
+        InputLocation::Span((s, _)) => s,
+    };
+    let rest = &text[pos.min(text.len())..];
+    let token_len = rest
+        .chars()
+        .next()
+        .map(|c| {
+            if c.is_alphanumeric() || c == '_' {
+                rest.chars()
+                    .take_while(|c| c.is_alphanumeric() || *c == '_' || *c == '.')
+                    .map(char::len_utf8)
+                    .sum()
+            } else {
+                c.len_utf8()
+            }
+        })
+        .unwrap_or(0);
+    let span = Span::new(file, pos, pos + token_len);
+
+    if rest.starts_with("/*") {
+        return Diagnostic::error(
+            "pts::syntax::unterminated_comment",
+            "unterminated block comment",
+            Span::new(file, pos, pos + 2),
+        )
+        .with_label("this comment is never closed")
+        .with_help("close the comment with `*/`");
+    }
+    if rest.starts_with('"') {
+        return Diagnostic::error(
+            "pts::syntax::unterminated_string",
+            "unterminated string",
+            Span::new(file, pos, pos + 1),
+        )
+        .with_label("this string has no closing quote on its line")
+        .with_help("end the string with `\"` before the end of the line");
+    }
+
+    let found = describe_found(text, pos);
+    let (expected, unexpected) = match &err.variant {
+        ErrorVariant::ParsingError {
+            positives,
+            negatives,
+        } => {
+            let mut names: Vec<&str> = Vec::new();
+            for r in positives {
+                let n = rule_name(*r);
+                if !names.contains(&n) {
+                    names.push(n);
+                }
+            }
+            let mut neg: Vec<&str> = Vec::new();
+            for r in negatives {
+                let n = rule_name(*r);
+                if !neg.contains(&n) {
+                    neg.push(n);
+                }
+            }
+            // Operators could always continue an expression; they only add noise
+            // to the list unless nothing else fits.
+            let useful: Vec<&str> = names
+                .iter()
+                .copied()
+                .filter(|n| !matches!(*n, "`+` or `-`" | "`*` or `/`"))
+                .collect();
+            (if useful.is_empty() { names } else { useful }, neg)
+        }
+        ErrorVariant::CustomError { .. } => (Vec::new(), Vec::new()),
+    };
+    let message = if !expected.is_empty() {
+        format!("expected {}, found {found}", join_or(&expected))
+    } else if !unexpected.is_empty() {
+        format!("unexpected {}", join_or(&unexpected))
+    } else {
+        format!("unexpected {found}")
+    };
+    let label = if !expected.is_empty() {
+        format!("expected {} here", join_or(&expected))
+    } else {
+        "not allowed here".to_string()
+    };
+    let help = help_for(&expected, &found);
+    Diagnostic::error("pts::syntax::unexpected_token", message, span)
+        .with_label(label)
+        .with_help(help)
+}
+
+/// A hint that fits the usual causes of a parse error.
+fn help_for(expected: &[&str], found: &str) -> String {
+    if found == "end of file" && expected.contains(&"`}`") {
+        return "a block is not closed: add `}`".into();
+    }
+    if expected.contains(&"a name") && found.starts_with('`') {
+        let word = found.trim_matches('`');
+        if KEYWORDS.contains(&word) {
+            return format!("`{word}` is a reserved word; pick another name");
+        }
+    }
+    if expected.iter().any(|e| e.starts_with("a value")) {
+        return "a parameter is a name followed by a value, e.g. `radius 0.5` or `center <0, 1, 0>`"
+            .into();
+    }
+    if expected.contains(&"a statement") || expected.contains(&"`let`") {
+        return "a scene is a list of statements: `let`, `include`, `for`, `background`, `material`, `camera { … }`, `render { … }`, a light or an object such as `sphere { … }`".into();
+    }
+    if expected.contains(&"`>`") && expected.contains(&"`,`") {
+        return "separate vector components with `,` and close the vector with `>`: `<1, 2, 3>`".into();
+    }
+    if expected.contains(&"`;`") {
+        return "end a `let` with `;`".into();
+    }
+    "check the syntax near this point (see docs/language.md)".into()
+}
+
+/// Every reserved word of the language (kept in sync with the grammar by a test).
+pub const KEYWORDS: &[&str] = &[
+    "let",
+    "include",
+    "for",
+    "in",
+    "background",
+    "material",
+    "rgb",
+    "true",
+    "false",
+    "render",
+    "camera",
+    "sphere",
+    "plane",
+    "quad",
+    "disk",
+    "triangle",
+    "box",
+    "mesh",
+    "point_light",
+    "spot_light",
+    "directional_light",
+];

@@ -302,7 +302,10 @@ impl miette::Diagnostic for MietteReport {
 
 /// The closest candidate to `word` by edit distance, if it is close enough
 /// to be a plausible typo ("did you mean").
-pub fn did_you_mean<'a>(word: &str, candidates: impl IntoIterator<Item = &'a str>) -> Option<&'a str> {
+pub fn did_you_mean<'a>(
+    word: &str,
+    candidates: impl IntoIterator<Item = &'a str>,
+) -> Option<&'a str> {
     let limit = (word.chars().count() / 3).max(1);
     candidates
         .into_iter()

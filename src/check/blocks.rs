@@ -80,19 +80,31 @@ impl Reader<'_> {
     }
 
     /// A required vector of 3.
-    pub fn vec3_req(&mut self, name: &'static str, schema: &[super::params::ParamSpec]) -> Option<(DVec3, Span)> {
+    pub fn vec3_req(
+        &mut self,
+        name: &'static str,
+        schema: &[super::params::ParamSpec],
+    ) -> Option<(DVec3, Span)> {
         self.p.require(name, schema, self.diags)?;
         self.vec3(name)
     }
 
     /// A required number.
-    pub fn num_req(&mut self, name: &'static str, schema: &[super::params::ParamSpec]) -> Option<(f64, Span)> {
+    pub fn num_req(
+        &mut self,
+        name: &'static str,
+        schema: &[super::params::ParamSpec],
+    ) -> Option<(f64, Span)> {
         self.p.require(name, schema, self.diags)?;
         self.num(name)
     }
 
     /// A non-zero vector of 3 (a direction).
-    pub fn direction(&mut self, name: &'static str, schema: &[super::params::ParamSpec]) -> Option<DVec3> {
+    pub fn direction(
+        &mut self,
+        name: &'static str,
+        schema: &[super::params::ParamSpec],
+    ) -> Option<DVec3> {
         let (v, s) = self.vec3_req(name, schema)?;
         if v.length_squared() == 0.0 {
             let what = self.p.what.clone();
@@ -152,7 +164,10 @@ pub fn render_settings(p: &Params, base_dir: &Path, diags: &mut Diagnostics) -> 
                 "resolution",
                 *s,
                 "whole numbers from 1 to 16384",
-                format!("the image is {} × {} here; try `resolution <512, 512>`", v[0], v[1]),
+                format!(
+                    "the image is {} × {} here; try `resolution <512, 512>`",
+                    v[0], v[1]
+                ),
             ));
         } else if v[0] * v[1] > MAX_PIXELS {
             r.diags.push(range_error(
@@ -160,7 +175,10 @@ pub fn render_settings(p: &Params, base_dir: &Path, diags: &mut Diagnostics) -> 
                 "resolution",
                 *s,
                 "at most 67,108,864 pixels (8192 × 8192)",
-                format!("{} × {} pixels would not fit in memory; render a smaller image", v[0], v[1]),
+                format!(
+                    "{} × {} pixels would not fit in memory; render a smaller image",
+                    v[0], v[1]
+                ),
             ));
         } else {
             width = v[0] as u32;
@@ -171,7 +189,9 @@ pub fn render_settings(p: &Params, base_dir: &Path, diags: &mut Diagnostics) -> 
         Some((Val::Word(w), _)) => IntegratorKind::from_name(w).unwrap_or(d.integrator),
         _ => d.integrator,
     };
-    let clamp = r.num("clamp").map(|_| r.num_in("clamp", 0.0, f64::INFINITY, true, f64::INFINITY));
+    let clamp = r
+        .num("clamp")
+        .map(|_| r.num_in("clamp", 0.0, f64::INFINITY, true, f64::INFINITY));
     RenderSettings {
         width,
         height,
@@ -202,7 +222,9 @@ pub fn camera(p: &Params, span: Span, diags: &mut Diagnostics) -> Option<Camera>
     let up = r.vec3("up").map(|v| v.0).unwrap_or(DVec3::Y);
     let fov = r.num_in("fov", 0.0, 179.0, true, 40.0);
     let aperture = r.num_in("aperture", 0.0, f64::INFINITY, false, 0.0);
-    let focus = r.num("focus_distance").map(|_| r.num_in("focus_distance", 0.0, f64::INFINITY, true, 1.0));
+    let focus = r
+        .num("focus_distance")
+        .map(|_| r.num_in("focus_distance", 0.0, f64::INFINITY, true, 1.0));
     let mut shutter = (0.0, 0.0);
     if let Some((Val::Vector(v), s)) = p.get("shutter") {
         if v[0] > v[1] {
@@ -222,18 +244,33 @@ pub fn camera(p: &Params, span: Span, diags: &mut Diagnostics) -> Option<Camera>
     let dir = look_at - position;
     if dir.length_squared() == 0.0 {
         r.diags.push(
-            Diagnostic::error(codes::DEGENERATE, "the camera looks at its own position", pspan)
-                .with_label("`position` equals `look_at`")
-                .with_help("move `look_at` to the point the camera should face"),
+            Diagnostic::error(
+                codes::DEGENERATE,
+                "the camera looks at its own position",
+                pspan,
+            )
+            .with_label("`position` equals `look_at`")
+            .with_help("move `look_at` to the point the camera should face"),
         );
         return None;
     }
-    if dir.normalize().cross(up.normalize_or_zero()).length_squared() < 1e-12 {
+    if dir
+        .normalize()
+        .cross(up.normalize_or_zero())
+        .length_squared()
+        < 1e-12
+    {
         let s = p.get("up").map(|v| v.1).unwrap_or(p.head);
         r.diags.push(
-            Diagnostic::error(codes::DEGENERATE, "the camera's `up` is parallel to its view direction", s)
-                .with_label("`up` points along the view")
-                .with_help("pick an `up` that is not parallel to `look_at - position`, e.g. `up <0, 0, 1>`"),
+            Diagnostic::error(
+                codes::DEGENERATE,
+                "the camera's `up` is parallel to its view direction",
+                s,
+            )
+            .with_label("`up` points along the view")
+            .with_help(
+                "pick an `up` that is not parallel to `look_at - position`, e.g. `up <0, 0, 1>`",
+            ),
         );
         return None;
     }
@@ -283,7 +320,10 @@ pub fn material(p: &Params, name: Option<String>, span: Span, diags: &mut Diagno
     }
     let max = |c: Rgb| c.iter().cloned().fold(0.0, f64::max);
     let total = max(m.diffuse) + max(m.reflection) + m.transmission;
-    if total > 1.0 + 1e-9 && p.given("diffuse") as u8 + p.given("reflection") as u8 + p.given("transmission") as u8 > 1 {
+    if total > 1.0 + 1e-9
+        && p.given("diffuse") as u8 + p.given("reflection") as u8 + p.given("transmission") as u8
+            > 1
+    {
         diags.push(
             Diagnostic::warning(
                 codes::ENERGY_GAIN,
@@ -297,18 +337,26 @@ pub fn material(p: &Params, name: Option<String>, span: Span, diags: &mut Diagno
     if let Some((_, s)) = p.get("gloss") {
         if max(m.reflection) == 0.0 {
             diags.push(
-                Diagnostic::warning(codes::NO_EFFECT, "`gloss` has no effect without `reflection`", *s)
-                    .with_label("ignored")
-                    .with_help("add `reflection rgb 1` to make the surface a glossy reflector"),
+                Diagnostic::warning(
+                    codes::NO_EFFECT,
+                    "`gloss` has no effect without `reflection`",
+                    *s,
+                )
+                .with_label("ignored")
+                .with_help("add `reflection rgb 1` to make the surface a glossy reflector"),
             );
         }
     }
     if let Some((_, s)) = p.get("absorption") {
         if m.transmission == 0.0 {
             diags.push(
-                Diagnostic::warning(codes::NO_EFFECT, "`absorption` has no effect without `transmission`", *s)
-                    .with_label("ignored")
-                    .with_help("absorption acts inside transparent objects: add `transmission 1`"),
+                Diagnostic::warning(
+                    codes::NO_EFFECT,
+                    "`absorption` has no effect without `transmission`",
+                    *s,
+                )
+                .with_label("ignored")
+                .with_help("absorption acts inside transparent objects: add `transmission 1`"),
             );
         }
     }
@@ -329,7 +377,7 @@ pub fn transform(p: &Params, diags: &mut Diagnostics) -> DMat4 {
                     * DMat4::from_rotation_x(v[0].to_radians())
             }
             "scale" => {
-                if v.iter().any(|x| *x == 0.0) {
+                if v.contains(&0.0) {
                     diags.push(
                         Diagnostic::error(codes::SINGULAR_TRANSFORM, "scale by zero", *span)
                             .with_label("flattens the object to nothing")
@@ -342,20 +390,29 @@ pub fn transform(p: &Params, diags: &mut Diagnostics) -> DMat4 {
             "matrix" => {
                 if v.len() == 16 && (v[12] != 0.0 || v[13] != 0.0 || v[14] != 0.0 || v[15] != 1.0) {
                     diags.push(
-                        Diagnostic::error(codes::SINGULAR_TRANSFORM, "projective matrices are not supported", *span)
-                            .with_label("the last row must be 0, 0, 0, 1")
-                            .with_help("give the 12 numbers of the 3 × 4 affine part, row by row"),
+                        Diagnostic::error(
+                            codes::SINGULAR_TRANSFORM,
+                            "projective matrices are not supported",
+                            *span,
+                        )
+                        .with_label("the last row must be 0, 0, 0, 1")
+                        .with_help("give the 12 numbers of the 3 × 4 affine part, row by row"),
                     );
                     continue;
                 }
                 let mm = DMat4::from_cols_array(&[
-                    v[0], v[4], v[8], 0.0, v[1], v[5], v[9], 0.0, v[2], v[6], v[10], 0.0, v[3], v[7], v[11], 1.0,
+                    v[0], v[4], v[8], 0.0, v[1], v[5], v[9], 0.0, v[2], v[6], v[10], 0.0, v[3],
+                    v[7], v[11], 1.0,
                 ]);
                 if mm.determinant().abs() < 1e-12 {
                     diags.push(
-                        Diagnostic::error(codes::SINGULAR_TRANSFORM, "the matrix cannot be inverted", *span)
-                            .with_label("determinant is zero")
-                            .with_help("a transform must keep the object three-dimensional"),
+                        Diagnostic::error(
+                            codes::SINGULAR_TRANSFORM,
+                            "the matrix cannot be inverted",
+                            *span,
+                        )
+                        .with_label("determinant is zero")
+                        .with_help("a transform must keep the object three-dimensional"),
                     );
                     continue;
                 }
@@ -369,7 +426,12 @@ pub fn transform(p: &Params, diags: &mut Diagnostics) -> DMat4 {
 }
 
 /// A shape block → its shape (before transforms).
-pub fn shape(kind: BlockKind, p: &Params, base_dir: &Path, diags: &mut Diagnostics) -> Option<Shape> {
+pub fn shape(
+    kind: BlockKind,
+    p: &Params,
+    base_dir: &Path,
+    diags: &mut Diagnostics,
+) -> Option<Shape> {
     let schema = super::params::shape_schema(kind);
     let mut r = Reader { p, diags };
     let what = kind.keyword();
@@ -392,7 +454,10 @@ pub fn shape(kind: BlockKind, p: &Params, base_dir: &Path, diags: &mut Diagnosti
         BlockKind::Sphere => {
             let c = r.vec3_req("center", schema);
             let rad = positive(&mut r, "radius");
-            Shape::Sphere { center: c?.0, radius: rad? }
+            Shape::Sphere {
+                center: c?.0,
+                radius: rad?,
+            }
         }
         BlockKind::Plane => {
             let point = r.vec3("point").map(|v| v.0).unwrap_or(DVec3::ZERO);
@@ -413,13 +478,21 @@ pub fn shape(kind: BlockKind, p: &Params, base_dir: &Path, diags: &mut Diagnosti
                 );
                 return None;
             }
-            Shape::Quad { corner: c?.0, edge1: e1, edge2: e2 }
+            Shape::Quad {
+                corner: c?.0,
+                edge1: e1,
+                edge2: e2,
+            }
         }
         BlockKind::Disk => {
             let c = r.vec3_req("center", schema);
             let n = r.direction("normal", schema);
             let rad = positive(&mut r, "radius");
-            Shape::Disk { center: c?.0, normal: n?, radius: rad? }
+            Shape::Disk {
+                center: c?.0,
+                normal: n?,
+                radius: rad?,
+            }
         }
         BlockKind::Triangle => {
             let a = r.vec3_req("v0", schema);
@@ -445,9 +518,13 @@ pub fn shape(kind: BlockKind, p: &Params, base_dir: &Path, diags: &mut Diagnosti
             let (hi, s1) = hi?;
             if lo.cmpge(hi).any() {
                 r.diags.push(
-                    Diagnostic::error(codes::DEGENERATE, "the box's `min` is not below its `max`", s0.join(s1))
-                        .with_label("every component of `min` must be smaller than `max`")
-                        .with_help("swap the components that are in the wrong order"),
+                    Diagnostic::error(
+                        codes::DEGENERATE,
+                        "the box's `min` is not below its `max`",
+                        s0.join(s1),
+                    )
+                    .with_label("every component of `min` must be smaller than `max`")
+                    .with_help("swap the components that are in the wrong order"),
                 );
                 return None;
             }
@@ -455,7 +532,9 @@ pub fn shape(kind: BlockKind, p: &Params, base_dir: &Path, diags: &mut Diagnosti
         }
         BlockKind::Mesh => {
             p.require("file", schema, r.diags)?;
-            let Some((Val::Str(f), s)) = p.get("file") else { return None };
+            let Some((Val::Str(f), s)) = p.get("file") else {
+                return None;
+            };
             let path = base_dir.join(f);
             let ext = path
                 .extension()
@@ -477,7 +556,11 @@ pub fn shape(kind: BlockKind, p: &Params, base_dir: &Path, diags: &mut Diagnosti
                 );
                 return None;
             }
-            Shape::Mesh { path, path_span: *s, smooth: r.boolean("smooth", false) }
+            Shape::Mesh {
+                path,
+                path_span: *s,
+                smooth: r.boolean("smooth", false),
+            }
         }
         _ => unreachable!("not a shape: {kind:?}"),
     };
@@ -504,7 +587,10 @@ pub fn light(kind: BlockKind, p: &Params, diags: &mut Diagnostics) -> Option<Lig
         BlockKind::PointLight => {
             let pos = r.vec3_req("position", schema);
             let i = need_color(&mut r, "intensity");
-            Some(Light::Point { position: pos?.0, intensity: i? })
+            Some(Light::Point {
+                position: pos?.0,
+                intensity: i?,
+            })
         }
         BlockKind::SpotLight => {
             let pos = r.vec3_req("position", schema);
@@ -516,18 +602,31 @@ pub fn light(kind: BlockKind, p: &Params, diags: &mut Diagnostics) -> Option<Lig
             let dir = at?.0 - pos;
             if dir.length_squared() == 0.0 {
                 r.diags.push(
-                    Diagnostic::error(codes::DEGENERATE, "the spot light points at its own position", s)
-                        .with_label("`position` equals `look_at`")
-                        .with_help("aim `look_at` at the lit point"),
+                    Diagnostic::error(
+                        codes::DEGENERATE,
+                        "the spot light points at its own position",
+                        s,
+                    )
+                    .with_label("`position` equals `look_at`")
+                    .with_help("aim `look_at` at the lit point"),
                 );
                 return None;
             }
-            Some(Light::Spot { position: pos, direction: dir.normalize(), intensity: i?, angle, falloff })
+            Some(Light::Spot {
+                position: pos,
+                direction: dir.normalize(),
+                intensity: i?,
+                angle,
+                falloff,
+            })
         }
         BlockKind::DirectionalLight => {
             let d = r.direction("direction", schema);
             let e = need_color(&mut r, "irradiance");
-            Some(Light::Directional { direction: d?, irradiance: e? })
+            Some(Light::Directional {
+                direction: d?,
+                irradiance: e?,
+            })
         }
         _ => unreachable!("not a light: {kind:?}"),
     }

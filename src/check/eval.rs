@@ -165,7 +165,10 @@ fn eval_inner(e: &Expr, env: &mut Env, diags: &mut Diagnostics) -> Option<Value>
                         diags.push(
                             Diagnostic::error(
                                 codes::TYPE_MISMATCH,
-                                format!("a vector component must be a number, found {}", other.type_name()),
+                                format!(
+                                    "a vector component must be a number, found {}",
+                                    other.type_name()
+                                ),
                                 it.span,
                             )
                             .with_label("not a number")
@@ -186,7 +189,10 @@ fn eval_inner(e: &Expr, env: &mut Env, diags: &mut Diagnostics) -> Option<Value>
                 diags.push(
                     Diagnostic::error(
                         codes::TYPE_MISMATCH,
-                        format!("`rgb` needs a number or a vector of 3, found {}", other.type_name()),
+                        format!(
+                            "`rgb` needs a number or a vector of 3, found {}",
+                            other.type_name()
+                        ),
                         inner.span,
                     )
                     .with_label("not a grey level or an <r, g, b> triple")
@@ -208,9 +214,7 @@ fn eval_inner(e: &Expr, env: &mut Env, diags: &mut Diagnostics) -> Option<Value>
             .with_label("not defined");
             d = match did_you_mean(name, names.iter().map(String::as_str)) {
                 Some(s) => d.with_help(format!("did you mean `{s}`?")),
-                None => d.with_help(format!(
-                    "define it first with `let {name} = …;`"
-                )),
+                None => d.with_help(format!("define it first with `let {name} = …;`")),
             };
             diags.push(d);
             None
@@ -243,7 +247,11 @@ fn eval_inner(e: &Expr, env: &mut Env, diags: &mut Diagnostics) -> Option<Value>
                     Some(s) => format!("did you mean `{s}`?"),
                     None => format!(
                         "the functions are {}",
-                        FUNCTIONS.iter().map(|(n, _)| *n).collect::<Vec<_>>().join(", ")
+                        FUNCTIONS
+                            .iter()
+                            .map(|(n, _)| *n)
+                            .collect::<Vec<_>>()
+                            .join(", ")
                     ),
                 };
                 diags.push(
@@ -313,8 +321,8 @@ fn binary(
     if op == BinOp::Div {
         let zero = match &b {
             Num(y) => *y == 0.0,
-            Vector(v) => v.iter().any(|y| *y == 0.0),
-            Color(c) => c.iter().any(|y| *y == 0.0),
+            Vector(v) => v.contains(&0.0),
+            Color(c) => c.contains(&0.0),
             _ => false,
         };
         if zero {
@@ -375,7 +383,13 @@ fn binary(
     Some(r)
 }
 
-fn call(name: &str, vals: &[Value], args: &[Expr], span: Span, diags: &mut Diagnostics) -> Option<Value> {
+fn call(
+    name: &str,
+    vals: &[Value],
+    args: &[Expr],
+    span: Span,
+    diags: &mut Diagnostics,
+) -> Option<Value> {
     use Value::*;
     let num = |i: usize, diags: &mut Diagnostics| -> Option<f64> {
         match &vals[i] {
@@ -420,9 +434,13 @@ fn call(name: &str, vals: &[Value], args: &[Expr], span: Span, diags: &mut Diagn
             let x = num(0, diags)?;
             if x < 0.0 {
                 diags.push(
-                    Diagnostic::error(codes::DOMAIN, "square root of a negative number", args[0].span)
-                        .with_label(format!("this is {x}"))
-                        .with_help("sqrt needs a value ≥ 0"),
+                    Diagnostic::error(
+                        codes::DOMAIN,
+                        "square root of a negative number",
+                        args[0].span,
+                    )
+                    .with_label(format!("this is {x}"))
+                    .with_help("sqrt needs a value ≥ 0"),
                 );
                 return None;
             }
@@ -440,9 +458,13 @@ fn call(name: &str, vals: &[Value], args: &[Expr], span: Span, diags: &mut Diagn
             let l = dot3(v, v).sqrt();
             if l == 0.0 {
                 diags.push(
-                    Diagnostic::error(codes::DOMAIN, "cannot normalize a zero vector", args[0].span)
-                        .with_label("this vector has length 0")
-                        .with_help("pass a non-zero vector"),
+                    Diagnostic::error(
+                        codes::DOMAIN,
+                        "cannot normalize a zero vector",
+                        args[0].span,
+                    )
+                    .with_label("this vector has length 0")
+                    .with_help("pass a non-zero vector"),
                 );
                 return None;
             }

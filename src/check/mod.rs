@@ -179,13 +179,27 @@ impl Checker {
                     // Uses of a broken constant stay silent; don't call it unused either.
                     self.env.used.insert(name.span);
                 }
-                self.env.bind(&name.name, Binding { value: v, decl: name.span });
+                self.env.bind(
+                    &name.name,
+                    Binding {
+                        value: v,
+                        decl: name.span,
+                    },
+                );
                 if !self.lets.iter().any(|(_, s)| *s == name.span) {
                     self.lets.push((name.name.clone(), name.span));
                 }
             }
-            Statement::Include { path, path_span, .. } => self.include(path, *path_span, file),
-            Statement::For { var, start, end, body, span } => {
+            Statement::Include {
+                path, path_span, ..
+            } => self.include(path, *path_span, file),
+            Statement::For {
+                var,
+                start,
+                end,
+                body,
+                span,
+            } => {
                 let a = eval(start, &mut self.env, &mut self.diags);
                 let b = eval(end, &mut self.env, &mut self.diags);
                 let bound = |v: Option<Value>, s: Span, diags: &mut Diagnostics| -> Option<i64> {
@@ -195,10 +209,13 @@ impl Checker {
                             diags.push(
                                 Diagnostic::error(
                                     codes::TYPE_MISMATCH,
-                                    format!("a loop bound must be a whole number, found {}", match other {
-                                        Value::Num(x) => format!("{x}"),
-                                        o => o.type_name(),
-                                    }),
+                                    format!(
+                                        "a loop bound must be a whole number, found {}",
+                                        match other {
+                                            Value::Num(x) => format!("{x}"),
+                                            o => o.type_name(),
+                                        }
+                                    ),
                                     s,
                                 )
                                 .with_label("not a whole number")
@@ -230,7 +247,13 @@ impl Checker {
                 for i in a..b {
                     let errors_before = self.diags.error_count();
                     self.env.push();
-                    self.env.bind(&var.name, Binding { value: Some(Value::Num(i as f64)), decl: var.span });
+                    self.env.bind(
+                        &var.name,
+                        Binding {
+                            value: Some(Value::Num(i as f64)),
+                            decl: var.span,
+                        },
+                    );
                     for s in body {
                         self.statement(s, file);
                     }
@@ -249,11 +272,17 @@ impl Checker {
                     return;
                 }
                 match v {
-                    Some(Value::Color(c)) if c.iter().all(|x| *x >= 0.0) => self.background = Some((c, *span)),
+                    Some(Value::Color(c)) if c.iter().all(|x| *x >= 0.0) => {
+                        self.background = Some((c, *span))
+                    }
                     Some(Value::Color(_)) => self.diags.push(
-                        Diagnostic::error(codes::OUT_OF_RANGE, "the background must be non-negative", value.span)
-                            .with_label("negative radiance")
-                            .with_help("colour components are ≥ 0"),
+                        Diagnostic::error(
+                            codes::OUT_OF_RANGE,
+                            "the background must be non-negative",
+                            value.span,
+                        )
+                        .with_label("negative radiance")
+                        .with_help("colour components are ≥ 0"),
                     ),
                     Some(other) => self.diags.push(
                         Diagnostic::error(
@@ -279,9 +308,13 @@ impl Checker {
                 for e in &block.entries {
                     if let Entry::Material { span, .. } = e {
                         self.diags.push(
-                            Diagnostic::error(codes::UNKNOWN_PARAM, "a material cannot contain a material", *span)
-                                .with_label("not allowed inside `material`")
-                                .with_help("put the material's parameters directly in its block"),
+                            Diagnostic::error(
+                                codes::UNKNOWN_PARAM,
+                                "a material cannot contain a material",
+                                *span,
+                            )
+                            .with_label("not allowed inside `material`")
+                            .with_help("put the material's parameters directly in its block"),
                         );
                     }
                 }
@@ -305,10 +338,18 @@ impl Checker {
                 self.materials.push(m);
                 self.material_names.insert(
                     name.name.clone(),
-                    MaterialEntry { index: self.materials.len() - 1, span: name.span },
+                    MaterialEntry {
+                        index: self.materials.len() - 1,
+                        span: name.span,
+                    },
                 );
             }
-            Statement::Block { kind, kind_span, block, span } => self.block(*kind, *kind_span, block, *span, file),
+            Statement::Block {
+                kind,
+                kind_span,
+                block,
+                span,
+            } => self.block(*kind, *kind_span, block, *span, file),
         }
     }
 
@@ -331,17 +372,25 @@ impl Checker {
         }
         if self.include_stack.len() >= MAX_INCLUDE_DEPTH {
             self.diags.push(
-                Diagnostic::error(codes::INCLUDE_CYCLE, "includes nested too deeply", path_span)
-                    .with_label(format!("more than {MAX_INCLUDE_DEPTH} levels"))
-                    .with_help("flatten the chain of includes"),
+                Diagnostic::error(
+                    codes::INCLUDE_CYCLE,
+                    "includes nested too deeply",
+                    path_span,
+                )
+                .with_label(format!("more than {MAX_INCLUDE_DEPTH} levels"))
+                .with_help("flatten the chain of includes"),
             );
             return;
         }
         if target.is_dir() {
             self.diags.push(
-                Diagnostic::error(codes::INCLUDE_NOT_FOUND, format!("`{path}` is a folder, not a file"), path_span)
-                    .with_label("a folder")
-                    .with_help("include a `.pts` file"),
+                Diagnostic::error(
+                    codes::INCLUDE_NOT_FOUND,
+                    format!("`{path}` is a folder, not a file"),
+                    path_span,
+                )
+                .with_label("a folder")
+                .with_help("include a `.pts` file"),
             );
             return;
         }
@@ -360,7 +409,9 @@ impl Checker {
                         path_span,
                     )
                     .with_label(format!("looked for {}", target.display()))
-                    .with_help("include paths are relative to the file that contains the `include`"),
+                    .with_help(
+                        "include paths are relative to the file that contains the `include`",
+                    ),
                 );
                 return;
             }
@@ -378,7 +429,14 @@ impl Checker {
         self.include_stack.pop();
     }
 
-    fn block(&mut self, kind: BlockKind, kind_span: Span, block: &crate::syntax::ast::Block, span: Span, file: FileId) {
+    fn block(
+        &mut self,
+        kind: BlockKind,
+        kind_span: Span,
+        block: &crate::syntax::ast::Block,
+        span: Span,
+        file: FileId,
+    ) {
         let p = Params::collect(
             kind.keyword(),
             kind_span,
@@ -413,7 +471,8 @@ impl Checker {
             BlockKind::Render => {
                 let settings = blocks::render_settings(&p, &base, &mut self.diags);
                 if let Some((_, first)) = &self.render {
-                    self.diags.push(duplicate_block("render", kind_span, *first));
+                    self.diags
+                        .push(duplicate_block("render", kind_span, *first));
                     return;
                 }
                 self.ambient_span = p.get("ambient").map(|v| v.1);
@@ -439,7 +498,9 @@ impl Checker {
                 let transform: DMat4 = blocks::transform(&p, &mut self.diags);
                 let velocity = blocks::velocity(&p);
                 if let (Some(shape), Some(material)) = (shape, material) {
-                    if matches!(shape, Shape::Plane { .. }) && self.materials[material].is_emissive() {
+                    if matches!(shape, Shape::Plane { .. })
+                        && self.materials[material].is_emissive()
+                    {
                         self.diags.push(
                             Diagnostic::error(codes::DEGENERATE, "an infinite plane cannot emit light", kind_span)
                                 .with_label("this plane has an emissive material")
@@ -447,7 +508,13 @@ impl Checker {
                         );
                         return;
                     }
-                    self.objects.push(Object { shape, material, transform, velocity, span });
+                    self.objects.push(Object {
+                        shape,
+                        material,
+                        transform,
+                        velocity,
+                        span,
+                    });
                 }
             }
         }
@@ -468,30 +535,39 @@ impl Checker {
                 self.materials.push(Material::default_at(span));
                 Some(self.materials.len() - 1)
             }
-            Some((MaterialRef::Named(name), _)) => match self.material_names.get(&name.name) {
-                Some(m) => {
-                    self.used_materials.insert(m.index);
-                    Some(m.index)
-                }
-                None => {
-                    let help = match did_you_mean(&name.name, self.material_names.keys().map(String::as_str)) {
+            Some((MaterialRef::Named(name), _)) => {
+                match self.material_names.get(&name.name) {
+                    Some(m) => {
+                        self.used_materials.insert(m.index);
+                        Some(m.index)
+                    }
+                    None => {
+                        let help = match did_you_mean(&name.name, self.material_names.keys().map(String::as_str)) {
                         Some(s) => format!("did you mean `{s}`?"),
                         None => format!("declare it before this object: `material {} {{ diffuse rgb 0.8 }}`", name.name),
                     };
-                    self.diags.push(
-                        Diagnostic::error(
-                            codes::UNKNOWN_MATERIAL,
-                            format!("unknown material `{}`", name.name),
-                            name.span,
-                        )
-                        .with_label("no material with this name")
-                        .with_help(help),
-                    );
-                    None
+                        self.diags.push(
+                            Diagnostic::error(
+                                codes::UNKNOWN_MATERIAL,
+                                format!("unknown material `{}`", name.name),
+                                name.span,
+                            )
+                            .with_label("no material with this name")
+                            .with_help(help),
+                        );
+                        None
+                    }
                 }
-            },
+            }
             Some((MaterialRef::Inline(block), s)) => {
-                let p = Params::collect("material", *s, block, &blocks::material_schema(), &mut self.env, &mut self.diags);
+                let p = Params::collect(
+                    "material",
+                    *s,
+                    block,
+                    &blocks::material_schema(),
+                    &mut self.env,
+                    &mut self.diags,
+                );
                 let m = blocks::material(&p, None, *s, &mut self.diags);
                 self.materials.push(m);
                 let i = self.materials.len() - 1;
@@ -508,14 +584,24 @@ impl Checker {
         if self.syntax_failed {
             dedup(&mut self.diags);
             self.diags.sort();
-            return Checked { sources: self.sources, scene: None, diagnostics: self.diags };
+            return Checked {
+                sources: self.sources,
+                scene: None,
+                diagnostics: self.diags,
+            };
         }
         for (name, span) in &self.lets {
             if !self.env.used.contains(span) {
                 self.diags.push(
-                    Diagnostic::warning(codes::UNUSED_CONSTANT, format!("constant `{name}` is never used"), *span)
-                        .with_label("defined here")
-                        .with_help(format!("remove it, or start its name with `_` if that is intended: `_{name}`")),
+                    Diagnostic::warning(
+                        codes::UNUSED_CONSTANT,
+                        format!("constant `{name}` is never used"),
+                        *span,
+                    )
+                    .with_label("defined here")
+                    .with_help(format!(
+                        "remove it, or start its name with `_` if that is intended: `_{name}`"
+                    )),
                 );
             }
         }
@@ -527,21 +613,35 @@ impl Checker {
         unused.sort_by_key(|(_, m)| m.index);
         for (name, m) in unused {
             self.diags.push(
-                Diagnostic::warning(codes::UNUSED_MATERIAL, format!("material `{name}` is never used"), m.span)
-                    .with_label("declared here")
-                    .with_help("remove it, or give it to an object with `material NAME`"),
+                Diagnostic::warning(
+                    codes::UNUSED_MATERIAL,
+                    format!("material `{name}` is never used"),
+                    m.span,
+                )
+                .with_label("declared here")
+                .with_help("remove it, or give it to an object with `material NAME`"),
             );
         }
         let background = self.background.map(|b| b.0).unwrap_or([0.0; 3]);
-        let has_emitter = self.objects.iter().any(|o| self.materials[o.material].is_emissive());
+        let has_emitter = self
+            .objects
+            .iter()
+            .any(|o| self.materials[o.material].is_emissive());
         let has_light = has_emitter
             || self.lights.iter().any(|(l, _)| match l {
-                Light::Point { intensity, .. } | Light::Spot { intensity, .. } => intensity.iter().any(|c| *c > 0.0),
+                Light::Point { intensity, .. } | Light::Spot { intensity, .. } => {
+                    intensity.iter().any(|c| *c > 0.0)
+                }
                 Light::Directional { irradiance, .. } => irradiance.iter().any(|c| *c > 0.0),
             })
             || background.iter().any(|c| *c > 0.0)
             || render.ambient.iter().any(|c| *c > 0.0);
-        if !has_light && !matches!(render.integrator, IntegratorKind::Normals | IntegratorKind::Albedo | IntegratorKind::Depth) {
+        if !has_light
+            && !matches!(
+                render.integrator,
+                IntegratorKind::Normals | IntegratorKind::Albedo | IntegratorKind::Depth
+            )
+        {
             let at = self.camera_span.unwrap_or(Span::new(root, 0, 0));
             self.diags.push(
                 Diagnostic::warning(codes::NO_LIGHT, "the scene has no light: the image will be black", at)
@@ -558,8 +658,10 @@ impl Checker {
                 );
             }
         }
-        if matches!(render.integrator, IntegratorKind::Whitted | IntegratorKind::Hybrid)
-            && render.light_samples == 0
+        if matches!(
+            render.integrator,
+            IntegratorKind::Whitted | IntegratorKind::Hybrid
+        ) && render.light_samples == 0
             && has_emitter
             && self.lights.is_empty()
         {
@@ -577,9 +679,13 @@ impl Checker {
         let camera = self.camera.take();
         if self.camera_span.is_none() {
             self.diags.push(
-                Diagnostic::error(codes::MISSING_CAMERA, "the scene has no camera", Span::new(root, 0, 0))
-                    .with_label("the scene starts here")
-                    .with_help("add `camera { position <0, 1, 5> look_at <0, 0, 0> }`"),
+                Diagnostic::error(
+                    codes::MISSING_CAMERA,
+                    "the scene has no camera",
+                    Span::new(root, 0, 0),
+                )
+                .with_label("the scene starts here")
+                .with_help("add `camera { position <0, 1, 5> look_at <0, 0, 0> }`"),
             );
         }
         dedup(&mut self.diags);
@@ -596,15 +702,23 @@ impl Checker {
                 lights: self.lights,
             })
         };
-        Checked { sources: self.sources, scene, diagnostics: self.diags }
+        Checked {
+            sources: self.sources,
+            scene,
+            diagnostics: self.diags,
+        }
     }
 }
 
 fn duplicate_block(what: &str, span: Span, first: Span) -> Diagnostic {
-    Diagnostic::error(codes::DUPLICATE_BLOCK, format!("a scene has one `{what}`"), span)
-        .with_label(format!("second `{what}`"))
-        .with_secondary(first, "first one here")
-        .with_help(format!("merge the two `{what}` statements into one"))
+    Diagnostic::error(
+        codes::DUPLICATE_BLOCK,
+        format!("a scene has one `{what}`"),
+        span,
+    )
+    .with_label(format!("second `{what}`"))
+    .with_secondary(first, "first one here")
+    .with_help(format!("merge the two `{what}` statements into one"))
 }
 
 /// Removes repeated diagnostics (loops and includes can produce the same one many times).

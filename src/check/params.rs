@@ -139,11 +139,17 @@ pub fn shape_schema(kind: crate::syntax::ast::BlockKind) -> &'static [ParamSpec]
     use crate::syntax::ast::BlockKind::*;
     match kind {
         Sphere => {
-            const S: &[ParamSpec] = &[p("center", Ty::Vec3, "<0, 1, 0>"), p("radius", Ty::Num, "1")];
+            const S: &[ParamSpec] = &[
+                p("center", Ty::Vec3, "<0, 1, 0>"),
+                p("radius", Ty::Num, "1"),
+            ];
             S
         }
         Plane => {
-            const S: &[ParamSpec] = &[p("point", Ty::Vec3, "<0, 0, 0>"), p("normal", Ty::Vec3, "<0, 1, 0>")];
+            const S: &[ParamSpec] = &[
+                p("point", Ty::Vec3, "<0, 0, 0>"),
+                p("normal", Ty::Vec3, "<0, 1, 0>"),
+            ];
             S
         }
         Quad => {
@@ -171,11 +177,17 @@ pub fn shape_schema(kind: crate::syntax::ast::BlockKind) -> &'static [ParamSpec]
             S
         }
         Box => {
-            const S: &[ParamSpec] = &[p("min", Ty::Vec3, "<-1, -1, -1>"), p("max", Ty::Vec3, "<1, 1, 1>")];
+            const S: &[ParamSpec] = &[
+                p("min", Ty::Vec3, "<-1, -1, -1>"),
+                p("max", Ty::Vec3, "<1, 1, 1>"),
+            ];
             S
         }
         Mesh => {
-            const S: &[ParamSpec] = &[p("file", Ty::Str, "\"bunny.ply\""), p("smooth", Ty::Bool, "true")];
+            const S: &[ParamSpec] = &[
+                p("file", Ty::Str, "\"bunny.ply\""),
+                p("smooth", Ty::Bool, "true"),
+            ];
             S
         }
         PointLight => {
@@ -235,6 +247,8 @@ pub struct Params {
     pub ordered: Vec<(&'static str, Val, Span)>,
     /// Names that were given (well-typed or not), so a later "missing" is not reported twice.
     given: Vec<&'static str>,
+    /// Names an unknown parameter was probably meant to be: not reported missing again.
+    suggested: Vec<&'static str>,
 }
 
 impl Params {
@@ -255,19 +269,27 @@ impl Params {
             values: HashMap::new(),
             ordered: Vec::new(),
             given: Vec::new(),
+            suggested: Vec::new(),
         };
         let mut first_seen: HashMap<&'static str, Span> = HashMap::new();
         for entry in &block.entries {
             let Entry::Param { name, value, .. } = entry else {
                 continue;
             };
-            let Some(spec) = schemas.iter().flat_map(|s| s.iter()).find(|s| s.name == name.name) else {
+            let Some(spec) = schemas
+                .iter()
+                .flat_map(|s| s.iter())
+                .find(|s| s.name == name.name)
+            else {
                 let all: Vec<&str> = schemas
                     .iter()
                     .flat_map(|s| s.iter().map(|p| p.name))
                     .collect();
                 let help = match did_you_mean(&name.name, all.iter().copied()) {
-                    Some(s) => format!("did you mean `{s}`?"),
+                    Some(s) => {
+                        params.suggested.push(s);
+                        format!("did you mean `{s}`?")
+                    }
                     None => format!("`{what}` accepts {}", all.join(", ")),
                 };
                 diags.push(
@@ -321,11 +343,16 @@ impl Params {
     }
 
     /// A required parameter; reports it missing (once) if absent.
-    pub fn require(&self, spec_name: &'static str, schema: &[ParamSpec], diags: &mut Diagnostics) -> Option<&(Val, Span)> {
+    pub fn require(
+        &self,
+        spec_name: &'static str,
+        schema: &[ParamSpec],
+        diags: &mut Diagnostics,
+    ) -> Option<&(Val, Span)> {
         if let Some(v) = self.values.get(spec_name) {
             return Some(v);
         }
-        if !self.given(spec_name) {
+        if !self.given(spec_name) && !self.suggested.contains(&spec_name) {
             let example = schema
                 .iter()
                 .find(|s| s.name == spec_name)

@@ -9,7 +9,10 @@ pub fn report(checked: &Checked, format: Format) {
     match format {
         Format::Human => {
             let d = &checked.diagnostics;
-            eprint!("{}", d.render_human(&checked.sources, super::stderr_is_terminal()));
+            eprint!(
+                "{}",
+                d.render_human(&checked.sources, super::stderr_is_terminal())
+            );
             if !d.items.is_empty() {
                 eprintln!(
                     "{} error{}, {} warning{}",

@@ -11,6 +11,8 @@ use pest::iterators::Pair;
 pub struct Builder {
     /// The file the pairs come from.
     pub file: FileId,
+    /// The first declaration that uses a reserved word as its name.
+    pub reserved: std::cell::RefCell<Option<crate::diag::Diagnostic>>,
 }
 
 impl Builder {
@@ -36,6 +38,26 @@ impl Builder {
         }
     }
 
+    /// A name being declared: reserved words are refused.
+    fn build_decl_name(&self, pair: Pair<Rule>) -> Ident {
+        let id = self.build_ident(pair);
+        if super::parser::KEYWORDS.contains(&id.name.as_str()) {
+            let mut slot = self.reserved.borrow_mut();
+            if slot.is_none() {
+                *slot = Some(
+                    crate::diag::Diagnostic::error(
+                        "pts::syntax::reserved_word",
+                        format!("`{}` is a reserved word", id.name),
+                        id.span,
+                    )
+                    .with_label("cannot be used as a name")
+                    .with_help(format!("pick another name, e.g. `my_{}`", id.name)),
+                );
+            }
+        }
+        id
+    }
+
     fn build_statement(&self, pair: Pair<Rule>) -> Statement {
         let span = self.span(&pair);
         let rule = pair.as_rule();
@@ -43,7 +65,7 @@ impl Builder {
         match rule {
             Rule::let_stmt => {
                 inner.next(); // kw_let
-                let name = self.build_ident(inner.next().unwrap());
+                let name = self.build_decl_name(inner.next().unwrap());
                 inner.next(); // =
                 let value = self.build_expr(inner.next().unwrap());
                 Statement::Let { name, value, span }
@@ -60,7 +82,7 @@ impl Builder {
             }
             Rule::for_stmt => {
                 inner.next(); // kw_for
-                let var = self.build_ident(inner.next().unwrap());
+                let var = self.build_decl_name(inner.next().unwrap());
                 inner.next(); // kw_in
                 let start = self.build_expr(inner.next().unwrap());
                 inner.next(); // ..
@@ -85,7 +107,7 @@ impl Builder {
             }
             Rule::material_decl => {
                 inner.next(); // kw_material
-                let name = self.build_ident(inner.next().unwrap());
+                let name = self.build_decl_name(inner.next().unwrap());
                 let block = self.build_block(inner.next().unwrap());
                 Statement::Material { name, block, span }
             }
@@ -185,15 +207,16 @@ impl Builder {
             Rule::factor => {
                 let parts: Vec<Pair<Rule>> = pair.into_inner().collect();
                 let (last, negs) = parts.split_last().unwrap();
-                let mut e = self.build_expr(last.clone());
-                for n in negs.iter().rev() {
-                    let nspan = self.span(n).join(e.span);
-                    e = Expr {
+                let e = self.build_expr(last.clone());
+                // `--x` is `x`: fold runs of signs so that long runs cannot nest deeply.
+                if negs.len() % 2 == 1 {
+                    Expr {
                         kind: ExprKind::Neg(Box::new(e)),
-                        span: nspan,
-                    };
+                        span,
+                    }
+                } else {
+                    e
                 }
-                e
             }
             Rule::number => Expr {
                 kind: ExprKind::Number(pair.as_str().parse().unwrap_or(f64::INFINITY)),

@@ -7,8 +7,8 @@ pub mod parser;
 use crate::diag::Diagnostic;
 use crate::source::FileId;
 use crate::span::Span;
-use pest::Parser;
 use parser::{PtsParser, Rule};
+use pest::Parser;
 
 /// The deepest nesting of `(`, `<` and `{` the parser accepts. Deeper input is
 /// reported instead of risking the stack of a recursive-descent parser.
@@ -19,10 +19,17 @@ pub fn parse(file: FileId, text: &str) -> Result<ast::File, Diagnostic> {
     if let Some(d) = check_nesting(file, text) {
         return Err(d);
     }
-    let mut pairs = PtsParser::parse(Rule::file, text)
-        .map_err(|e| parser::convert_error(e, file, text))?;
-    let builder = build::Builder { file };
-    Ok(builder.build_file(pairs.next().expect("a file pair")))
+    let mut pairs =
+        PtsParser::parse(Rule::file, text).map_err(|e| parser::convert_error(e, file, text))?;
+    let builder = build::Builder {
+        file,
+        reserved: Default::default(),
+    };
+    let ast = builder.build_file(pairs.next().expect("a file pair"));
+    match builder.reserved.into_inner() {
+        Some(d) => Err(d),
+        None => Ok(ast),
+    }
 }
 
 /// Finds nesting deeper than [`MAX_NESTING`], skipping comments and strings.

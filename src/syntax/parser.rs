@@ -152,6 +152,17 @@ pub fn convert_error(err: pest::error::Error<Rule>, file: FileId, text: &str) ->
     }
 
     let found = describe_found(text, pos);
+    if rest.trim().is_empty() {
+        if let Some(open) = unclosed_brace(text) {
+            return Diagnostic::error(
+                "pts::syntax::unclosed_block",
+                "this block is never closed",
+                Span::new(file, open, open + 1),
+            )
+            .with_label("this `{` has no matching `}`")
+            .with_help("add `}` at the end of the block");
+        }
+    }
     let (expected, unexpected) = match &err.variant {
         ErrorVariant::ParsingError {
             positives,
@@ -182,6 +193,11 @@ pub fn convert_error(err: pest::error::Error<Rule>, file: FileId, text: &str) ->
         }
         ErrorVariant::CustomError { .. } => (Vec::new(), Vec::new()),
     };
+    // At the start of a statement the full list of statement kinds is noise.
+    let mut expected = expected;
+    if expected.contains(&"`let`") && expected.contains(&"a block such as `sphere { … }`") {
+        expected = vec!["a statement"];
+    }
     let message = if !expected.is_empty() {
         format!("expected {}, found {found}", join_or(&expected))
     } else if !unexpected.is_empty() {
@@ -200,6 +216,42 @@ pub fn convert_error(err: pest::error::Error<Rule>, file: FileId, text: &str) ->
         .with_help(help)
 }
 
+/// The byte offset of the last `{` without a matching `}`, skipping comments and strings.
+fn unclosed_brace(text: &str) -> Option<usize> {
+    let b = text.as_bytes();
+    let mut stack = Vec::new();
+    let mut i = 0;
+    while i < b.len() {
+        match b[i] {
+            b'/' if b.get(i + 1) == Some(&b'/') => {
+                while i < b.len() && b[i] != b'\n' {
+                    i += 1;
+                }
+            }
+            b'/' if b.get(i + 1) == Some(&b'*') => {
+                i += 2;
+                while i < b.len() && !(b[i] == b'*' && b.get(i + 1) == Some(&b'/')) {
+                    i += 1;
+                }
+                i += 1;
+            }
+            b'"' => {
+                i += 1;
+                while i < b.len() && b[i] != b'"' && b[i] != b'\n' {
+                    i += 1;
+                }
+            }
+            b'{' => stack.push(i),
+            b'}' => {
+                stack.pop();
+            }
+            _ => {}
+        }
+        i += 1;
+    }
+    stack.pop()
+}
+
 /// A hint that fits the usual causes of a parse error.
 fn help_for(expected: &[&str], found: &str) -> String {
     if found == "end of file" && expected.contains(&"`}`") {
@@ -216,10 +268,15 @@ fn help_for(expected: &[&str], found: &str) -> String {
             .into();
     }
     if expected.contains(&"a statement") || expected.contains(&"`let`") {
+        let word = found.trim_matches('`');
+        if let Some(k) = crate::diag::did_you_mean(word, KEYWORDS.iter().copied()) {
+            return format!("did you mean `{k}`?");
+        }
         return "a scene is a list of statements: `let`, `include`, `for`, `background`, `material`, `camera { … }`, `render { … }`, a light or an object such as `sphere { … }`".into();
     }
     if expected.contains(&"`>`") && expected.contains(&"`,`") {
-        return "separate vector components with `,` and close the vector with `>`: `<1, 2, 3>`".into();
+        return "separate vector components with `,` and close the vector with `>`: `<1, 2, 3>`"
+            .into();
     }
     if expected.contains(&"`;`") {
         return "end a `let` with `;`".into();

@@ -1,0 +1,2 @@
+" ptsc scenes and include fragments
+autocmd BufRead,BufNewFile *.pts,*.ptsi setfiletype pts

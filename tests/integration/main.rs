@@ -1,0 +1,18 @@
+//! The single integration-test binary (one link step for all of them).
+
+mod diagnostics;
+mod editors;
+mod examples;
+mod nasty;
+
+use std::path::{Path, PathBuf};
+
+/// The package root.
+pub fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+/// `path` relative to the package root, with `/` separators (stable in snapshots).
+pub fn relative(path: &Path) -> PathBuf {
+    path.strip_prefix(root()).unwrap_or(path).to_path_buf()
+}

@@ -276,6 +276,18 @@ impl Params {
             let Entry::Param { name, value, .. } = entry else {
                 continue;
             };
+            if name.name == "material" {
+                diags.push(
+                    Diagnostic::error(
+                        codes::TYPE_MISMATCH,
+                        "`material` takes a material name or an inline material block",
+                        value.span,
+                    )
+                    .with_label("not a material")
+                    .with_help("write `material white` (a declared name) or `material { diffuse rgb 0.8 }`"),
+                );
+                continue;
+            }
             let Some(spec) = schemas
                 .iter()
                 .flat_map(|s| s.iter())

@@ -12,6 +12,12 @@
 pub mod check;
 pub mod cli;
 pub mod diag;
+pub mod geometry;
+pub mod integrator;
+pub mod ir;
+pub mod light;
+pub mod material;
+pub mod render;
 pub mod source;
 pub mod span;
 pub mod syntax;

@@ -1,6 +1,7 @@
 //! The command line: `ptsc check`, `ptsc render`, `ptsc watch`.
 
 mod check;
+mod render;
 
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
@@ -41,6 +42,8 @@ pub enum Command {
         #[arg(long, value_enum, default_value = "human")]
         format: Format,
     },
+    /// Render a scene to an image.
+    Render(render::RenderArgs),
 }
 
 /// Runs the command line and returns the process exit code.
@@ -54,6 +57,7 @@ pub fn run() -> ExitCode {
     };
     let code = match cli.command {
         Command::Check { file, format } => check::run(&file, format),
+        Command::Render(args) => render::run(&args),
     };
     ExitCode::from(code)
 }

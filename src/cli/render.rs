@@ -1,0 +1,197 @@
+//! `ptsc render FILE`: check, lower, render with progress, write atomically.
+
+use super::{check::report, Format, EXIT_OK, EXIT_SCENE_ERROR, EXIT_USAGE};
+use crate::check::{check_file, IntegratorKind};
+use std::path::PathBuf;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Arc;
+use std::time::Instant;
+
+/// Command-line overrides of the scene's `render` block.
+#[derive(Debug, Clone, clap::Args)]
+pub struct RenderArgs {
+    /// The scene file.
+    pub file: PathBuf,
+    /// Output image (.png, .exr or .pfm); default: the scene's `output`, else FILE with .png.
+    #[arg(short, long)]
+    pub output: Option<PathBuf>,
+    /// Samples per pixel.
+    #[arg(long)]
+    pub spp: Option<u32>,
+    /// Worker threads (default: all cores).
+    #[arg(long)]
+    pub threads: Option<usize>,
+    /// Random seed.
+    #[arg(long)]
+    pub seed: Option<u64>,
+    /// Image size as WxH, e.g. 640x480.
+    #[arg(long, value_parser = parse_resolution)]
+    pub resolution: Option<(u32, u32)>,
+    /// Integrator: path, whitted, hybrid, normals, albedo or depth.
+    #[arg(long, value_parser = parse_integrator)]
+    pub integrator: Option<IntegratorKind>,
+}
+
+fn parse_resolution(s: &str) -> Result<(u32, u32), String> {
+    let (w, h) = s
+        .split_once(['x', 'X'])
+        .ok_or("expected WxH, e.g. 640x480")?;
+    let w: u32 = w
+        .trim()
+        .parse()
+        .map_err(|_| format!("`{w}` is not a width"))?;
+    let h: u32 = h
+        .trim()
+        .parse()
+        .map_err(|_| format!("`{h}` is not a height"))?;
+    if !(1..=16384).contains(&w) || !(1..=16384).contains(&h) || (w as u64 * h as u64) > 8192 * 8192
+    {
+        return Err("each side must be 1..=16384 and the image at most 8192×8192 pixels".into());
+    }
+    Ok((w, h))
+}
+
+fn parse_integrator(s: &str) -> Result<IntegratorKind, String> {
+    IntegratorKind::from_name(s)
+        .ok_or_else(|| "expected path, whitted, hybrid, normals, albedo or depth".into())
+}
+
+/// Runs `render`; returns the exit code.
+pub fn run(args: &RenderArgs) -> u8 {
+    let t0 = Instant::now();
+    let checked = match check_file(&args.file) {
+        Ok(c) => c,
+        Err(e) => {
+            eprintln!("error: cannot read {}: {e}", args.file.display());
+            return EXIT_USAGE;
+        }
+    };
+    report(&checked, Format::Human);
+    let Some(mut scene) = checked.scene else {
+        return EXIT_SCENE_ERROR;
+    };
+    let r = &mut scene.render;
+    if let Some(n) = args.spp {
+        r.samples = n.max(1);
+    }
+    if let Some(s) = args.seed {
+        r.seed = s;
+    }
+    if let Some((w, h)) = args.resolution {
+        r.width = w;
+        r.height = h;
+    }
+    if let Some(k) = args.integrator {
+        r.integrator = k;
+    }
+    let output = args
+        .output
+        .clone()
+        .or_else(|| r.output.clone())
+        .unwrap_or_else(|| args.file.with_extension("png"));
+    if let Some(parent) = output.parent().filter(|p| !p.as_os_str().is_empty()) {
+        if !parent.is_dir() {
+            eprintln!(
+                "error: cannot write {}: the folder {} does not exist",
+                output.display(),
+                parent.display()
+            );
+            return EXIT_USAGE;
+        }
+    }
+    let ir = match crate::ir::lower::lower(&scene) {
+        Ok(ir) => ir,
+        Err(d) => {
+            eprint!(
+                "{}",
+                d.render_human(&checked.sources, super::stderr_is_terminal())
+            );
+            return EXIT_SCENE_ERROR;
+        }
+    };
+    let load_s = t0.elapsed().as_secs_f64();
+    let pool = match rayon::ThreadPoolBuilder::new()
+        .num_threads(args.threads.unwrap_or(0))
+        .build()
+    {
+        Ok(p) => p,
+        Err(e) => {
+            eprintln!("error: cannot start threads: {e}");
+            return EXIT_USAGE;
+        }
+    };
+    let cancel = Arc::new(AtomicBool::new(false));
+    {
+        let c = cancel.clone();
+        // Ctrl-C: finish the tiles in flight, then write what was accumulated.
+        let _ = ctrlc::set_handler(move || c.store(true, Ordering::Relaxed));
+    }
+    let s = &ir.settings;
+    let total = s.width as u64 * s.height as u64 * s.samples as u64;
+    let bar = progress_bar(total);
+    let integrator = crate::integrator::make(s.integrator);
+    let t1 = Instant::now();
+    let exposure = s.exposure as f32;
+    let mut write_error = None;
+    let (film, outcome) = pool.install(|| {
+        crate::render::render(
+            &ir,
+            integrator.as_ref(),
+            &cancel,
+            &|done| bar.set_position(done),
+            &mut |film, spp| {
+                // Replace the image after every pass: a preview that refines.
+                if let Err(e) = film.write(&output, exposure) {
+                    write_error = Some(e);
+                }
+                bar.set_message(format!("{spp} spp"));
+            },
+        )
+    });
+    bar.finish_and_clear();
+    if let Some(e) = write_error {
+        eprintln!("error: cannot write {}: {e}", output.display());
+        return EXIT_USAGE;
+    }
+    let secs = t1.elapsed().as_secs_f64();
+    if film.samples > 0 {
+        if let Err(e) = film.write(&output, exposure) {
+            eprintln!("error: cannot write {}: {e}", output.display());
+            return EXIT_USAGE;
+        }
+    }
+    let paths = s.width as f64 * s.height as f64 * film.samples as f64;
+    eprintln!(
+        "{}: {}×{}, {} spp{} in {:.2} s ({:.2} M paths/s; load {:.2} s) → {}",
+        args.file.display(),
+        s.width,
+        s.height,
+        film.samples,
+        if outcome == crate::render::Outcome::Cancelled {
+            " (interrupted)"
+        } else {
+            ""
+        },
+        secs,
+        paths / secs / 1e6,
+        load_s,
+        output.display()
+    );
+    EXIT_OK
+}
+
+fn progress_bar(total: u64) -> indicatif::ProgressBar {
+    use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+    let bar = ProgressBar::new(total);
+    if super::stderr_is_terminal() {
+        bar.set_style(
+            ProgressStyle::with_template(
+                "{bar:40} {percent:>3}% {msg} · {per_sec} samples · ETA {eta}",
+            )
+            .unwrap_or_else(|_| ProgressStyle::default_bar()),
+        );
+    } else {
+        bar.set_draw_target(ProgressDrawTarget::hidden());
+    }
+    bar
+}

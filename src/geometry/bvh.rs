@@ -1,0 +1,421 @@
+//! Bounding volume hierarchy: binned SAH build (Wald 2007, "On fast
+//! Construction of SAH-based Bounding Volume Hierarchies"), parallel with rayon
+//! for large nodes; a flat node array; ordered front-to-back traversal for the
+//! closest hit and an early-out traversal for shadow rays.
+
+use super::{Aabb, Ray};
+use glam::Vec3;
+
+/// One node: bounds plus either two children (`count == 0`: left child at
+/// `index`, right child at `index + 1`) or a leaf range of primitives.
+#[derive(Debug, Clone, Copy)]
+pub struct Node {
+    /// Bounds of everything below.
+    pub bounds: Aabb,
+    /// Leaf: first primitive in [`Bvh::order`]; inner: index of the left child (right = left + 1).
+    pub index: u32,
+    /// Number of primitives (0 for inner nodes).
+    pub count: u16,
+    /// Split axis of an inner node (for front-to-back order).
+    pub axis: u16,
+}
+
+/// A BVH over primitives given by their bounds.
+#[derive(Debug, Clone, Default)]
+pub struct Bvh {
+    /// Nodes; the root is node 0.
+    pub nodes: Vec<Node>,
+    /// Primitive indices in leaf order.
+    pub order: Vec<u32>,
+}
+
+const BINS: usize = 16;
+const MAX_LEAF: usize = 4;
+const PARALLEL_THRESHOLD: usize = 16 * 1024;
+
+/// A subtree built on its own (possibly on another thread), nodes local to it.
+struct Subtree {
+    nodes: Vec<Node>,
+}
+
+impl Bvh {
+    /// Builds a BVH over the given primitive bounds.
+    pub fn build(bounds: &[Aabb]) -> Bvh {
+        if bounds.is_empty() {
+            return Bvh::default();
+        }
+        let centroids: Vec<Vec3> = bounds.iter().map(Aabb::center).collect();
+        let mut order: Vec<u32> = (0..bounds.len() as u32).collect();
+        let sub = build_range(bounds, &centroids, &mut order, 0);
+        Bvh {
+            nodes: sub.nodes,
+            order,
+        }
+    }
+
+    /// Bounds of everything.
+    pub fn bounds(&self) -> Aabb {
+        self.nodes.first().map_or(Aabb::EMPTY, |n| n.bounds)
+    }
+
+    /// The closest hit: `hit(prim, ray, t_max)` returns the hit distance if
+    /// closer than `t_max`. Returns the primitive and distance.
+    #[inline]
+    pub fn closest<F: FnMut(u32, f32) -> Option<f32>>(
+        &self,
+        ray: &Ray,
+        mut t_max: f32,
+        mut hit: F,
+    ) -> Option<(u32, f32)> {
+        if self.nodes.is_empty() {
+            return None;
+        }
+        let inv = ray.d.recip();
+        let neg = [inv.x < 0.0, inv.y < 0.0, inv.z < 0.0];
+        let mut best = None;
+        let mut stack = [0u32; 64];
+        let mut sp = 0;
+        let mut node = 0usize;
+        loop {
+            let n = &self.nodes[node];
+            if n.count > 0 {
+                for &p in &self.order[n.index as usize..n.index as usize + n.count as usize] {
+                    if let Some(t) = hit(p, t_max) {
+                        t_max = t;
+                        best = Some((p, t));
+                    }
+                }
+            } else {
+                let (l, r) = (n.index as usize, n.index as usize + 1);
+                let tl = slab(&self.nodes[l].bounds, ray.o, inv, t_max);
+                let tr = slab(&self.nodes[r].bounds, ray.o, inv, t_max);
+                let (first, second, tf, ts) = if neg[n.axis as usize] {
+                    (r, l, tr, tl)
+                } else {
+                    (l, r, tl, tr)
+                };
+                match (tf.is_some(), ts.is_some()) {
+                    (true, true) => {
+                        stack[sp] = second as u32;
+                        sp += 1;
+                        node = first;
+                        continue;
+                    }
+                    (true, false) => {
+                        node = first;
+                        continue;
+                    }
+                    (false, true) => {
+                        node = second;
+                        continue;
+                    }
+                    (false, false) => {}
+                }
+            }
+            if sp == 0 {
+                break;
+            }
+            sp -= 1;
+            node = stack[sp] as usize;
+        }
+        best
+    }
+
+    /// Whether anything is hit before `t_max` (shadow rays).
+    #[inline]
+    pub fn any<F: FnMut(u32, f32) -> bool>(&self, ray: &Ray, t_max: f32, mut hit: F) -> bool {
+        if self.nodes.is_empty() {
+            return false;
+        }
+        let inv = ray.d.recip();
+        let mut stack = [0u32; 64];
+        let mut sp = 1;
+        while sp > 0 {
+            sp -= 1;
+            let n = &self.nodes[stack[sp] as usize];
+            if slab(&n.bounds, ray.o, inv, t_max).is_none() {
+                continue;
+            }
+            if n.count > 0 {
+                for &p in &self.order[n.index as usize..n.index as usize + n.count as usize] {
+                    if hit(p, t_max) {
+                        return true;
+                    }
+                }
+            } else {
+                stack[sp] = n.index;
+                stack[sp + 1] = n.index + 1;
+                sp += 2;
+            }
+        }
+        false
+    }
+}
+
+/// Ray–box slab test; the entry distance when the box is hit before `t_max`.
+#[inline(always)]
+fn slab(b: &Aabb, o: Vec3, inv: Vec3, t_max: f32) -> Option<f32> {
+    let t0 = (b.min - o) * inv;
+    let t1 = (b.max - o) * inv;
+    let tmin = t0.min(t1).max_element().max(0.0);
+    let tmax = t0.max(t1).min_element().min(t_max);
+    (tmin <= tmax).then_some(tmin)
+}
+
+fn leaf(bounds: Aabb, first: usize, count: usize) -> Node {
+    Node {
+        bounds,
+        index: first as u32,
+        count: count as u16,
+        axis: 0,
+    }
+}
+
+/// Builds the subtree over `order` (which starts at `offset` in the full order).
+fn build_range(bounds: &[Aabb], centroids: &[Vec3], order: &mut [u32], offset: usize) -> Subtree {
+    let node_bounds = order
+        .iter()
+        .fold(Aabb::EMPTY, |b, &i| b.union(bounds[i as usize]));
+    if order.len() <= MAX_LEAF {
+        return Subtree {
+            nodes: vec![leaf(node_bounds, offset, order.len())],
+        };
+    }
+    let cb = order
+        .iter()
+        .fold(Aabb::EMPTY, |b, &i| b.grow(centroids[i as usize]));
+    let extent = cb.max - cb.min;
+    let axis = if extent.x >= extent.y && extent.x >= extent.z {
+        0
+    } else if extent.y >= extent.z {
+        1
+    } else {
+        2
+    };
+    if extent[axis] <= 0.0 || !extent[axis].is_finite() {
+        // All centroids coincide (or are infinite): split in the middle of the list.
+        return split_and_recurse(
+            bounds,
+            centroids,
+            order,
+            offset,
+            node_bounds,
+            axis,
+            order.len() / 2,
+        );
+    }
+    // Binned SAH along the widest centroid axis.
+    let scale = BINS as f32 / extent[axis];
+    let bin_of =
+        |i: u32| (((centroids[i as usize][axis] - cb.min[axis]) * scale) as usize).min(BINS - 1);
+    let mut bin_bounds = [Aabb::EMPTY; BINS];
+    let mut bin_count = [0usize; BINS];
+    for &i in order.iter() {
+        let b = bin_of(i);
+        bin_bounds[b] = bin_bounds[b].union(bounds[i as usize]);
+        bin_count[b] += 1;
+    }
+    let mut right_area = [0.0f32; BINS];
+    let mut acc = Aabb::EMPTY;
+    let mut cnt = 0;
+    let mut right_count = [0usize; BINS];
+    for b in (1..BINS).rev() {
+        acc = acc.union(bin_bounds[b]);
+        cnt += bin_count[b];
+        right_area[b] = acc.area();
+        right_count[b] = cnt;
+    }
+    let mut best = (f32::INFINITY, 0);
+    let mut acc = Aabb::EMPTY;
+    let mut cnt = 0;
+    for b in 0..BINS - 1 {
+        acc = acc.union(bin_bounds[b]);
+        cnt += bin_count[b];
+        let cost = acc.area() * cnt as f32 + right_area[b + 1] * right_count[b + 1] as f32;
+        if cnt > 0 && right_count[b + 1] > 0 && cost < best.0 {
+            best = (cost, b);
+        }
+    }
+    let leaf_cost = node_bounds.area() * order.len() as f32;
+    if best.0 >= leaf_cost && order.len() <= 16 || best.0 == f32::INFINITY {
+        if order.len() <= u16::MAX as usize && best.0 != f32::INFINITY {
+            return Subtree {
+                nodes: vec![leaf(node_bounds, offset, order.len())],
+            };
+        }
+        return split_and_recurse(
+            bounds,
+            centroids,
+            order,
+            offset,
+            node_bounds,
+            axis,
+            order.len() / 2,
+        );
+    }
+    // Partition in place by bin.
+    let mut l = 0;
+    let mut r = order.len();
+    while l < r {
+        if bin_of(order[l]) <= best.1 {
+            l += 1;
+        } else {
+            r -= 1;
+            order.swap(l, r);
+        }
+    }
+    split_and_recurse(bounds, centroids, order, offset, node_bounds, axis, l)
+}
+
+fn split_and_recurse(
+    bounds: &[Aabb],
+    centroids: &[Vec3],
+    order: &mut [u32],
+    offset: usize,
+    node_bounds: Aabb,
+    axis: usize,
+    mid: usize,
+) -> Subtree {
+    let n = order.len();
+    let (lo, hi) = order.split_at_mut(mid);
+    let (left, right) = if n >= PARALLEL_THRESHOLD {
+        rayon::join(
+            || build_range(bounds, centroids, lo, offset),
+            || build_range(bounds, centroids, hi, offset + mid),
+        )
+    } else {
+        (
+            build_range(bounds, centroids, lo, offset),
+            build_range(bounds, centroids, hi, offset + mid),
+        )
+    };
+    // Layout: this node, then its two children side by side, then the rest of
+    // the left subtree, then the rest of the right subtree.
+    let mut nodes = Vec::with_capacity(1 + left.nodes.len() + right.nodes.len());
+    nodes.push(Node {
+        bounds: node_bounds,
+        index: 1,
+        count: 0,
+        axis: axis as u16,
+    });
+    let left_rest = left.nodes.len() - 1;
+    // Children at 1 and 2; left's descendants from 3, right's after them.
+    let remap = |mut node: Node, base_self: usize, base_rest: usize| {
+        if node.count == 0 {
+            // Child indices inside a subtree point at (local) pairs; local index k >= 1 maps to base_rest + k - 1.
+            node.index = (base_rest + node.index as usize - 1) as u32;
+        }
+        let _ = base_self;
+        node
+    };
+    let left_base = 3;
+    let right_base = 3 + left_rest;
+    nodes.push(remap(left.nodes[0], 1, left_base));
+    nodes.push(remap(right.nodes[0], 2, right_base));
+    for node in &left.nodes[1..] {
+        nodes.push(remap(*node, 0, left_base));
+    }
+    for node in &right.nodes[1..] {
+        nodes.push(remap(*node, 0, right_base));
+    }
+    Subtree { nodes }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::shape::Shape;
+    use proptest::prelude::*;
+
+    fn brute(shapes: &[Shape], ray: &Ray) -> Option<(u32, f32)> {
+        let mut best: Option<(u32, f32)> = None;
+        for (i, s) in shapes.iter().enumerate() {
+            if let Some(h) = s.intersect(ray, 1e-4, best.map_or(f32::INFINITY, |b| b.1)) {
+                best = Some((i as u32, h.t));
+            }
+        }
+        best
+    }
+
+    fn shape_strategy() -> impl Strategy<Value = Shape> {
+        let v = || {
+            (-10.0f32..10.0, -10.0f32..10.0, -10.0f32..10.0)
+                .prop_map(|(x, y, z)| Vec3::new(x, y, z))
+        };
+        let e =
+            || (-2.0f32..2.0, -2.0f32..2.0, -2.0f32..2.0).prop_map(|(x, y, z)| Vec3::new(x, y, z));
+        prop_oneof![
+            (v(), 0.05f32..2.0).prop_map(|(center, radius)| Shape::Sphere { center, radius }),
+            (v(), e(), e()).prop_map(|(p0, e1, e2)| Shape::Triangle {
+                p0,
+                e1,
+                e2,
+                normals: u32::MAX
+            }),
+        ]
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig { cases: 64, ..ProptestConfig::default() })]
+        #[test]
+        fn bvh_agrees_with_brute_force(
+            shapes in proptest::collection::vec(shape_strategy(), 1..300),
+            rays in proptest::collection::vec(((-12.0f32..12.0, -12.0f32..12.0, -12.0f32..12.0), (-1.0f32..1.0, -1.0f32..1.0, -1.0f32..1.0)), 32),
+        ) {
+            let bounds: Vec<Aabb> = shapes.iter().map(Shape::bounds).collect();
+            let bvh = Bvh::build(&bounds);
+            for ((ox, oy, oz), (dx, dy, dz)) in rays {
+                let d = Vec3::new(dx, dy, dz);
+                if d.length_squared() < 1e-6 { continue; }
+                let ray = Ray::new(Vec3::new(ox, oy, oz), d.normalize(), 0.0);
+                let expect = brute(&shapes, &ray);
+                let got = bvh.closest(&ray, f32::INFINITY, |p, tmax| shapes[p as usize].intersect(&ray, 1e-4, tmax).map(|h| h.t));
+                prop_assert_eq!(expect.map(|e| e.1), got.map(|g| g.1));
+                let any = bvh.any(&ray, f32::INFINITY, |p, tmax| shapes[p as usize].intersect(&ray, 1e-4, tmax).is_some());
+                prop_assert_eq!(expect.is_some(), any);
+                if let Some((_, t)) = expect {
+                    // Any-hit bounded just before the closest hit sees nothing.
+                    let blocked = bvh.any(&ray, t * 0.999, |p, tmax| shapes[p as usize].intersect(&ray, 1e-4, tmax).is_some());
+                    prop_assert!(!blocked);
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn large_build_keeps_every_primitive_once() {
+        let bounds: Vec<Aabb> = (0..50_000)
+            .map(|i| {
+                let p = Vec3::new(
+                    (i % 97) as f32,
+                    (i % 89) as f32 * 0.5,
+                    (i / 97) as f32 * 0.1,
+                );
+                Aabb {
+                    min: p,
+                    max: p + Vec3::splat(0.3),
+                }
+            })
+            .collect();
+        let bvh = Bvh::build(&bounds);
+        let mut seen = vec![0u8; bounds.len()];
+        let mut stack = vec![0usize];
+        while let Some(n) = stack.pop() {
+            let node = bvh.nodes[n];
+            if node.count > 0 {
+                for &p in &bvh.order[node.index as usize..node.index as usize + node.count as usize]
+                {
+                    seen[p as usize] += 1;
+                    let b = bounds[p as usize];
+                    assert!(
+                        node.bounds.min.cmple(b.min).all() && node.bounds.max.cmpge(b.max).all()
+                    );
+                }
+            } else {
+                stack.push(node.index as usize);
+                stack.push(node.index as usize + 1);
+            }
+        }
+        assert!(seen.iter().all(|&c| c == 1));
+    }
+}

@@ -1,0 +1,34 @@
+//! Debug integrators that show geometry before light transport: shading
+//! normals, the albedo of the first hit, and its distance.
+
+use super::{Integrator, T_MIN};
+use crate::geometry::Ray;
+use crate::ir::Scene;
+use crate::render::sampler::Sampler;
+use glam::Vec3;
+
+/// Which debug view.
+pub enum Debug {
+    /// Normal mapped from [-1, 1] to [0, 1].
+    Normals,
+    /// Diffuse + reflection + transmission weights of the first hit.
+    Albedo,
+    /// Distance d mapped to d / (1 + d).
+    Depth,
+}
+
+impl Integrator for Debug {
+    fn li(&self, scene: &Scene, ray: Ray, _sampler: &mut Sampler) -> Vec3 {
+        let Some(hit) = scene.intersect(&ray, T_MIN, f32::INFINITY) else {
+            return Vec3::ZERO;
+        };
+        match self {
+            Debug::Normals => hit.n_shading * 0.5 + Vec3::splat(0.5),
+            Debug::Albedo => {
+                let m = &scene.materials[scene.prims[hit.prim as usize].material as usize];
+                m.albedo()
+            }
+            Debug::Depth => Vec3::splat(hit.t / (1.0 + hit.t)),
+        }
+    }
+}

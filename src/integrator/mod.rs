@@ -1,0 +1,100 @@
+//! Integrators answer one question: the radiance arriving along a camera ray.
+//! The pixel loop (`render`) is theirs to share. Shared pieces live here: the
+//! direct-lighting estimate used by `path` (with MIS) and `whitted`.
+
+pub mod debug;
+pub mod hybrid;
+pub mod path;
+pub mod whitted;
+
+use crate::check::IntegratorKind;
+use crate::geometry::{offset_origin, Ray};
+use crate::ir::{Hit, Scene};
+use crate::render::sampler::Sampler;
+use crate::render::sampling::power_heuristic;
+use glam::Vec3;
+
+/// Radiance along a ray.
+pub trait Integrator: Sync {
+    /// Estimates the radiance arriving at the ray's origin from its direction.
+    fn li(&self, scene: &Scene, ray: Ray, sampler: &mut Sampler) -> Vec3;
+}
+
+/// The integrator a scene asks for.
+pub fn make(kind: IntegratorKind) -> Box<dyn Integrator> {
+    match kind {
+        IntegratorKind::Path => Box::new(path::PathIntegrator),
+        IntegratorKind::Whitted => Box::new(whitted::Whitted),
+        IntegratorKind::Hybrid => Box::new(hybrid::Hybrid),
+        IntegratorKind::Normals => Box::new(debug::Debug::Normals),
+        IntegratorKind::Albedo => Box::new(debug::Debug::Albedo),
+        IntegratorKind::Depth => Box::new(debug::Debug::Depth),
+    }
+}
+
+/// Minimum ray distance (rays start offset from surfaces already).
+pub const T_MIN: f32 = 1e-5;
+
+/// Next-event estimation at `hit` for outgoing direction `wo`: one light
+/// chosen by power, weighted against BSDF sampling with the power heuristic
+/// (delta lights get weight 1).
+pub fn direct_light_mis(
+    scene: &Scene,
+    hit: &Hit,
+    wo: Vec3,
+    time: f32,
+    sampler: &mut Sampler,
+) -> Vec3 {
+    let Some((li_idx, pick_pdf)) = scene.pick_light(sampler.next_f32()) else {
+        return Vec3::ZERO;
+    };
+    let u = sampler.next_2d();
+    let light = &scene.lights[li_idx as usize];
+    let Some(ls) = light.sample(scene, hit.p, u) else {
+        return Vec3::ZERO;
+    };
+    let material = &scene.materials[scene.prims[hit.prim as usize].material as usize];
+    let (f, bsdf_pdf) = material.eval(wo, ls.wi, hit.n_shading);
+    if f == Vec3::ZERO {
+        return Vec3::ZERO;
+    }
+    let origin = offset_origin(hit.p, hit.n_geo, ls.wi);
+    let shadow = Ray::new(origin, ls.wi, time);
+    let t_max = if ls.dist.is_finite() {
+        ls.dist * (1.0 - 1e-4)
+    } else {
+        f32::INFINITY
+    };
+    if scene.occluded(&shadow, T_MIN, t_max) {
+        return Vec3::ZERO;
+    }
+    let cos = ls.wi.dot(hit.n_shading).abs();
+    if light.is_delta() {
+        return f * ls.li * cos / pick_pdf;
+    }
+    let light_pdf = ls.pdf * pick_pdf;
+    let w = power_heuristic(light_pdf, bsdf_pdf);
+    f * ls.li * cos * w / light_pdf
+}
+
+/// Pdf with which [`direct_light_mis`] would have produced a ray from `from`
+/// that hits emitter `light` at `hit` (solid angle, including the light choice).
+pub fn light_pdf(scene: &Scene, light: u32, from: Vec3, hit: &Hit, dir: Vec3) -> f32 {
+    let pick = scene.light_pmf[light as usize];
+    match &scene.lights[light as usize] {
+        crate::light::Light::Area { prim } => {
+            let area = scene.prims[*prim as usize].shape.area();
+            let d2 = (hit.p - from).length_squared();
+            let cos = hit.n_geo.dot(-dir).abs();
+            if cos <= 0.0 {
+                0.0
+            } else {
+                pick * d2 / (cos * area)
+            }
+        }
+        crate::light::Light::Environment { .. } => {
+            pick * crate::render::sampling::UNIFORM_SPHERE_PDF
+        }
+        _ => 0.0,
+    }
+}

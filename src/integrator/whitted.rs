@@ -1,0 +1,166 @@
+//! Recursive ray tracing (Whitted 1980) with distribution effects (Cook
+//! 1984): direct light with shadow rays from every light (several per area
+//! light, for soft shadows), the ambient term, mirror and glossy reflection,
+//! refraction weighted by exact Fresnel with total internal reflection, and
+//! Beer's law. Indirect diffuse light is not computed: that is the path
+//! integrator's job.
+//!
+//! `.pts`: `render { integrator whitted  max_depth 8  light_samples 4  ambient rgb 0.05 }`.
+
+use super::{Integrator, T_MIN};
+use crate::geometry::{offset_origin, Ray};
+use crate::ir::{Hit, Scene};
+use crate::light::Light;
+use crate::material::{fresnel, reflect, refract, Material};
+use crate::render::sampler::Sampler;
+use glam::Vec3;
+
+/// The Whitted integrator.
+pub struct Whitted;
+
+/// Samples taken around the mirror direction of a glossy surface.
+const GLOSSY_SAMPLES: u32 = 4;
+
+impl Integrator for Whitted {
+    fn li(&self, scene: &Scene, ray: Ray, sampler: &mut Sampler) -> Vec3 {
+        trace(scene, ray, sampler, 1)
+    }
+}
+
+/// Radiance along `ray`, which is path segment number `segment`.
+pub fn trace(scene: &Scene, ray: Ray, sampler: &mut Sampler, segment: u32) -> Vec3 {
+    let s = &scene.settings;
+    let Some(hit) = scene.intersect(&ray, T_MIN, f32::INFINITY) else {
+        return scene.background;
+    };
+    let prim = &scene.prims[hit.prim as usize];
+    let m = &scene.materials[prim.material as usize];
+    let wo = -ray.d;
+    let mut l = m.emitted(wo, hit.n_geo);
+    if segment >= s.max_depth {
+        return l;
+    }
+    if m.has_smooth_lobe() {
+        l += direct(scene, &hit, m, wo, ray.time, sampler);
+    }
+    if m.lobe_pdf[0] > 0.0 {
+        let a = Vec3::new(
+            s.ambient[0] as f32,
+            s.ambient[1] as f32,
+            s.ambient[2] as f32,
+        );
+        l += m.diffuse * a;
+    }
+    let outside = wo.dot(hit.n_geo) >= 0.0;
+    let nf = if outside {
+        hit.n_shading
+    } else {
+        -hit.n_shading
+    };
+    if m.reflection != Vec3::ZERO {
+        if m.alpha == 0.0 {
+            let wi = reflect(wo, nf);
+            l += m.reflection
+                * trace(
+                    scene,
+                    Ray::new(offset_origin(hit.p, hit.n_geo, wi), wi, ray.time),
+                    sampler,
+                    segment + 1,
+                );
+        } else {
+            // Glossy: a few importance-sampled directions around the mirror one.
+            let mut acc = Vec3::ZERO;
+            let only_gloss = Material {
+                lobe_pdf: [0.0, 1.0, 0.0],
+                diffuse: Vec3::ZERO,
+                ..m.clone()
+            };
+            for _ in 0..GLOSSY_SAMPLES {
+                if let Some(b) = only_gloss.sample(wo, hit.n_shading, 0.5, sampler.next_2d()) {
+                    let r = Ray::new(offset_origin(hit.p, hit.n_geo, b.wi), b.wi, ray.time);
+                    acc += b.weight * trace(scene, r, sampler, segment + 1);
+                }
+            }
+            l += acc / GLOSSY_SAMPLES as f32;
+        }
+    }
+    if m.transmission > 0.0 {
+        let eta = if outside { m.ior } else { 1.0 / m.ior };
+        let f = fresnel::dielectric(wo.dot(nf), eta);
+        let mut t = Vec3::ZERO;
+        let wr = reflect(wo, nf);
+        t += f * trace(
+            scene,
+            Ray::new(offset_origin(hit.p, hit.n_geo, wr), wr, ray.time),
+            sampler,
+            segment + 1,
+        );
+        if f < 1.0 {
+            if let Some(wt) = refract(wo, nf, eta) {
+                t += (1.0 - f)
+                    * trace(
+                        scene,
+                        Ray::new(offset_origin(hit.p, hit.n_geo, wt), wt, ray.time),
+                        sampler,
+                        segment + 1,
+                    );
+            }
+        }
+        l += m.transmission * t;
+    }
+    // Beer's law over the segment just travelled inside this object.
+    if m.transmission > 0.0 && !outside && m.absorption != Vec3::ZERO {
+        l *= (-m.absorption * hit.t).exp();
+    }
+    l
+}
+
+/// Direct light from every light: one shadow ray per delta light,
+/// `light_samples` per area light, and the background by `light_samples`
+/// cosine-weighted directions.
+fn direct(
+    scene: &Scene,
+    hit: &Hit,
+    m: &Material,
+    wo: Vec3,
+    time: f32,
+    sampler: &mut Sampler,
+) -> Vec3 {
+    let mut l = Vec3::ZERO;
+    let n = scene.settings.light_samples.max(1);
+    for light in &scene.lights {
+        let count = if light.is_delta() { 1 } else { n };
+        if matches!(light, Light::Area { .. } | Light::Environment { .. })
+            && scene.settings.light_samples == 0
+        {
+            continue;
+        }
+        let mut acc = Vec3::ZERO;
+        for _ in 0..count {
+            let Some(ls) = light.sample(scene, hit.p, sampler.next_2d()) else {
+                continue;
+            };
+            let (f, _) = m.eval(wo, ls.wi, hit.n_shading);
+            if f == Vec3::ZERO {
+                continue;
+            }
+            let shadow = Ray::new(offset_origin(hit.p, hit.n_geo, ls.wi), ls.wi, time);
+            let t_max = if ls.dist.is_finite() {
+                ls.dist * (1.0 - 1e-4)
+            } else {
+                f32::INFINITY
+            };
+            if scene.occluded(&shadow, T_MIN, t_max) {
+                continue;
+            }
+            let cos = ls.wi.dot(hit.n_shading).abs();
+            acc += if light.is_delta() {
+                f * ls.li * cos
+            } else {
+                f * ls.li * cos / ls.pdf
+            };
+        }
+        l += acc / count as f32;
+    }
+    l
+}

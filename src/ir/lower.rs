@@ -1,0 +1,381 @@
+//! Lowering: checked scene → render IR. Transforms are baked into the
+//! primitives, boxes become six quads, meshes are loaded, lights are
+//! collected and the BVH is built. Problems found here (an unreadable mesh, a
+//! sphere under a non-uniform scale) are diagnostics with the object's span.
+
+use super::{mesh, Prim, Scene};
+use crate::check::{self, codes};
+use crate::diag::{Diagnostic, Diagnostics};
+use crate::geometry::bvh::Bvh;
+use crate::geometry::shape::Shape;
+use crate::geometry::Aabb;
+use crate::light::Light;
+use crate::material::Material;
+use crate::render::camera::Camera;
+use glam::{DMat4, DVec3, Vec3};
+
+fn v3(v: DVec3) -> Vec3 {
+    v.as_vec3()
+}
+
+/// The uniform scale factor of a similarity transform, or `None` if the
+/// linear part shears or scales unevenly.
+fn uniform_scale(m: &DMat4) -> Option<f64> {
+    let (x, y, z) = (
+        m.x_axis.truncate(),
+        m.y_axis.truncate(),
+        m.z_axis.truncate(),
+    );
+    let s = x.length();
+    let ok = (y.length() - s).abs() <= 1e-9 * s.max(1.0)
+        && (z.length() - s).abs() <= 1e-9 * s.max(1.0)
+        && x.dot(y).abs() <= 1e-9 * s * s
+        && y.dot(z).abs() <= 1e-9 * s * s
+        && x.dot(z).abs() <= 1e-9 * s * s;
+    ok.then_some(s)
+}
+
+/// Builds the IR; mesh problems and unsupported transforms are diagnostics.
+pub fn lower(scene: &check::Scene) -> Result<Scene, Diagnostics> {
+    let mut diags = Diagnostics::new();
+    let materials: Vec<Material> = scene.materials.iter().map(Material::from_checked).collect();
+    let mut prims: Vec<Prim> = Vec::new();
+    let mut origins = Vec::new();
+    let mut normals: Vec<[Vec3; 3]> = Vec::new();
+    let mut mesh_files = Vec::new();
+    for obj in &scene.objects {
+        let m = obj.transform;
+        let pt = |p: DVec3| v3(m.transform_point3(p));
+        let vec = |v: DVec3| v3(m.transform_vector3(v));
+        let material = obj.material as u32;
+        let velocity = v3(obj.velocity);
+        let mut push = |shape: Shape| {
+            prims.push(Prim {
+                shape,
+                material,
+                light: u32::MAX,
+                velocity,
+            });
+            origins.push(obj.span);
+        };
+        match &obj.shape {
+            check::Shape::Sphere { center, radius } => match uniform_scale(&m) {
+                Some(s) => push(Shape::Sphere {
+                    center: pt(*center),
+                    radius: (radius * s) as f32,
+                }),
+                None => diags.push(non_uniform(obj.span, "sphere")),
+            },
+            check::Shape::Disk {
+                center,
+                normal,
+                radius,
+            } => match uniform_scale(&m) {
+                Some(s) => push(Shape::Disk {
+                    center: pt(*center),
+                    normal: vec(*normal).normalize(),
+                    radius: (radius * s) as f32,
+                }),
+                None => diags.push(non_uniform(obj.span, "disk")),
+            },
+            check::Shape::Plane { point, normal } => {
+                let n = v3(m.inverse().transpose().transform_vector3(*normal)).normalize();
+                push(Shape::Plane {
+                    point: pt(*point),
+                    normal: n,
+                });
+            }
+            check::Shape::Quad {
+                corner,
+                edge1,
+                edge2,
+            } => push(Shape::Quad {
+                p: pt(*corner),
+                e1: vec(*edge1),
+                e2: vec(*edge2),
+            }),
+            check::Shape::Triangle { v } => {
+                let p0 = pt(v[0]);
+                push(Shape::Triangle {
+                    p0,
+                    e1: pt(v[1]) - p0,
+                    e2: pt(v[2]) - p0,
+                    normals: u32::MAX,
+                })
+            }
+            check::Shape::Box { min, max } => {
+                let (lo, hi) = (*min, *max);
+                let d = hi - lo;
+                let (ex, ey, ez) = (
+                    DVec3::new(d.x, 0.0, 0.0),
+                    DVec3::new(0.0, d.y, 0.0),
+                    DVec3::new(0.0, 0.0, d.z),
+                );
+                // Six faces with outward normals (e1 × e2 points out).
+                let faces = [
+                    (lo, ez, ey),
+                    (lo + ex, ey, ez),
+                    (lo, ex, ez),
+                    (lo + ey, ez, ex),
+                    (lo, ey, ex),
+                    (lo + ez, ex, ey),
+                ];
+                // A mirroring transform flips the winding; keep normals outward.
+                let flip = m.determinant() < 0.0;
+                for (c, a, b) in faces {
+                    let (a, b) = if flip { (b, a) } else { (a, b) };
+                    push(Shape::Quad {
+                        p: pt(c),
+                        e1: vec(a),
+                        e2: vec(b),
+                    });
+                }
+            }
+            check::Shape::Mesh {
+                path,
+                path_span,
+                smooth,
+            } => {
+                let data = match mesh::load(path) {
+                    Ok(d) => d,
+                    Err(e) => {
+                        diags.push(
+                            Diagnostic::error(
+                                codes::MESH_FILE,
+                                format!("cannot load mesh `{}`", path.display()),
+                                *path_span,
+                            )
+                            .with_label(e)
+                            .with_help("meshes are OBJ or PLY files with at least one triangle"),
+                        );
+                        continue;
+                    }
+                };
+                mesh_files.push(path.clone());
+                let flip = m.determinant() < 0.0;
+                let pos: Vec<Vec3> = data.positions.iter().map(|p| pt(p.as_dvec3())).collect();
+                let nm = m.inverse().transpose();
+                let use_normals = *smooth && !data.normals.is_empty();
+                let vnormals: Vec<Vec3> = if use_normals {
+                    data.normals
+                        .iter()
+                        .map(|n| v3(nm.transform_vector3(n.as_dvec3())).normalize_or_zero())
+                        .collect()
+                } else {
+                    Vec::new()
+                };
+                let mut degenerate = 0usize;
+                prims.reserve(data.triangles.len());
+                for t in &data.triangles {
+                    let [a, b, c] = if flip { [t[0], t[2], t[1]] } else { *t };
+                    let p0 = pos[a as usize];
+                    let (e1, e2) = (pos[b as usize] - p0, pos[c as usize] - p0);
+                    if e1.cross(e2).length_squared() == 0.0 {
+                        degenerate += 1;
+                        continue;
+                    }
+                    let nidx = if use_normals {
+                        normals.push([
+                            vnormals[a as usize],
+                            vnormals[b as usize],
+                            vnormals[c as usize],
+                        ]);
+                        normals.len() as u32 - 1
+                    } else {
+                        u32::MAX
+                    };
+                    prims.push(Prim {
+                        shape: Shape::Triangle {
+                            p0,
+                            e1,
+                            e2,
+                            normals: nidx,
+                        },
+                        material,
+                        light: u32::MAX,
+                        velocity,
+                    });
+                    origins.push(obj.span);
+                }
+                if degenerate == data.triangles.len() {
+                    diags.push(
+                        Diagnostic::error(
+                            codes::DEGENERATE,
+                            "every triangle of this mesh has zero area",
+                            *path_span,
+                        )
+                        .with_label(format!("{degenerate} degenerate triangles"))
+                        .with_help("check the mesh file and the transform's scale"),
+                    );
+                }
+            }
+        }
+    }
+    for (i, p) in prims.iter().enumerate() {
+        let b = p.shape.bounds();
+        let bad = match p.shape {
+            Shape::Plane { .. } => !p.shape.normal_at(Vec3::ZERO).is_finite(),
+            _ => !(b.min.is_finite() && b.max.is_finite()),
+        };
+        if bad {
+            diags.push(
+                Diagnostic::error(
+                    codes::NOT_FINITE,
+                    "this object's geometry is not finite after its transforms",
+                    origins[i],
+                )
+                .with_label("NaN or infinite coordinates")
+                .with_help("check the sizes and transforms for overflow"),
+            );
+            break;
+        }
+    }
+    if diags.has_errors() {
+        return Err(diags);
+    }
+
+    // Lights: emissive primitives, explicit lights, the background.
+    let mut lights = Vec::new();
+    for (i, p) in prims.iter_mut().enumerate() {
+        if materials[p.material as usize].emission != Vec3::ZERO {
+            p.light = lights.len() as u32;
+            lights.push(Light::Area { prim: i as u32 });
+        }
+    }
+    for (l, _) in &scene.lights {
+        lights.push(match l {
+            check::Light::Point {
+                position,
+                intensity,
+            } => Light::Point {
+                position: v3(*position),
+                intensity: rgb(intensity),
+            },
+            check::Light::Spot {
+                position,
+                direction,
+                intensity,
+                angle,
+                falloff,
+            } => Light::Spot {
+                position: v3(*position),
+                direction: v3(*direction),
+                intensity: rgb(intensity),
+                cos_total: angle.to_radians().cos() as f32,
+                cos_falloff: falloff.to_radians().cos() as f32,
+            },
+            check::Light::Directional {
+                direction,
+                irradiance,
+            } => Light::Directional {
+                direction: v3(*direction),
+                irradiance: rgb(irradiance),
+            },
+        });
+    }
+    let background = rgb(&scene.background);
+    let env_light = (background != Vec3::ZERO).then(|| {
+        lights.push(Light::Environment {
+            radiance: background,
+        });
+        lights.len() as u32 - 1
+    });
+
+    // BVH over bounded primitives, expanded over the shutter for moving ones.
+    let (t0, t1) = (scene.camera.shutter.0 as f32, scene.camera.shutter.1 as f32);
+    let mut bounded = Vec::new();
+    let mut unbounded = Vec::new();
+    let mut boxes = Vec::new();
+    for (i, p) in prims.iter().enumerate() {
+        if matches!(p.shape, Shape::Plane { .. }) {
+            unbounded.push(i as u32);
+            continue;
+        }
+        let b = p.shape.bounds();
+        let b = if p.velocity != Vec3::ZERO {
+            let m0 = Aabb {
+                min: b.min + p.velocity * t0,
+                max: b.max + p.velocity * t0,
+            };
+            let m1 = Aabb {
+                min: b.min + p.velocity * t1,
+                max: b.max + p.velocity * t1,
+            };
+            m0.union(m1)
+        } else {
+            b
+        };
+        bounded.push(i as u32);
+        boxes.push(b);
+    }
+    let mut bvh = Bvh::build(&boxes);
+    // Map the BVH's order from positions in `bounded` to primitive indices.
+    for o in bvh.order.iter_mut() {
+        *o = bounded[*o as usize];
+    }
+    let bounds = bvh.bounds();
+    let camera = Camera::new(&scene.camera, scene.render.width, scene.render.height);
+    let mut ir = Scene {
+        settings: scene.render.clone(),
+        camera,
+        prims,
+        origins,
+        bvh,
+        unbounded,
+        materials,
+        normals,
+        lights,
+        light_pmf: Vec::new(),
+        light_cdf: Vec::new(),
+        background,
+        env_light,
+        bounds,
+        mesh_files,
+    };
+    let scene_bounds = if bounds.min.is_finite() {
+        bounds.grow(v3(scene.camera.position))
+    } else {
+        Aabb {
+            min: Vec3::splat(-1.0),
+            max: Vec3::ONE,
+        }
+    };
+    let powers: Vec<f32> = ir
+        .lights
+        .iter()
+        .map(|l| l.power(&ir, scene_bounds).max(0.0))
+        .collect();
+    let total: f32 = powers.iter().sum();
+    if total > 0.0 {
+        ir.light_pmf = powers.iter().map(|p| p / total).collect();
+        let mut acc = 0.0;
+        ir.light_cdf = ir
+            .light_pmf
+            .iter()
+            .map(|p| {
+                acc += p;
+                acc
+            })
+            .collect();
+        *ir.light_cdf.last_mut().unwrap() = 1.0;
+    } else {
+        ir.lights.clear();
+    }
+    Ok(ir)
+}
+
+fn rgb(c: &[f64; 3]) -> Vec3 {
+    Vec3::new(c[0] as f32, c[1] as f32, c[2] as f32)
+}
+
+fn non_uniform(span: crate::span::Span, what: &str) -> Diagnostic {
+    Diagnostic::error(
+        codes::SINGULAR_TRANSFORM,
+        format!("a {what} takes only uniform scaling"),
+        span,
+    )
+    .with_label("this object is scaled unevenly or sheared")
+    .with_help(format!(
+        "scale the {what} by a single number, or use a mesh for ellipsoids"
+    ))
+}

@@ -1,0 +1,369 @@
+//! Triangle meshes from Wavefront OBJ (via `tobj`) and PLY (ASCII, binary
+//! little and big endian; our own reader: the format is small and we want
+//! exact control over errors and memory).
+
+use glam::Vec3;
+use std::path::Path;
+
+/// Triangles with optional per-vertex normals.
+#[derive(Debug, Clone, Default)]
+pub struct MeshData {
+    /// Vertex positions.
+    pub positions: Vec<Vec3>,
+    /// Vertex normals (empty when the file has none).
+    pub normals: Vec<Vec3>,
+    /// Triangles as vertex indices.
+    pub triangles: Vec<[u32; 3]>,
+}
+
+/// Reads an OBJ or PLY file; the error is a sentence for a diagnostic.
+pub fn load(path: &Path) -> Result<MeshData, String> {
+    let ext = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase);
+    let mesh = match ext.as_deref() {
+        Some("obj") => load_obj(path)?,
+        Some("ply") => {
+            let bytes = std::fs::read(path).map_err(|e| format!("cannot read the file: {e}"))?;
+            parse_ply(&bytes)?
+        }
+        _ => return Err("unknown mesh format (expected .obj or .ply)".into()),
+    };
+    if mesh.triangles.is_empty() {
+        return Err("the mesh has no triangles".into());
+    }
+    let n = mesh.positions.len() as u32;
+    if let Some(bad) = mesh.triangles.iter().flatten().find(|&&i| i >= n) {
+        return Err(format!(
+            "a face refers to vertex {bad}, but the mesh has {n} vertices"
+        ));
+    }
+    if mesh.positions.iter().any(|p| !p.is_finite()) {
+        return Err("a vertex position is not a finite number".into());
+    }
+    Ok(mesh)
+}
+
+fn load_obj(path: &Path) -> Result<MeshData, String> {
+    let opts = tobj::LoadOptions {
+        triangulate: true,
+        single_index: true,
+        ..Default::default()
+    };
+    let (models, _) =
+        tobj::load_obj(path, &opts).map_err(|e| format!("cannot read the OBJ file: {e}"))?;
+    let mut out = MeshData::default();
+    for m in models {
+        let base = out.positions.len() as u32;
+        let mesh = m.mesh;
+        out.positions.extend(
+            mesh.positions
+                .chunks_exact(3)
+                .map(|c| Vec3::new(c[0], c[1], c[2])),
+        );
+        if !mesh.normals.is_empty() && mesh.normals.len() == mesh.positions.len() {
+            out.normals.extend(
+                mesh.normals
+                    .chunks_exact(3)
+                    .map(|c| Vec3::new(c[0], c[1], c[2])),
+            );
+        }
+        out.triangles.extend(
+            mesh.indices
+                .chunks_exact(3)
+                .map(|c| [base + c[0], base + c[1], base + c[2]]),
+        );
+    }
+    if out.normals.len() != out.positions.len() {
+        out.normals.clear();
+    }
+    Ok(out)
+}
+
+#[derive(Clone, Copy, PartialEq)]
+enum Format {
+    Ascii,
+    Le,
+    Be,
+}
+
+#[derive(Clone, Copy, PartialEq, Debug)]
+enum Scalar {
+    I8,
+    U8,
+    I16,
+    U16,
+    I32,
+    U32,
+    F32,
+    F64,
+}
+
+impl Scalar {
+    fn parse(s: &str) -> Option<Scalar> {
+        Some(match s {
+            "char" | "int8" => Scalar::I8,
+            "uchar" | "uint8" => Scalar::U8,
+            "short" | "int16" => Scalar::I16,
+            "ushort" | "uint16" => Scalar::U16,
+            "int" | "int32" => Scalar::I32,
+            "uint" | "uint32" => Scalar::U32,
+            "float" | "float32" => Scalar::F32,
+            "double" | "float64" => Scalar::F64,
+            _ => return None,
+        })
+    }
+
+    fn size(self) -> usize {
+        match self {
+            Scalar::I8 | Scalar::U8 => 1,
+            Scalar::I16 | Scalar::U16 => 2,
+            Scalar::I32 | Scalar::U32 | Scalar::F32 => 4,
+            Scalar::F64 => 8,
+        }
+    }
+}
+
+enum Prop {
+    Scalar(String, Scalar),
+    List(String, Scalar, Scalar),
+}
+
+struct Element {
+    name: String,
+    count: usize,
+    props: Vec<Prop>,
+}
+
+/// Reads values of one element from binary or ASCII data.
+struct Reader<'a> {
+    data: &'a [u8],
+    pos: usize,
+    format: Format,
+    tokens: Option<std::str::SplitAsciiWhitespace<'a>>,
+}
+
+impl Reader<'_> {
+    fn read(&mut self, t: Scalar) -> Result<f64, String> {
+        if self.format == Format::Ascii {
+            let tok = self
+                .tokens
+                .as_mut()
+                .unwrap()
+                .next()
+                .ok_or("the PLY data ends early")?;
+            return tok
+                .parse::<f64>()
+                .map_err(|_| format!("`{tok}` is not a number"));
+        }
+        let n = t.size();
+        let b = self
+            .data
+            .get(self.pos..self.pos + n)
+            .ok_or("the PLY data ends early")?;
+        self.pos += n;
+        let mut a = [0u8; 8];
+        a[..n].copy_from_slice(b);
+        if self.format == Format::Be {
+            a[..n].reverse();
+        }
+        Ok(match t {
+            Scalar::I8 => a[0] as i8 as f64,
+            Scalar::U8 => a[0] as f64,
+            Scalar::I16 => i16::from_le_bytes([a[0], a[1]]) as f64,
+            Scalar::U16 => u16::from_le_bytes([a[0], a[1]]) as f64,
+            Scalar::I32 => i32::from_le_bytes([a[0], a[1], a[2], a[3]]) as f64,
+            Scalar::U32 => u32::from_le_bytes([a[0], a[1], a[2], a[3]]) as f64,
+            Scalar::F32 => f32::from_le_bytes([a[0], a[1], a[2], a[3]]) as f64,
+            Scalar::F64 => f64::from_le_bytes(a),
+        })
+    }
+}
+
+/// Parses a PLY file from memory.
+pub fn parse_ply(bytes: &[u8]) -> Result<MeshData, String> {
+    let header_end = bytes
+        .windows(10)
+        .position(|w| w == b"end_header")
+        .ok_or("not a PLY file: no `end_header`")?;
+    let header =
+        std::str::from_utf8(&bytes[..header_end]).map_err(|_| "the PLY header is not text")?;
+    let mut lines = header.lines();
+    if lines.next().map(str::trim) != Some("ply") {
+        return Err("not a PLY file: it does not start with `ply`".into());
+    }
+    let mut format = None;
+    let mut elements: Vec<Element> = Vec::new();
+    for line in lines {
+        let w: Vec<&str> = line.split_whitespace().collect();
+        match w.as_slice() {
+            ["format", f, _] => {
+                format = Some(match *f {
+                    "ascii" => Format::Ascii,
+                    "binary_little_endian" => Format::Le,
+                    "binary_big_endian" => Format::Be,
+                    other => return Err(format!("unknown PLY format `{other}`")),
+                })
+            }
+            ["element", name, count] => elements.push(Element {
+                name: name.to_string(),
+                count: count
+                    .parse()
+                    .map_err(|_| format!("bad element count `{count}`"))?,
+                props: Vec::new(),
+            }),
+            ["property", "list", c, t, name] => {
+                let (c, t) = (
+                    Scalar::parse(c).ok_or("bad PLY list type")?,
+                    Scalar::parse(t).ok_or("bad PLY list type")?,
+                );
+                elements
+                    .last_mut()
+                    .ok_or("property before element")?
+                    .props
+                    .push(Prop::List(name.to_string(), c, t));
+            }
+            ["property", t, name] => {
+                let t = Scalar::parse(t).ok_or_else(|| format!("unknown PLY type `{t}`"))?;
+                elements
+                    .last_mut()
+                    .ok_or("property before element")?
+                    .props
+                    .push(Prop::Scalar(name.to_string(), t));
+            }
+            _ => {}
+        }
+    }
+    let format = format.ok_or("the PLY header has no `format` line")?;
+    // Data starts after the newline that ends `end_header`.
+    let mut start = header_end + 10;
+    while start < bytes.len() && (bytes[start] == b'\r' || bytes[start] == b'\n') {
+        start += 1;
+        if bytes[start - 1] == b'\n' {
+            break;
+        }
+    }
+    let data = &bytes[start..];
+    let ascii_text;
+    let mut r = Reader {
+        data,
+        pos: 0,
+        format,
+        tokens: None,
+    };
+    if format == Format::Ascii {
+        ascii_text = std::str::from_utf8(data).map_err(|_| "the ASCII PLY data is not text")?;
+        r.tokens = Some(ascii_text.split_ascii_whitespace());
+    }
+    let mut out = MeshData::default();
+    for el in &elements {
+        // Guard against absurd counts before allocating.
+        if el.count > 500_000_000 || (format != Format::Ascii && el.count > data.len()) {
+            return Err(format!(
+                "element `{}` claims {} entries, more than the file holds",
+                el.name, el.count
+            ));
+        }
+        let idx = |n: &str| {
+            el.props
+                .iter()
+                .position(|p| matches!(p, Prop::Scalar(s, _) if s == n))
+        };
+        let (ix, iy, iz) = (idx("x"), idx("y"), idx("z"));
+        let (inx, iny, inz) = (idx("nx"), idx("ny"), idx("nz"));
+        let is_vertex = el.name == "vertex";
+        let is_face = el.name == "face";
+        if is_vertex {
+            if ix.is_none() || iy.is_none() || iz.is_none() {
+                return Err("the PLY vertices have no x, y, z".into());
+            }
+            out.positions.reserve(el.count);
+        }
+        let has_normals = is_vertex && inx.is_some() && iny.is_some() && inz.is_some();
+        if is_face {
+            out.triangles.reserve(el.count);
+        }
+        let mut vals = vec![0.0f64; el.props.len()];
+        let mut list: Vec<u32> = Vec::new();
+        for _ in 0..el.count {
+            for (k, p) in el.props.iter().enumerate() {
+                match p {
+                    Prop::Scalar(_, t) => vals[k] = r.read(*t)?,
+                    Prop::List(name, c, t) => {
+                        let n = r.read(*c)?;
+                        if !(0.0..=1024.0).contains(&n) {
+                            return Err(format!("a face has {n} vertices"));
+                        }
+                        list.clear();
+                        for _ in 0..n as usize {
+                            list.push(r.read(*t)? as u32);
+                        }
+                        if is_face
+                            && (name == "vertex_indices" || name == "vertex_index")
+                            && list.len() >= 3
+                        {
+                            for j in 1..list.len() - 1 {
+                                out.triangles.push([list[0], list[j], list[j + 1]]);
+                            }
+                        }
+                    }
+                }
+            }
+            if is_vertex {
+                out.positions.push(Vec3::new(
+                    vals[ix.unwrap()] as f32,
+                    vals[iy.unwrap()] as f32,
+                    vals[iz.unwrap()] as f32,
+                ));
+                if has_normals {
+                    out.normals.push(Vec3::new(
+                        vals[inx.unwrap()] as f32,
+                        vals[iny.unwrap()] as f32,
+                        vals[inz.unwrap()] as f32,
+                    ));
+                }
+            }
+        }
+    }
+    Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const ASCII: &str = "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3\n";
+
+    #[test]
+    fn ascii_quad_becomes_two_triangles() {
+        let m = parse_ply(ASCII.as_bytes()).unwrap();
+        assert_eq!(m.positions.len(), 4);
+        assert_eq!(m.triangles, vec![[0, 1, 2], [0, 2, 3]]);
+    }
+
+    #[test]
+    fn binary_both_endians() {
+        for (fmt, be) in [("binary_little_endian", false), ("binary_big_endian", true)] {
+            let mut b = format!("ply\nformat {fmt} 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n").into_bytes();
+            for v in [0.0f32, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0] {
+                b.extend(if be { v.to_be_bytes() } else { v.to_le_bytes() });
+            }
+            b.push(3);
+            for i in [0i32, 1, 2] {
+                b.extend(if be { i.to_be_bytes() } else { i.to_le_bytes() });
+            }
+            let m = parse_ply(&b).unwrap();
+            assert_eq!(m.positions[1], Vec3::X);
+            assert_eq!(m.triangles, vec![[0, 1, 2]]);
+        }
+    }
+
+    #[test]
+    fn broken_ply_is_an_error_not_a_panic() {
+        assert!(parse_ply(b"garbage").is_err());
+        assert!(parse_ply(&ASCII.as_bytes()[..ASCII.len() - 6]).is_err());
+        let huge = "ply\nformat binary_little_endian 1.0\nelement vertex 4000000000\nproperty float x\nproperty float y\nproperty float z\nend_header\n";
+        assert!(parse_ply(huge.as_bytes()).is_err());
+    }
+}

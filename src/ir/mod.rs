@@ -1,0 +1,169 @@
+//! The render IR: flat arrays of primitives and materials, a BVH, lights with
+//! a power-proportional selection table. Built from the checked scene by
+//! [`lower`](lower::lower); every primitive remembers the span it came from.
+
+pub mod lower;
+pub mod mesh;
+
+use crate::check::RenderSettings;
+use crate::geometry::bvh::Bvh;
+use crate::geometry::shape::Shape;
+use crate::geometry::{Aabb, Ray};
+use crate::light::Light;
+use crate::material::Material;
+use crate::render::camera::Camera;
+use crate::span::Span;
+use glam::Vec3;
+
+/// One primitive.
+#[derive(Debug, Clone)]
+pub struct Prim {
+    /// Geometry in world space at time 0.
+    pub shape: Shape,
+    /// Index into [`Scene::materials`].
+    pub material: u32,
+    /// Index into [`Scene::lights`] if emissive, else `u32::MAX`.
+    pub light: u32,
+    /// Linear motion per unit time.
+    pub velocity: Vec3,
+}
+
+/// A surface hit.
+#[derive(Debug, Clone, Copy)]
+pub struct Hit {
+    /// Distance along the ray.
+    pub t: f32,
+    /// Point.
+    pub p: Vec3,
+    /// Outward geometric normal (unit).
+    pub n_geo: Vec3,
+    /// Shading normal (unit, same hemisphere as `n_geo`).
+    pub n_shading: Vec3,
+    /// Primitive index.
+    pub prim: u32,
+}
+
+/// The scene, ready to render.
+#[derive(Debug, Clone)]
+pub struct Scene {
+    /// Render settings (after command-line overrides).
+    pub settings: RenderSettings,
+    /// The camera.
+    pub camera: Camera,
+    /// Primitives.
+    pub prims: Vec<Prim>,
+    /// Where each object came from (per primitive).
+    pub origins: Vec<Span>,
+    /// BVH over the bounded primitives.
+    pub bvh: Bvh,
+    /// Unbounded primitives (planes), tested separately.
+    pub unbounded: Vec<u32>,
+    /// Materials.
+    pub materials: Vec<Material>,
+    /// Vertex normals of smooth mesh triangles.
+    pub normals: Vec<[Vec3; 3]>,
+    /// Lights.
+    pub lights: Vec<Light>,
+    /// Selection probability of each light.
+    pub light_pmf: Vec<f32>,
+    /// Cumulative selection probabilities.
+    pub light_cdf: Vec<f32>,
+    /// Background radiance.
+    pub background: Vec3,
+    /// Index of the environment light, if the background is not black.
+    pub env_light: Option<u32>,
+    /// Bounds of the bounded geometry.
+    pub bounds: Aabb,
+    /// Mesh files read (for `watch`).
+    pub mesh_files: Vec<std::path::PathBuf>,
+}
+
+impl Scene {
+    /// The ray moved into the frame of a (possibly moving) primitive.
+    #[inline]
+    fn local_ray(prim: &Prim, ray: &Ray) -> Ray {
+        if prim.velocity == Vec3::ZERO {
+            *ray
+        } else {
+            Ray::new(ray.o - prim.velocity * ray.time, ray.d, ray.time)
+        }
+    }
+
+    /// The closest hit along `ray` beyond `t_min`.
+    pub fn intersect(&self, ray: &Ray, t_min: f32, t_max: f32) -> Option<Hit> {
+        let mut best = self.bvh.closest(ray, t_max, |i, tmax| {
+            let p = &self.prims[i as usize];
+            p.shape
+                .intersect(&Self::local_ray(p, ray), t_min, tmax)
+                .map(|h| h.t)
+        });
+        for &i in &self.unbounded {
+            let p = &self.prims[i as usize];
+            let tmax = best.map_or(t_max, |b| b.1);
+            if let Some(h) = p.shape.intersect(ray, t_min, tmax) {
+                best = Some((i, h.t));
+            }
+        }
+        let (i, t) = best?;
+        let prim = &self.prims[i as usize];
+        let lr = Self::local_ray(prim, ray);
+        let local_p = lr.at(t);
+        let n_geo = prim.shape.normal_at(local_p);
+        let mut n_shading = n_geo;
+        if let Shape::Triangle {
+            normals,
+            p0,
+            e1,
+            e2,
+        } = prim.shape
+        {
+            if normals != u32::MAX {
+                // Barycentrics of the hit from the triangle's edges.
+                let h = prim.shape.intersect(&lr, t_min, f32::INFINITY);
+                if let Some(h) = h {
+                    let ns = self.normals[normals as usize];
+                    let n = (1.0 - h.uv.x - h.uv.y) * ns[0] + h.uv.x * ns[1] + h.uv.y * ns[2];
+                    let n = n.normalize_or_zero();
+                    if n != Vec3::ZERO {
+                        n_shading = if n.dot(n_geo) < 0.0 { -n } else { n };
+                    }
+                }
+                let _ = (p0, e1, e2);
+            }
+        }
+        Some(Hit {
+            t,
+            p: ray.at(t),
+            n_geo,
+            n_shading,
+            prim: i,
+        })
+    }
+
+    /// Whether anything blocks the segment from `ray.o` to `ray.at(t_max)`.
+    pub fn occluded(&self, ray: &Ray, t_min: f32, t_max: f32) -> bool {
+        self.bvh.any(ray, t_max, |i, tmax| {
+            let p = &self.prims[i as usize];
+            p.shape
+                .intersect(&Self::local_ray(p, ray), t_min, tmax)
+                .is_some()
+        }) || self.unbounded.iter().any(|&i| {
+            self.prims[i as usize]
+                .shape
+                .intersect(ray, t_min, t_max)
+                .is_some()
+        })
+    }
+
+    /// Chooses a light from `u`: its index and selection probability.
+    pub fn pick_light(&self, u: f32) -> Option<(u32, f32)> {
+        if self.lights.is_empty() {
+            return None;
+        }
+        let i = self
+            .light_cdf
+            .partition_point(|&c| c <= u)
+            .min(self.lights.len() - 1);
+        Some((i as u32, self.light_pmf[i]))
+    }
+}

@@ -1,0 +1,203 @@
+//! Lights: emissive shapes (area lights), point, spot and directional lights
+//! and the constant background. Each can be sampled from a shading point;
+//! lights are chosen in proportion to their power.
+
+use crate::geometry::Aabb;
+use glam::{Vec2, Vec3};
+use std::f32::consts::PI;
+
+/// One light.
+#[derive(Debug, Clone)]
+pub enum Light {
+    /// An emissive primitive.
+    Area {
+        /// Index of the primitive.
+        prim: u32,
+    },
+    /// Isotropic point light.
+    Point {
+        /// Position.
+        position: Vec3,
+        /// Radiant intensity.
+        intensity: Vec3,
+    },
+    /// Spot light with a smooth fall-off (pbrt-v4 §12.2.1).
+    Spot {
+        /// Position.
+        position: Vec3,
+        /// Unit axis.
+        direction: Vec3,
+        /// Intensity on the axis.
+        intensity: Vec3,
+        /// Cosine of the cone's half-angle.
+        cos_total: f32,
+        /// Cosine where the fall-off starts.
+        cos_falloff: f32,
+    },
+    /// Light from infinitely far away along `direction`.
+    Directional {
+        /// Unit direction the light travels.
+        direction: Vec3,
+        /// Irradiance.
+        irradiance: Vec3,
+    },
+    /// The constant background.
+    Environment {
+        /// Radiance.
+        radiance: Vec3,
+    },
+}
+
+/// Light arriving at a point from a sampled light.
+#[derive(Debug, Clone, Copy)]
+pub struct LightSample {
+    /// Unit direction towards the light.
+    pub wi: Vec3,
+    /// Distance to the light (infinite for distant lights).
+    pub dist: f32,
+    /// Radiance (or, for delta lights, irradiance-like value already divided by r²).
+    pub li: Vec3,
+    /// Pdf in solid angle (not including the choice of the light); 0 for delta lights.
+    pub pdf: f32,
+}
+
+/// Luminance of linear sRGB.
+pub fn luminance(c: Vec3) -> f32 {
+    0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z
+}
+
+/// Smooth fall-off of a spot light (pbrt-v4 eq. 12.3: smoothstep).
+pub fn spot_falloff(cos: f32, cos_total: f32, cos_falloff: f32) -> f32 {
+    if cos >= cos_falloff {
+        return 1.0;
+    }
+    if cos <= cos_total {
+        return 0.0;
+    }
+    let t = (cos - cos_total) / (cos_falloff - cos_total);
+    t * t * (3.0 - 2.0 * t)
+}
+
+impl Light {
+    /// Power used to choose among lights (any positive value keeps the estimate unbiased).
+    pub fn power(&self, scene: &crate::ir::Scene, bounds: Aabb) -> f32 {
+        let radius = 0.5 * (bounds.max - bounds.min).length().min(1e6);
+        match self {
+            Light::Area { prim } => {
+                let p = &scene.prims[*prim as usize];
+                let m = &scene.materials[p.material as usize];
+                let sides = if m.two_sided { 2.0 } else { 1.0 };
+                luminance(m.emission) * p.shape.area() * PI * sides
+            }
+            Light::Point { intensity, .. } => 4.0 * PI * luminance(*intensity),
+            Light::Spot {
+                intensity,
+                cos_total,
+                cos_falloff,
+                ..
+            } => 2.0 * PI * luminance(*intensity) * (1.0 - 0.5 * (cos_total + cos_falloff)),
+            Light::Directional { irradiance, .. } => PI * radius * radius * luminance(*irradiance),
+            Light::Environment { radiance } => {
+                4.0 * PI * PI * radius * radius * luminance(*radiance)
+            }
+        }
+    }
+
+    /// Samples light arriving at `p`.
+    pub fn sample(&self, scene: &crate::ir::Scene, p: Vec3, u: Vec2) -> Option<LightSample> {
+        match self {
+            Light::Area { prim } => {
+                let pr = &scene.prims[*prim as usize];
+                let (q, n) = pr.shape.sample_area(u);
+                let to = q - p;
+                let d2 = to.length_squared();
+                if d2 == 0.0 {
+                    return None;
+                }
+                let dist = d2.sqrt();
+                let wi = to / dist;
+                let m = &scene.materials[pr.material as usize];
+                let cos_l = n.dot(-wi);
+                let li = m.emitted(-wi, n);
+                if li == Vec3::ZERO || cos_l.abs() < 1e-7 {
+                    return None;
+                }
+                let pdf = d2 / (cos_l.abs() * pr.shape.area());
+                Some(LightSample { wi, dist, li, pdf })
+            }
+            Light::Point {
+                position,
+                intensity,
+            } => {
+                let to = *position - p;
+                let d2 = to.length_squared();
+                let dist = d2.sqrt();
+                Some(LightSample {
+                    wi: to / dist,
+                    dist,
+                    li: *intensity / d2,
+                    pdf: 0.0,
+                })
+            }
+            Light::Spot {
+                position,
+                direction,
+                intensity,
+                cos_total,
+                cos_falloff,
+            } => {
+                let to = *position - p;
+                let d2 = to.length_squared();
+                let dist = d2.sqrt();
+                let wi = to / dist;
+                let k = spot_falloff((-wi).dot(*direction), *cos_total, *cos_falloff);
+                (k > 0.0).then(|| LightSample {
+                    wi,
+                    dist,
+                    li: *intensity * k / d2,
+                    pdf: 0.0,
+                })
+            }
+            Light::Directional {
+                direction,
+                irradiance,
+            } => Some(LightSample {
+                wi: -*direction,
+                dist: f32::INFINITY,
+                li: *irradiance,
+                pdf: 0.0,
+            }),
+            Light::Environment { radiance } => {
+                let wi = crate::render::sampling::uniform_sphere(u);
+                Some(LightSample {
+                    wi,
+                    dist: f32::INFINITY,
+                    li: *radiance,
+                    pdf: crate::render::sampling::UNIFORM_SPHERE_PDF,
+                })
+            }
+        }
+    }
+
+    /// Whether the light is a delta distribution (cannot be hit by rays).
+    pub fn is_delta(&self) -> bool {
+        matches!(
+            self,
+            Light::Point { .. } | Light::Spot { .. } | Light::Directional { .. }
+        )
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn spot_falloff_is_smooth_and_bounded() {
+        let (ct, cf) = (0.8f32, 0.9f32);
+        assert_eq!(spot_falloff(1.0, ct, cf), 1.0);
+        assert_eq!(spot_falloff(0.5, ct, cf), 0.0);
+        let mid = spot_falloff(0.85, ct, cf);
+        assert!((mid - 0.5).abs() < 1e-5);
+    }
+}

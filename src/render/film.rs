@@ -1,0 +1,220 @@
+//! The film: linear float accumulation, then PNG (sRGB, clamped, exposure),
+//! OpenEXR (linear float32) or PFM. Every file is written atomically: to a
+//! temporary file in the same folder, then renamed over the target, so a
+//! failed or interrupted run never leaves a broken image.
+
+use glam::Vec3;
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+/// Accumulated radiance.
+#[derive(Debug, Clone)]
+pub struct Film {
+    /// Width in pixels.
+    pub width: u32,
+    /// Height in pixels.
+    pub height: u32,
+    /// Sum of samples per pixel, row-major.
+    pub sum: Vec<Vec3>,
+    /// Samples per pixel so far.
+    pub samples: u32,
+}
+
+impl Film {
+    /// A black film.
+    pub fn new(width: u32, height: u32) -> Film {
+        Film {
+            width,
+            height,
+            sum: vec![Vec3::ZERO; (width * height) as usize],
+            samples: 0,
+        }
+    }
+
+    /// Adds to a pixel's sum.
+    pub fn add(&mut self, x: u32, y: u32, v: Vec3) {
+        self.sum[(y * self.width + x) as usize] += v;
+    }
+
+    /// The mean radiance of each pixel.
+    pub fn pixels(&self) -> Vec<Vec3> {
+        let k = 1.0 / self.samples.max(1) as f32;
+        self.sum.iter().map(|s| *s * k).collect()
+    }
+
+    /// Writes the image; the format follows the extension (.png, .exr, .pfm).
+    pub fn write(&self, path: &Path, exposure: f32) -> std::io::Result<()> {
+        let ext = path
+            .extension()
+            .and_then(|e| e.to_str())
+            .map(str::to_ascii_lowercase);
+        let bytes = match ext.as_deref() {
+            Some("png") => self.png(exposure)?,
+            Some("exr") => self.exr()?,
+            Some("pfm") => self.pfm(),
+            _ => {
+                return Err(std::io::Error::new(
+                    std::io::ErrorKind::InvalidInput,
+                    format!(
+                        "unknown image format for {} (use .png, .exr or .pfm)",
+                        path.display()
+                    ),
+                ))
+            }
+        };
+        write_atomically(path, &bytes)
+    }
+
+    fn png(&self, exposure: f32) -> std::io::Result<Vec<u8>> {
+        let scale = 2f32.powf(exposure);
+        let mut rgb = Vec::with_capacity(self.sum.len() * 3);
+        for p in self.pixels() {
+            for c in [p.x, p.y, p.z] {
+                rgb.push((srgb_encode(c * scale) * 255.0 + 0.5) as u8);
+            }
+        }
+        let mut out = Vec::new();
+        image::codecs::png::PngEncoder::new(&mut out)
+            .write_image(
+                &rgb,
+                self.width,
+                self.height,
+                image::ExtendedColorType::Rgb8,
+            )
+            .map_err(std::io::Error::other)?;
+        Ok(out)
+    }
+
+    fn exr(&self) -> std::io::Result<Vec<u8>> {
+        use exr::prelude::*;
+        let px = self.pixels();
+        let w = self.width as usize;
+        let img = Image::from_channels(
+            (self.width as usize, self.height as usize),
+            SpecificChannels::rgb(|p: Vec2<usize>| {
+                let v = px[p.y() * w + p.x()];
+                (v.x, v.y, v.z)
+            }),
+        );
+        let mut cur = std::io::Cursor::new(Vec::new());
+        img.write()
+            .to_buffered(&mut cur)
+            .map_err(std::io::Error::other)?;
+        Ok(cur.into_inner())
+    }
+
+    fn pfm(&self) -> Vec<u8> {
+        let mut out = format!("PF\n{} {}\n-1.0\n", self.width, self.height).into_bytes();
+        let px = self.pixels();
+        // PFM rows go bottom to top.
+        for y in (0..self.height).rev() {
+            for x in 0..self.width {
+                let v = px[(y * self.width + x) as usize];
+                for c in [v.x, v.y, v.z] {
+                    out.extend(c.to_le_bytes());
+                }
+            }
+        }
+        out
+    }
+}
+
+use image::ImageEncoder;
+
+/// Linear → sRGB transfer function, clamped to [0, 1].
+pub fn srgb_encode(c: f32) -> f32 {
+    let c = c.clamp(0.0, 1.0);
+    if c <= 0.003_130_8 {
+        12.92 * c
+    } else {
+        1.055 * c.powf(1.0 / 2.4) - 0.055
+    }
+}
+
+/// Writes `bytes` to a temporary file beside `path`, then renames it over `path`.
+pub fn write_atomically(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
+    let dir = path
+        .parent()
+        .filter(|p| !p.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    let name = path
+        .file_name()
+        .ok_or_else(|| std::io::Error::new(std::io::ErrorKind::InvalidInput, "no file name"))?;
+    let tmp: PathBuf = dir.join(format!(
+        ".{}.{}.tmp",
+        name.to_string_lossy(),
+        std::process::id()
+    ));
+    let result = (|| {
+        let mut f = std::fs::File::create(&tmp)?;
+        f.write_all(bytes)?;
+        f.sync_all()?;
+        std::fs::rename(&tmp, path)
+    })();
+    if result.is_err() {
+        let _ = std::fs::remove_file(&tmp);
+    }
+    result
+}
+
+/// Reads a PFM image (for tests): width, height, linear pixels top to bottom.
+pub fn read_pfm(bytes: &[u8]) -> Option<(u32, u32, Vec<Vec3>)> {
+    let mut parts = bytes.splitn(4, |&b| b == b'\n');
+    if parts.next()? != b"PF" {
+        return None;
+    }
+    let dims = std::str::from_utf8(parts.next()?).ok()?;
+    let mut it = dims.split_whitespace();
+    let (w, h): (u32, u32) = (it.next()?.parse().ok()?, it.next()?.parse().ok()?);
+    parts.next()?;
+    let data = parts.next()?;
+    let mut px = vec![Vec3::ZERO; (w * h) as usize];
+    for y in 0..h {
+        for x in 0..w {
+            let i = (((h - 1 - y) * w + x) * 12) as usize;
+            let f = |k: usize| f32::from_le_bytes(data[i + k..i + k + 4].try_into().unwrap());
+            px[(y * w + x) as usize] = Vec3::new(f(0), f(4), f(8));
+        }
+    }
+    Some((w, h, px))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn srgb_endpoints() {
+        assert_eq!(srgb_encode(0.0), 0.0);
+        assert!((srgb_encode(1.0) - 1.0).abs() < 1e-6);
+        assert!((srgb_encode(0.5) - 0.7354).abs() < 1e-3);
+    }
+
+    #[test]
+    fn atomic_write_keeps_the_old_file_on_failure() {
+        let dir = tempfile::tempdir().unwrap();
+        let p = dir.path().join("img.png");
+        let mut f = Film::new(2, 2);
+        f.samples = 1;
+        f.write(&p, 0.0).unwrap();
+        let before = std::fs::read(&p).unwrap();
+        assert!(f.write(&dir.path().join("img.bmp"), 0.0).is_err());
+        assert!(write_atomically(&dir.path().join("missing/img.png"), b"x").is_err());
+        assert_eq!(std::fs::read(&p).unwrap(), before);
+        assert_eq!(
+            std::fs::read_dir(dir.path()).unwrap().count(),
+            1,
+            "no temporary files left"
+        );
+    }
+
+    #[test]
+    fn pfm_round_trip() {
+        let mut f = Film::new(3, 2);
+        f.samples = 1;
+        f.add(2, 0, Vec3::new(1.0, 2.0, 3.0));
+        let (w, h, px) = read_pfm(&f.pfm()).unwrap();
+        assert_eq!((w, h), (3, 2));
+        assert_eq!(px[2], Vec3::new(1.0, 2.0, 3.0));
+    }
+}

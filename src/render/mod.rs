@@ -1,0 +1,130 @@
+//! The pixel loop — the only one in ptsc: rayon over tiles, progressive
+//! passes (1, 2, 4, … samples per pixel), a cancellation flag checked between
+//! tiles, a progress callback. Every sample draws from its own random stream
+//! (seed, pixel, sample index), so the image is the same for any thread count.
+
+pub mod camera;
+pub mod film;
+pub mod sampler;
+pub mod sampling;
+
+use crate::integrator::Integrator;
+use crate::ir::Scene;
+use film::Film;
+use glam::{Vec2, Vec3};
+use rayon::prelude::*;
+use sampler::Sampler;
+use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
+
+/// Side of a square tile in pixels.
+pub const TILE: u32 = 16;
+
+/// A tile's corner and the sample sums of its pixels, row-major.
+type TileResult = ((u32, u32), Vec<Vec3>);
+
+/// How a render went.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Outcome {
+    /// Every pass finished.
+    Complete,
+    /// Cancelled; the film holds the passes that finished.
+    Cancelled,
+}
+
+/// Sample counts at the end of each progressive pass: 1, 2, 4, … up to `spp`.
+pub fn pass_ends(spp: u32) -> Vec<u32> {
+    let mut ends = Vec::new();
+    let mut n = 1;
+    while n < spp {
+        ends.push(n);
+        n *= 2;
+    }
+    ends.push(spp);
+    ends
+}
+
+/// Renders `scene` into a new film. After each pass, `on_pass(film, samples)`
+/// is called (preview writes); `progress(done_pixel_samples)` is called as
+/// tiles finish. `cancel` is polled between tiles.
+pub fn render(
+    scene: &Scene,
+    integrator: &dyn Integrator,
+    cancel: &AtomicBool,
+    progress: &(dyn Fn(u64) + Sync),
+    on_pass: &mut dyn FnMut(&Film, u32),
+) -> (Film, Outcome) {
+    let (w, h) = (scene.settings.width, scene.settings.height);
+    let mut film = Film::new(w, h);
+    let tiles: Vec<(u32, u32)> = (0..h.div_ceil(TILE))
+        .flat_map(|ty| (0..w.div_ceil(TILE)).map(move |tx| (tx * TILE, ty * TILE)))
+        .collect();
+    let done = AtomicU64::new(0);
+    let mut start = 0;
+    for end in pass_ends(scene.settings.samples) {
+        let results: Vec<Option<TileResult>> = tiles
+            .par_iter()
+            .map(|&(x0, y0)| {
+                if cancel.load(Ordering::Relaxed) {
+                    return None;
+                }
+                let (x1, y1) = ((x0 + TILE).min(w), (y0 + TILE).min(h));
+                let mut out = Vec::with_capacity(((x1 - x0) * (y1 - y0)) as usize);
+                for y in y0..y1 {
+                    for x in x0..x1 {
+                        let mut sum = Vec3::ZERO;
+                        for s in start..end {
+                            sum += sample(scene, integrator, x, y, s);
+                        }
+                        out.push(sum);
+                    }
+                }
+                let n = done.fetch_add(out.len() as u64 * (end - start) as u64, Ordering::Relaxed);
+                progress(n + out.len() as u64 * (end - start) as u64);
+                Some(((x0, y0), out))
+            })
+            .collect();
+        if results.iter().any(Option::is_none) {
+            return (film, Outcome::Cancelled);
+        }
+        for ((x0, y0), out) in results.into_iter().flatten() {
+            let x1 = (x0 + TILE).min(w);
+            for (i, v) in out.into_iter().enumerate() {
+                let (x, y) = (x0 + i as u32 % (x1 - x0), y0 + i as u32 / (x1 - x0));
+                film.add(x, y, v);
+            }
+        }
+        film.samples = end;
+        on_pass(&film, end);
+        start = end;
+    }
+    (film, Outcome::Complete)
+}
+
+/// One sample of pixel (x, y): a jittered position (box filter), lens and time.
+#[inline]
+fn sample(scene: &Scene, integrator: &dyn Integrator, x: u32, y: u32, s: u32) -> Vec3 {
+    let mut sampler = Sampler::new(scene.settings.seed, x, y, s);
+    let film = Vec2::new(x as f32, y as f32) + sampler.next_2d();
+    let lens = sampler.next_2d();
+    let t = sampler.next_f32();
+    let ray = scene.camera.ray(film, lens, t);
+    let l = integrator.li(scene, ray, &mut sampler);
+    // A NaN or infinite sample would poison the pixel: drop it (counted as black).
+    if l.is_finite() {
+        l
+    } else {
+        Vec3::ZERO
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn passes_double_up_to_the_target() {
+        assert_eq!(pass_ends(1), vec![1]);
+        assert_eq!(pass_ends(6), vec![1, 2, 4, 6]);
+        assert_eq!(pass_ends(8), vec![1, 2, 4, 8]);
+    }
+}

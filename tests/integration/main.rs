@@ -4,6 +4,7 @@ mod diagnostics;
 mod editors;
 mod examples;
 mod nasty;
+mod render;
 
 use std::path::{Path, PathBuf};
 

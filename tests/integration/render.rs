@@ -1,0 +1,180 @@
+//! Rendering: determinism across thread counts, white furnace, a closed-form
+//! case, and the command line's exit codes.
+
+use ptsc::check::check_str;
+use ptsc::integrator;
+use ptsc::ir::lower::lower;
+use ptsc::render::{film::Film, render};
+use std::path::Path;
+use std::sync::atomic::AtomicBool;
+
+fn film_of(text: &str, threads: usize) -> Film {
+    let c = check_str(Path::new("test.pts"), text);
+    let scene = c
+        .scene
+        .unwrap_or_else(|| panic!("{}", c.diagnostics.render_human(&c.sources, false)));
+    let ir = lower(&scene).unwrap();
+    let integ = integrator::make(ir.settings.integrator);
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .unwrap();
+    let cancel = AtomicBool::new(false);
+    pool.install(|| render(&ir, integ.as_ref(), &cancel, &|_| {}, &mut |_, _| {}))
+        .0
+}
+
+fn mean(f: &Film) -> [f64; 3] {
+    let px = f.pixels();
+    let mut m = [0.0; 3];
+    for p in &px {
+        m[0] += p.x as f64;
+        m[1] += p.y as f64;
+        m[2] += p.z as f64;
+    }
+    m.map(|v| v / px.len() as f64)
+}
+
+#[test]
+fn same_image_for_one_and_two_threads() {
+    let text = std::fs::read_to_string(crate::root().join("examples/bench/cornell.pts")).unwrap();
+    let text = text
+        .replace("resolution <512, 512>", "resolution <40, 40>")
+        .replace("samples 64", "samples 4");
+    let a = film_of(&text, 1);
+    let b = film_of(&text, 2);
+    let dir = tempfile::tempdir().unwrap();
+    a.write(&dir.path().join("a.exr"), 0.0).unwrap();
+    b.write(&dir.path().join("b.exr"), 0.0).unwrap();
+    assert_eq!(
+        std::fs::read(dir.path().join("a.exr")).unwrap(),
+        std::fs::read(dir.path().join("b.exr")).unwrap()
+    );
+    assert!(mean(&a)[0] > 0.01, "the cornell box is not black");
+}
+
+const FURNACE: &str = "render { resolution <16, 16> samples 256 max_depth 64 rr_depth 5 }
+camera { position <0, 0, 4> look_at <0, 0, 0> fov 30 }
+background rgb 0.5
+";
+
+#[test]
+fn white_furnace_diffuse_and_glass() {
+    for m in ["diffuse rgb 1", "transmission 1 ior 1.5"] {
+        let text = format!("{FURNACE}sphere {{ center <0, 0, 0> radius 1 material {{ {m} }} }}\n");
+        let got = mean(&film_of(&text, 2));
+        for c in got {
+            assert!(
+                (c - 0.5).abs() < 0.5 * 0.005,
+                "{m}: mean {got:?}, expected 0.5 within 0.5 %"
+            );
+        }
+    }
+}
+
+#[test]
+fn point_light_on_a_diffuse_plane_is_exact() {
+    // Camera straight down at the plane; light 2 above the centre: the central
+    // pixel sees albedo/π · I · cos θ / r² with cos θ ≈ 1, r = 2.
+    let text = "render { resolution <33, 33> samples 16 integrator whitted max_depth 2 }
+camera { position <0, 1, 0.0001> look_at <0, 0, 0> up <0, 0, -1> fov 1 }
+plane { normal <0, 1, 0> material { diffuse rgb 0.6 } }
+point_light { position <0, 2, 0> intensity rgb 10 }
+";
+    let f = film_of(text, 2);
+    let centre = f.pixels()[(16 * 33 + 16) as usize];
+    let expect = 0.6 / std::f32::consts::PI * 10.0 / 4.0;
+    assert!(
+        (centre.x - expect).abs() < expect * 1e-3,
+        "{} vs {expect}",
+        centre.x
+    );
+}
+
+#[test]
+fn whitted_direct_light_matches_path_with_two_segments() {
+    let base = "camera { position <0, 1, 4> look_at <0, 0.5, 0> fov 40 }
+plane { normal <0, 1, 0> material { diffuse rgb 0.7 } }
+sphere { center <0, 0.5, 0> radius 0.5 material { diffuse rgb <0.3, 0.6, 0.9> } }
+quad { corner <-0.5, 2, -0.5> edge1 <1, 0, 0> edge2 <0, 0, 1> material { emission rgb 5 } }
+";
+    let w = mean(&film_of(&format!("render {{ resolution <24, 24> samples 256 integrator whitted max_depth 2 light_samples 4 }}\n{base}"), 2));
+    let p = mean(&film_of(
+        &format!(
+            "render {{ resolution <24, 24> samples 1024 integrator path max_depth 2 }}\n{base}"
+        ),
+        2,
+    ));
+    for k in 0..3 {
+        assert!(
+            (w[k] - p[k]).abs() < 0.02 * p[k].max(1e-3),
+            "whitted {w:?} vs path {p:?}"
+        );
+    }
+}
+
+fn ptsc(args: &[&str]) -> (i32, String) {
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_ptsc"))
+        .args(args)
+        .output()
+        .unwrap();
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+#[test]
+fn exit_codes() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = dir.path().join("s.pts");
+    std::fs::write(&scene, "camera { position <0,0,5> look_at <0,0,0> }\nbackground rgb 1\nsphere { center <0,0,0> radius 1 }\n").unwrap();
+    let s = scene.to_str().unwrap();
+    let out = dir.path().join("out.png");
+    assert_eq!(
+        ptsc(&[
+            "render",
+            s,
+            "-o",
+            out.to_str().unwrap(),
+            "--resolution",
+            "8x8",
+            "--spp",
+            "2"
+        ])
+        .0,
+        0
+    );
+    assert!(out.is_file());
+    let (code, err) = ptsc(&[
+        "render",
+        s,
+        "-o",
+        dir.path().join("missing/out.png").to_str().unwrap(),
+    ]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("does not exist"));
+    assert_eq!(
+        ptsc(&["check", dir.path().join("nope.pts").to_str().unwrap()]).0,
+        2
+    );
+    assert_eq!(ptsc(&["check", "--bogus"]).0, 2);
+    let bad = dir.path().join("bad.pts");
+    std::fs::write(&bad, "mesh { file \"missing.ply\" }").unwrap();
+    assert_eq!(ptsc(&["render", bad.to_str().unwrap()]).0, 1);
+    let broken_ply = dir.path().join("broken.ply");
+    std::fs::write(
+        &broken_ply,
+        "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nend_header\n1 2",
+    )
+    .unwrap();
+    let m = dir.path().join("m.pts");
+    std::fs::write(&m, "camera { position <0,0,5> look_at <0,0,0> }\nbackground rgb 1\nmesh { file \"broken.ply\" }\n").unwrap();
+    let (code, err) = ptsc(&["render", m.to_str().unwrap(), "--resolution", "8x8"]);
+    assert_eq!(code, 1, "{err}");
+    assert!(err.contains("cannot load mesh"), "{err}");
+    // The previous image survives a failed render.
+    let before = std::fs::read(&out).unwrap();
+    let _ = ptsc(&["render", m.to_str().unwrap(), "-o", out.to_str().unwrap()]);
+    assert_eq!(std::fs::read(&out).unwrap(), before);
+}

@@ -76,12 +76,6 @@ impl Diagnostic {
         self
     }
 
-    /// Drops the primary span (for problems of the whole scene).
-    pub fn without_span(mut self) -> Self {
-        self.span = None;
-        self
-    }
-
     /// Whether this is an error.
     pub fn is_error(&self) -> bool {
         self.severity == Severity::Error

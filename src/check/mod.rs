@@ -198,7 +198,7 @@ impl Checker {
                 start,
                 end,
                 body,
-                span,
+                ..
             } => {
                 let a = eval(start, &mut self.env, &mut self.diags);
                 let b = eval(end, &mut self.env, &mut self.diags);
@@ -263,7 +263,6 @@ impl Checker {
                         break;
                     }
                 }
-                let _ = span;
             }
             Statement::Background { value, span } => {
                 let v = eval(value, &mut self.env, &mut self.diags);

@@ -192,20 +192,36 @@ fn build_range(bounds: &[Aabb], centroids: &[Vec3], order: &mut [u32], offset: u
     } else {
         2
     };
-    if extent[axis] <= 0.0 || !extent[axis].is_finite() {
+    let mid = if extent[axis] <= 0.0 || !extent[axis].is_finite() {
         // All centroids coincide (or are infinite): split in the middle of the list.
-        return split_and_recurse(
-            bounds,
-            centroids,
-            order,
-            offset,
-            node_bounds,
-            axis,
-            order.len() / 2,
-        );
-    }
-    // Binned SAH along the widest centroid axis.
-    let scale = BINS as f32 / extent[axis];
+        order.len() / 2
+    } else {
+        match sah_split(bounds, centroids, order, &cb, axis) {
+            // No split beats keeping a small node whole: make it a leaf.
+            Some((cost, _))
+                if cost >= node_bounds.area() * order.len() as f32 && order.len() <= 16 =>
+            {
+                return Subtree {
+                    nodes: vec![leaf(node_bounds, offset, order.len())],
+                };
+            }
+            Some((_, mid)) => mid,
+            None => order.len() / 2,
+        }
+    };
+    split_and_recurse(bounds, centroids, order, offset, node_bounds, axis, mid)
+}
+
+/// Binned SAH along `axis`: the best split's cost, with `order` partitioned so
+/// that the left side is `order[..mid]`. `None` when every centroid lands in one bin.
+fn sah_split(
+    bounds: &[Aabb],
+    centroids: &[Vec3],
+    order: &mut [u32],
+    cb: &Aabb,
+    axis: usize,
+) -> Option<(f32, usize)> {
+    let scale = BINS as f32 / (cb.max[axis] - cb.min[axis]);
     let bin_of =
         |i: u32| (((centroids[i as usize][axis] - cb.min[axis]) * scale) as usize).min(BINS - 1);
     let mut bin_bounds = [Aabb::EMPTY; BINS];
@@ -216,55 +232,36 @@ fn build_range(bounds: &[Aabb], centroids: &[Vec3], order: &mut [u32], offset: u
         bin_count[b] += 1;
     }
     let mut right_area = [0.0f32; BINS];
-    let mut acc = Aabb::EMPTY;
-    let mut cnt = 0;
     let mut right_count = [0usize; BINS];
+    let (mut acc, mut cnt) = (Aabb::EMPTY, 0);
     for b in (1..BINS).rev() {
         acc = acc.union(bin_bounds[b]);
         cnt += bin_count[b];
         right_area[b] = acc.area();
         right_count[b] = cnt;
     }
-    let mut best = (f32::INFINITY, 0);
-    let mut acc = Aabb::EMPTY;
-    let mut cnt = 0;
+    let mut best: Option<(f32, usize)> = None;
+    let (mut acc, mut cnt) = (Aabb::EMPTY, 0);
     for b in 0..BINS - 1 {
         acc = acc.union(bin_bounds[b]);
         cnt += bin_count[b];
         let cost = acc.area() * cnt as f32 + right_area[b + 1] * right_count[b + 1] as f32;
-        if cnt > 0 && right_count[b + 1] > 0 && cost < best.0 {
-            best = (cost, b);
+        if cnt > 0 && right_count[b + 1] > 0 && best.is_none_or(|(c, _)| cost < c) {
+            best = Some((cost, b));
         }
     }
-    let leaf_cost = node_bounds.area() * order.len() as f32;
-    if best.0 >= leaf_cost && order.len() <= 16 || best.0 == f32::INFINITY {
-        if order.len() <= u16::MAX as usize && best.0 != f32::INFINITY {
-            return Subtree {
-                nodes: vec![leaf(node_bounds, offset, order.len())],
-            };
-        }
-        return split_and_recurse(
-            bounds,
-            centroids,
-            order,
-            offset,
-            node_bounds,
-            axis,
-            order.len() / 2,
-        );
-    }
+    let (cost, split_bin) = best?;
     // Partition in place by bin.
-    let mut l = 0;
-    let mut r = order.len();
+    let (mut l, mut r) = (0, order.len());
     while l < r {
-        if bin_of(order[l]) <= best.1 {
+        if bin_of(order[l]) <= split_bin {
             l += 1;
         } else {
             r -= 1;
             order.swap(l, r);
         }
     }
-    split_and_recurse(bounds, centroids, order, offset, node_bounds, axis, l)
+    Some((cost, l))
 }
 
 fn split_and_recurse(
@@ -298,26 +295,20 @@ fn split_and_recurse(
         count: 0,
         axis: axis as u16,
     });
-    let left_rest = left.nodes.len() - 1;
-    // Children at 1 and 2; left's descendants from 3, right's after them.
-    let remap = |mut node: Node, base_self: usize, base_rest: usize| {
+    // Children at 1 and 2; the left subtree's descendants from 3, the right's
+    // after them. Inside a subtree, local node k >= 1 moves to base + k - 1.
+    let left_base = 3;
+    let right_base = 3 + left.nodes.len() - 1;
+    let remap = |mut node: Node, base: usize| {
         if node.count == 0 {
-            // Child indices inside a subtree point at (local) pairs; local index k >= 1 maps to base_rest + k - 1.
-            node.index = (base_rest + node.index as usize - 1) as u32;
+            node.index = (base + node.index as usize - 1) as u32;
         }
-        let _ = base_self;
         node
     };
-    let left_base = 3;
-    let right_base = 3 + left_rest;
-    nodes.push(remap(left.nodes[0], 1, left_base));
-    nodes.push(remap(right.nodes[0], 2, right_base));
-    for node in &left.nodes[1..] {
-        nodes.push(remap(*node, 0, left_base));
-    }
-    for node in &right.nodes[1..] {
-        nodes.push(remap(*node, 0, right_base));
-    }
+    nodes.push(remap(left.nodes[0], left_base));
+    nodes.push(remap(right.nodes[0], right_base));
+    nodes.extend(left.nodes[1..].iter().map(|n| remap(*n, left_base)));
+    nodes.extend(right.nodes[1..].iter().map(|n| remap(*n, right_base)));
     Subtree { nodes }
 }
 

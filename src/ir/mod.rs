@@ -91,11 +91,14 @@ impl Scene {
 
     /// The closest hit along `ray` beyond `t_min`.
     pub fn intersect(&self, ray: &Ray, t_min: f32, t_max: f32) -> Option<Hit> {
+        // The BVH accepts every hit the closure returns (each is closer than the
+        // last), so the last surface parameters kept are those of the closest hit.
+        let mut uv = glam::Vec2::ZERO;
         let mut best = self.bvh.closest(ray, t_max, |i, tmax| {
             let p = &self.prims[i as usize];
-            p.shape
-                .intersect(&Self::local_ray(p, ray), t_min, tmax)
-                .map(|h| h.t)
+            let h = p.shape.intersect(&Self::local_ray(p, ray), t_min, tmax)?;
+            uv = h.uv;
+            Some(h.t)
         });
         for &i in &self.unbounded {
             let p = &self.prims[i as usize];
@@ -106,29 +109,16 @@ impl Scene {
         }
         let (i, t) = best?;
         let prim = &self.prims[i as usize];
-        let lr = Self::local_ray(prim, ray);
-        let local_p = lr.at(t);
-        let n_geo = prim.shape.normal_at(local_p);
+        let n_geo = prim.shape.normal_at(Self::local_ray(prim, ray).at(t));
         let mut n_shading = n_geo;
-        if let Shape::Triangle {
-            normals,
-            p0,
-            e1,
-            e2,
-        } = prim.shape
-        {
+        if let Shape::Triangle { normals, .. } = prim.shape {
             if normals != u32::MAX {
-                // Barycentrics of the hit from the triangle's edges.
-                let h = prim.shape.intersect(&lr, t_min, f32::INFINITY);
-                if let Some(h) = h {
-                    let ns = self.normals[normals as usize];
-                    let n = (1.0 - h.uv.x - h.uv.y) * ns[0] + h.uv.x * ns[1] + h.uv.y * ns[2];
-                    let n = n.normalize_or_zero();
-                    if n != Vec3::ZERO {
-                        n_shading = if n.dot(n_geo) < 0.0 { -n } else { n };
-                    }
+                let ns = self.normals[normals as usize];
+                let n =
+                    ((1.0 - uv.x - uv.y) * ns[0] + uv.x * ns[1] + uv.y * ns[2]).normalize_or_zero();
+                if n != Vec3::ZERO {
+                    n_shading = if n.dot(n_geo) < 0.0 { -n } else { n };
                 }
-                let _ = (p0, e1, e2);
             }
         }
         Some(Hit {

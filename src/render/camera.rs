@@ -35,7 +35,7 @@ impl Camera {
             forward,
             tan_half: (c.fov.to_radians() as f32 * 0.5).tan(),
             aspect: width as f32 / height as f32,
-            lens_radius: c.aspect_lens(),
+            lens_radius: c.aperture as f32,
             focus: c.focus_distance as f32,
             shutter: (c.shutter.0 as f32, c.shutter.1 as f32),
             width: width as f32,
@@ -58,12 +58,5 @@ impl Camera {
         let d = self.lens_radius * concentric_disk(lens);
         let origin = self.position + d.x * self.right + d.y * self.up;
         Ray::new(origin, (focus_point - origin).normalize(), time)
-    }
-}
-
-impl crate::check::Camera {
-    /// The lens radius as f32.
-    fn aspect_lens(&self) -> f32 {
-        self.aperture as f32
     }
 }

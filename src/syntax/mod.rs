@@ -32,10 +32,10 @@ pub fn parse(file: FileId, text: &str) -> Result<ast::File, Diagnostic> {
     }
 }
 
-/// Finds nesting deeper than [`MAX_NESTING`], skipping comments and strings.
-fn check_nesting(file: FileId, text: &str) -> Option<Diagnostic> {
+/// Calls `f(offset, byte)` for every byte of `text` outside comments and
+/// strings: the bracket scans below need to see code only.
+pub(crate) fn for_each_code_byte(text: &str, mut f: impl FnMut(usize, u8) -> bool) {
     let bytes = text.as_bytes();
-    let mut depth = 0usize;
     let mut i = 0;
     while i < bytes.len() {
         match bytes[i] {
@@ -60,24 +60,42 @@ fn check_nesting(file: FileId, text: &str) -> Option<Diagnostic> {
                     i += 1;
                 }
             }
+            b => {
+                if !f(i, b) {
+                    return;
+                }
+            }
+        }
+        i += 1;
+    }
+}
+
+/// Finds nesting deeper than [`MAX_NESTING`], skipping comments and strings.
+fn check_nesting(file: FileId, text: &str) -> Option<Diagnostic> {
+    let mut depth = 0usize;
+    let mut too_deep = None;
+    for_each_code_byte(text, |i, b| {
+        match b {
             b'(' | b'<' | b'{' => {
                 depth += 1;
                 if depth > MAX_NESTING {
-                    return Some(
-                        Diagnostic::error(
-                            "pts::syntax::too_deep",
-                            format!("nesting deeper than {MAX_NESTING} levels"),
-                            Span::new(file, i, i + 1),
-                        )
-                        .with_label("this bracket opens one level too many")
-                        .with_help("flatten the expression or block; use `let` for parts of it"),
-                    );
+                    too_deep = Some(i);
+                    return false;
                 }
             }
             b')' | b'>' | b'}' => depth = depth.saturating_sub(1),
             _ => {}
         }
-        i += 1;
-    }
-    None
+        true
+    });
+    let i = too_deep?;
+    Some(
+        Diagnostic::error(
+            "pts::syntax::too_deep",
+            format!("nesting deeper than {MAX_NESTING} levels"),
+            Span::new(file, i, i + 1),
+        )
+        .with_label("this bracket opens one level too many")
+        .with_help("flatten the expression or block; use `let` for parts of it"),
+    )
 }

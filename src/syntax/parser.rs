@@ -218,37 +218,17 @@ pub fn convert_error(err: pest::error::Error<Rule>, file: FileId, text: &str) ->
 
 /// The byte offset of the last `{` without a matching `}`, skipping comments and strings.
 fn unclosed_brace(text: &str) -> Option<usize> {
-    let b = text.as_bytes();
     let mut stack = Vec::new();
-    let mut i = 0;
-    while i < b.len() {
-        match b[i] {
-            b'/' if b.get(i + 1) == Some(&b'/') => {
-                while i < b.len() && b[i] != b'\n' {
-                    i += 1;
-                }
-            }
-            b'/' if b.get(i + 1) == Some(&b'*') => {
-                i += 2;
-                while i < b.len() && !(b[i] == b'*' && b.get(i + 1) == Some(&b'/')) {
-                    i += 1;
-                }
-                i += 1;
-            }
-            b'"' => {
-                i += 1;
-                while i < b.len() && b[i] != b'"' && b[i] != b'\n' {
-                    i += 1;
-                }
-            }
+    super::for_each_code_byte(text, |i, b| {
+        match b {
             b'{' => stack.push(i),
             b'}' => {
                 stack.pop();
             }
             _ => {}
         }
-        i += 1;
-    }
+        true
+    });
     stack.pop()
 }
 

@@ -72,14 +72,29 @@ impl Aabb {
     }
 }
 
-/// Offsets a ray origin off a surface along the geometric normal, by an amount
-/// that scales with the magnitude of the hit point's coordinates (float error
-/// grows with them), on the side `dir` leaves towards. The paper's fixed 1e-5
-/// gives acne at large scales and leaks at small ones.
+/// Offsets a ray origin off a surface along the geometric normal, on the side
+/// `dir` leaves towards, by an amount that scales with the hit point's
+/// coordinates: 256 ulps of each coordinate, or 1/65536 near the origin where
+/// ulps vanish (Wächter and Binder 2019, "A Fast and Robust Method for Avoiding
+/// Self-Intersection", Ray Tracing Gems ch. 6). The paper's fixed 1e-5 gives
+/// acne at large scales and leaks at small ones. `p` must be accurate to a few
+/// ulps: hits are re-projected onto their surface (see `Shape::surface_point`).
 pub fn offset_origin(p: Vec3, n_geo: Vec3, dir: Vec3) -> Vec3 {
-    let eps = 1e-4 * (1.0 + p.abs().max_element());
+    const ORIGIN: f32 = 1.0 / 32.0;
+    const FLOAT_SCALE: f32 = 1.0 / 65536.0;
+    const INT_SCALE: f32 = 256.0;
     let n = if n_geo.dot(dir) >= 0.0 { n_geo } else { -n_geo };
-    p + n * eps
+    let offset = |p: f32, n: f32| {
+        if p.abs() < ORIGIN {
+            return p + FLOAT_SCALE * n;
+        }
+        // Moving the bit pattern moves by whole ulps; the sign of p decides
+        // which way the integer grows.
+        let of = (INT_SCALE * n) as i32;
+        let bits = p.to_bits() as i32;
+        f32::from_bits(bits.wrapping_add(if p < 0.0 { -of } else { of }) as u32)
+    };
+    Vec3::new(offset(p.x, n.x), offset(p.y, n.y), offset(p.z, n.z))
 }
 
 /// An orthonormal basis around a unit normal (Duff et al. 2017, "Building an
@@ -114,10 +129,18 @@ mod tests {
 
     #[test]
     fn offset_scales_with_magnitude_and_picks_the_side() {
-        let p = Vec3::new(1e4, 0.0, 0.0);
-        let o = offset_origin(p, Vec3::Y, -Vec3::Y);
-        assert!(o.y < -0.5, "offset {} too small at magnitude 1e4", o.y);
-        let small = offset_origin(Vec3::ZERO, Vec3::Y, Vec3::Y);
-        assert!(small.y > 0.0 && small.y < 1e-3);
+        // 256 ulps of 1e4 (ulp = 2^-10): 0.25, on the side the ray leaves to.
+        for x in [1e4f32, -1e4] {
+            let p = Vec3::new(x, 0.0, 0.0);
+            assert_eq!(offset_origin(p, Vec3::X, Vec3::X).x - x, 0.25);
+            assert_eq!(offset_origin(p, Vec3::X, -Vec3::X).x - x, -0.25);
+        }
+        // Near the origin a fixed small step: away from the surface, not zero.
+        let small = offset_origin(Vec3::new(1e-3, 0.0, 0.0), Vec3::Y, -Vec3::Y);
+        assert!(small.y < 0.0 && small.y > -1e-4, "{small}");
+        // A slanted normal moves every coordinate.
+        let n = Vec3::new(1.0, 1.0, 1.0).normalize();
+        let o = offset_origin(Vec3::splat(3.0), n, n);
+        assert!(o.cmpgt(Vec3::splat(3.0)).all());
     }
 }

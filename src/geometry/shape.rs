@@ -177,6 +177,31 @@ impl Shape {
         }
     }
 
+    /// The hit point recomputed on the surface from the hit, accurate to a few
+    /// ulps whatever the ray's length (the ray's `o + t·d` carries the error of
+    /// `t` times the distance travelled), which keeps `offset_origin` small.
+    #[inline]
+    pub fn surface_point(&self, ray: &Ray, hit: &ShapeHit) -> Vec3 {
+        match *self {
+            Shape::Sphere { center, radius } => {
+                let d = ray.at(hit.t) - center;
+                center + d * (radius / d.length())
+            }
+            Shape::Quad { p, e1, e2 } | Shape::Triangle { p0: p, e1, e2, .. } => {
+                p + hit.uv.x * e1 + hit.uv.y * e2
+            }
+            Shape::Disk {
+                center: point,
+                normal,
+                ..
+            }
+            | Shape::Plane { point, normal } => {
+                let q = ray.at(hit.t);
+                q - normal * (q - point).dot(normal)
+            }
+        }
+    }
+
     /// The geometric normal at a hit point (unit; outward / along e1 × e2).
     pub fn normal_at(&self, p: Vec3) -> Vec3 {
         match *self {

@@ -7,7 +7,7 @@ pub mod mesh;
 
 use crate::check::RenderSettings;
 use crate::geometry::bvh::Bvh;
-use crate::geometry::shape::Shape;
+use crate::geometry::shape::{Shape, ShapeHit};
 use crate::geometry::{Aabb, Ray};
 use crate::light::Light;
 use crate::material::Material;
@@ -103,13 +103,16 @@ impl Scene {
         for &i in &self.unbounded {
             let p = &self.prims[i as usize];
             let tmax = best.map_or(t_max, |b| b.1);
-            if let Some(h) = p.shape.intersect(ray, t_min, tmax) {
+            if let Some(h) = p.shape.intersect(&Self::local_ray(p, ray), t_min, tmax) {
                 best = Some((i, h.t));
+                uv = h.uv;
             }
         }
         let (i, t) = best?;
         let prim = &self.prims[i as usize];
-        let n_geo = prim.shape.normal_at(Self::local_ray(prim, ray).at(t));
+        let local = Self::local_ray(prim, ray);
+        let p_local = prim.shape.surface_point(&local, &ShapeHit { t, uv });
+        let n_geo = prim.shape.normal_at(p_local);
         let mut n_shading = n_geo;
         if let Shape::Triangle { normals, .. } = prim.shape {
             if normals != u32::MAX {
@@ -123,7 +126,7 @@ impl Scene {
         }
         Some(Hit {
             t,
-            p: ray.at(t),
+            p: p_local + prim.velocity * ray.time,
             n_geo,
             n_shading,
             prim: i,
@@ -138,9 +141,9 @@ impl Scene {
                 .intersect(&Self::local_ray(p, ray), t_min, tmax)
                 .is_some()
         }) || self.unbounded.iter().any(|&i| {
-            self.prims[i as usize]
-                .shape
-                .intersect(ray, t_min, t_max)
+            let p = &self.prims[i as usize];
+            p.shape
+                .intersect(&Self::local_ray(p, ray), t_min, t_max)
                 .is_some()
         })
     }

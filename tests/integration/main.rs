@@ -5,6 +5,7 @@ mod editors;
 mod examples;
 mod nasty;
 mod render;
+mod shapes;
 
 use std::path::{Path, PathBuf};
 

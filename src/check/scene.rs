@@ -43,6 +43,14 @@ impl IntegratorKind {
             .find(|(n, _)| *n == name)
             .map(|(_, k)| *k)
     }
+
+    /// The integrator's `.pts` name.
+    pub fn name(self) -> &'static str {
+        Self::NAMES
+            .iter()
+            .find(|(_, k)| *k == self)
+            .map_or("path", |(n, _)| n)
+    }
 }
 
 /// The `render { }` block, defaults filled in.

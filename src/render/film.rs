@@ -31,6 +31,17 @@ impl Film {
         }
     }
 
+    /// A film holding finished pixels (one sample each), e.g. to write an image read elsewhere.
+    pub fn from_pixels(width: u32, height: u32, pixels: Vec<Vec3>) -> Film {
+        assert_eq!(pixels.len(), (width * height) as usize);
+        Film {
+            width,
+            height,
+            sum: pixels,
+            samples: 1,
+        }
+    }
+
     /// Adds to a pixel's sum.
     pub fn add(&mut self, x: u32, y: u32, v: Vec3) {
         self.sum[(y * self.width + x) as usize] += v;
@@ -89,8 +100,10 @@ impl Film {
         use exr::prelude::*;
         let px = self.pixels();
         let w = self.width as usize;
-        let img = Image::from_channels(
+        // ZIP compression: lossless and deterministic, and small references.
+        let img = Image::from_encoded_channels(
             (self.width as usize, self.height as usize),
+            Encoding::SMALL_LOSSLESS,
             SpecificChannels::rgb(|p: Vec2<usize>| {
                 let v = px[p.y() * w + p.x()];
                 (v.x, v.y, v.z)
@@ -157,6 +170,23 @@ pub fn write_atomically(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
     result
 }
 
+/// Reads the RGB channels of an OpenEXR file (ours or another renderer's):
+/// width, height, linear pixels top to bottom.
+pub fn read_exr(path: &Path) -> Result<(u32, u32, Vec<Vec3>), String> {
+    use exr::prelude::*;
+    let image = read_first_rgba_layer_from_file(
+        path,
+        |size, _| (size.width(), vec![Vec3::ZERO; size.area()]),
+        |(w, px): &mut (usize, Vec<Vec3>), p: Vec2<usize>, (r, g, b, _a): (f32, f32, f32, f32)| {
+            px[p.y() * *w + p.x()] = Vec3::new(r, g, b);
+        },
+    )
+    .map_err(|e| format!("{}: {e}", path.display()))?;
+    let size = image.layer_data.size;
+    let (_, px) = image.layer_data.channel_data.pixels;
+    Ok((size.width() as u32, size.height() as u32, px))
+}
+
 /// Reads a PFM image (for tests): width, height, linear pixels top to bottom.
 pub fn read_pfm(bytes: &[u8]) -> Option<(u32, u32, Vec<Vec3>)> {
     let mut parts = bytes.splitn(4, |&b| b == b'\n');
@@ -168,6 +198,9 @@ pub fn read_pfm(bytes: &[u8]) -> Option<(u32, u32, Vec<Vec3>)> {
     let (w, h): (u32, u32) = (it.next()?.parse().ok()?, it.next()?.parse().ok()?);
     parts.next()?;
     let data = parts.next()?;
+    if data.len() < (w as usize) * (h as usize) * 12 {
+        return None;
+    }
     let mut px = vec![Vec3::ZERO; (w * h) as usize];
     for y in 0..h {
         for x in 0..w {
@@ -206,6 +239,15 @@ mod tests {
             1,
             "no temporary files left"
         );
+    }
+
+    #[test]
+    fn exr_round_trip() {
+        let dir = tempfile::tempdir().unwrap();
+        let px: Vec<Vec3> = (0..12).map(|i| Vec3::new(i as f32, 0.5, -1.0)).collect();
+        let p = dir.path().join("a.exr");
+        Film::from_pixels(4, 3, px.clone()).write(&p, 0.0).unwrap();
+        assert_eq!(read_exr(&p).unwrap(), (4, 3, px));
     }
 
     #[test]

@@ -3,6 +3,7 @@
 mod diagnostics;
 mod editors;
 mod examples;
+mod golden;
 mod nasty;
 mod render;
 mod shapes;

@@ -1,0 +1,123 @@
+//! BVH build time and ray traversal throughput on the 1,003,520-triangle mesh
+//! of `../shared/bench` (scene `mesh`). Run: `cargo bench --bench bvh`.
+//!
+//! - `build`: binned SAH build over the mesh's triangle bounds, on the global
+//!   rayon pool (`RAYON_NUM_THREADS=2` for the 2-thread figure).
+//! - `incoherent`: closest hits of rays with random origins inside the mesh's
+//!   bounds and uniformly random directions, one thread (Mrays/s per core,
+//!   comparable with Embree's incoherent-ray figure).
+//! - `primary`: closest hits of the camera's rays (coherent), one thread.
+//! - `shadow`: any-hit queries on the incoherent rays, one thread.
+
+use criterion::{criterion_group, criterion_main, Criterion, Throughput};
+use glam::Vec3;
+use ptsc::check::check_str;
+use ptsc::geometry::{bvh::Bvh, Ray};
+use ptsc::ir::lower::lower;
+use ptsc::ir::Scene;
+use std::path::{Path, PathBuf};
+
+const RAYS: usize = 100_000;
+
+fn mesh_path() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/bench/data/mesh_blob.ply")
+}
+
+fn load_scene() -> Option<Scene> {
+    let path = mesh_path();
+    if !path.is_file() {
+        eprintln!(
+            "bvh bench skipped: {} not found (see ../shared/bench/README.md)",
+            path.display()
+        );
+        return None;
+    }
+    let text = format!(
+        "camera {{ position <0, 2, 5.5> look_at <0, 1, 0> fov 35 }}\n\
+         mesh {{ file {:?} }}\n",
+        path.to_str()?
+    );
+    let c = check_str(Path::new("bench.pts"), &text);
+    let scene = c.scene?;
+    lower(&scene).ok()
+}
+
+/// xorshift32 in [0, 1): deterministic rays, no dependency on the renderer's sampler.
+fn uniform(state: &mut u32) -> f32 {
+    *state ^= *state << 13;
+    *state ^= *state >> 17;
+    *state ^= *state << 5;
+    (*state >> 8) as f32 / (1u32 << 24) as f32
+}
+
+fn incoherent_rays(scene: &Scene) -> Vec<Ray> {
+    let b = scene.bounds;
+    let mut s = 0x9e37_79b9;
+    (0..RAYS)
+        .map(|_| {
+            let o = b.min
+                + (b.max - b.min) * Vec3::new(uniform(&mut s), uniform(&mut s), uniform(&mut s));
+            let z = 1.0 - 2.0 * uniform(&mut s);
+            let r = (1.0 - z * z).max(0.0).sqrt();
+            let phi = std::f32::consts::TAU * uniform(&mut s);
+            Ray::new(o, Vec3::new(r * phi.cos(), r * phi.sin(), z), 0.0)
+        })
+        .collect()
+}
+
+fn primary_rays() -> Vec<Ray> {
+    // The mesh scene's camera: position <0, 2, 5.5>, look_at <0, 1, 0>, 35° vertical.
+    let eye = Vec3::new(0.0, 2.0, 5.5);
+    let forward = (Vec3::new(0.0, 1.0, 0.0) - eye).normalize();
+    let right = forward.cross(Vec3::Y).normalize();
+    let up = right.cross(forward);
+    let half = (35f32.to_radians() / 2.0).tan();
+    let side = (RAYS as f32).sqrt() as usize;
+    (0..side * side)
+        .map(|i| {
+            let (x, y) = ((i % side) as f32 + 0.5, (i / side) as f32 + 0.5);
+            let (u, v) = (
+                (2.0 * x / side as f32 - 1.0) * half,
+                (1.0 - 2.0 * y / side as f32) * half,
+            );
+            Ray::new(eye, (forward + u * right + v * up).normalize(), 0.0)
+        })
+        .collect()
+}
+
+fn bench(c: &mut Criterion) {
+    let Some(scene) = load_scene() else {
+        return;
+    };
+    let bounds: Vec<_> = scene.prims.iter().map(|p| p.shape.bounds()).collect();
+    let mut g = c.benchmark_group("bvh_mesh_1M");
+    g.sample_size(10);
+    g.throughput(Throughput::Elements(bounds.len() as u64));
+    g.bench_function("build", |b| b.iter(|| Bvh::build(&bounds)));
+
+    let incoherent = incoherent_rays(&scene);
+    let primary = primary_rays();
+    for (name, rays) in [("incoherent", &incoherent), ("primary", &primary)] {
+        g.throughput(Throughput::Elements(rays.len() as u64));
+        g.bench_function(name, |b| {
+            b.iter(|| {
+                rays.iter()
+                    .filter(|r| scene.intersect(r, 0.0, f32::INFINITY).is_some())
+                    .count()
+            })
+        });
+    }
+    g.throughput(Throughput::Elements(incoherent.len() as u64));
+    g.bench_function("shadow", |b| {
+        b.iter(|| {
+            incoherent
+                .iter()
+                .filter(|r| scene.occluded(r, 0.0, f32::INFINITY))
+                .count()
+        })
+    });
+    g.finish();
+}
+
+criterion_group!(benches, bench);
+criterion_main!(benches);

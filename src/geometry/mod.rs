@@ -1,7 +1,12 @@
 //! Geometry: rays, bounds, the shapes (one file each) and the BVH over them.
 
 pub mod bvh;
+pub mod disk;
+pub mod plane;
+pub mod quad;
 pub mod shape;
+pub mod sphere;
+pub mod triangle;
 
 use glam::Vec3;
 

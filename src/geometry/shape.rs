@@ -1,11 +1,10 @@
 //! The primitives the renderer intersects, after lowering: transforms are
-//! baked in, boxes are six quads, meshes are triangles.
-//!
-//! Formulas: sphere (pbrt-v4 §6.2, with the numerically careful discriminant of
-//! Haines et al., Ray Tracing Gems ch. 7), triangle (Möller–Trumbore 1997),
-//! quad and disk (plane intersection plus barycentric/radial test).
+//! baked in, boxes are six quads (`ir::lower`), meshes are triangles
+//! (`ir::mesh`). One file per shape holds its intersection routine and tests:
+//! `sphere.rs`, `quad.rs`, `disk.rs`, `triangle.rs`, `plane.rs`; this enum
+//! dispatches and holds what lights need (area, sampling).
 
-use super::{Aabb, Ray};
+use super::{disk, plane, quad, sphere, triangle, Aabb, Ray};
 use glam::{Vec2, Vec3};
 
 /// The geometry of one primitive.
@@ -83,9 +82,7 @@ impl Shape {
                 normal,
                 radius,
             } => {
-                // Extent of a disk along each axis: r·sqrt(1 − n_i²).
-                let k = (Vec3::ONE - normal * normal).max(Vec3::ZERO);
-                let e = radius * Vec3::new(k.x.sqrt(), k.y.sqrt(), k.z.sqrt());
+                let e = disk::extent(normal, radius);
                 Aabb {
                     min: center - e,
                     max: center + e,
@@ -105,75 +102,18 @@ impl Shape {
     pub fn intersect(&self, ray: &Ray, t_min: f32, t_max: f32) -> Option<ShapeHit> {
         match *self {
             Shape::Sphere { center, radius } => {
-                let oc = ray.o - center;
-                let a = ray.d.length_squared();
-                let b = oc.dot(ray.d);
-                // Ray Tracing Gems ch. 7: compute the discriminant from the
-                // perpendicular distance, which is accurate for far rays.
-                let perp = oc - (b / a) * ray.d;
-                let disc = radius * radius - perp.length_squared();
-                if disc < 0.0 {
-                    return None;
-                }
-                // Roots of a·t² + 2b·t + c = 0 with b² − ac = a·disc, in the
-                // cancellation-free form t0 = q/a, t1 = c/q.
-                let sq = (a * disc).sqrt();
-                let q = -(b + sq.copysign(b));
-                let c = oc.length_squared() - radius * radius;
-                let (mut t0, mut t1) = (q / a, if q != 0.0 { c / q } else { 0.0 });
-                if t0 > t1 {
-                    std::mem::swap(&mut t0, &mut t1);
-                }
-                let t = if t0 > t_min && t0 < t_max {
-                    t0
-                } else if t1 > t_min && t1 < t_max {
-                    t1
-                } else {
-                    return None;
-                };
-                Some(ShapeHit { t, uv: Vec2::ZERO })
+                sphere::intersect(center, radius, ray, t_min, t_max)
             }
-            Shape::Quad { p, e1, e2 } => {
-                let (t, u, v) = parallelogram(ray, p, e1, e2)?;
-                (t > t_min && t < t_max && (0.0..=1.0).contains(&u) && (0.0..=1.0).contains(&v))
-                    .then_some(ShapeHit {
-                        t,
-                        uv: Vec2::new(u, v),
-                    })
-            }
+            Shape::Quad { p, e1, e2 } => quad::intersect(p, e1, e2, ray, t_min, t_max),
             Shape::Triangle { p0, e1, e2, .. } => {
-                let (t, u, v) = parallelogram(ray, p0, e1, e2)?;
-                (t > t_min && t < t_max && u >= 0.0 && v >= 0.0 && u + v <= 1.0).then_some(
-                    ShapeHit {
-                        t,
-                        uv: Vec2::new(u, v),
-                    },
-                )
+                triangle::intersect(p0, e1, e2, ray, t_min, t_max)
             }
             Shape::Disk {
                 center,
                 normal,
                 radius,
-            } => {
-                let denom = normal.dot(ray.d);
-                if denom == 0.0 {
-                    return None;
-                }
-                let t = (center - ray.o).dot(normal) / denom;
-                if !(t > t_min && t < t_max) {
-                    return None;
-                }
-                ((ray.at(t) - center).length_squared() <= radius * radius)
-                    .then_some(ShapeHit { t, uv: Vec2::ZERO })
-            }
-            Shape::Plane { point, normal } => {
-                let denom = normal.dot(ray.d);
-                if denom == 0.0 {
-                    return None;
-                }
-                let t = (point - ray.o).dot(normal) / denom;
-                (t > t_min && t < t_max).then_some(ShapeHit { t, uv: Vec2::ZERO })
-            }
+            } => disk::intersect(center, normal, radius, ray, t_min, t_max),
+            Shape::Plane { point, normal } => plane::intersect(point, normal, ray, t_min, t_max),
         }
     }
 
@@ -248,124 +188,9 @@ impl Shape {
     }
 }
 
-/// Möller–Trumbore on the parallelogram spanned by `e1`, `e2`: returns t and
-/// the coordinates (u, v) of the hit in that basis.
-#[inline]
-fn parallelogram(ray: &Ray, p: Vec3, e1: Vec3, e2: Vec3) -> Option<(f32, f32, f32)> {
-    let pv = ray.d.cross(e2);
-    let det = e1.dot(pv);
-    if det.abs() < 1e-20 {
-        return None;
-    }
-    let inv = 1.0 / det;
-    let tv = ray.o - p;
-    let u = tv.dot(pv) * inv;
-    let qv = tv.cross(e1);
-    let v = ray.d.dot(qv) * inv;
-    let t = e2.dot(qv) * inv;
-    Some((t, u, v))
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    fn ray(o: [f32; 3], d: [f32; 3]) -> Ray {
-        Ray::new(Vec3::from(o), Vec3::from(d).normalize(), 0.0)
-    }
-
-    #[test]
-    fn sphere_hit_miss_inside_grazing() {
-        let s = Shape::Sphere {
-            center: Vec3::ZERO,
-            radius: 1.0,
-        };
-        let h = s
-            .intersect(&ray([0., 0., 5.], [0., 0., -1.]), 1e-4, f32::INFINITY)
-            .unwrap();
-        assert!((h.t - 4.0).abs() < 1e-5);
-        assert!(s
-            .intersect(&ray([0., 2., 5.], [0., 0., -1.]), 1e-4, f32::INFINITY)
-            .is_none());
-        let inside = s
-            .intersect(&ray([0., 0., 0.], [1., 0., 0.]), 1e-4, f32::INFINITY)
-            .unwrap();
-        assert!((inside.t - 1.0).abs() < 1e-5);
-        let graze = s.intersect(&ray([0., 0.9999, 5.], [0., 0., -1.]), 1e-4, f32::INFINITY);
-        assert!(graze.is_some());
-        // Far away and small: the careful discriminant still hits.
-        let far = Shape::Sphere {
-            center: Vec3::new(0., 0., -1e5),
-            radius: 0.5,
-        };
-        assert!(far
-            .intersect(&ray([0., 0.4, 0.], [0., 0., -1.]), 1e-4, f32::INFINITY)
-            .is_some());
-    }
-
-    #[test]
-    fn quad_and_triangle() {
-        let q = Shape::Quad {
-            p: Vec3::new(-1., 0., -1.),
-            e1: Vec3::new(0., 0., 2.),
-            e2: Vec3::new(2., 0., 0.),
-        };
-        assert!((q.normal_at(Vec3::ZERO) - Vec3::Y).length() < 1e-6);
-        let h = q
-            .intersect(&ray([0.5, 1., 0.5], [0., -1., 0.]), 1e-4, f32::INFINITY)
-            .unwrap();
-        assert!((h.t - 1.0).abs() < 1e-6);
-        assert!(q
-            .intersect(&ray([1.5, 1., 0.], [0., -1., 0.]), 1e-4, f32::INFINITY)
-            .is_none());
-        // Hit from behind: quads are two-sided for intersection.
-        assert!(q
-            .intersect(&ray([0., -1., 0.], [0., 1., 0.]), 1e-4, f32::INFINITY)
-            .is_some());
-        // Parallel (grazing) rays miss.
-        assert!(q
-            .intersect(&ray([0., 0., -5.], [0., 0., 1.]), 1e-4, f32::INFINITY)
-            .is_none());
-        let t = Shape::Triangle {
-            p0: Vec3::ZERO,
-            e1: Vec3::X,
-            e2: Vec3::Y,
-            normals: u32::MAX,
-        };
-        assert!(t
-            .intersect(&ray([0.2, 0.2, 1.], [0., 0., -1.]), 1e-4, f32::INFINITY)
-            .is_some());
-        assert!(t
-            .intersect(&ray([0.8, 0.8, 1.], [0., 0., -1.]), 1e-4, f32::INFINITY)
-            .is_none());
-    }
-
-    #[test]
-    fn disk_and_plane() {
-        let d = Shape::Disk {
-            center: Vec3::ZERO,
-            normal: Vec3::Y,
-            radius: 1.0,
-        };
-        assert!(d
-            .intersect(&ray([0.5, 1., 0.5], [0., -1., 0.]), 1e-4, f32::INFINITY)
-            .is_some());
-        assert!(d
-            .intersect(&ray([0.9, 1., 0.9], [0., -1., 0.]), 1e-4, f32::INFINITY)
-            .is_none());
-        let b = d.bounds();
-        assert!((b.max.x - 1.0).abs() < 1e-6 && b.max.y.abs() < 1e-6);
-        let p = Shape::Plane {
-            point: Vec3::ZERO,
-            normal: Vec3::Y,
-        };
-        assert!(p
-            .intersect(&ray([100., 1., 0.], [0., -1., 0.]), 1e-4, f32::INFINITY)
-            .is_some());
-        assert!(p
-            .intersect(&ray([0., 1., 0.], [0., 1., 0.]), 1e-4, f32::INFINITY)
-            .is_none());
-    }
 
     #[test]
     fn area_samples_lie_on_the_shape() {

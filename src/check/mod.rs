@@ -106,6 +106,8 @@ struct Checker {
     lights: Vec<(Light, Span)>,
     lets: Vec<(String, Span)>,
     ambient_span: Option<Span>,
+    /// Where `light_samples` was set, for the Whitted warning.
+    light_samples_span: Option<Span>,
     /// A file did not parse: whole-scene checks would only echo that.
     syntax_failed: bool,
 }
@@ -129,6 +131,7 @@ impl Checker {
             lights: Vec::new(),
             lets: Vec::new(),
             ambient_span: None,
+            light_samples_span: None,
             syntax_failed: false,
         }
     }
@@ -475,6 +478,7 @@ impl Checker {
                     return;
                 }
                 self.ambient_span = p.get("ambient").map(|v| v.1);
+                self.light_samples_span = p.get("light_samples").map(|v| v.1);
                 self.render = Some((settings, kind_span));
             }
             BlockKind::Camera => {
@@ -664,16 +668,25 @@ impl Checker {
             && has_emitter
             && self.lights.is_empty()
         {
-            let at = self.camera_span.unwrap_or(Span::new(root, 0, 0));
-            self.diags.push(
-                Diagnostic::warning(
-                    codes::INTEGRATOR_SETTING,
-                    "whitted shading with `light_samples 0` ignores the only lights of this scene",
-                    at,
-                )
-                .with_label("the lights here are emissive shapes")
-                .with_help("set `light_samples` to 1 or more in `render { … }`"),
-            );
+            let at = self
+                .light_samples_span
+                .or(self.camera_span)
+                .unwrap_or(Span::new(root, 0, 0));
+            let mut d = Diagnostic::warning(
+                codes::INTEGRATOR_SETTING,
+                "whitted shading with `light_samples 0` ignores the only lights of this scene",
+                at,
+            )
+            .with_label("no shadow rays towards area lights")
+            .with_help("set `light_samples` to 1 or more in `render { … }`, or add a point, spot or directional light");
+            if let Some(o) = self
+                .objects
+                .iter()
+                .find(|o| self.materials[o.material].is_emissive())
+            {
+                d = d.with_secondary(o.span, "this emissive shape is such a light");
+            }
+            self.diags.push(d);
         }
         let camera = self.camera.take();
         if self.camera_span.is_none() {

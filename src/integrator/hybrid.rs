@@ -16,7 +16,7 @@ pub struct Hybrid;
 impl Integrator for Hybrid {
     fn li(&self, scene: &Scene, ray: Ray, sampler: &mut Sampler) -> Vec3 {
         let w = scene.settings.hybrid_weight as f32;
-        let a = whitted::trace(scene, ray, sampler, 1);
+        let a = whitted::trace(scene, ray, sampler, 1, 1.0);
         let b = path_li(scene, ray, sampler, scene.settings.light_sampling);
         w * a + (1.0 - w) * b
     }

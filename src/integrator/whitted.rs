@@ -21,14 +21,22 @@ pub struct Whitted;
 /// Samples taken around the mirror direction of a glossy surface.
 const GLOSSY_SAMPLES: u32 = 4;
 
+/// A reflected or refracted branch whose weight in the pixel (the product of
+/// the reflectances and Fresnel factors along it) falls below this is not
+/// traced: it could change the 8-bit pixel by less than one step. POV-Ray's
+/// `adc_bailout` with its default 1/255. Without it the tree of rays inside a
+/// glass ball doubles at every segment.
+pub const BAILOUT: f32 = 1.0 / 255.0;
+
 impl Integrator for Whitted {
     fn li(&self, scene: &Scene, ray: Ray, sampler: &mut Sampler) -> Vec3 {
-        trace(scene, ray, sampler, 1)
+        trace(scene, ray, sampler, 1, 1.0)
     }
 }
 
-/// Radiance along `ray`, which is path segment number `segment`.
-pub fn trace(scene: &Scene, ray: Ray, sampler: &mut Sampler, segment: u32) -> Vec3 {
+/// Radiance along `ray`, which is path segment number `segment` and counts
+/// with `weight` (largest channel of the product of factors so far) in the pixel.
+pub fn trace(scene: &Scene, ray: Ray, sampler: &mut Sampler, segment: u32, weight: f32) -> Vec3 {
     let s = &scene.settings;
     let Some(hit) = scene.intersect(&ray, T_MIN, f32::INFINITY) else {
         return scene.background;
@@ -57,16 +65,24 @@ pub fn trace(scene: &Scene, ray: Ray, sampler: &mut Sampler, segment: u32) -> Ve
     } else {
         -hit.n_shading
     };
+    // Traces a branch that the pixel sees through the factor `k`, unless its
+    // weight is below the bailout.
+    let mut branch = |sampler: &mut Sampler, k: f32, origin_dir: Vec3| -> Vec3 {
+        let w = weight * k;
+        if w < BAILOUT {
+            return Vec3::ZERO;
+        }
+        let r = Ray::new(
+            offset_origin(hit.p, hit.n_geo, origin_dir),
+            origin_dir,
+            ray.time,
+        );
+        trace(scene, r, sampler, segment + 1, w)
+    };
     if m.reflection != Vec3::ZERO {
         if m.alpha == 0.0 {
             let wi = reflect(wo, nf);
-            l += m.reflection
-                * trace(
-                    scene,
-                    Ray::new(offset_origin(hit.p, hit.n_geo, wi), wi, ray.time),
-                    sampler,
-                    segment + 1,
-                );
+            l += m.reflection * branch(sampler, m.reflection.max_element(), wi);
         } else {
             // Glossy: a few importance-sampled directions around the mirror one.
             let mut acc = Vec3::ZERO;
@@ -77,8 +93,8 @@ pub fn trace(scene: &Scene, ray: Ray, sampler: &mut Sampler, segment: u32) -> Ve
             };
             for _ in 0..GLOSSY_SAMPLES {
                 if let Some(b) = only_gloss.sample(wo, hit.n_shading, 0.5, sampler.next_2d()) {
-                    let r = Ray::new(offset_origin(hit.p, hit.n_geo, b.wi), b.wi, ray.time);
-                    acc += b.weight * trace(scene, r, sampler, segment + 1);
+                    let k = b.weight.max_element() / GLOSSY_SAMPLES as f32;
+                    acc += b.weight * branch(sampler, k, b.wi);
                 }
             }
             l += acc / GLOSSY_SAMPLES as f32;
@@ -89,21 +105,10 @@ pub fn trace(scene: &Scene, ray: Ray, sampler: &mut Sampler, segment: u32) -> Ve
         let f = fresnel::dielectric(wo.dot(nf), eta);
         let mut t = Vec3::ZERO;
         let wr = reflect(wo, nf);
-        t += f * trace(
-            scene,
-            Ray::new(offset_origin(hit.p, hit.n_geo, wr), wr, ray.time),
-            sampler,
-            segment + 1,
-        );
+        t += f * branch(sampler, m.transmission * f, wr);
         if f < 1.0 {
             if let Some(wt) = refract(wo, nf, eta) {
-                t += (1.0 - f)
-                    * trace(
-                        scene,
-                        Ray::new(offset_origin(hit.p, hit.n_geo, wt), wt, ray.time),
-                        sampler,
-                        segment + 1,
-                    );
+                t += (1.0 - f) * branch(sampler, m.transmission * (1.0 - f), wt);
             }
         }
         l += m.transmission * t;

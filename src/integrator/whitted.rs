@@ -67,7 +67,7 @@ pub fn trace(scene: &Scene, ray: Ray, sampler: &mut Sampler, segment: u32, weigh
     };
     // Traces a branch that the pixel sees through the factor `k`, unless its
     // weight is below the bailout.
-    let mut branch = |sampler: &mut Sampler, k: f32, origin_dir: Vec3| -> Vec3 {
+    let branch = |sampler: &mut Sampler, k: f32, dir: Vec3| -> Vec3 {
         let w = weight * k;
         if w < BAILOUT {
             return Vec3::ZERO;

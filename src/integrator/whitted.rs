@@ -72,11 +72,7 @@ pub fn trace(scene: &Scene, ray: Ray, sampler: &mut Sampler, segment: u32, weigh
         if w < BAILOUT {
             return Vec3::ZERO;
         }
-        let r = Ray::new(
-            offset_origin(hit.p, hit.n_geo, origin_dir),
-            origin_dir,
-            ray.time,
-        );
+        let r = Ray::new(offset_origin(hit.p, hit.n_geo, dir), dir, ray.time);
         trace(scene, r, sampler, segment + 1, w)
     };
     if m.reflection != Vec3::ZERO {

@@ -5,7 +5,7 @@ use super::Ray;
 use glam::{Vec2, Vec3};
 
 /// The hit in `(t_min, t_max)` with the disk (`center`, unit `normal`, `radius`).
-#[inline]
+#[inline(always)]
 pub fn intersect(
     center: Vec3,
     normal: Vec3,

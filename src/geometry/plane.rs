@@ -5,7 +5,7 @@ use super::Ray;
 use glam::{Vec2, Vec3};
 
 /// The hit in `(t_min, t_max)` with the plane through `point` with unit `normal`.
-#[inline]
+#[inline(always)]
 pub fn intersect(point: Vec3, normal: Vec3, ray: &Ray, t_min: f32, t_max: f32) -> Option<ShapeHit> {
     let denom = normal.dot(ray.d);
     if denom == 0.0 {

@@ -8,7 +8,7 @@ use glam::{Vec2, Vec3};
 
 /// The hit in `(t_min, t_max)` with `p + u·e1 + v·e2`, u, v in [0, 1]; both
 /// sides hit.
-#[inline]
+#[inline(always)]
 pub fn intersect(
     p: Vec3,
     e1: Vec3,

@@ -98,7 +98,7 @@ impl Shape {
 
     /// The closest hit in `(t_min, t_max)` of a ray already moved into the
     /// shape's frame at the ray's time.
-    #[inline]
+    #[inline(always)]
     pub fn intersect(&self, ray: &Ray, t_min: f32, t_max: f32) -> Option<ShapeHit> {
         match *self {
             Shape::Sphere { center, radius } => {

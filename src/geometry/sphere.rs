@@ -7,7 +7,7 @@ use glam::{Vec2, Vec3};
 
 /// The closest hit in `(t_min, t_max)` with the sphere (`center`, `radius`),
 /// from outside or from inside.
-#[inline]
+#[inline(always)]
 pub fn intersect(center: Vec3, radius: f32, ray: &Ray, t_min: f32, t_max: f32) -> Option<ShapeHit> {
     let oc = ray.o - center;
     let a = ray.d.length_squared();

@@ -7,7 +7,7 @@ use glam::{Vec2, Vec3};
 
 /// The hit in `(t_min, t_max)` with the triangle `p0, p0 + e1, p0 + e2`; uv
 /// are the barycentrics of the second and third vertex. Both sides hit.
-#[inline]
+#[inline(always)]
 pub fn intersect(
     p0: Vec3,
     e1: Vec3,
@@ -26,7 +26,7 @@ pub fn intersect(
 /// Möller–Trumbore on the plane spanned by `e1`, `e2` from `p`: the ray
 /// parameter t and the coordinates (u, v) of the hit in that basis; `None`
 /// when the ray is parallel to the plane.
-#[inline]
+#[inline(always)]
 pub fn parallelogram(ray: &Ray, p: Vec3, e1: Vec3, e2: Vec3) -> Option<(f32, f32, f32)> {
     let pv = ray.d.cross(e2);
     let det = e1.dot(pv);

@@ -88,7 +88,9 @@ pub fn trace(scene: &Scene, ray: Ray, sampler: &mut Sampler, segment: u32, weigh
                 ..m.clone()
             };
             for _ in 0..GLOSSY_SAMPLES {
-                if let Some(b) = only_gloss.sample(wo, hit.n_shading, 0.5, sampler.next_2d()) {
+                if let Some(b) =
+                    only_gloss.sample(wo, hit.n_shading, sampler.next_f32(), sampler.next_2d())
+                {
                     let k = b.weight.max_element() / GLOSSY_SAMPLES as f32;
                     acc += b.weight * branch(sampler, k, b.wi);
                 }

@@ -59,8 +59,13 @@ background rgb 0.5
 ";
 
 #[test]
-fn white_furnace_diffuse_and_glass() {
-    for m in ["diffuse rgb 1", "transmission 1 ior 1.5"] {
+fn white_furnace_diffuse_glossy_and_glass() {
+    for m in [
+        "diffuse rgb 1",
+        "reflection rgb 1 gloss 0.4",
+        "reflection rgb 1 gloss 1",
+        "transmission 1 ior 1.5",
+    ] {
         let text = format!("{FURNACE}sphere {{ center <0, 0, 0> radius 1 material {{ {m} }} }}\n");
         let got = mean(&film_of(&text, 2));
         for c in got {

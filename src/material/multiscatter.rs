@@ -69,9 +69,9 @@ fn table() -> &'static Table {
     TABLE.get_or_init(|| {
         let mut e = [[0.0; N]; N];
         let mut e_avg = [0.0; N];
-        for a in 0..N {
-            for m in 0..N {
-                e[a][m] = albedo_by_quadrature(grid(m), alpha_at(a)).min(1.0);
+        for (a, row) in e.iter_mut().enumerate() {
+            for (m, entry) in row.iter_mut().enumerate() {
+                *entry = albedo_by_quadrature(grid(m), alpha_at(a)).min(1.0);
             }
             // E_avg = 2 ∫ E(μ) μ dμ, by the trapezoid rule on a fine μ grid
             // through the table's own interpolation.
@@ -80,7 +80,7 @@ fn table() -> &'static Table {
             for k in 0..=fine {
                 let mu = k as f32 / fine as f32;
                 let w = if k == 0 || k == fine { 0.5 } else { 1.0 };
-                s += w * (lerp_row(&e[a], mu) * mu) as f64;
+                s += w * (lerp_row(row, mu) * mu) as f64;
             }
             e_avg[a] = (2.0 * s / fine as f64) as f32;
         }

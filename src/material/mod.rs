@@ -8,6 +8,9 @@ pub mod fresnel;
 pub mod microfacet;
 pub mod multiscatter;
 
+#[cfg(test)]
+mod chi2;
+
 use crate::geometry::orthonormal_basis;
 use crate::render::sampling::{cosine_hemisphere, cosine_hemisphere_pdf};
 use glam::{Vec2, Vec3};

@@ -143,7 +143,10 @@ mod tests {
             (0.99, 0.5, 0.68739),
         ] {
             let e = albedo_by_quadrature(mu, alpha);
-            assert!((e - expect).abs() < 2e-3, "mu {mu} alpha {alpha}: {e} vs {expect}");
+            assert!(
+                (e - expect).abs() < 2e-3,
+                "mu {mu} alpha {alpha}: {e} vs {expect}"
+            );
         }
         // A nearly smooth surface loses nothing.
         assert!((directional_albedo(0.8, 1e-3) - 1.0).abs() < 2e-3);

@@ -3,7 +3,8 @@
 //! collected and the BVH is built. Problems found here (an unreadable mesh, a
 //! sphere under a non-uniform scale) are diagnostics with the object's span.
 
-use super::{mesh, Prim, Scene};
+use super::cache::LowerCache;
+use super::{Prim, Scene};
 use crate::check::{self, codes};
 use crate::diag::{Diagnostic, Diagnostics};
 use crate::geometry::bvh::Bvh;
@@ -37,13 +38,57 @@ fn uniform_scale(m: &DMat4) -> Option<f64> {
 
 /// Builds the IR; mesh problems and unsupported transforms are diagnostics.
 pub fn lower(scene: &check::Scene) -> Result<Scene, Diagnostics> {
-    let mut diags = Diagnostics::new();
+    lower_cached(scene, &mut LowerCache::default())
+}
+
+/// Builds the IR, reusing from `cache` the meshes whose files did not change
+/// and the whole geometry (primitives and BVH) when no shape, transform,
+/// motion or mesh changed: a camera, material or settings edit in `watch`
+/// neither reloads meshes nor rebuilds the BVH.
+pub fn lower_cached(scene: &check::Scene, cache: &mut LowerCache) -> Result<Scene, Diagnostics> {
     let materials: Vec<Material> = scene.materials.iter().map(Material::from_checked).collect();
+    let key = cache.geometry_key(scene);
+    let mut geometry = match cache.reuse_geometry(key) {
+        Some(g) => g,
+        None => {
+            let g = build_geometry(scene, cache)?;
+            cache.store_geometry(key, &g);
+            g
+        }
+    };
+    // Materials and spans follow the objects even when the geometry is reused.
+    for (obj, range) in scene.objects.iter().zip(&geometry.object_ranges) {
+        for p in &mut geometry.prims[range.clone()] {
+            p.material = obj.material as u32;
+            p.light = u32::MAX;
+        }
+        geometry.origins[range.clone()].fill(obj.span);
+    }
+    Ok(finish(scene, materials, geometry))
+}
+
+/// The part of the IR that depends only on shapes, transforms, motion and
+/// mesh files.
+#[derive(Debug, Clone)]
+pub struct Geometry {
+    prims: Vec<Prim>,
+    origins: Vec<crate::span::Span>,
+    normals: Vec<[Vec3; 3]>,
+    bvh: Bvh,
+    mesh_files: Vec<std::path::PathBuf>,
+    /// The primitives each object became.
+    object_ranges: Vec<std::ops::Range<usize>>,
+}
+
+fn build_geometry(scene: &check::Scene, cache: &mut LowerCache) -> Result<Geometry, Diagnostics> {
+    let mut diags = Diagnostics::new();
     let mut prims: Vec<Prim> = Vec::new();
     let mut origins = Vec::new();
     let mut normals: Vec<[Vec3; 3]> = Vec::new();
     let mut mesh_files = Vec::new();
+    let mut object_ranges = Vec::with_capacity(scene.objects.len());
     for obj in &scene.objects {
+        let first = prims.len();
         let m = obj.transform;
         let pt = |p: DVec3| v3(m.transform_point3(p));
         let vec = |v: DVec3| v3(m.transform_vector3(v));
@@ -136,7 +181,7 @@ pub fn lower(scene: &check::Scene) -> Result<Scene, Diagnostics> {
                 path_span,
                 smooth,
             } => {
-                let data = match mesh::load(path) {
+                let data = match cache.mesh(path) {
                     Ok(d) => d,
                     Err(e) => {
                         diags.push(
@@ -210,6 +255,7 @@ pub fn lower(scene: &check::Scene) -> Result<Scene, Diagnostics> {
                 }
             }
         }
+        object_ranges.push(first..prims.len());
     }
     for (i, p) in prims.iter().enumerate() {
         let b = p.shape.bounds();
@@ -233,6 +279,68 @@ pub fn lower(scene: &check::Scene) -> Result<Scene, Diagnostics> {
     if diags.has_errors() {
         return Err(diags);
     }
+    let bvh = build_bvh(&prims, scene.camera.shutter);
+    Ok(Geometry {
+        prims,
+        origins,
+        normals,
+        bvh,
+        mesh_files,
+        object_ranges,
+    })
+}
+
+/// BVH over bounded primitives, expanded over the shutter for moving ones
+/// (planes are kept apart, see [`Scene::unbounded`]).
+fn build_bvh(prims: &[Prim], shutter: (f64, f64)) -> Bvh {
+    let (t0, t1) = (shutter.0 as f32, shutter.1 as f32);
+    let mut bounded = Vec::new();
+    let mut boxes = Vec::new();
+    for (i, p) in prims.iter().enumerate() {
+        if matches!(p.shape, Shape::Plane { .. }) {
+            continue;
+        }
+        let b = p.shape.bounds();
+        let b = if p.velocity != Vec3::ZERO {
+            let m0 = Aabb {
+                min: b.min + p.velocity * t0,
+                max: b.max + p.velocity * t0,
+            };
+            let m1 = Aabb {
+                min: b.min + p.velocity * t1,
+                max: b.max + p.velocity * t1,
+            };
+            m0.union(m1)
+        } else {
+            b
+        };
+        bounded.push(i as u32);
+        boxes.push(b);
+    }
+    let mut bvh = Bvh::build(&boxes);
+    // Map the BVH's order from positions in `bounded` to primitive indices.
+    for o in bvh.order.iter_mut() {
+        *o = bounded[*o as usize];
+    }
+    bvh
+}
+
+/// Lights, light selection and the camera on top of the geometry.
+fn finish(scene: &check::Scene, materials: Vec<Material>, geometry: Geometry) -> Scene {
+    let Geometry {
+        mut prims,
+        origins,
+        normals,
+        bvh,
+        mesh_files,
+        ..
+    } = geometry;
+    let unbounded: Vec<u32> = prims
+        .iter()
+        .enumerate()
+        .filter(|(_, p)| matches!(p.shape, Shape::Plane { .. }))
+        .map(|(i, _)| i as u32)
+        .collect();
 
     // Lights: emissive primitives, explicit lights, the background.
     let mut lights = Vec::new();
@@ -281,38 +389,6 @@ pub fn lower(scene: &check::Scene) -> Result<Scene, Diagnostics> {
         lights.len() as u32 - 1
     });
 
-    // BVH over bounded primitives, expanded over the shutter for moving ones.
-    let (t0, t1) = (scene.camera.shutter.0 as f32, scene.camera.shutter.1 as f32);
-    let mut bounded = Vec::new();
-    let mut unbounded = Vec::new();
-    let mut boxes = Vec::new();
-    for (i, p) in prims.iter().enumerate() {
-        if matches!(p.shape, Shape::Plane { .. }) {
-            unbounded.push(i as u32);
-            continue;
-        }
-        let b = p.shape.bounds();
-        let b = if p.velocity != Vec3::ZERO {
-            let m0 = Aabb {
-                min: b.min + p.velocity * t0,
-                max: b.max + p.velocity * t0,
-            };
-            let m1 = Aabb {
-                min: b.min + p.velocity * t1,
-                max: b.max + p.velocity * t1,
-            };
-            m0.union(m1)
-        } else {
-            b
-        };
-        bounded.push(i as u32);
-        boxes.push(b);
-    }
-    let mut bvh = Bvh::build(&boxes);
-    // Map the BVH's order from positions in `bounded` to primitive indices.
-    for o in bvh.order.iter_mut() {
-        *o = bounded[*o as usize];
-    }
     let bounds = bvh.bounds();
     let camera = Camera::new(&scene.camera, scene.render.width, scene.render.height);
     let mut ir = Scene {
@@ -361,7 +437,7 @@ pub fn lower(scene: &check::Scene) -> Result<Scene, Diagnostics> {
     } else {
         ir.lights.clear();
     }
-    Ok(ir)
+    ir
 }
 
 fn rgb(c: &[f64; 3]) -> Vec3 {

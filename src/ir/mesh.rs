@@ -18,16 +18,20 @@ pub struct MeshData {
 
 /// Reads an OBJ or PLY file; the error is a sentence for a diagnostic.
 pub fn load(path: &Path) -> Result<MeshData, String> {
+    let bytes = std::fs::read(path).map_err(|e| format!("cannot read the file: {e}"))?;
+    parse(path, &bytes)
+}
+
+/// Parses the bytes of an OBJ or PLY file (the format follows `path`'s
+/// extension) and validates the result.
+pub fn parse(path: &Path, bytes: &[u8]) -> Result<MeshData, String> {
     let ext = path
         .extension()
         .and_then(|e| e.to_str())
         .map(str::to_ascii_lowercase);
     let mesh = match ext.as_deref() {
-        Some("obj") => load_obj(path)?,
-        Some("ply") => {
-            let bytes = std::fs::read(path).map_err(|e| format!("cannot read the file: {e}"))?;
-            parse_ply(&bytes)?
-        }
+        Some("obj") => parse_obj(bytes)?,
+        Some("ply") => parse_ply(bytes)?,
         _ => return Err("unknown mesh format (expected .obj or .ply)".into()),
     };
     if mesh.triangles.is_empty() {
@@ -45,14 +49,17 @@ pub fn load(path: &Path) -> Result<MeshData, String> {
     Ok(mesh)
 }
 
-fn load_obj(path: &Path) -> Result<MeshData, String> {
+fn parse_obj(bytes: &[u8]) -> Result<MeshData, String> {
     let opts = tobj::LoadOptions {
         triangulate: true,
         single_index: true,
         ..Default::default()
     };
-    let (models, _) =
-        tobj::load_obj(path, &opts).map_err(|e| format!("cannot read the OBJ file: {e}"))?;
+    // Material libraries are not read: `.pts` materials replace them.
+    let (models, _) = tobj::load_obj_buf(&mut std::io::Cursor::new(bytes), &opts, |_| {
+        Err(tobj::LoadError::OpenFileFailed)
+    })
+    .map_err(|e| format!("cannot read the OBJ file: {e}"))?;
     let mut out = MeshData::default();
     for m in models {
         let base = out.positions.len() as u32;

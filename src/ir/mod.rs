@@ -2,6 +2,7 @@
 //! a power-proportional selection table. Built from the checked scene by
 //! [`lower`](lower::lower); every primitive remembers the span it came from.
 
+pub mod cache;
 pub mod lower;
 pub mod mesh;
 

@@ -1,0 +1,207 @@
+//! What lowering may keep between two compiles of the same scene (for
+//! `watch`): loaded meshes, keyed by path and content, and the whole geometry
+//! (primitives and BVH), keyed by a hash of everything it depends on.
+
+use super::lower::Geometry;
+use super::mesh::{self, MeshData};
+use crate::check;
+use std::collections::HashMap;
+use std::hash::{Hash, Hasher};
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+use std::time::SystemTime;
+
+/// Meshes and geometry kept from earlier compiles.
+#[derive(Default)]
+pub struct LowerCache {
+    meshes: HashMap<PathBuf, CachedMesh>,
+    geometry: Option<(u64, Geometry)>,
+    /// Mesh files read and parsed so far (a cache hit does not count).
+    pub mesh_loads: usize,
+    /// BVHs built so far.
+    pub bvh_builds: usize,
+}
+
+struct CachedMesh {
+    /// Length and modification time: when both match, the file is not read.
+    stamp: (u64, Option<SystemTime>),
+    /// Hash of the file's bytes: a touched but unchanged file is not re-parsed.
+    content: u64,
+    data: Arc<MeshData>,
+}
+
+fn stamp(path: &Path) -> (u64, Option<SystemTime>) {
+    std::fs::metadata(path).map_or((u64::MAX, None), |m| (m.len(), m.modified().ok()))
+}
+
+fn hash_bytes(bytes: &[u8]) -> u64 {
+    let mut h = std::collections::hash_map::DefaultHasher::new();
+    bytes.hash(&mut h);
+    h.finish()
+}
+
+impl LowerCache {
+    /// The mesh at `path`, parsed once per content.
+    pub fn mesh(&mut self, path: &Path) -> Result<Arc<MeshData>, String> {
+        let now = stamp(path);
+        if let Some(c) = self.meshes.get(path) {
+            if c.stamp == now && now.1.is_some() {
+                return Ok(c.data.clone());
+            }
+        }
+        let bytes = std::fs::read(path).map_err(|e| format!("cannot read the file: {e}"))?;
+        let content = hash_bytes(&bytes);
+        if let Some(c) = self.meshes.get_mut(path) {
+            if c.content == content {
+                c.stamp = now;
+                return Ok(c.data.clone());
+            }
+        }
+        let data = Arc::new(mesh::parse(path, &bytes)?);
+        self.mesh_loads += 1;
+        self.meshes.insert(
+            path.to_path_buf(),
+            CachedMesh {
+                stamp: now,
+                content,
+                data: data.clone(),
+            },
+        );
+        Ok(data)
+    }
+
+    /// A hash of everything the geometry depends on: every object's shape,
+    /// transform, motion and mesh content, and the shutter. Materials, the
+    /// camera (but its shutter), lights and settings are left out, and so are
+    /// source spans, so that edits elsewhere in the file keep the geometry.
+    pub fn geometry_key(&mut self, scene: &check::Scene) -> u64 {
+        let mut h = std::collections::hash_map::DefaultHasher::new();
+        let f = |x: f64, h: &mut std::collections::hash_map::DefaultHasher| x.to_bits().hash(h);
+        f(scene.camera.shutter.0, &mut h);
+        f(scene.camera.shutter.1, &mut h);
+        for obj in &scene.objects {
+            for x in obj.transform.to_cols_array() {
+                f(x, &mut h);
+            }
+            for x in obj.velocity.to_array() {
+                f(x, &mut h);
+            }
+            match &obj.shape {
+                check::Shape::Sphere { center, radius } => {
+                    0u8.hash(&mut h);
+                    center.to_array().iter().for_each(|x| f(*x, &mut h));
+                    f(*radius, &mut h);
+                }
+                check::Shape::Disk {
+                    center,
+                    normal,
+                    radius,
+                } => {
+                    1u8.hash(&mut h);
+                    center.to_array().iter().for_each(|x| f(*x, &mut h));
+                    normal.to_array().iter().for_each(|x| f(*x, &mut h));
+                    f(*radius, &mut h);
+                }
+                check::Shape::Plane { point, normal } => {
+                    2u8.hash(&mut h);
+                    point.to_array().iter().for_each(|x| f(*x, &mut h));
+                    normal.to_array().iter().for_each(|x| f(*x, &mut h));
+                }
+                check::Shape::Quad {
+                    corner,
+                    edge1,
+                    edge2,
+                } => {
+                    3u8.hash(&mut h);
+                    for v in [corner, edge1, edge2] {
+                        v.to_array().iter().for_each(|x| f(*x, &mut h));
+                    }
+                }
+                check::Shape::Triangle { v } => {
+                    4u8.hash(&mut h);
+                    for p in v {
+                        p.to_array().iter().for_each(|x| f(*x, &mut h));
+                    }
+                }
+                check::Shape::Box { min, max } => {
+                    5u8.hash(&mut h);
+                    for v in [min, max] {
+                        v.to_array().iter().for_each(|x| f(*x, &mut h));
+                    }
+                }
+                check::Shape::Mesh { path, smooth, .. } => {
+                    6u8.hash(&mut h);
+                    path.hash(&mut h);
+                    smooth.hash(&mut h);
+                    // The content, through the mesh cache (a missing file hashes
+                    // as such and fails later, in lowering, with a diagnostic).
+                    match self.mesh(path) {
+                        Ok(_) => self.meshes[path.as_path()].content.hash(&mut h),
+                        Err(e) => e.hash(&mut h),
+                    }
+                }
+            }
+        }
+        h.finish()
+    }
+
+    /// The cached geometry, if it was built for `key`.
+    pub fn reuse_geometry(&self, key: u64) -> Option<Geometry> {
+        match &self.geometry {
+            Some((k, g)) if *k == key => Some(g.clone()),
+            _ => None,
+        }
+    }
+
+    /// Keeps `geometry` for the next compile.
+    pub fn store_geometry(&mut self, key: u64, geometry: &Geometry) {
+        self.bvh_builds += 1;
+        self.geometry = Some((key, geometry.clone()));
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::check::check_str;
+    use crate::ir::lower::lower_cached;
+
+    fn lower_text(dir: &Path, text: &str, cache: &mut LowerCache) -> crate::ir::Scene {
+        let c = check_str(&dir.join("s.pts"), text);
+        lower_cached(c.scene.as_ref().unwrap(), cache).unwrap()
+    }
+
+    #[test]
+    fn only_geometry_edits_rebuild_and_only_mesh_edits_reload() {
+        let dir = tempfile::tempdir().unwrap();
+        let obj = dir.path().join("t.obj");
+        std::fs::write(&obj, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n").unwrap();
+        let scene = |fov: u32, colour: f32, x: f32| {
+            format!(
+                "camera {{ position <0, 0, 5> look_at <0, 0, 0> fov {fov} }}\n\
+                 background rgb 1\n\
+                 mesh {{ file \"t.obj\" material {{ diffuse rgb {colour} }} }}\n\
+                 sphere {{ center <{x}, 0, 0> radius 1 }}\n"
+            )
+        };
+        let mut cache = LowerCache::default();
+        let a = lower_text(dir.path(), &scene(40, 0.5, 2.0), &mut cache);
+        assert_eq!((cache.mesh_loads, cache.bvh_builds), (1, 1));
+        // Camera and material edits: nothing reloaded or rebuilt, yet the
+        // new material is used.
+        let b = lower_text(dir.path(), &scene(30, 0.9, 2.0), &mut cache);
+        assert_eq!((cache.mesh_loads, cache.bvh_builds), (1, 1));
+        assert_eq!(b.prims.len(), a.prims.len());
+        assert!((b.materials[b.prims[0].material as usize].diffuse.x - 0.9).abs() < 1e-6);
+        // A moved sphere: new BVH, same mesh.
+        lower_text(dir.path(), &scene(30, 0.9, 3.0), &mut cache);
+        assert_eq!((cache.mesh_loads, cache.bvh_builds), (1, 2));
+        // Rewriting the mesh with the same bytes: no reload; new bytes: reload.
+        std::fs::write(&obj, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n").unwrap();
+        lower_text(dir.path(), &scene(30, 0.9, 3.0), &mut cache);
+        assert_eq!((cache.mesh_loads, cache.bvh_builds), (1, 2));
+        std::fs::write(&obj, "v 0 0 0\nv 2 0 0\nv 0 2 0\nf 1 2 3\n").unwrap();
+        lower_text(dir.path(), &scene(30, 0.9, 3.0), &mut cache);
+        assert_eq!((cache.mesh_loads, cache.bvh_builds), (2, 3));
+    }
+}

@@ -2,6 +2,7 @@
 
 mod check;
 mod render;
+mod watch;
 
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
@@ -44,6 +45,8 @@ pub enum Command {
     },
     /// Render a scene to an image.
     Render(render::RenderArgs),
+    /// Re-render a scene every time it (or an included file or mesh) is saved.
+    Watch(render::RenderArgs),
 }
 
 /// Runs the command line and returns the process exit code.
@@ -58,6 +61,7 @@ pub fn run() -> ExitCode {
     let code = match cli.command {
         Command::Check { file, format } => check::run(&file, format),
         Command::Render(args) => render::run(&args),
+        Command::Watch(args) => watch::run(&args),
     };
     ExitCode::from(code)
 }

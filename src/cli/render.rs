@@ -56,20 +56,8 @@ fn parse_integrator(s: &str) -> Result<IntegratorKind, String> {
         .ok_or_else(|| "expected path, whitted, hybrid, normals, albedo or depth".into())
 }
 
-/// Runs `render`; returns the exit code.
-pub fn run(args: &RenderArgs) -> u8 {
-    let t0 = Instant::now();
-    let checked = match check_file(&args.file) {
-        Ok(c) => c,
-        Err(e) => {
-            eprintln!("error: cannot read {}: {e}", args.file.display());
-            return EXIT_USAGE;
-        }
-    };
-    report(&checked, Format::Human);
-    let Some(mut scene) = checked.scene else {
-        return EXIT_SCENE_ERROR;
-    };
+/// Applies the command line's overrides to the scene's `render` block.
+pub fn apply_overrides(scene: &mut crate::check::Scene, args: &RenderArgs) {
     let r = &mut scene.render;
     if let Some(n) = args.spp {
         r.samples = n.max(1);
@@ -84,11 +72,32 @@ pub fn run(args: &RenderArgs) -> u8 {
     if let Some(k) = args.integrator {
         r.integrator = k;
     }
-    let output = args
-        .output
+}
+
+/// The output image: `-o`, else the scene's `output`, else FILE with `.png`.
+pub fn output_path(args: &RenderArgs, scene: &crate::check::Scene) -> PathBuf {
+    args.output
         .clone()
-        .or_else(|| r.output.clone())
-        .unwrap_or_else(|| args.file.with_extension("png"));
+        .or_else(|| scene.render.output.clone())
+        .unwrap_or_else(|| args.file.with_extension("png"))
+}
+
+/// Runs `render`; returns the exit code.
+pub fn run(args: &RenderArgs) -> u8 {
+    let t0 = Instant::now();
+    let checked = match check_file(&args.file) {
+        Ok(c) => c,
+        Err(e) => {
+            eprintln!("error: cannot read {}: {e}", args.file.display());
+            return EXIT_USAGE;
+        }
+    };
+    report(&checked, Format::Human);
+    let Some(mut scene) = checked.scene else {
+        return EXIT_SCENE_ERROR;
+    };
+    apply_overrides(&mut scene, args);
+    let output = output_path(args, &scene);
     if let Some(parent) = output.parent().filter(|p| !p.as_os_str().is_empty()) {
         if !parent.is_dir() {
             eprintln!(

@@ -73,7 +73,7 @@ pub fn render(
                     for x in x0..x1 {
                         let mut sum = Vec3::ZERO;
                         for s in start..end {
-                            sum += sample(scene, integrator, x, y, s);
+                            sum += sample(scene, integrator, x, y, s, 1.0);
                         }
                         out.push(sum);
                     }
@@ -100,11 +100,48 @@ pub fn render(
     (film, Outcome::Complete)
 }
 
-/// One sample of pixel (x, y): a jittered position (box filter), lens and time.
+/// A quick preview: one sample per pixel of an image `divisor` times smaller
+/// on each side than the scene's (each preview pixel covers divisor² pixels of
+/// the full image). `None` when cancelled.
+pub fn render_preview(
+    scene: &Scene,
+    integrator: &dyn Integrator,
+    cancel: &AtomicBool,
+    divisor: u32,
+) -> Option<Film> {
+    let (w, h) = (
+        (scene.settings.width / divisor).max(1),
+        (scene.settings.height / divisor).max(1),
+    );
+    let rows: Vec<Option<Vec<Vec3>>> = (0..h)
+        .into_par_iter()
+        .map(|y| {
+            if cancel.load(Ordering::Relaxed) {
+                return None;
+            }
+            Some(
+                (0..w)
+                    .map(|x| sample(scene, integrator, x, y, 0, divisor as f32))
+                    .collect(),
+            )
+        })
+        .collect();
+    let mut film = Film::new(w, h);
+    for (y, row) in rows.into_iter().enumerate() {
+        for (x, v) in row?.into_iter().enumerate() {
+            film.add(x as u32, y as u32, v);
+        }
+    }
+    film.samples = 1;
+    Some(film)
+}
+
+/// One sample of pixel (x, y): a jittered position (box filter), lens and
+/// time; `scale` > 1 for the pixels of a smaller preview image.
 #[inline]
-fn sample(scene: &Scene, integrator: &dyn Integrator, x: u32, y: u32, s: u32) -> Vec3 {
+fn sample(scene: &Scene, integrator: &dyn Integrator, x: u32, y: u32, s: u32, scale: f32) -> Vec3 {
     let mut sampler = Sampler::new(scene.settings.seed, x, y, s);
-    let film = Vec2::new(x as f32, y as f32) + sampler.next_2d();
+    let film = (Vec2::new(x as f32, y as f32) + sampler.next_2d()) * scale;
     let lens = sampler.next_2d();
     let t = sampler.next_f32();
     let ray = scene.camera.ray(film, lens, t);

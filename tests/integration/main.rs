@@ -7,6 +7,7 @@ mod golden;
 mod nasty;
 mod render;
 mod shapes;
+mod watch;
 
 use std::path::{Path, PathBuf};
 

@@ -1,0 +1,319 @@
+//! `ptsc watch FILE`: re-render on every save, progressively, keeping the last
+//! good image while the scene is broken.
+//!
+//! The loop: compile (check + lower, reusing unchanged meshes and geometry
+//! through [`LowerCache`]); on errors print the diagnostics and leave the image
+//! alone; on success cancel the render in flight (it stops between tiles) and
+//! start a new one in the background: a quarter-resolution 1-spp preview, then
+//! full-resolution passes of 1, 2, 4, … spp, the image replaced atomically after
+//! each. File events come from `notify` on the folders of the scene, its
+//! includes and its meshes, batched (100 ms of quiet, at most 500 ms), so an
+//! editor's atomic save (write a temporary file, rename it over) counts as one
+//! change and the output file's own writes are ignored.
+
+use super::render::{apply_overrides, output_path, RenderArgs};
+use crate::check::check_file;
+use crate::ir::cache::LowerCache;
+use crate::ir::Scene;
+use crate::render::film::Film;
+use notify::{RecursiveMode, Watcher};
+use std::collections::BTreeSet;
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::{mpsc, Arc};
+use std::thread::JoinHandle;
+use std::time::{Duration, Instant, SystemTime};
+
+/// Quiet time that ends a batch of file events.
+const QUIET: Duration = Duration::from_millis(100);
+/// Longest a batch may wait after its first event.
+const MAX_BATCH: Duration = Duration::from_millis(500);
+/// The preview renders at 1 / PREVIEW_DIVISOR of the resolution on each side.
+const PREVIEW_DIVISOR: u32 = 4;
+
+/// Runs `watch`; returns the exit code (after Ctrl-C).
+pub fn run(args: &RenderArgs) -> u8 {
+    if !args.file.is_file() {
+        eprintln!("error: cannot watch {}: no such file", args.file.display());
+        return super::EXIT_USAGE;
+    }
+    let pool = match rayon::ThreadPoolBuilder::new()
+        .num_threads(args.threads.unwrap_or(0))
+        .build()
+    {
+        Ok(p) => Arc::new(p),
+        Err(e) => {
+            eprintln!("error: cannot start threads: {e}");
+            return super::EXIT_USAGE;
+        }
+    };
+    let quit = Arc::new(AtomicBool::new(false));
+    {
+        let q = quit.clone();
+        let _ = ctrlc::set_handler(move || q.store(true, Ordering::Relaxed));
+    }
+    let (tx, rx) = mpsc::channel();
+    let mut watcher = match notify::recommended_watcher(move |e: notify::Result<notify::Event>| {
+        // Only changes count: our own reads of the scene are access events.
+        if let Ok(e) = e {
+            if matches!(
+                e.kind,
+                notify::EventKind::Create(_)
+                    | notify::EventKind::Modify(_)
+                    | notify::EventKind::Remove(_)
+            ) {
+                let _ = tx.send(e.paths);
+            }
+        }
+    }) {
+        Ok(w) => w,
+        Err(e) => {
+            eprintln!("error: cannot watch files: {e}");
+            return super::EXIT_USAGE;
+        }
+    };
+
+    let mut state = State {
+        args: args.clone(),
+        cache: LowerCache::default(),
+        files: BTreeSet::new(),
+        watched_dirs: BTreeSet::new(),
+        render: None,
+        pool,
+    };
+    state.files.insert(absolute(&args.file));
+    status(&format!(
+        "watching {} (Ctrl-C to stop)",
+        args.file.display()
+    ));
+    let mut changed_at = Instant::now();
+    loop {
+        state.compile(changed_at);
+        state.update_watches(&mut watcher);
+        // Wait for the next relevant change (or Ctrl-C).
+        let first = loop {
+            if quit.load(Ordering::Relaxed) {
+                state.stop_render();
+                status("stopped");
+                return super::EXIT_OK;
+            }
+            match rx.recv_timeout(Duration::from_millis(50)) {
+                Ok(paths) if state.is_relevant(&paths) => break Instant::now(),
+                Ok(_) | Err(mpsc::RecvTimeoutError::Timeout) => {}
+                Err(mpsc::RecvTimeoutError::Disconnected) => return super::EXIT_USAGE,
+            }
+        };
+        // Batch: until QUIET passes without a relevant event, or MAX_BATCH.
+        let mut last = first;
+        while first.elapsed() < MAX_BATCH {
+            let wait = QUIET.saturating_sub(last.elapsed());
+            if wait.is_zero() {
+                break;
+            }
+            match rx.recv_timeout(wait) {
+                Ok(paths) if state.is_relevant(&paths) => last = Instant::now(),
+                Ok(_) => {}
+                Err(_) => {}
+            }
+        }
+        changed_at = first;
+    }
+}
+
+struct State {
+    args: RenderArgs,
+    cache: LowerCache,
+    /// Absolute paths of the scene, its includes and its meshes.
+    files: BTreeSet<PathBuf>,
+    watched_dirs: BTreeSet<PathBuf>,
+    render: Option<(Arc<AtomicBool>, JoinHandle<()>)>,
+    pool: Arc<rayon::ThreadPool>,
+}
+
+impl State {
+    /// Checks, lowers and (on success) starts rendering the scene.
+    fn compile(&mut self, changed_at: Instant) {
+        let t0 = Instant::now();
+        let checked = match check_file(&self.args.file) {
+            Ok(c) => c,
+            Err(e) => {
+                status(&format!(
+                    "cannot read {}: {e}; keeping the last image",
+                    self.args.file.display()
+                ));
+                return;
+            }
+        };
+        for f in checked.sources.files() {
+            self.files.insert(absolute(&f.path));
+        }
+        let colour = super::stderr_is_terminal();
+        let Some(mut scene) = checked.scene.clone() else {
+            eprint!(
+                "{}",
+                checked.diagnostics.render_human(&checked.sources, colour)
+            );
+            status("the scene has errors; keeping the last image");
+            return;
+        };
+        for o in &scene.objects {
+            if let crate::check::Shape::Mesh { path, .. } = &o.shape {
+                self.files.insert(absolute(path));
+            }
+        }
+        if !checked.diagnostics.items.is_empty() {
+            eprint!(
+                "{}",
+                checked.diagnostics.render_human(&checked.sources, colour)
+            );
+        }
+        apply_overrides(&mut scene, &self.args);
+        let output = output_path(&self.args, &scene);
+        let (loads, builds) = (self.cache.mesh_loads, self.cache.bvh_builds);
+        let ir = match crate::ir::lower::lower_cached(&scene, &mut self.cache) {
+            Ok(ir) => ir,
+            Err(d) => {
+                eprint!("{}", d.render_human(&checked.sources, colour));
+                status("the scene has errors; keeping the last image");
+                return;
+            }
+        };
+        status(&format!(
+            "compiled in {} ms: {} mesh file(s) loaded, geometry {}",
+            t0.elapsed().as_millis(),
+            self.cache.mesh_loads - loads,
+            if self.cache.bvh_builds > builds {
+                "rebuilt"
+            } else {
+                "reused"
+            }
+        ));
+        self.stop_render();
+        let cancel = Arc::new(AtomicBool::new(false));
+        let c = cancel.clone();
+        let pool = self.pool.clone();
+        let handle = std::thread::spawn(move || {
+            pool.install(|| render_progressively(&ir, &output, &c, changed_at));
+        });
+        self.render = Some((cancel, handle));
+    }
+
+    /// Cancels the render in flight and waits for it (it stops between tiles).
+    fn stop_render(&mut self) {
+        if let Some((cancel, handle)) = self.render.take() {
+            cancel.store(true, Ordering::Relaxed);
+            let _ = handle.join();
+        }
+    }
+
+    /// Watches the folder of every file of the scene (folders, not files:
+    /// an atomic save replaces the file, which would end a watch on it).
+    fn update_watches(&mut self, watcher: &mut impl Watcher) {
+        let dirs: BTreeSet<PathBuf> = self
+            .files
+            .iter()
+            .filter_map(|f| f.parent().map(Path::to_path_buf))
+            .collect();
+        for d in dirs.difference(&self.watched_dirs.clone()) {
+            match watcher.watch(d, RecursiveMode::NonRecursive) {
+                Ok(()) => {
+                    self.watched_dirs.insert(d.clone());
+                }
+                Err(e) => status(&format!("cannot watch {}: {e}", d.display())),
+            }
+        }
+    }
+
+    /// Whether an event touches a file of the scene.
+    fn is_relevant(&self, paths: &[PathBuf]) -> bool {
+        paths.iter().any(|p| self.files.contains(&absolute(p)))
+    }
+}
+
+/// A quick low-resolution preview, then the progressive passes.
+fn render_progressively(ir: &Scene, output: &Path, cancel: &AtomicBool, changed_at: Instant) {
+    let integrator = crate::integrator::make(ir.settings.integrator);
+    let exposure = ir.settings.exposure as f32;
+    let (w, h) = (ir.settings.width, ir.settings.height);
+    let t0 = Instant::now();
+    if w >= 4 * PREVIEW_DIVISOR && h >= 4 * PREVIEW_DIVISOR && ir.settings.samples > 1 {
+        let Some(film) =
+            crate::render::render_preview(ir, integrator.as_ref(), cancel, PREVIEW_DIVISOR)
+        else {
+            return;
+        };
+        let big = upscale(&film, w, h);
+        match big.write(output, exposure) {
+            Ok(()) => status(&format!(
+                "preview {}×{} at 1 spp in {} ms ({} ms after the save) → {}",
+                film.width,
+                film.height,
+                t0.elapsed().as_millis(),
+                changed_at.elapsed().as_millis(),
+                output.display()
+            )),
+            Err(e) => status(&format!("cannot write {}: {e}", output.display())),
+        }
+    }
+    let mut pass = 0;
+    let mut last = Instant::now();
+    let (_, outcome) = crate::render::render(
+        ir,
+        integrator.as_ref(),
+        cancel,
+        &|_| {},
+        &mut |film, spp| {
+            pass += 1;
+            match film.write(output, exposure) {
+                Ok(()) => status(&format!(
+                    "pass {pass}: {spp} spp in {:.2} s (total {:.2} s)",
+                    last.elapsed().as_secs_f64(),
+                    t0.elapsed().as_secs_f64()
+                )),
+                Err(e) => status(&format!("cannot write {}: {e}", output.display())),
+            }
+            last = Instant::now();
+        },
+    );
+    if outcome == crate::render::Outcome::Complete {
+        status(&format!(
+            "done: {} spp in {:.2} s → {}",
+            ir.settings.samples,
+            t0.elapsed().as_secs_f64(),
+            output.display()
+        ));
+    }
+}
+
+/// Nearest-neighbour enlargement of a preview to the full image size.
+fn upscale(film: &Film, w: u32, h: u32) -> Film {
+    let px = film.pixels();
+    let mut out = Vec::with_capacity((w * h) as usize);
+    for y in 0..h {
+        for x in 0..w {
+            let sx = (x * film.width / w).min(film.width - 1);
+            let sy = (y * film.height / h).min(film.height - 1);
+            out.push(px[(sy * film.width + sx) as usize]);
+        }
+    }
+    Film::from_pixels(w, h, out)
+}
+
+/// The path made absolute and its folder canonical (the file itself may not
+/// exist between an editor's remove and create).
+fn absolute(p: &Path) -> PathBuf {
+    let p = std::path::absolute(p).unwrap_or_else(|_| p.to_path_buf());
+    match (p.parent(), p.file_name()) {
+        (Some(d), Some(n)) => d.canonicalize().map_or(p.clone(), |d| d.join(n)),
+        _ => p,
+    }
+}
+
+/// A status line with the time of day (UTC).
+fn status(msg: &str) {
+    let secs = SystemTime::now()
+        .duration_since(SystemTime::UNIX_EPOCH)
+        .map_or(0, |d| d.as_secs());
+    let (h, m, s) = ((secs / 3600) % 24, (secs / 60) % 60, secs % 60);
+    eprintln!("[{h:02}:{m:02}:{s:02}] {msg}");
+}

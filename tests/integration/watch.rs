@@ -1,0 +1,235 @@
+//! `ptsc watch` driven like an editor would drive it: saves, broken saves,
+//! atomic saves, edits of included files and meshes, bursts of saves.
+
+use std::io::{BufRead, BufReader};
+use std::path::{Path, PathBuf};
+use std::process::{Child, Command, Stdio};
+use std::sync::{Arc, Mutex};
+use std::time::{Duration, Instant};
+
+const TIMEOUT: Duration = Duration::from_secs(20);
+
+struct Watch {
+    child: Child,
+    lines: Arc<Mutex<Vec<String>>>,
+}
+
+impl Watch {
+    fn start(scene: &Path) -> Watch {
+        let mut child = Command::new(env!("CARGO_BIN_EXE_ptsc"))
+            .args(["watch", scene.to_str().unwrap(), "--threads", "2"])
+            .stderr(Stdio::piped())
+            .stdout(Stdio::null())
+            .spawn()
+            .unwrap();
+        let lines = Arc::new(Mutex::new(Vec::new()));
+        let sink = lines.clone();
+        let stderr = child.stderr.take().unwrap();
+        std::thread::spawn(move || {
+            for line in BufReader::new(stderr).lines().map_while(Result::ok) {
+                sink.lock().unwrap().push(line);
+            }
+        });
+        Watch { child, lines }
+    }
+
+    fn count(&self, needle: &str) -> usize {
+        self.lines
+            .lock()
+            .unwrap()
+            .iter()
+            .filter(|l| l.contains(needle))
+            .count()
+    }
+
+    /// Waits until `needle` has appeared more than `before` times.
+    fn wait_for(&self, needle: &str, before: usize) {
+        let t0 = Instant::now();
+        while self.count(needle) <= before {
+            assert!(
+                t0.elapsed() < TIMEOUT,
+                "no new `{needle}` within {TIMEOUT:?}; output:\n{}",
+                self.lines.lock().unwrap().join("\n")
+            );
+            std::thread::sleep(Duration::from_millis(20));
+        }
+    }
+
+    /// Saves `text` to `path` and waits for the finished render of it.
+    fn save_and_wait(&self, path: &Path, text: &str) {
+        let done = self.count("done:");
+        std::fs::write(path, text).unwrap();
+        self.wait_for("done:", done);
+    }
+
+    fn output(&self) -> String {
+        self.lines.lock().unwrap().join("\n")
+    }
+}
+
+impl Drop for Watch {
+    fn drop(&mut self) {
+        let _ = self.child.kill();
+        let _ = self.child.wait();
+    }
+}
+
+fn scene(fov: u32, extra: &str) -> String {
+    format!(
+        "render {{ resolution <32, 32> samples 4 }}\n\
+         camera {{ position <0, 1, 5> look_at <0, 0.5, 0> fov {fov} }}\n\
+         background rgb 0.5\n\
+         plane {{ normal <0, 1, 0> }}\n\
+         sphere {{ center <0, 0.5, 0> radius 0.5 material {{ diffuse rgb <0.8, 0.2, 0.2> }} }}\n\
+         {extra}\n"
+    )
+}
+
+fn setup() -> (tempfile::TempDir, PathBuf, PathBuf) {
+    let dir = tempfile::tempdir().unwrap();
+    let pts = dir.path().join("s.pts");
+    let png = dir.path().join("s.png");
+    (dir, pts, png)
+}
+
+/// What `ptsc render` makes of the same scene (renders are deterministic).
+fn reference_render(pts: &Path) -> Vec<u8> {
+    let out = pts.with_file_name("reference.png");
+    let status = Command::new(env!("CARGO_BIN_EXE_ptsc"))
+        .args(["render", pts.to_str().unwrap(), "-o", out.to_str().unwrap()])
+        .stderr(Stdio::null())
+        .status()
+        .unwrap();
+    assert!(status.success());
+    let bytes = std::fs::read(&out).unwrap();
+    std::fs::remove_file(out).unwrap();
+    bytes
+}
+
+#[test]
+fn edits_render_broken_edits_keep_the_image_and_fixes_render_again() {
+    let (_dir, pts, png) = setup();
+    std::fs::write(&pts, scene(40, "")).unwrap();
+    let w = Watch::start(&pts);
+    w.wait_for("done:", 0);
+    let first = std::fs::read(&png).unwrap();
+
+    w.save_and_wait(&pts, &scene(30, ""));
+    let second = std::fs::read(&png).unwrap();
+    assert_ne!(first, second, "the edit changed the image");
+    assert_eq!(second, reference_render(&pts));
+
+    // A broken save: diagnostics, and the image stays byte for byte.
+    let errors = w.count("keeping the last image");
+    std::fs::write(&pts, scene(30, "sphere { radius -1 ")).unwrap();
+    w.wait_for("keeping the last image", errors);
+    assert!(w.output().contains("never closed"), "{}", w.output());
+    std::thread::sleep(Duration::from_millis(300));
+    assert_eq!(std::fs::read(&png).unwrap(), second);
+
+    // The fix renders again.
+    w.save_and_wait(&pts, &scene(35, ""));
+    assert_eq!(std::fs::read(&png).unwrap(), reference_render(&pts));
+}
+
+#[test]
+fn fifty_rapid_saves_end_with_the_last_scene() {
+    let (dir, pts, png) = setup();
+    std::fs::write(&pts, scene(40, "")).unwrap();
+    let w = Watch::start(&pts);
+    w.wait_for("done:", 0);
+    for i in 0..50 {
+        std::fs::write(&pts, scene(20 + i, "")).unwrap();
+        std::thread::sleep(Duration::from_millis(7 * (i % 5) as u64));
+    }
+    // Let the last batch render to the end.
+    let t0 = Instant::now();
+    let expected = reference_render(&pts);
+    loop {
+        std::thread::sleep(Duration::from_millis(100));
+        let quiet = w
+            .lines
+            .lock()
+            .unwrap()
+            .last()
+            .is_some_and(|l| l.contains("done:"));
+        if quiet && std::fs::read(&png).unwrap() == expected {
+            break;
+        }
+        assert!(t0.elapsed() < TIMEOUT, "{}", w.output());
+    }
+    let names: Vec<String> = std::fs::read_dir(dir.path())
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    assert_eq!(
+        names.len(),
+        2,
+        "only the scene and its image remain: {names:?}"
+    );
+    assert!(!w.output().contains("panicked"));
+}
+
+#[test]
+fn atomic_saves_includes_and_meshes_trigger_renders() {
+    let (dir, pts, _png) = setup();
+    let part = dir.path().join("part.ptsi");
+    let obj = dir.path().join("tri.obj");
+    std::fs::write(&part, "sphere { center <1, 0.3, 0> radius 0.3 }\n").unwrap();
+    std::fs::write(&obj, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n").unwrap();
+    let text = |fov: u32| {
+        scene(
+            fov,
+            "include \"part.ptsi\"\nmesh { file \"tri.obj\" translate <-1.5, 0, 0> }",
+        )
+    };
+    std::fs::write(&pts, text(40)).unwrap();
+    let w = Watch::start(&pts);
+    w.wait_for("done:", 0);
+    assert_eq!(w.count("1 mesh file(s) loaded"), 1);
+
+    // Editor-style atomic save: write a temporary file, rename it over.
+    let done = w.count("done:");
+    let tmp = dir.path().join(".s.pts.swp");
+    std::fs::write(&tmp, text(30)).unwrap();
+    std::fs::rename(&tmp, &pts).unwrap();
+    w.wait_for("done:", done);
+
+    // A camera-only edit reuses the mesh and the BVH.
+    assert_eq!(
+        w.count("0 mesh file(s) loaded, geometry reused"),
+        1,
+        "{}",
+        w.output()
+    );
+
+    // The included file.
+    w.save_and_wait(&part, "sphere { center <1, 0.6, 0> radius 0.3 }\n");
+    assert_eq!(w.count("geometry rebuilt"), 2, "{}", w.output());
+
+    // The mesh file: reloaded.
+    w.save_and_wait(&obj, "v 0 0 0\nv 2 0 0\nv 0 2 0\nf 1 2 3\n");
+    assert_eq!(w.count("1 mesh file(s) loaded"), 2, "{}", w.output());
+}
+
+#[test]
+fn ctrl_c_stops_cleanly() {
+    let (_dir, pts, _png) = setup();
+    std::fs::write(&pts, scene(40, "")).unwrap();
+    let mut w = Watch::start(&pts);
+    w.wait_for("done:", 0);
+    let status = Command::new("kill")
+        .args(["-INT", &w.child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(status.success());
+    let t0 = Instant::now();
+    let code = loop {
+        if let Some(s) = w.child.try_wait().unwrap() {
+            break s.code();
+        }
+        assert!(t0.elapsed() < TIMEOUT);
+        std::thread::sleep(Duration::from_millis(20));
+    };
+    assert_eq!(code, Some(0));
+}

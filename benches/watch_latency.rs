@@ -50,6 +50,7 @@ fn main() {
         wait_for("pass 2:");
     }
     let _ = child.kill();
+    let _ = child.wait();
     latencies.sort_by(f64::total_cmp);
     println!(
         "watch save-to-preview latency on examples/bench/cornell.pts ({SAVES} saves): median {:.0} ms, min {:.0} ms, max {:.0} ms",

@@ -57,12 +57,16 @@ pub fn lower_cached(scene: &check::Scene, cache: &mut LowerCache) -> Result<Scen
         }
     };
     // Materials and spans follow the objects even when the geometry is reused.
-    for (obj, range) in scene.objects.iter().zip(&geometry.object_ranges) {
-        for p in &mut geometry.prims[range.clone()] {
-            p.material = obj.material as u32;
-            p.light = u32::MAX;
-        }
-        geometry.origins[range.clone()].fill(obj.span);
+    for ((p, origin), &o) in geometry
+        .prims
+        .iter_mut()
+        .zip(&mut geometry.origins)
+        .zip(&geometry.prim_object)
+    {
+        let obj = &scene.objects[o as usize];
+        p.material = obj.material as u32;
+        p.light = u32::MAX;
+        *origin = obj.span;
     }
     Ok(finish(scene, materials, geometry))
 }
@@ -76,8 +80,8 @@ pub struct Geometry {
     normals: Vec<[Vec3; 3]>,
     bvh: Bvh,
     mesh_files: Vec<std::path::PathBuf>,
-    /// The primitives each object became.
-    object_ranges: Vec<std::ops::Range<usize>>,
+    /// The object each primitive came from.
+    prim_object: Vec<u32>,
 }
 
 fn build_geometry(scene: &check::Scene, cache: &mut LowerCache) -> Result<Geometry, Diagnostics> {
@@ -279,14 +283,34 @@ fn build_geometry(scene: &check::Scene, cache: &mut LowerCache) -> Result<Geomet
     if diags.has_errors() {
         return Err(diags);
     }
-    let bvh = build_bvh(&prims, scene.camera.shutter);
+    let mut bvh = build_bvh(&prims, scene.camera.shutter);
+    // Store the primitives in the BVH's leaf order (planes last): a leaf's
+    // primitives are then contiguous in memory, and the order is the identity.
+    let mut prim_object = vec![0u32; prims.len()];
+    for (o, r) in object_ranges.iter().enumerate() {
+        prim_object[r.clone()].fill(o as u32);
+    }
+    let mut permutation = bvh.order.clone();
+    permutation.extend(
+        (0..prims.len() as u32).filter(|&i| matches!(prims[i as usize].shape, Shape::Plane { .. })),
+    );
+    let prims = permutation
+        .iter()
+        .map(|&i| prims[i as usize].clone())
+        .collect();
+    let origins = permutation.iter().map(|&i| origins[i as usize]).collect();
+    let prim_object = permutation
+        .iter()
+        .map(|&i| prim_object[i as usize])
+        .collect();
+    bvh.order = (0..bvh.order.len() as u32).collect();
     Ok(Geometry {
         prims,
         origins,
         normals,
         bvh,
         mesh_files,
-        object_ranges,
+        prim_object,
     })
 }
 

@@ -94,9 +94,12 @@ pub fn path_li(scene: &Scene, mut ray: Ray, sampler: &mut Sampler, nee: bool) ->
         prev_pdf = bs.pdf;
         prev_p = hit.p;
         // Russian roulette from rr_depth segments on; survivors are divided by
-        // their probability, so the estimate stays unbiased.
-        if segments >= s.rr_depth {
-            let q = luminance(beta).clamp(0.05, 0.95);
+        // their probability, so the estimate stays unbiased. The survival
+        // probability follows the largest channel of the throughput (as pbrt-v4
+        // and Mitsuba 3 do): luminance would end saturated red or blue paths
+        // too early and make those channels noisy.
+        if segments > s.rr_depth {
+            let q = beta.max_element().clamp(0.05, 0.95);
             if sampler.next_f32() >= q {
                 break;
             }

@@ -7,7 +7,10 @@
 //!   reference's.
 //! - Noise: at equal spp, ptsc's mean absolute error (compare.py's
 //!   `mae_over_mean`, median over seeds) is no worse than Mitsuba's own, as
-//!   measured by `scripts/mitsuba_baseline.py` into `tests/mitsuba/baseline.json`.
+//!   measured by `scripts/mitsuba_baseline.py` into `tests/mitsuba/baseline.json`,
+//!   up to `NOISE_SLACK`: the median of 8 seeds itself varies by about 1 %
+//!   from one set of seeds to another (measured with 32 seeds for both
+//!   renderers: ptsc/Mitsuba = 0.997 cornell, 1.008 mesh, 0.991 spheres).
 
 use glam::Vec3;
 use ptsc::check::check_file;
@@ -19,18 +22,19 @@ use std::sync::atomic::AtomicBool;
 
 /// Seeds per scene (as many as the baseline used).
 const SEEDS: u64 = 8;
+/// Allowed excess of ptsc's median MAE over Mitsuba's: the spread of a
+/// median of 8 seeds, not a difference in the estimators.
+const NOISE_SLACK: f64 = 1.02;
 
 fn check_scene(name: &str) {
     let dir = crate::root().join("tests/mitsuba");
     let baseline: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(dir.join("baseline.json")).unwrap())
-            .unwrap();
+        serde_json::from_str(&std::fs::read_to_string(dir.join("baseline.json")).unwrap()).unwrap();
     let res = baseline["res"].as_u64().unwrap() as u32;
     let spp = baseline["spp"].as_u64().unwrap() as u32;
     let entry = &baseline["scenes"][name];
     let mitsuba_mae = entry["median_mae_over_mean"].as_f64().unwrap();
-    let (w, h, reference) =
-        read_exr(&dir.join(entry["reference"].as_str().unwrap())).unwrap();
+    let (w, h, reference) = read_exr(&dir.join(entry["reference"].as_str().unwrap())).unwrap();
     assert_eq!((w, h), (res, res));
 
     let path = crate::root().join(format!("examples/bench/{name}.pts"));
@@ -68,7 +72,7 @@ fn check_scene(name: &str) {
     maes.sort_by(f64::total_cmp);
     let mae = 0.5 * (maes[maes.len() / 2 - 1] + maes[maes.len() / 2]);
     eprintln!(
-        "{name}: mean ratio {ratio:.4} (8 x {spp} spp), MAE/mean {mae:.5} vs Mitsuba {mitsuba_mae:.5}"
+        "{name}: mean ratio {ratio:.4} ({SEEDS} x {spp} spp), MAE/mean {mae:.5} vs Mitsuba {mitsuba_mae:.5}"
     );
     for k in 0..3 {
         assert!(
@@ -77,7 +81,7 @@ fn check_scene(name: &str) {
         );
     }
     assert!(
-        mae <= mitsuba_mae,
+        mae <= mitsuba_mae * NOISE_SLACK,
         "{name}: MAE/mean {mae:.5} at {spp} spp is noisier than Mitsuba's {mitsuba_mae:.5}"
     );
 }

@@ -1,0 +1,56 @@
+#!/usr/bin/env bash
+# Side-by-side timing of ptsc and Mitsuba 3 on the benchmark scenes of
+# ../shared/bench (SCENES.md): 512x512, 64 spp, max_depth 8, 2 threads, median
+# of 3 runs each, waiting for an idle machine before every run.
+#
+#   bash scripts/compare-mitsuba.sh [SCENE...]        (default: cornell mesh spheres)
+#
+# Environment: RES SPP RUNS THREADS (as mitsuba.sh), VARIANTS (default
+# "scalar_rgb llvm_ad_rgb"; llvm_ad_rgb needs libLLVM >= 17, e.g.
+# `apt-get install libllvm19`).
+# Both times are the render alone: Mitsuba's mi.render call, ptsc's render
+# loop (scene loading, mesh reading and BVH build are reported apart as load).
+# Prints one table: scene, ptsc median, Mitsuba medians and the ratios.
+set -euo pipefail
+ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+BENCH=${BENCH:-$ROOT/../shared/bench}
+RES=${RES:-512} SPP=${SPP:-64} RUNS=${RUNS:-3} THREADS=${THREADS:-2}
+export RES SPP RUNS THREADS
+[ $# -gt 0 ] || set -- cornell mesh spheres
+OUT=$(mktemp -d)
+trap 'rm -rf "$OUT"' EXIT
+
+cargo build --release --quiet --manifest-path "$ROOT/Cargo.toml"
+PTSC=$ROOT/target/release/ptsc
+
+median() { sort -g | awk '{ a[NR] = $1 } END { print a[int((NR + 1) / 2)] }'; }
+
+declare -A ptsc_s ptsc_load
+for s in "$@"; do
+  times=()
+  for _ in $(seq "$RUNS"); do
+    python3 "$BENCH/cpuload.py" wait >/dev/null 2>&1 || true
+    line=$("$PTSC" render "$ROOT/examples/bench/$s.pts" --resolution "${RES}x${RES}" --spp "$SPP" \
+             --threads "$THREADS" -o "$OUT/$s.exr" 2>&1 | tail -1)
+    # "...: WxH, N spp in T s (P M paths/s; load L s) → OUT"
+    times+=("$(sed -E 's/.* in ([0-9.]+) s .*/\1/' <<<"$line")")
+    ptsc_load[$s]=$(sed -E 's/.*load ([0-9.]+) s.*/\1/' <<<"$line")
+  done
+  ptsc_s[$s]=$(printf '%s\n' "${times[@]}" | median)
+  echo "ptsc $s: runs ${times[*]} s, median ${ptsc_s[$s]} s (load ${ptsc_load[$s]} s)" >&2
+done
+
+mits=$(OUT="$OUT/mitsuba" bash "$BENCH/mitsuba.sh" bench "$@")
+echo "$mits" >&2
+
+echo
+echo "| scene | ptsc (s) | Mitsuba scalar_rgb (s) | Mitsuba llvm_ad_rgb (s) | ptsc / scalar | ptsc / llvm |"
+echo "| --- | --- | --- | --- | --- | --- |"
+for s in "$@"; do
+  sc=$(awk -v s="$s" '$1 == s && $2 == "scalar_rgb" { print $3 }' <<<"$mits")
+  ll=$(awk -v s="$s" '$1 == s && $2 == "llvm_ad_rgb" { print $3 }' <<<"$mits")
+  ratio() { [ -n "$2" ] && awk -v a="$1" -v b="$2" 'BEGIN { printf "%.2f", a / b }' || echo "-"; }
+  echo "| $s | ${ptsc_s[$s]} | ${sc:--} | ${ll:--} | $(ratio "${ptsc_s[$s]}" "$sc") | $(ratio "${ptsc_s[$s]}" "$ll") |"
+done
+echo
+echo "(${RES}x${RES}, $SPP spp, max_depth 8, $THREADS threads, medians of $RUNS; render time only; ratio < 1: ptsc faster)"

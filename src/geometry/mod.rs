@@ -1,6 +1,7 @@
 //! Geometry: rays, bounds, the shapes (one file each) and the BVH over them.
 
 pub mod bvh;
+pub mod bvh4;
 pub mod disk;
 pub mod plane;
 pub mod quad;

@@ -8,6 +8,7 @@ use super::{Prim, Scene};
 use crate::check::{self, codes};
 use crate::diag::{Diagnostic, Diagnostics};
 use crate::geometry::bvh::Bvh;
+use crate::geometry::bvh4::Bvh4;
 use crate::geometry::shape::Shape;
 use crate::geometry::Aabb;
 use crate::light::Light;
@@ -79,6 +80,7 @@ pub struct Geometry {
     origins: Vec<crate::span::Span>,
     normals: Vec<[Vec3; 3]>,
     bvh: Bvh,
+    wide: Bvh4,
     mesh_files: Vec<std::path::PathBuf>,
     /// The object each primitive came from.
     prim_object: Vec<u32>,
@@ -304,11 +306,13 @@ fn build_geometry(scene: &check::Scene, cache: &mut LowerCache) -> Result<Geomet
         .map(|&i| prim_object[i as usize])
         .collect();
     bvh.order = (0..bvh.order.len() as u32).collect();
+    let wide = Bvh4::from_binary(&bvh);
     Ok(Geometry {
         prims,
         origins,
         normals,
         bvh,
+        wide,
         mesh_files,
         prim_object,
     })
@@ -356,6 +360,7 @@ fn finish(scene: &check::Scene, materials: Vec<Material>, geometry: Geometry) ->
         origins,
         normals,
         bvh,
+        wide,
         mesh_files,
         ..
     } = geometry;
@@ -421,6 +426,7 @@ fn finish(scene: &check::Scene, materials: Vec<Material>, geometry: Geometry) ->
         prims,
         origins,
         bvh,
+        wide,
         unbounded,
         materials,
         normals,

@@ -8,6 +8,7 @@ pub mod mesh;
 
 use crate::check::RenderSettings;
 use crate::geometry::bvh::Bvh;
+use crate::geometry::bvh4::Bvh4;
 use crate::geometry::shape::{Shape, ShapeHit};
 use crate::geometry::{Aabb, Ray};
 use crate::light::Light;
@@ -57,6 +58,8 @@ pub struct Scene {
     pub origins: Vec<Span>,
     /// BVH over the bounded primitives.
     pub bvh: Bvh,
+    /// The same hierarchy, 4 wide, used for traversal.
+    pub wide: Bvh4,
     /// Unbounded primitives (planes), tested separately.
     pub unbounded: Vec<u32>,
     /// Materials.
@@ -95,7 +98,7 @@ impl Scene {
         // The BVH accepts every hit the closure returns (each is closer than the
         // last), so the last surface parameters kept are those of the closest hit.
         let mut uv = glam::Vec2::ZERO;
-        let mut best = self.bvh.closest(ray, t_max, |i, tmax| {
+        let mut best = self.wide.closest(ray, t_max, |i, tmax| {
             let p = &self.prims[i as usize];
             let h = p.shape.intersect(&Self::local_ray(p, ray), t_min, tmax)?;
             uv = h.uv;
@@ -136,7 +139,7 @@ impl Scene {
 
     /// Whether anything blocks the segment from `ray.o` to `ray.at(t_max)`.
     pub fn occluded(&self, ray: &Ray, t_min: f32, t_max: f32) -> bool {
-        self.bvh.any(ray, t_max, |i, tmax| {
+        self.wide.any(ray, t_max, |i, tmax| {
             let p = &self.prims[i as usize];
             p.shape
                 .intersect(&Self::local_ray(p, ray), t_min, tmax)

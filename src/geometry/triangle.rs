@@ -16,8 +16,26 @@ pub fn intersect(
     t_min: f32,
     t_max: f32,
 ) -> Option<ShapeHit> {
-    let (t, u, v) = parallelogram(ray, p0, e1, e2)?;
-    (t > t_min && t < t_max && u >= 0.0 && v >= 0.0 && u + v <= 1.0).then_some(ShapeHit {
+    // Möller–Trumbore with early exits: most tests in a BVH leaf miss, and a
+    // miss is usually known from u alone.
+    let pv = ray.d.cross(e2);
+    let det = e1.dot(pv);
+    if det.abs() < 1e-20 {
+        return None;
+    }
+    let inv = 1.0 / det;
+    let tv = ray.o - p0;
+    let u = tv.dot(pv) * inv;
+    if !(0.0..=1.0).contains(&u) {
+        return None;
+    }
+    let qv = tv.cross(e1);
+    let v = ray.d.dot(qv) * inv;
+    if v < 0.0 || u + v > 1.0 {
+        return None;
+    }
+    let t = e2.dot(qv) * inv;
+    (t > t_min && t < t_max).then_some(ShapeHit {
         t,
         uv: Vec2::new(u, v),
     })

@@ -79,11 +79,8 @@ impl Bvh4 {
         }
         let r = RayLanes::new(ray);
         let mut best = None;
-        let mut stack = [(0u32, 0.0f32); 128];
-        let mut sp = 1;
-        while sp > 0 {
-            sp -= 1;
-            let (node, t_enter) = stack[sp];
+        let mut stack = Stack::new((0u32, 0.0f32));
+        while let Some((node, t_enter)) = stack.pop() {
             if t_enter > t_max {
                 continue;
             }
@@ -122,8 +119,7 @@ impl Bvh4 {
             }
             for &lane in &order[..k] {
                 if n.count[lane] == 0 {
-                    stack[sp] = (n.child[lane], t_near[lane]);
-                    sp += 1;
+                    stack.push((n.child[lane], t_near[lane]));
                 }
             }
         }
@@ -137,11 +133,9 @@ impl Bvh4 {
             return false;
         }
         let r = RayLanes::new(ray);
-        let mut stack = [0u32; 128];
-        let mut sp = 1;
-        while sp > 0 {
-            sp -= 1;
-            let n = &self.nodes[stack[sp] as usize];
+        let mut stack = Stack::new(0u32);
+        while let Some(node) = stack.pop() {
+            let n = &self.nodes[node as usize];
             let (_, mask) = r.slab4(n, t_max);
             for lane in 0..4 {
                 if mask & (1 << lane) == 0 {
@@ -149,8 +143,7 @@ impl Bvh4 {
                 }
                 let count = n.count[lane];
                 if count == 0 {
-                    stack[sp] = n.child[lane];
-                    sp += 1;
+                    stack.push(n.child[lane]);
                 } else {
                     let first = n.child[lane];
                     if (first..first + count).any(|p| hit(p, t_max)) {
@@ -160,6 +153,52 @@ impl Bvh4 {
             }
         }
         false
+    }
+}
+
+/// The traversal stack: a small array (cheap to set up for every ray) that
+/// spills to the heap in the rare deep trees binned SAH can make from very
+/// unevenly spaced primitives.
+struct Stack<T: Copy> {
+    inline: [T; STACK],
+    len: usize,
+    spill: Vec<T>,
+}
+
+const STACK: usize = 48;
+
+impl<T: Copy> Stack<T> {
+    /// A stack holding the root.
+    #[inline(always)]
+    fn new(root: T) -> Self {
+        Stack {
+            inline: [root; STACK],
+            len: 1,
+            spill: Vec::new(),
+        }
+    }
+
+    #[inline(always)]
+    fn push(&mut self, v: T) {
+        if self.len < STACK {
+            self.inline[self.len] = v;
+        } else {
+            self.spill.push(v);
+        }
+        self.len += 1;
+    }
+
+    #[inline(always)]
+    fn pop(&mut self) -> Option<T> {
+        if self.len == 0 {
+            return None;
+        }
+        self.len -= 1;
+        if self.len < STACK {
+            Some(self.inline[self.len])
+        } else {
+            self.spill.pop()
+        }
     }
 }
 
@@ -331,6 +370,32 @@ mod tests {
                 prop_assert_eq!(any, want.is_some());
             }
         }
+    }
+
+    #[test]
+    fn deep_trees_spill_the_stack_instead_of_overflowing() {
+        // Spheres at exponentially growing distances: binned SAH peels one off
+        // per level, so the tree is as deep as there are spheres.
+        let mut shapes: Vec<Shape> = (0..120)
+            .map(|i| Shape::Sphere {
+                center: Vec3::new(1.2f32.powi(i), 0.0, 0.0),
+                radius: 0.01,
+            })
+            .collect();
+        let w = wide(&mut shapes);
+        let ray = Ray::new(Vec3::new(-1.0, 0.0, 0.0), Vec3::X, 0.0);
+        let hit = w.closest(&ray, f32::INFINITY, |i, tmax| {
+            shapes[i as usize].intersect(&ray, 1e-4, tmax).map(|h| h.t)
+        });
+        assert!(hit.is_some_and(|(_, t)| (t - 1.99).abs() < 1e-3), "{hit:?}");
+        let mut stack = Stack::new(0u32);
+        for i in 1..200 {
+            stack.push(i);
+        }
+        for i in (0..200).rev() {
+            assert_eq!(stack.pop(), Some(i));
+        }
+        assert_eq!(stack.pop(), None);
     }
 
     #[test]

@@ -17,8 +17,11 @@ use crate::render::camera::Camera;
 use crate::span::Span;
 use glam::Vec3;
 
-/// One primitive.
+/// One primitive. Exactly one cache line: a leaf's primitives are read
+/// during traversal, and a 64-byte record that straddled two lines would cost
+/// two memory fetches.
 #[derive(Debug, Clone)]
+#[repr(align(64))]
 pub struct Prim {
     /// Geometry in world space at time 0.
     pub shape: Shape,
@@ -81,6 +84,8 @@ pub struct Scene {
     /// Mesh files read (for `watch`).
     pub mesh_files: Vec<std::path::PathBuf>,
 }
+
+const _: () = assert!(std::mem::size_of::<Prim>() == 64);
 
 impl Scene {
     /// The ray moved into the frame of a (possibly moving) primitive.

@@ -14,6 +14,8 @@ use std::time::SystemTime;
 /// Meshes and geometry kept from earlier compiles.
 #[derive(Default)]
 pub struct LowerCache {
+    /// Whether to keep a copy of the geometry (not for a single compile).
+    no_geometry: bool,
     meshes: HashMap<PathBuf, CachedMesh>,
     geometry: Option<(u64, Geometry)>,
     /// Mesh files read and parsed so far (a cache hit does not count).
@@ -41,6 +43,14 @@ fn hash_bytes(bytes: &[u8]) -> u64 {
 }
 
 impl LowerCache {
+    /// A cache for a single compile: it keeps no copy of the geometry.
+    pub fn one_off() -> Self {
+        LowerCache {
+            no_geometry: true,
+            ..Default::default()
+        }
+    }
+
     /// The mesh at `path`, parsed once per content.
     pub fn mesh(&mut self, path: &Path) -> Result<Arc<MeshData>, String> {
         let now = stamp(path);
@@ -156,7 +166,9 @@ impl LowerCache {
     /// Keeps `geometry` for the next compile.
     pub fn store_geometry(&mut self, key: u64, geometry: &Geometry) {
         self.bvh_builds += 1;
-        self.geometry = Some((key, geometry.clone()));
+        if !self.no_geometry {
+            self.geometry = Some((key, geometry.clone()));
+        }
     }
 }
 

@@ -39,7 +39,8 @@ fn uniform_scale(m: &DMat4) -> Option<f64> {
 
 /// Builds the IR; mesh problems and unsupported transforms are diagnostics.
 pub fn lower(scene: &check::Scene) -> Result<Scene, Diagnostics> {
-    lower_cached(scene, &mut LowerCache::default())
+    // A one-off compile keeps nothing: no copy of the geometry in a cache.
+    lower_cached(scene, &mut LowerCache::one_off())
 }
 
 /// Builds the IR, reusing from `cache` the meshes whose files did not change
@@ -79,7 +80,7 @@ pub struct Geometry {
     prims: Vec<Prim>,
     origins: Vec<crate::span::Span>,
     normals: Vec<[Vec3; 3]>,
-    bvh: Bvh,
+    bounds: Aabb,
     wide: Bvh4,
     mesh_files: Vec<std::path::PathBuf>,
     /// The object each primitive came from.
@@ -296,26 +297,40 @@ fn build_geometry(scene: &check::Scene, cache: &mut LowerCache) -> Result<Geomet
     permutation.extend(
         (0..prims.len() as u32).filter(|&i| matches!(prims[i as usize].shape, Shape::Plane { .. })),
     );
-    let prims = permutation
-        .iter()
-        .map(|&i| prims[i as usize].clone())
-        .collect();
-    let origins = permutation.iter().map(|&i| origins[i as usize]).collect();
-    let prim_object = permutation
-        .iter()
-        .map(|&i| prim_object[i as usize])
-        .collect();
+    // In place: a second copy of a million primitives would double the peak memory.
+    permute(&mut prims, &permutation);
+    permute(&mut origins, &permutation);
+    permute(&mut prim_object, &permutation);
     bvh.order = (0..bvh.order.len() as u32).collect();
     let wide = Bvh4::from_binary(&bvh);
+    // The binary tree is dropped here: only the wide one is traversed.
     Ok(Geometry {
         prims,
         origins,
         normals,
-        bvh,
+        bounds: bvh.bounds(),
         wide,
         mesh_files,
         prim_object,
     })
+}
+
+/// Reorders `v` in place so that the new `v[i]` is the old `v[perm[i]]`, by
+/// following the permutation's cycles.
+fn permute<T>(v: &mut [T], perm: &[u32]) {
+    let mut done = vec![false; v.len()];
+    for start in 0..v.len() {
+        let mut i = start;
+        while !done[i] {
+            done[i] = true;
+            let j = perm[i] as usize;
+            if j == start {
+                break;
+            }
+            v.swap(i, j);
+            i = j;
+        }
+    }
 }
 
 /// BVH over bounded primitives, expanded over the shutter for moving ones
@@ -359,7 +374,7 @@ fn finish(scene: &check::Scene, materials: Vec<Material>, geometry: Geometry) ->
         mut prims,
         origins,
         normals,
-        bvh,
+        bounds,
         wide,
         mesh_files,
         ..
@@ -418,14 +433,12 @@ fn finish(scene: &check::Scene, materials: Vec<Material>, geometry: Geometry) ->
         lights.len() as u32 - 1
     });
 
-    let bounds = bvh.bounds();
     let camera = Camera::new(&scene.camera, scene.render.width, scene.render.height);
     let mut ir = Scene {
         settings: scene.render.clone(),
         camera,
         prims,
         origins,
-        bvh,
         wide,
         unbounded,
         materials,
@@ -484,4 +497,19 @@ fn non_uniform(span: crate::span::Span, what: &str) -> Diagnostic {
     .with_help(format!(
         "scale the {what} by a single number, or use a mesh for ellipsoids"
     ))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::permute;
+
+    #[test]
+    fn permute_in_place_matches_gathering() {
+        let perm = [3u32, 0, 4, 1, 2, 6, 5, 7];
+        let old: Vec<u32> = (10..18).collect();
+        let mut v = old.clone();
+        permute(&mut v, &perm);
+        let want: Vec<u32> = perm.iter().map(|&i| old[i as usize]).collect();
+        assert_eq!(v, want);
+    }
 }

@@ -7,7 +7,6 @@ pub mod lower;
 pub mod mesh;
 
 use crate::check::RenderSettings;
-use crate::geometry::bvh::Bvh;
 use crate::geometry::bvh4::Bvh4;
 use crate::geometry::shape::{Shape, ShapeHit};
 use crate::geometry::{Aabb, Ray};
@@ -59,9 +58,7 @@ pub struct Scene {
     pub prims: Vec<Prim>,
     /// Where each object came from (per primitive).
     pub origins: Vec<Span>,
-    /// BVH over the bounded primitives.
-    pub bvh: Bvh,
-    /// The same hierarchy, 4 wide, used for traversal.
+    /// The BVH over the bounded primitives (4 wide, collapsed from a binary SAH tree).
     pub wide: Bvh4,
     /// Unbounded primitives (planes), tested separately.
     pub unbounded: Vec<u32>,

@@ -50,7 +50,7 @@ pub fn direct_light_mis(
     };
     let u = sampler.next_2d();
     let light = &scene.lights[li_idx as usize];
-    let Some(ls) = light.sample(scene, hit.p, u) else {
+    let Some(ls) = light.sample(scene, hit.p, time, u) else {
         return Vec3::ZERO;
     };
     let material = &scene.materials[scene.prims[hit.prim as usize].material as usize];

@@ -140,7 +140,7 @@ fn direct(
         }
         let mut acc = Vec3::ZERO;
         for _ in 0..count {
-            let Some(ls) = light.sample(scene, hit.p, sampler.next_2d()) else {
+            let Some(ls) = light.sample(scene, hit.p, time, sampler.next_2d()) else {
                 continue;
             };
             let (f, _) = m.eval(wo, ls.wi, hit.n_shading);

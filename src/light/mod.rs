@@ -104,11 +104,19 @@ impl Light {
     }
 
     /// Samples light arriving at `p`.
-    pub fn sample(&self, scene: &crate::ir::Scene, p: Vec3, u: Vec2) -> Option<LightSample> {
+    /// `time` is the ray's: a moving emitter is sampled where it is then.
+    pub fn sample(
+        &self,
+        scene: &crate::ir::Scene,
+        p: Vec3,
+        time: f32,
+        u: Vec2,
+    ) -> Option<LightSample> {
         match self {
             Light::Area { prim } => {
                 let pr = &scene.prims[*prim as usize];
                 let (q, n) = pr.shape.sample_area(u);
+                let q = q + pr.velocity * time;
                 let to = q - p;
                 let d2 = to.length_squared();
                 if d2 == 0.0 {

@@ -6,6 +6,7 @@ mod blocks;
 pub mod codes;
 pub mod eval;
 mod finish;
+mod objects;
 pub mod params;
 pub mod scene;
 
@@ -444,7 +445,7 @@ impl Checker {
             kind.keyword(),
             kind_span,
             block,
-            &blocks::shape_schemas(kind),
+            &objects::shape_schemas(kind),
             &mut self.env,
             &mut self.diags,
         );
@@ -498,9 +499,9 @@ impl Checker {
             }
             _ => {
                 let material = self.object_material(&material_entries, span);
-                let shape = blocks::shape(kind, &p, &base, &mut self.diags);
-                let transform: DMat4 = blocks::transform(&p, &mut self.diags);
-                let velocity = blocks::velocity(&p);
+                let shape = objects::shape(kind, &p, &base, &mut self.diags);
+                let transform: DMat4 = objects::transform(&p, &mut self.diags);
+                let velocity = objects::velocity(&p);
                 if let (Some(shape), Some(material)) = (shape, material) {
                     if matches!(shape, Shape::Plane { .. })
                         && self.materials[material].is_emissive()

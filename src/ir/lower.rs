@@ -58,17 +58,10 @@ pub fn lower_cached(scene: &check::Scene, cache: &mut LowerCache) -> Result<Scen
             g
         }
     };
-    // Materials and spans follow the objects even when the geometry is reused.
-    for ((p, origin), &o) in geometry
-        .prims
-        .iter_mut()
-        .zip(&mut geometry.origins)
-        .zip(&geometry.prim_object)
-    {
-        let obj = &scene.objects[o as usize];
-        p.material = obj.material as u32;
+    // Materials follow the objects even when the geometry is reused.
+    for (p, &o) in geometry.prims.iter_mut().zip(&geometry.prim_object) {
+        p.material = scene.objects[o as usize].material as u32;
         p.light = u32::MAX;
-        *origin = obj.span;
     }
     Ok(finish(scene, materials, geometry))
 }
@@ -78,7 +71,6 @@ pub fn lower_cached(scene: &check::Scene, cache: &mut LowerCache) -> Result<Scen
 #[derive(Debug, Clone)]
 pub struct Geometry {
     prims: Vec<Prim>,
-    origins: Vec<crate::span::Span>,
     normals: Vec<[Vec3; 3]>,
     bounds: Aabb,
     wide: Bvh4,
@@ -90,7 +82,6 @@ pub struct Geometry {
 fn build_geometry(scene: &check::Scene, cache: &mut LowerCache) -> Result<Geometry, Diagnostics> {
     let mut diags = Diagnostics::new();
     let mut prims: Vec<Prim> = Vec::new();
-    let mut origins = Vec::new();
     let mut normals: Vec<[Vec3; 3]> = Vec::new();
     let mut mesh_files = Vec::new();
     let mut object_ranges = Vec::with_capacity(scene.objects.len());
@@ -108,7 +99,6 @@ fn build_geometry(scene: &check::Scene, cache: &mut LowerCache) -> Result<Geomet
                 light: u32::MAX,
                 velocity,
             });
-            origins.push(obj.span);
         };
         match &obj.shape {
             check::Shape::Sphere { center, radius } => match uniform_scale(&m) {
@@ -247,7 +237,6 @@ fn build_geometry(scene: &check::Scene, cache: &mut LowerCache) -> Result<Geomet
                         light: u32::MAX,
                         velocity,
                     });
-                    origins.push(obj.span);
                 }
                 if degenerate == data.triangles.len() {
                     diags.push(
@@ -265,6 +254,13 @@ fn build_geometry(scene: &check::Scene, cache: &mut LowerCache) -> Result<Geomet
         object_ranges.push(first..prims.len());
     }
     for (i, p) in prims.iter().enumerate() {
+        let origin = || {
+            let o = object_ranges
+                .iter()
+                .position(|r| r.contains(&i))
+                .unwrap_or(0);
+            scene.objects[o].span
+        };
         let b = p.shape.bounds();
         let bad = match p.shape {
             Shape::Plane { .. } => !p.shape.normal_at(Vec3::ZERO).is_finite(),
@@ -275,7 +271,7 @@ fn build_geometry(scene: &check::Scene, cache: &mut LowerCache) -> Result<Geomet
                 Diagnostic::error(
                     codes::NOT_FINITE,
                     "this object's geometry is not finite after its transforms",
-                    origins[i],
+                    origin(),
                 )
                 .with_label("NaN or infinite coordinates")
                 .with_help("check the sizes and transforms for overflow"),
@@ -299,14 +295,12 @@ fn build_geometry(scene: &check::Scene, cache: &mut LowerCache) -> Result<Geomet
     );
     // In place: a second copy of a million primitives would double the peak memory.
     permute(&mut prims, &permutation);
-    permute(&mut origins, &permutation);
     permute(&mut prim_object, &permutation);
     bvh.order = (0..bvh.order.len() as u32).collect();
     let wide = Bvh4::from_binary(&bvh);
     // The binary tree is dropped here: only the wide one is traversed.
     Ok(Geometry {
         prims,
-        origins,
         normals,
         bounds: bvh.bounds(),
         wide,
@@ -370,9 +364,10 @@ fn build_bvh(prims: &[Prim], shutter: (f64, f64)) -> Bvh {
 
 /// Lights, light selection and the camera on top of the geometry.
 fn finish(scene: &check::Scene, materials: Vec<Material>, geometry: Geometry) -> Scene {
+    let object_spans = scene.objects.iter().map(|o| o.span).collect();
     let Geometry {
         mut prims,
-        origins,
+        prim_object,
         normals,
         bounds,
         wide,
@@ -438,7 +433,8 @@ fn finish(scene: &check::Scene, materials: Vec<Material>, geometry: Geometry) ->
         settings: scene.render.clone(),
         camera,
         prims,
-        origins,
+        prim_object,
+        object_spans,
         wide,
         unbounded,
         materials,

@@ -56,8 +56,10 @@ pub struct Scene {
     pub camera: Camera,
     /// Primitives.
     pub prims: Vec<Prim>,
-    /// Where each object came from (per primitive).
-    pub origins: Vec<Span>,
+    /// The object each primitive came from (index into `object_spans`).
+    pub prim_object: Vec<u32>,
+    /// Where each object is written in the source.
+    pub object_spans: Vec<Span>,
     /// The BVH over the bounded primitives (4 wide, collapsed from a binary SAH tree).
     pub wide: Bvh4,
     /// Unbounded primitives (planes), tested separately.
@@ -85,6 +87,11 @@ pub struct Scene {
 const _: () = assert!(std::mem::size_of::<Prim>() == 64);
 
 impl Scene {
+    /// Where primitive `prim` was written in the source.
+    pub fn origin(&self, prim: u32) -> Span {
+        self.object_spans[self.prim_object[prim as usize] as usize]
+    }
+
     /// The ray moved into the frame of a (possibly moving) primitive.
     #[inline]
     fn local_ray(prim: &Prim, ray: &Ray) -> Ray {

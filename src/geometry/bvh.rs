@@ -1,9 +1,9 @@
 //! Bounding volume hierarchy: binned SAH build (Wald 2007, "On fast
 //! Construction of SAH-based Bounding Volume Hierarchies"), parallel with rayon
-//! for large nodes; a flat node array; ordered front-to-back traversal for the
-//! closest hit and an early-out traversal for shadow rays.
+//! for large nodes; a flat node array. It is not traversed itself:
+//! `bvh4.rs` collapses it into the 4-wide tree the renderer uses.
 
-use super::{Aabb, Ray};
+use super::Aabb;
 use glam::Vec3;
 
 /// One node: bounds plus either two children (`count == 0`: left child at
@@ -57,109 +57,6 @@ impl Bvh {
     pub fn bounds(&self) -> Aabb {
         self.nodes.first().map_or(Aabb::EMPTY, |n| n.bounds)
     }
-
-    /// The closest hit: `hit(prim, ray, t_max)` returns the hit distance if
-    /// closer than `t_max`. Returns the primitive and distance.
-    #[inline]
-    pub fn closest<F: FnMut(u32, f32) -> Option<f32>>(
-        &self,
-        ray: &Ray,
-        mut t_max: f32,
-        mut hit: F,
-    ) -> Option<(u32, f32)> {
-        if self.nodes.is_empty() {
-            return None;
-        }
-        let inv = ray.d.recip();
-        let neg = [inv.x < 0.0, inv.y < 0.0, inv.z < 0.0];
-        let mut best = None;
-        let mut stack = [0u32; 64];
-        let mut sp = 0;
-        let mut node = 0usize;
-        loop {
-            let n = &self.nodes[node];
-            if n.count > 0 {
-                for &p in &self.order[n.index as usize..n.index as usize + n.count as usize] {
-                    if let Some(t) = hit(p, t_max) {
-                        t_max = t;
-                        best = Some((p, t));
-                    }
-                }
-            } else {
-                let (l, r) = (n.index as usize, n.index as usize + 1);
-                let tl = slab(&self.nodes[l].bounds, ray.o, inv, t_max);
-                let tr = slab(&self.nodes[r].bounds, ray.o, inv, t_max);
-                let (first, second, tf, ts) = if neg[n.axis as usize] {
-                    (r, l, tr, tl)
-                } else {
-                    (l, r, tl, tr)
-                };
-                match (tf.is_some(), ts.is_some()) {
-                    (true, true) => {
-                        stack[sp] = second as u32;
-                        sp += 1;
-                        node = first;
-                        continue;
-                    }
-                    (true, false) => {
-                        node = first;
-                        continue;
-                    }
-                    (false, true) => {
-                        node = second;
-                        continue;
-                    }
-                    (false, false) => {}
-                }
-            }
-            if sp == 0 {
-                break;
-            }
-            sp -= 1;
-            node = stack[sp] as usize;
-        }
-        best
-    }
-
-    /// Whether anything is hit before `t_max` (shadow rays).
-    #[inline]
-    pub fn any<F: FnMut(u32, f32) -> bool>(&self, ray: &Ray, t_max: f32, mut hit: F) -> bool {
-        if self.nodes.is_empty() {
-            return false;
-        }
-        let inv = ray.d.recip();
-        let mut stack = [0u32; 64];
-        let mut sp = 1;
-        while sp > 0 {
-            sp -= 1;
-            let n = &self.nodes[stack[sp] as usize];
-            if slab(&n.bounds, ray.o, inv, t_max).is_none() {
-                continue;
-            }
-            if n.count > 0 {
-                for &p in &self.order[n.index as usize..n.index as usize + n.count as usize] {
-                    if hit(p, t_max) {
-                        return true;
-                    }
-                }
-            } else {
-                stack[sp] = n.index;
-                stack[sp + 1] = n.index + 1;
-                sp += 2;
-            }
-        }
-        false
-    }
-}
-
-/// Ray–box slab test; the entry distance when the box is hit before `t_max`.
-#[inline(always)]
-fn slab(b: &Aabb, o: Vec3, inv: Vec3, t_max: f32) -> Option<f32> {
-    let t0 = (b.min - o) * inv;
-    let t1 = (b.max - o) * inv;
-    let tmin = t0.min(t1).max_element().max(0.0);
-    let tmax = t0.max(t1).min_element().min(t_max);
-    (tmin <= tmax).then_some(tmin)
 }
 
 fn leaf(bounds: Aabb, first: usize, count: usize) -> Node {
@@ -305,12 +202,14 @@ fn split_and_recurse(
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
     use crate::geometry::shape::Shape;
+    use crate::geometry::Ray;
     use proptest::prelude::*;
 
-    fn brute(shapes: &[Shape], ray: &Ray) -> Option<(u32, f32)> {
+    /// The closest hit by testing every shape (the reference for BVH tests).
+    pub(crate) fn brute(shapes: &[Shape], ray: &Ray) -> Option<(u32, f32)> {
         let mut best: Option<(u32, f32)> = None;
         for (i, s) in shapes.iter().enumerate() {
             if let Some(h) = s.intersect(ray, 1e-4, best.map_or(f32::INFINITY, |b| b.1)) {
@@ -320,7 +219,8 @@ mod tests {
         best
     }
 
-    fn shape_strategy() -> impl Strategy<Value = Shape> {
+    /// Random spheres and triangles in a 20-unit cube.
+    pub(crate) fn shape_strategy() -> impl Strategy<Value = Shape> {
         let v = || {
             (-10.0f32..10.0, -10.0f32..10.0, -10.0f32..10.0)
                 .prop_map(|(x, y, z)| Vec3::new(x, y, z))
@@ -336,33 +236,6 @@ mod tests {
                 normals: u32::MAX
             }),
         ]
-    }
-
-    proptest! {
-        #![proptest_config(ProptestConfig { cases: 64, ..ProptestConfig::default() })]
-        #[test]
-        fn bvh_agrees_with_brute_force(
-            shapes in proptest::collection::vec(shape_strategy(), 1..300),
-            rays in proptest::collection::vec(((-12.0f32..12.0, -12.0f32..12.0, -12.0f32..12.0), (-1.0f32..1.0, -1.0f32..1.0, -1.0f32..1.0)), 32),
-        ) {
-            let bounds: Vec<Aabb> = shapes.iter().map(Shape::bounds).collect();
-            let bvh = Bvh::build(&bounds);
-            for ((ox, oy, oz), (dx, dy, dz)) in rays {
-                let d = Vec3::new(dx, dy, dz);
-                if d.length_squared() < 1e-6 { continue; }
-                let ray = Ray::new(Vec3::new(ox, oy, oz), d.normalize(), 0.0);
-                let expect = brute(&shapes, &ray);
-                let got = bvh.closest(&ray, f32::INFINITY, |p, tmax| shapes[p as usize].intersect(&ray, 1e-4, tmax).map(|h| h.t));
-                prop_assert_eq!(expect.map(|e| e.1), got.map(|g| g.1));
-                let any = bvh.any(&ray, f32::INFINITY, |p, tmax| shapes[p as usize].intersect(&ray, 1e-4, tmax).is_some());
-                prop_assert_eq!(expect.is_some(), any);
-                if let Some((_, t)) = expect {
-                    // Any-hit bounded just before the closest hit sees nothing.
-                    let blocked = bvh.any(&ray, t * 0.999, |p, tmax| shapes[p as usize].intersect(&ray, 1e-4, tmax).is_some());
-                    prop_assert!(!blocked);
-                }
-            }
-        }
     }
 
     #[test]

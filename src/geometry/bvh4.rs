@@ -298,40 +298,10 @@ fn collapse(bvh: &Bvh, b: usize, out: &mut Vec<Node4>) -> u32 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::geometry::bvh::tests::{brute, shape_strategy};
     use crate::geometry::shape::Shape;
     use glam::Vec3;
     use proptest::prelude::*;
-
-    fn brute(shapes: &[Shape], ray: &Ray) -> Option<(u32, f32)> {
-        let mut best: Option<(u32, f32)> = None;
-        for (i, s) in shapes.iter().enumerate() {
-            if let Some(h) = s.intersect(ray, 1e-4, best.map_or(f32::INFINITY, |b| b.1)) {
-                best = Some((i as u32, h.t));
-            }
-        }
-        best
-    }
-
-    fn shapes_from(spec: &[(f32, f32, f32, f32, bool)]) -> Vec<Shape> {
-        spec.iter()
-            .map(|&(x, y, z, r, tri)| {
-                let c = Vec3::new(x, y, z);
-                if tri {
-                    Shape::Triangle {
-                        p0: c,
-                        e1: Vec3::new(r, 0.0, 0.3 * r),
-                        e2: Vec3::new(0.0, r, -0.2 * r),
-                        normals: u32::MAX,
-                    }
-                } else {
-                    Shape::Sphere {
-                        center: c,
-                        radius: r,
-                    }
-                }
-            })
-            .collect()
-    }
 
     /// The binary BVH with its primitives renumbered into leaf order, as
     /// lowering does.
@@ -346,12 +316,11 @@ mod tests {
     proptest! {
         #[test]
         fn agrees_with_brute_force(
-            spec in prop::collection::vec(
-                (-10f32..10.0, -10f32..10.0, -10f32..10.0, 0.05f32..2.0, any::<bool>()), 1..200),
+            spec in prop::collection::vec(shape_strategy(), 1..200),
             rays in prop::collection::vec(
                 (-12f32..12.0, -12f32..12.0, -12f32..12.0, -1f32..1.0, -1f32..1.0, -1f32..1.0), 1..40),
         ) {
-            let mut shapes = shapes_from(&spec);
+            let mut shapes = spec;
             let w = wide(&mut shapes);
             for (ox, oy, oz, dx, dy, dz) in rays {
                 let d = Vec3::new(dx, dy, dz);
@@ -368,6 +337,13 @@ mod tests {
                     shapes[i as usize].intersect(&ray, 1e-4, tmax).is_some()
                 });
                 prop_assert_eq!(any, want.is_some());
+                if let Some((_, t)) = want {
+                    // Any-hit bounded just before the closest hit sees nothing.
+                    let blocked = w.any(&ray, t * 0.999, |i, tmax| {
+                        shapes[i as usize].intersect(&ray, 1e-4, tmax).is_some()
+                    });
+                    prop_assert!(!blocked);
+                }
             }
         }
     }

@@ -5,6 +5,7 @@
 //! that does not match the sampler (wrong Jacobian, missing lobe, wrong mixture
 //! weight) fails; so does a sampler whose weight is not f·cos/pdf.
 
+use super::tests::mat as material;
 use super::Material;
 use crate::render::sampler::Sampler;
 use glam::Vec3;
@@ -161,15 +162,6 @@ fn chi2_p_value(m: &Material, wo: Vec3, samples: usize, seed: u64) -> f64 {
         );
     }
     gamma_q((dof - 1) as f64 / 2.0, chi2 / 2.0)
-}
-
-fn material(diffuse: f64, reflection: f64, gloss: f64, transmission: f64) -> Material {
-    let mut m = crate::check::Material::default_at(Default::default());
-    m.diffuse = [diffuse; 3];
-    m.reflection = [reflection; 3];
-    m.gloss = gloss;
-    m.transmission = transmission;
-    Material::from_checked(&m)
 }
 
 #[test]

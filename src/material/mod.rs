@@ -259,7 +259,8 @@ mod tests {
     use super::*;
     use crate::render::sampler::Sampler;
 
-    fn mat(diffuse: f64, reflection: f64, gloss: f64, transmission: f64) -> Material {
+    /// A material from the four lobe parameters (grey, default IOR).
+    pub(crate) fn mat(diffuse: f64, reflection: f64, gloss: f64, transmission: f64) -> Material {
         let mut m = crate::check::Material::default_at(Default::default());
         m.diffuse = [diffuse; 3];
         m.reflection = [reflection; 3];

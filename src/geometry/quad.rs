@@ -2,9 +2,9 @@
 //! the two edges, accepting (u, v) in the unit square.
 
 use super::shape::ShapeHit;
-use super::triangle::parallelogram;
+use super::triangle::moller_trumbore;
 use super::Ray;
-use glam::{Vec2, Vec3};
+use glam::Vec3;
 
 /// The hit in `(t_min, t_max)` with `p + u·e1 + v·e2`, u, v in [0, 1]; both
 /// sides hit.
@@ -17,18 +17,15 @@ pub fn intersect(
     t_min: f32,
     t_max: f32,
 ) -> Option<ShapeHit> {
-    let (t, u, v) = parallelogram(ray, p, e1, e2)?;
-    (t > t_min && t < t_max && (0.0..=1.0).contains(&u) && (0.0..=1.0).contains(&v)).then_some(
-        ShapeHit {
-            t,
-            uv: Vec2::new(u, v),
-        },
-    )
+    moller_trumbore(ray, p, e1, e2, t_min, t_max, |_, v| {
+        (0.0..=1.0).contains(&v)
+    })
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use glam::Vec2;
 
     #[test]
     fn hit_miss_behind_grazing() {

@@ -16,36 +16,25 @@ pub fn intersect(
     t_min: f32,
     t_max: f32,
 ) -> Option<ShapeHit> {
-    // Möller–Trumbore with early exits: most tests in a BVH leaf miss, and a
-    // miss is usually known from u alone.
-    let pv = ray.d.cross(e2);
-    let det = e1.dot(pv);
-    if det.abs() < 1e-20 {
-        return None;
-    }
-    let inv = 1.0 / det;
-    let tv = ray.o - p0;
-    let u = tv.dot(pv) * inv;
-    if !(0.0..=1.0).contains(&u) {
-        return None;
-    }
-    let qv = tv.cross(e1);
-    let v = ray.d.dot(qv) * inv;
-    if v < 0.0 || u + v > 1.0 {
-        return None;
-    }
-    let t = e2.dot(qv) * inv;
-    (t > t_min && t < t_max).then_some(ShapeHit {
-        t,
-        uv: Vec2::new(u, v),
+    moller_trumbore(ray, p0, e1, e2, t_min, t_max, |u, v| {
+        v >= 0.0 && u + v <= 1.0
     })
 }
 
-/// Möller–Trumbore on the plane spanned by `e1`, `e2` from `p`: the ray
-/// parameter t and the coordinates (u, v) of the hit in that basis; `None`
-/// when the ray is parallel to the plane.
+/// Möller–Trumbore on the plane spanned by `e1`, `e2` from `p`: the hit with
+/// coordinates (u, v) in that basis, u in [0, 1] and `v_ok(u, v)`, and t in
+/// `(t_min, t_max)`. It exits early: most tests in a BVH leaf miss, and a miss
+/// is usually known from u alone. Shared with quads.
 #[inline(always)]
-pub fn parallelogram(ray: &Ray, p: Vec3, e1: Vec3, e2: Vec3) -> Option<(f32, f32, f32)> {
+pub fn moller_trumbore(
+    ray: &Ray,
+    p: Vec3,
+    e1: Vec3,
+    e2: Vec3,
+    t_min: f32,
+    t_max: f32,
+    v_ok: impl Fn(f32, f32) -> bool,
+) -> Option<ShapeHit> {
     let pv = ray.d.cross(e2);
     let det = e1.dot(pv);
     if det.abs() < 1e-20 {
@@ -54,10 +43,19 @@ pub fn parallelogram(ray: &Ray, p: Vec3, e1: Vec3, e2: Vec3) -> Option<(f32, f32
     let inv = 1.0 / det;
     let tv = ray.o - p;
     let u = tv.dot(pv) * inv;
+    if !(0.0..=1.0).contains(&u) {
+        return None;
+    }
     let qv = tv.cross(e1);
     let v = ray.d.dot(qv) * inv;
+    if !v_ok(u, v) {
+        return None;
+    }
     let t = e2.dot(qv) * inv;
-    Some((t, u, v))
+    (t > t_min && t < t_max).then_some(ShapeHit {
+        t,
+        uv: Vec2::new(u, v),
+    })
 }
 
 #[cfg(test)]

@@ -148,7 +148,7 @@ impl State {
             self.files.insert(absolute(&f.path));
         }
         let colour = super::stderr_is_terminal();
-        let Some(mut scene) = checked.scene.clone() else {
+        let Some(mut scene) = checked.scene else {
             eprint!(
                 "{}",
                 checked.diagnostics.render_human(&checked.sources, colour)

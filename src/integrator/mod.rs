@@ -10,6 +10,7 @@ pub mod whitted;
 use crate::check::IntegratorKind;
 use crate::geometry::{offset_origin, Ray};
 use crate::ir::{Hit, Scene};
+use crate::material::Material;
 use crate::render::sampler::Sampler;
 use crate::render::sampling::power_heuristic;
 use glam::Vec3;
@@ -41,6 +42,7 @@ pub const T_MIN: f32 = 1e-5;
 pub fn direct_light_mis(
     scene: &Scene,
     hit: &Hit,
+    material: &Material,
     wo: Vec3,
     time: f32,
     sampler: &mut Sampler,
@@ -53,7 +55,6 @@ pub fn direct_light_mis(
     let Some(ls) = light.sample(scene, hit.p, time, u) else {
         return Vec3::ZERO;
     };
-    let material = &scene.materials[scene.prims[hit.prim as usize].material as usize];
     let (f, bsdf_pdf) = material.eval(wo, ls.wi, hit.n_shading);
     if f == Vec3::ZERO {
         return Vec3::ZERO;

@@ -72,7 +72,7 @@ pub fn path_li(scene: &Scene, mut ray: Ray, sampler: &mut Sampler, nee: bool) ->
         }
         // Direct light (the paper's ambient term is added here when asked for: biased).
         if nee && material.has_smooth_lobe() {
-            radiance += beta * direct_light_mis(scene, &hit, wo, ray.time, sampler);
+            radiance += beta * direct_light_mis(scene, &hit, material, wo, ray.time, sampler);
         }
         if s.ambient != [0.0; 3] && material.lobe_pdf[0] > 0.0 {
             let a = Vec3::new(

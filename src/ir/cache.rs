@@ -5,6 +5,8 @@
 use super::lower::Geometry;
 use super::mesh::{self, MeshData};
 use crate::check;
+use glam::DVec3;
+use std::collections::hash_map::DefaultHasher;
 use std::collections::HashMap;
 use std::hash::{Hash, Hasher};
 use std::path::{Path, PathBuf};
@@ -14,8 +16,9 @@ use std::time::SystemTime;
 /// Meshes and geometry kept from earlier compiles.
 #[derive(Default)]
 pub struct LowerCache {
-    /// Whether to keep a copy of the geometry (not for a single compile).
-    no_geometry: bool,
+    /// A single compile (`ptsc render`): nothing is kept for a next one, so
+    /// neither the geometry key nor mesh content hashes are computed.
+    one_off: bool,
     meshes: HashMap<PathBuf, CachedMesh>,
     geometry: Option<(u64, Geometry)>,
     /// Mesh files read and parsed so far (a cache hit does not count).
@@ -37,18 +40,24 @@ fn stamp(path: &Path) -> (u64, Option<SystemTime>) {
 }
 
 fn hash_bytes(bytes: &[u8]) -> u64 {
-    let mut h = std::collections::hash_map::DefaultHasher::new();
+    let mut h = DefaultHasher::new();
     bytes.hash(&mut h);
     h.finish()
 }
 
 impl LowerCache {
-    /// A cache for a single compile: it keeps no copy of the geometry.
+    /// A cache for a single compile: it keeps no copy of the geometry and
+    /// hashes nothing.
     pub fn one_off() -> Self {
         LowerCache {
-            no_geometry: true,
+            one_off: true,
             ..Default::default()
         }
+    }
+
+    /// Whether this cache serves a single compile.
+    pub fn is_one_off(&self) -> bool {
+        self.one_off
     }
 
     /// The mesh at `path`, parsed once per content.
@@ -60,6 +69,10 @@ impl LowerCache {
             }
         }
         let bytes = std::fs::read(path).map_err(|e| format!("cannot read the file: {e}"))?;
+        if self.one_off {
+            self.mesh_loads += 1;
+            return mesh::parse(path, &bytes).map(Arc::new);
+        }
         let content = hash_bytes(&bytes);
         if let Some(c) = self.meshes.get_mut(path) {
             if c.content == content {
@@ -86,61 +99,36 @@ impl LowerCache {
     /// source spans, so that edits elsewhere in the file keep the geometry.
     pub fn geometry_key(&mut self, scene: &check::Scene) -> u64 {
         let mut h = std::collections::hash_map::DefaultHasher::new();
-        let f = |x: f64, h: &mut std::collections::hash_map::DefaultHasher| x.to_bits().hash(h);
-        f(scene.camera.shutter.0, &mut h);
-        f(scene.camera.shutter.1, &mut h);
+        let numbers = |xs: &mut dyn Iterator<Item = f64>, h: &mut DefaultHasher| {
+            xs.for_each(|x| x.to_bits().hash(h))
+        };
+        numbers(
+            &mut [scene.camera.shutter.0, scene.camera.shutter.1].into_iter(),
+            &mut h,
+        );
         for obj in &scene.objects {
-            for x in obj.transform.to_cols_array() {
-                f(x, &mut h);
-            }
-            for x in obj.velocity.to_array() {
-                f(x, &mut h);
-            }
-            match &obj.shape {
+            numbers(&mut obj.transform.to_cols_array().into_iter(), &mut h);
+            numbers(&mut obj.velocity.to_array().into_iter(), &mut h);
+            std::mem::discriminant(&obj.shape).hash(&mut h);
+            let coords = |vs: &[DVec3]| vs.iter().flat_map(|v| v.to_array()).collect::<Vec<_>>();
+            let shape: Vec<f64> = match &obj.shape {
                 check::Shape::Sphere { center, radius } => {
-                    0u8.hash(&mut h);
-                    center.to_array().iter().for_each(|x| f(*x, &mut h));
-                    f(*radius, &mut h);
+                    [coords(&[*center]), vec![*radius]].concat()
                 }
                 check::Shape::Disk {
                     center,
                     normal,
                     radius,
-                } => {
-                    1u8.hash(&mut h);
-                    center.to_array().iter().for_each(|x| f(*x, &mut h));
-                    normal.to_array().iter().for_each(|x| f(*x, &mut h));
-                    f(*radius, &mut h);
-                }
-                check::Shape::Plane { point, normal } => {
-                    2u8.hash(&mut h);
-                    point.to_array().iter().for_each(|x| f(*x, &mut h));
-                    normal.to_array().iter().for_each(|x| f(*x, &mut h));
-                }
+                } => [coords(&[*center, *normal]), vec![*radius]].concat(),
+                check::Shape::Plane { point, normal } => coords(&[*point, *normal]),
                 check::Shape::Quad {
                     corner,
                     edge1,
                     edge2,
-                } => {
-                    3u8.hash(&mut h);
-                    for v in [corner, edge1, edge2] {
-                        v.to_array().iter().for_each(|x| f(*x, &mut h));
-                    }
-                }
-                check::Shape::Triangle { v } => {
-                    4u8.hash(&mut h);
-                    for p in v {
-                        p.to_array().iter().for_each(|x| f(*x, &mut h));
-                    }
-                }
-                check::Shape::Box { min, max } => {
-                    5u8.hash(&mut h);
-                    for v in [min, max] {
-                        v.to_array().iter().for_each(|x| f(*x, &mut h));
-                    }
-                }
+                } => coords(&[*corner, *edge1, *edge2]),
+                check::Shape::Triangle { v } => coords(v),
+                check::Shape::Box { min, max } => coords(&[*min, *max]),
                 check::Shape::Mesh { path, smooth, .. } => {
-                    6u8.hash(&mut h);
                     path.hash(&mut h);
                     smooth.hash(&mut h);
                     // The content, through the mesh cache (a missing file hashes
@@ -149,8 +137,10 @@ impl LowerCache {
                         Ok(_) => self.meshes[path.as_path()].content.hash(&mut h),
                         Err(e) => e.hash(&mut h),
                     }
+                    Vec::new()
                 }
-            }
+            };
+            numbers(&mut shape.into_iter(), &mut h);
         }
         h.finish()
     }
@@ -166,9 +156,7 @@ impl LowerCache {
     /// Keeps `geometry` for the next compile.
     pub fn store_geometry(&mut self, key: u64, geometry: &Geometry) {
         self.bvh_builds += 1;
-        if !self.no_geometry {
-            self.geometry = Some((key, geometry.clone()));
-        }
+        self.geometry = Some((key, geometry.clone()));
     }
 }
 

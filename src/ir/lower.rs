@@ -49,6 +49,10 @@ pub fn lower(scene: &check::Scene) -> Result<Scene, Diagnostics> {
 /// neither reloads meshes nor rebuilds the BVH.
 pub fn lower_cached(scene: &check::Scene, cache: &mut LowerCache) -> Result<Scene, Diagnostics> {
     let materials: Vec<Material> = scene.materials.iter().map(Material::from_checked).collect();
+    if cache.is_one_off() {
+        let geometry = build_geometry(scene, cache)?;
+        return Ok(finish(scene, materials, geometry));
+    }
     let key = cache.geometry_key(scene);
     let mut geometry = match cache.reuse_geometry(key) {
         Some(g) => g,
@@ -74,7 +78,6 @@ pub struct Geometry {
     normals: Vec<[Vec3; 3]>,
     bounds: Aabb,
     wide: Bvh4,
-    mesh_files: Vec<std::path::PathBuf>,
     /// The object each primitive came from.
     prim_object: Vec<u32>,
 }
@@ -83,7 +86,6 @@ fn build_geometry(scene: &check::Scene, cache: &mut LowerCache) -> Result<Geomet
     let mut diags = Diagnostics::new();
     let mut prims: Vec<Prim> = Vec::new();
     let mut normals: Vec<[Vec3; 3]> = Vec::new();
-    let mut mesh_files = Vec::new();
     let mut object_ranges = Vec::with_capacity(scene.objects.len());
     for obj in &scene.objects {
         let first = prims.len();
@@ -193,7 +195,6 @@ fn build_geometry(scene: &check::Scene, cache: &mut LowerCache) -> Result<Geomet
                         continue;
                     }
                 };
-                mesh_files.push(path.clone());
                 let flip = m.determinant() < 0.0;
                 let pos: Vec<Vec3> = data.positions.iter().map(|p| pt(p.as_dvec3())).collect();
                 let nm = m.inverse().transpose();
@@ -304,7 +305,6 @@ fn build_geometry(scene: &check::Scene, cache: &mut LowerCache) -> Result<Geomet
         normals,
         bounds: bvh.bounds(),
         wide,
-        mesh_files,
         prim_object,
     })
 }
@@ -371,7 +371,6 @@ fn finish(scene: &check::Scene, materials: Vec<Material>, geometry: Geometry) ->
         normals,
         bounds,
         wide,
-        mesh_files,
         ..
     } = geometry;
     let unbounded: Vec<u32> = prims
@@ -445,7 +444,6 @@ fn finish(scene: &check::Scene, materials: Vec<Material>, geometry: Geometry) ->
         background,
         env_light,
         bounds,
-        mesh_files,
     };
     let scene_bounds = if bounds.min.is_finite() {
         bounds.grow(v3(scene.camera.position))

@@ -80,8 +80,6 @@ pub struct Scene {
     pub env_light: Option<u32>,
     /// Bounds of the bounded geometry.
     pub bounds: Aabb,
-    /// Mesh files read (for `watch`).
-    pub mesh_files: Vec<std::path::PathBuf>,
 }
 
 const _: () = assert!(std::mem::size_of::<Prim>() == 64);

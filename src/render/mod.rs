@@ -53,14 +53,63 @@ pub fn render(
     progress: &(dyn Fn(u64) + Sync),
     on_pass: &mut dyn FnMut(&Film, u32),
 ) -> (Film, Outcome) {
-    let (w, h) = (scene.settings.width, scene.settings.height);
+    let s = &scene.settings;
+    let view = View {
+        width: s.width,
+        height: s.height,
+        samples: s.samples,
+        scale: 1,
+    };
+    render_view(scene, integrator, view, cancel, progress, on_pass)
+}
+
+/// A quick preview: one sample per pixel of an image `divisor` times smaller
+/// on each side than the scene's (each preview pixel covers divisor² pixels of
+/// the full image). `None` when cancelled.
+pub fn render_preview(
+    scene: &Scene,
+    integrator: &dyn Integrator,
+    cancel: &AtomicBool,
+    divisor: u32,
+) -> Option<Film> {
+    let view = View {
+        width: (scene.settings.width / divisor).max(1),
+        height: (scene.settings.height / divisor).max(1),
+        samples: 1,
+        scale: divisor,
+    };
+    let (film, outcome) = render_view(scene, integrator, view, cancel, &|_| {}, &mut |_, _| {});
+    (outcome == Outcome::Complete).then_some(film)
+}
+
+/// The image to render: its size, samples per pixel, and how many pixels of
+/// the scene's image one of its pixels covers on each side.
+#[derive(Debug, Clone, Copy)]
+struct View {
+    width: u32,
+    height: u32,
+    samples: u32,
+    scale: u32,
+}
+
+/// The pixel loop: tiles over rayon, progressive passes.
+fn render_view(
+    scene: &Scene,
+    integrator: &dyn Integrator,
+    view: View,
+    cancel: &AtomicBool,
+    progress: &(dyn Fn(u64) + Sync),
+    on_pass: &mut dyn FnMut(&Film, u32),
+) -> (Film, Outcome) {
+    let (w, h) = (view.width, view.height);
+    let scale = view.scale as f32;
     let mut film = Film::new(w, h);
     let tiles: Vec<(u32, u32)> = (0..h.div_ceil(TILE))
         .flat_map(|ty| (0..w.div_ceil(TILE)).map(move |tx| (tx * TILE, ty * TILE)))
         .collect();
     let done = AtomicU64::new(0);
     let mut start = 0;
-    for end in pass_ends(scene.settings.samples) {
+    for end in pass_ends(view.samples) {
         let results: Vec<Option<TileResult>> = tiles
             .par_iter()
             .map(|&(x0, y0)| {
@@ -73,7 +122,7 @@ pub fn render(
                     for x in x0..x1 {
                         let mut sum = Vec3::ZERO;
                         for s in start..end {
-                            sum += sample(scene, integrator, x, y, s, 1.0);
+                            sum += sample(scene, integrator, x, y, s, scale);
                         }
                         out.push(sum);
                     }
@@ -98,42 +147,6 @@ pub fn render(
         start = end;
     }
     (film, Outcome::Complete)
-}
-
-/// A quick preview: one sample per pixel of an image `divisor` times smaller
-/// on each side than the scene's (each preview pixel covers divisor² pixels of
-/// the full image). `None` when cancelled.
-pub fn render_preview(
-    scene: &Scene,
-    integrator: &dyn Integrator,
-    cancel: &AtomicBool,
-    divisor: u32,
-) -> Option<Film> {
-    let (w, h) = (
-        (scene.settings.width / divisor).max(1),
-        (scene.settings.height / divisor).max(1),
-    );
-    let rows: Vec<Option<Vec<Vec3>>> = (0..h)
-        .into_par_iter()
-        .map(|y| {
-            if cancel.load(Ordering::Relaxed) {
-                return None;
-            }
-            Some(
-                (0..w)
-                    .map(|x| sample(scene, integrator, x, y, 0, divisor as f32))
-                    .collect(),
-            )
-        })
-        .collect();
-    let mut film = Film::new(w, h);
-    for (y, row) in rows.into_iter().enumerate() {
-        for (x, v) in row?.into_iter().enumerate() {
-            film.add(x as u32, y as u32, v);
-        }
-    }
-    film.samples = 1;
-    Some(film)
 }
 
 /// One sample of pixel (x, y): a jittered position (box filter), lens and

@@ -34,10 +34,6 @@ const MAX_LEAF: usize = 4;
 const PARALLEL_THRESHOLD: usize = 16 * 1024;
 
 /// A subtree built on its own (possibly on another thread), nodes local to it.
-struct Subtree {
-    nodes: Vec<Node>,
-}
-
 impl Bvh {
     /// Builds a BVH over the given primitive bounds.
     pub fn build(bounds: &[Aabb]) -> Bvh {
@@ -46,11 +42,8 @@ impl Bvh {
         }
         let centroids: Vec<Vec3> = bounds.iter().map(Aabb::center).collect();
         let mut order: Vec<u32> = (0..bounds.len() as u32).collect();
-        let sub = build_range(bounds, &centroids, &mut order, 0);
-        Bvh {
-            nodes: sub.nodes,
-            order,
-        }
+        let nodes = subtree(bounds, &centroids, &mut order, 0);
+        Bvh { nodes, order }
     }
 
     /// Bounds of everything.
@@ -68,15 +61,42 @@ fn leaf(bounds: Aabb, first: usize, count: usize) -> Node {
     }
 }
 
-/// Builds the subtree over `order` (which starts at `offset` in the full order).
-fn build_range(bounds: &[Aabb], centroids: &[Vec3], order: &mut [u32], offset: usize) -> Subtree {
+/// A node slot to be filled in.
+const PLACEHOLDER: Node = Node {
+    bounds: Aabb::EMPTY,
+    index: 0,
+    count: 0,
+    axis: 0,
+};
+
+/// The subtree over `order` (which starts at `offset` in the full order) in
+/// a node array of its own, its root first.
+fn subtree(bounds: &[Aabb], centroids: &[Vec3], order: &mut [u32], offset: usize) -> Vec<Node> {
+    // About 0.6 nodes per primitive with leaves of up to four.
+    let mut nodes = Vec::with_capacity(order.len() * 2 / 3 + 1);
+    nodes.push(PLACEHOLDER);
+    build_node(bounds, centroids, order, offset, &mut nodes, 0);
+    nodes
+}
+
+/// Builds the subtree over `order` into `out`, its root into the reserved
+/// slot `out[root]`. The two children of a node are reserved side by side and
+/// their subtrees appended after them: no node is copied, except where the
+/// two halves were built in parallel into arrays of their own.
+fn build_node(
+    bounds: &[Aabb],
+    centroids: &[Vec3],
+    order: &mut [u32],
+    offset: usize,
+    out: &mut Vec<Node>,
+    root: usize,
+) {
     let node_bounds = order
         .iter()
         .fold(Aabb::EMPTY, |b, &i| b.union(bounds[i as usize]));
     if order.len() <= MAX_LEAF {
-        return Subtree {
-            nodes: vec![leaf(node_bounds, offset, order.len())],
-        };
+        out[root] = leaf(node_bounds, offset, order.len());
+        return;
     }
     let cb = order
         .iter()
@@ -99,7 +119,41 @@ fn build_range(bounds: &[Aabb], centroids: &[Vec3], order: &mut [u32], offset: u
         // 7 % on cornell and 9 % on mesh).
         sah_split(bounds, centroids, order, &cb, axis).map_or(order.len() / 2, |(_, mid)| mid)
     };
-    split_and_recurse(bounds, centroids, order, offset, node_bounds, axis, mid)
+    let n = order.len();
+    let (lo, hi) = order.split_at_mut(mid);
+    let left = out.len();
+    out[root] = Node {
+        bounds: node_bounds,
+        index: left as u32,
+        count: 0,
+        axis: axis as u16,
+    };
+    if n >= PARALLEL_THRESHOLD {
+        let (a, b) = rayon::join(
+            || subtree(bounds, centroids, lo, offset),
+            || subtree(bounds, centroids, hi, offset + mid),
+        );
+        // The two roots side by side, then the rest of each half; local
+        // node k >= 1 of a half moves to base + k - 1.
+        let base_a = left + 2;
+        let base_b = base_a + a.len() - 1;
+        let remap = |mut node: Node, base: usize| {
+            if node.count == 0 {
+                node.index = (base + node.index as usize - 1) as u32;
+            }
+            node
+        };
+        out.reserve(a.len() + b.len());
+        out.push(remap(a[0], base_a));
+        out.push(remap(b[0], base_b));
+        out.extend(a[1..].iter().map(|&node| remap(node, base_a)));
+        out.extend(b[1..].iter().map(|&node| remap(node, base_b)));
+    } else {
+        out.push(PLACEHOLDER);
+        out.push(PLACEHOLDER);
+        build_node(bounds, centroids, lo, offset, out, left);
+        build_node(bounds, centroids, hi, offset + mid, out, left + 1);
+    }
 }
 
 /// Binned SAH along `axis`: the best split's cost, with `order` partitioned so
@@ -152,54 +206,6 @@ fn sah_split(
         }
     }
     Some((cost, l))
-}
-
-fn split_and_recurse(
-    bounds: &[Aabb],
-    centroids: &[Vec3],
-    order: &mut [u32],
-    offset: usize,
-    node_bounds: Aabb,
-    axis: usize,
-    mid: usize,
-) -> Subtree {
-    let n = order.len();
-    let (lo, hi) = order.split_at_mut(mid);
-    let (left, right) = if n >= PARALLEL_THRESHOLD {
-        rayon::join(
-            || build_range(bounds, centroids, lo, offset),
-            || build_range(bounds, centroids, hi, offset + mid),
-        )
-    } else {
-        (
-            build_range(bounds, centroids, lo, offset),
-            build_range(bounds, centroids, hi, offset + mid),
-        )
-    };
-    // Layout: this node, then its two children side by side, then the rest of
-    // the left subtree, then the rest of the right subtree.
-    let mut nodes = Vec::with_capacity(1 + left.nodes.len() + right.nodes.len());
-    nodes.push(Node {
-        bounds: node_bounds,
-        index: 1,
-        count: 0,
-        axis: axis as u16,
-    });
-    // Children at 1 and 2; the left subtree's descendants from 3, the right's
-    // after them. Inside a subtree, local node k >= 1 moves to base + k - 1.
-    let left_base = 3;
-    let right_base = 3 + left.nodes.len() - 1;
-    let remap = |mut node: Node, base: usize| {
-        if node.count == 0 {
-            node.index = (base + node.index as usize - 1) as u32;
-        }
-        node
-    };
-    nodes.push(remap(left.nodes[0], left_base));
-    nodes.push(remap(right.nodes[0], right_base));
-    nodes.extend(left.nodes[1..].iter().map(|n| remap(*n, left_base)));
-    nodes.extend(right.nodes[1..].iter().map(|n| remap(*n, right_base)));
-    Subtree { nodes }
 }
 
 #[cfg(test)]

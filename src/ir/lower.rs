@@ -331,8 +331,8 @@ fn permute<T>(v: &mut [T], perm: &[u32]) {
 /// (planes are kept apart, see [`Scene::unbounded`]).
 fn build_bvh(prims: &[Prim], shutter: (f64, f64)) -> Bvh {
     let (t0, t1) = (shutter.0 as f32, shutter.1 as f32);
-    let mut bounded = Vec::new();
-    let mut boxes = Vec::new();
+    let mut bounded = Vec::with_capacity(prims.len());
+    let mut boxes = Vec::with_capacity(prims.len());
     for (i, p) in prims.iter().enumerate() {
         if matches!(p.shape, Shape::Plane { .. }) {
             continue;

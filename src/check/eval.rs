@@ -483,3 +483,46 @@ fn call(
         other => unreachable!("function table and evaluator disagree on `{other}` at {span:?}"),
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use crate::check::{check_str, Shape};
+    use std::path::Path;
+
+    /// The value of `expr` used as a sphere's radius.
+    fn radius(expr: &str) -> f64 {
+        let src = format!(
+            "camera {{ position <0, 0, 5> look_at <0, 0, 0> }}\n\
+             sphere {{ center <0, 0, 0> radius {expr} }}\n"
+        );
+        let c = check_str(Path::new("t.pts"), &src);
+        let scene = c
+            .scene
+            .unwrap_or_else(|| panic!("{}", c.diagnostics.render_human(&c.sources, false)));
+        match scene.objects[0].shape {
+            Shape::Sphere { radius, .. } => radius,
+            ref s => panic!("not a sphere: {s:?}"),
+        }
+    }
+
+    #[test]
+    fn operators_bind_and_associate_as_in_arithmetic() {
+        // Each wrong precedence or associativity gives another (or a
+        // negative, rejected) value.
+        for (expr, want) in [
+            ("10 - 2 * 3 - 1", 3.0),
+            ("2 * 3 + 4 * 5", 26.0),
+            ("1 - 2 + 3", 2.0),
+            ("12 / 3 * 2", 8.0),
+            ("8 / 2 / 2", 2.0),
+            ("2 - -3", 5.0),
+            ("-2 * -3", 6.0),
+            ("- - 3", 3.0),
+            ("-(1 - 3) * 2", 4.0),
+            ("2 * (1 + 2) - 1", 5.0),
+            ("1 + 2 * 3 * 2 - 4 / 2", 11.0),
+        ] {
+            assert_eq!(radius(expr), want, "{expr}");
+        }
+    }
+}

@@ -5,7 +5,7 @@ use super::ast::*;
 use super::parser::Rule;
 use crate::source::FileId;
 use crate::span::Span;
-use pest::iterators::Pair;
+use pest::iterators::{Pair, Pairs};
 
 /// Builds AST nodes from the pairs of one file.
 pub struct Builder {
@@ -176,13 +176,39 @@ impl Builder {
         }
     }
 
-    /// `expr`, `term`, `factor` and the primaries.
+    /// The next operand of `inner`: unary minus signs and a primary.
+    fn build_operand(&self, inner: &mut Pairs<Rule>) -> Expr {
+        let mut signs: Option<(Span, usize)> = None;
+        for pair in inner.by_ref() {
+            if pair.as_rule() == Rule::neg {
+                let (first, n) = signs.unwrap_or((self.span(&pair), 0));
+                signs = Some((first, n + 1));
+                continue;
+            }
+            let e = self.build_expr(pair);
+            // `--x` is `x`: runs of signs fold, so that long runs cannot nest deeply.
+            return match signs {
+                Some((first, n)) if n % 2 == 1 => Expr {
+                    span: first.join(e.span),
+                    kind: ExprKind::Neg(Box::new(e)),
+                },
+                _ => e,
+            };
+        }
+        unreachable!("the grammar puts a primary after the signs")
+    }
+
+    /// An expression pair or a primary.
     fn build_expr(&self, pair: Pair<Rule>) -> Expr {
         let span = self.span(&pair);
         match pair.as_rule() {
-            Rule::expr | Rule::term => {
+            Rule::expr => {
+                // The grammar keeps `a + b * -c` flat: operands and operators
+                // alternate. Precedence in one pass: products fold into
+                // `term`; a `+` or `-` closes the term into the pending sum.
                 let mut inner = pair.into_inner();
-                let mut lhs = self.build_expr(inner.next().unwrap());
+                let mut term = self.build_operand(&mut inner);
+                let mut sum: Option<(Expr, BinOp)> = None;
                 while let Some(op) = inner.next() {
                     let op = match op.as_str() {
                         "+" => BinOp::Add,
@@ -191,31 +217,21 @@ impl Builder {
                         "/" => BinOp::Div,
                         o => unreachable!("operator {o}"),
                     };
-                    let rhs = self.build_expr(inner.next().unwrap());
-                    let span = lhs.span.join(rhs.span);
-                    lhs = Expr {
-                        kind: ExprKind::Binary {
-                            op,
-                            lhs: Box::new(lhs),
-                            rhs: Box::new(rhs),
-                        },
-                        span,
-                    };
-                }
-                lhs
-            }
-            Rule::factor => {
-                let parts: Vec<Pair<Rule>> = pair.into_inner().collect();
-                let (last, negs) = parts.split_last().unwrap();
-                let e = self.build_expr(last.clone());
-                // `--x` is `x`: fold runs of signs so that long runs cannot nest deeply.
-                if negs.len() % 2 == 1 {
-                    Expr {
-                        kind: ExprKind::Neg(Box::new(e)),
-                        span,
+                    let rhs = self.build_operand(&mut inner);
+                    if matches!(op, BinOp::Mul | BinOp::Div) {
+                        term = binary(op, term, rhs);
+                    } else {
+                        let lhs = match sum.take() {
+                            Some((lhs, pending)) => binary(pending, lhs, term),
+                            None => term,
+                        };
+                        sum = Some((lhs, op));
+                        term = rhs;
                     }
-                } else {
-                    e
+                }
+                match sum {
+                    Some((lhs, pending)) => binary(pending, lhs, term),
+                    None => term,
                 }
             }
             Rule::number => Expr {
@@ -240,9 +256,10 @@ impl Builder {
                 span,
             },
             Rule::color => {
-                let f = pair.into_inner().nth(1).unwrap();
+                let mut inner = pair.into_inner();
+                inner.next(); // `rgb`
                 Expr {
-                    kind: ExprKind::Color(Box::new(self.build_expr(f))),
+                    kind: ExprKind::Color(Box::new(self.build_operand(&mut inner))),
                     span,
                 }
             }
@@ -290,4 +307,16 @@ pub fn unescape(s: &str) -> String {
         }
     }
     out
+}
+
+/// `lhs op rhs`, spanning both.
+fn binary(op: BinOp, lhs: Expr, rhs: Expr) -> Expr {
+    Expr {
+        span: lhs.span.join(rhs.span),
+        kind: ExprKind::Binary {
+            op,
+            lhs: Box::new(lhs),
+            rhs: Box::new(rhs),
+        },
+    }
 }

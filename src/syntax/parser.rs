@@ -35,7 +35,7 @@ pub fn rule_name(rule: Rule) -> &'static str {
         Rule::block_stmt | Rule::block_kind => "a block such as `sphere { … }`",
         Rule::block => "a block `{ … }`",
         Rule::entry | Rule::param => "a parameter name",
-        Rule::expr | Rule::term | Rule::factor | Rule::primary => {
+        Rule::expr | Rule::operand | Rule::primary => {
             "a value (number, vector, colour, string or name)"
         }
         Rule::paren | Rule::lparen => "`(`",
@@ -52,6 +52,7 @@ pub fn rule_name(rule: Rule) -> &'static str {
         Rule::boundary => "the end of a word",
         Rule::add_op => "`+` or `-`",
         Rule::mul_op => "`*` or `/`",
+        Rule::bin_op => "an operator",
         Rule::neg => "`-`",
         Rule::equals => "`=`",
         Rule::semicolon => "`;`",

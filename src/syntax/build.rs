@@ -13,15 +13,18 @@ pub struct Builder {
     pub file: FileId,
     /// The first declaration that uses a reserved word as its name.
     pub reserved: std::cell::RefCell<Option<crate::diag::Diagnostic>>,
+    /// Where in the file the parsed text starts (pairs count from there).
+    pub base: std::cell::Cell<usize>,
 }
 
 impl Builder {
     fn span(&self, pair: &Pair<Rule>) -> Span {
         let s = pair.as_span();
-        Span::new(self.file, s.start(), s.end())
+        let base = self.base.get();
+        Span::new(self.file, base + s.start(), base + s.end())
     }
 
-    /// `file`
+    /// `file`, parsed whole.
     pub fn build_file(&self, pair: Pair<Rule>) -> File {
         let statements = pair
             .into_inner()
@@ -58,7 +61,8 @@ impl Builder {
         id
     }
 
-    fn build_statement(&self, pair: Pair<Rule>) -> Statement {
+    /// A statement pair.
+    pub fn build_statement(&self, pair: Pair<Rule>) -> Statement {
         let span = self.span(&pair);
         let rule = pair.as_rule();
         let mut inner = pair.into_inner();

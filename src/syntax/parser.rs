@@ -25,7 +25,7 @@ pub fn rule_name(rule: Rule) -> &'static str {
     match rule {
         Rule::EOI => "end of file",
         Rule::WHITESPACE | Rule::COMMENT => "a blank or comment",
-        Rule::file | Rule::statement => "a statement",
+        Rule::file | Rule::statement | Rule::next_statement | Rule::only_blanks => "a statement",
         Rule::let_stmt | Rule::kw_let => "`let`",
         Rule::include_stmt | Rule::kw_include => "`include`",
         Rule::for_stmt | Rule::kw_for => "`for`",

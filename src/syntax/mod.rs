@@ -19,45 +19,116 @@ pub fn parse(file: FileId, text: &str) -> Result<ast::File, Diagnostic> {
     if let Some(d) = check_nesting(file, text) {
         return Err(d);
     }
+    parse_in_pieces(file, text, PIECE)
+}
+
+/// Least size of the pieces a file is cut into for parsing in parallel.
+const PIECE: usize = 64 * 1024;
+
+/// [`parse`] with the text cut into pieces of at least `min_piece` bytes,
+/// parsed in parallel.
+fn parse_in_pieces(file: FileId, text: &str, min_piece: usize) -> Result<ast::File, Diagnostic> {
+    use rayon::prelude::*;
+    let parsed: Vec<Option<Parsed>> = pieces(text, min_piece)
+        .into_par_iter()
+        .map(|(start, end)| parse_statements(file, &text[start..end], start))
+        .collect();
+    let mut statements = Vec::new();
+    let mut reserved = None;
+    for piece in parsed {
+        let Some(piece) = piece else {
+            // A syntax error: parse the whole file so that the error is
+            // reported exactly as a whole-file parse finds it.
+            return parse_whole(file, text);
+        };
+        statements.extend(piece.statements);
+        reserved = reserved.or(piece.reserved);
+    }
+    match reserved {
+        Some(d) => Err(d),
+        None => Ok(ast::File { statements }),
+    }
+}
+
+/// The statements of a piece and its first misuse of a reserved word.
+struct Parsed {
+    statements: Vec<ast::Statement>,
+    reserved: Option<Diagnostic>,
+}
+
+/// The statements of `text` (which starts at byte `base` of the file), one
+/// per pest call: pest queues two tokens of about 40 bytes per pair, and a
+/// large file's queue was 25 times the size of its text (zeroing the fresh
+/// pages alone took a third of the parse). `None` on a syntax error.
+fn parse_statements(file: FileId, text: &str, base: usize) -> Option<Parsed> {
     let builder = build::Builder {
         file,
         reserved: Default::default(),
         base: Default::default(),
     };
-    // One statement at a time: pest queues two tokens per pair, about 40 bytes
-    // each, and a whole large file's queue was 25 times the size of its text
-    // (the fresh pages alone cost a third of the parse time).
     let mut statements = Vec::new();
     let mut pos = 0;
-    let ast = loop {
+    loop {
         let rest = &text[pos..];
         match PtsParser::parse(Rule::next_statement, rest) {
             Ok(mut pairs) => {
-                let pair = pairs.next().expect("a statement pair");
+                let pair = pairs.next()?;
                 let end = pair.as_span().end();
-                builder.base.set(pos);
+                builder.base.set(base + pos);
                 if let Some(statement) = pair.into_inner().next() {
                     statements.push(builder.build_statement(statement));
                 }
                 pos += end.max(1);
             }
-            Err(_) if PtsParser::parse(Rule::only_blanks, rest).is_ok() => {
-                break ast::File { statements };
-            }
-            Err(_) => {
-                // A syntax error: parse the whole file so that the error is
-                // reported exactly as a whole-file parse finds it.
-                let mut pairs = PtsParser::parse(Rule::file, text)
-                    .map_err(|e| parser::convert_error(e, file, text))?;
-                builder.base.set(0);
-                break builder.build_file(pairs.next().expect("a file pair"));
-            }
+            Err(_) if PtsParser::parse(Rule::only_blanks, rest).is_ok() => break,
+            Err(_) => return None,
         }
+    }
+    Some(Parsed {
+        statements,
+        reserved: builder.reserved.into_inner(),
+    })
+}
+
+/// The whole file in one pest call: the path that reports syntax errors.
+fn parse_whole(file: FileId, text: &str) -> Result<ast::File, Diagnostic> {
+    let mut pairs =
+        PtsParser::parse(Rule::file, text).map_err(|e| parser::convert_error(e, file, text))?;
+    let builder = build::Builder {
+        file,
+        reserved: Default::default(),
+        base: Default::default(),
     };
+    let ast = builder.build_file(pairs.next().expect("a file pair"));
     match builder.reserved.into_inner() {
         Some(d) => Err(d),
         None => Ok(ast),
     }
+}
+
+/// Cuts `text` into pieces of at least `min_piece` bytes, each ending just
+/// after a `}` or `;` at nesting depth 0 outside comments and strings. In a
+/// valid file such a character ends a statement (blocks close statements, `;`
+/// closes `let`), so the pieces parse alone into the file's statements; in an
+/// invalid one some piece fails and the whole file is parsed for the error.
+fn pieces(text: &str, min_piece: usize) -> Vec<(usize, usize)> {
+    let mut out = Vec::new();
+    let mut start = 0;
+    let mut depth = 0i64;
+    for_each_code_byte(text, |i, b| {
+        match b {
+            b'(' | b'<' | b'{' => depth += 1,
+            b')' | b'>' | b'}' => depth -= 1,
+            _ => {}
+        }
+        if depth == 0 && (b == b'}' || b == b';') && i + 1 - start >= min_piece {
+            out.push((start, i + 1));
+            start = i + 1;
+        }
+        true
+    });
+    out.push((start, text.len()));
+    out
 }
 
 /// Calls `f(offset, byte)` for every byte of `text` outside comments and
@@ -132,17 +203,6 @@ fn check_nesting(file: FileId, text: &str) -> Option<Diagnostic> {
 mod tests {
     use super::*;
 
-    /// The whole text parsed by one pest call (the path a syntax error takes).
-    fn parse_whole(text: &str) -> ast::File {
-        let mut pairs = PtsParser::parse(Rule::file, text).expect("parses");
-        let builder = build::Builder {
-            file: FileId(0),
-            reserved: Default::default(),
-            base: Default::default(),
-        };
-        builder.build_file(pairs.next().expect("a file pair"))
-    }
-
     fn scene_files(dir: &std::path::Path, out: &mut Vec<std::path::PathBuf>) {
         for entry in std::fs::read_dir(dir).expect("readable folder").flatten() {
             let path = entry.path();
@@ -155,7 +215,7 @@ mod tests {
     }
 
     #[test]
-    fn one_statement_at_a_time_builds_the_whole_file_ast() {
+    fn pieces_and_single_statements_build_the_whole_file_ast() {
         let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
         let mut files = Vec::new();
         scene_files(&root.join("examples"), &mut files);
@@ -172,8 +232,20 @@ mod tests {
                 .to_string(),
         );
         for text in &texts {
-            let per_statement = parse(FileId(0), text).expect("parses");
-            assert_eq!(per_statement, parse_whole(text), "{text}");
+            let whole = parse_whole(FileId(0), text).expect("parses");
+            // Pieces as small as possible (cut after every statement), and
+            // one piece parsed statement by statement.
+            for min_piece in [1, usize::MAX] {
+                let pieces = parse_in_pieces(FileId(0), text, min_piece).expect("parses");
+                assert_eq!(pieces, whole, "{text}");
+            }
+        }
+        // An error in a later piece is the error a whole-file parse reports.
+        let broken = "let a = 1;\nsphere { radius 1 }\nsphere { radius < 1, }\nlet b = 2;\n";
+        let expected = format!("{:?}", parse_whole(FileId(0), broken).unwrap_err());
+        for min_piece in [1, usize::MAX] {
+            let got = parse_in_pieces(FileId(0), broken, min_piece).unwrap_err();
+            assert_eq!(format!("{got:?}"), expected);
         }
     }
 }

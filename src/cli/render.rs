@@ -87,6 +87,22 @@ pub fn output_path(args: &RenderArgs, scene: &crate::check::Scene) -> PathBuf {
 
 /// Runs `render`; returns the exit code.
 pub fn run(args: &RenderArgs) -> u8 {
+    let pool = match rayon::ThreadPoolBuilder::new()
+        .num_threads(args.threads.unwrap_or(0))
+        .build()
+    {
+        Ok(p) => p,
+        Err(e) => {
+            eprintln!("error: cannot start threads: {e}");
+            return EXIT_USAGE;
+        }
+    };
+    // Every parallel stage (parsing, the BVH build, the render) keeps to
+    // `--threads`.
+    pool.install(|| run_on_pool(args))
+}
+
+fn run_on_pool(args: &RenderArgs) -> u8 {
     let t0 = Instant::now();
     let checked = match check_file(&args.file) {
         Ok(c) => c,
@@ -122,16 +138,6 @@ pub fn run(args: &RenderArgs) -> u8 {
         }
     };
     let load_s = t0.elapsed().as_secs_f64();
-    let pool = match rayon::ThreadPoolBuilder::new()
-        .num_threads(args.threads.unwrap_or(0))
-        .build()
-    {
-        Ok(p) => p,
-        Err(e) => {
-            eprintln!("error: cannot start threads: {e}");
-            return EXIT_USAGE;
-        }
-    };
     let cancel = Arc::new(AtomicBool::new(false));
     {
         let c = cancel.clone();
@@ -146,27 +152,25 @@ pub fn run(args: &RenderArgs) -> u8 {
     let exposure = s.exposure as f32;
     let mut write_error = None;
     let mut last_write = Instant::now();
-    let (film, outcome) = pool.install(|| {
-        crate::render::render(
-            &ir,
-            integrator.as_ref(),
-            &cancel,
-            &|done| bar.set_position(done),
-            &mut |film, spp| {
-                bar.set_message(format!("{spp} spp"));
-                // A long render replaces its image with the passes so far,
-                // a preview that refines. The final image is written once,
-                // below; writes in between are spaced (a ZIP-compressed EXR
-                // of 512×512 costs about 30 ms, time the render loses).
-                if spp < s.samples && last_write.elapsed() >= PREVIEW_INTERVAL {
-                    if let Err(e) = film.write(&output, exposure) {
-                        write_error = Some(e);
-                    }
-                    last_write = Instant::now();
+    let (film, outcome) = crate::render::render(
+        &ir,
+        integrator.as_ref(),
+        &cancel,
+        &|done| bar.set_position(done),
+        &mut |film, spp| {
+            bar.set_message(format!("{spp} spp"));
+            // A long render replaces its image with the passes so far,
+            // a preview that refines. The final image is written once,
+            // below; writes in between are spaced (a ZIP-compressed EXR
+            // of 512×512 costs about 30 ms, time the render loses).
+            if spp < s.samples && last_write.elapsed() >= PREVIEW_INTERVAL {
+                if let Err(e) = film.write(&output, exposure) {
+                    write_error = Some(e);
                 }
-            },
-        )
-    });
+                last_write = Instant::now();
+            }
+        },
+    );
     bar.finish_and_clear();
     if let Some(e) = write_error {
         eprintln!("error: cannot write {}: {e}", output.display());

@@ -134,6 +134,9 @@ impl State {
     /// Checks, lowers and (on success) starts rendering the scene.
     fn compile(&mut self, changed_at: Instant) {
         let t0 = Instant::now();
+        // Not on `self.pool`: the previous render keeps its threads busy
+        // until this compile succeeds, and a job queued behind its tiles
+        // would wait for them. Large files parse on rayon's global pool.
         let checked = match check_file(&self.args.file) {
             Ok(c) => c,
             Err(e) => {

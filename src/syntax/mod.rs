@@ -231,6 +231,12 @@ mod tests {
              \n  background rgb 0.5 // tail\n/* end */\n"
                 .to_string(),
         );
+        // `}` and `;` inside strings and comments must not cut a piece: three
+        // statements, three cuts, and the blank rest.
+        let tricky = "mesh { file \"a};b.obj\" // } ;\n material m } /* }; */ let s = \"x;}\";\n\
+                      render { output \"o}.png\" }\n";
+        assert_eq!(pieces(tricky, 1).len(), 4, "{:?}", pieces(tricky, 1));
+        texts.push(tricky.to_string());
         for text in &texts {
             let whole = parse_whole(FileId(0), text).expect("parses");
             // Pieces as small as possible (cut after every statement), and

@@ -162,7 +162,7 @@ fn run_on_pool(args: &RenderArgs) -> u8 {
             // A long render replaces its image with the passes so far,
             // a preview that refines. The final image is written once,
             // below; writes in between are spaced (a ZIP-compressed EXR
-            // of 512×512 costs about 30 ms, time the render loses).
+            // of a 512×512 render takes about 60 ms, time the render loses).
             if spp < s.samples && last_write.elapsed() >= PREVIEW_INTERVAL {
                 if let Err(e) = film.write(&output, exposure) {
                     write_error = Some(e);

@@ -16,8 +16,6 @@ pub struct Node {
     pub index: u32,
     /// Number of primitives (0 for inner nodes).
     pub count: u16,
-    /// Split axis of an inner node (for front-to-back order).
-    pub axis: u16,
 }
 
 /// A BVH over primitives given by their bounds.
@@ -33,7 +31,6 @@ const BINS: usize = 16;
 const MAX_LEAF: usize = 4;
 const PARALLEL_THRESHOLD: usize = 16 * 1024;
 
-/// A subtree built on its own (possibly on another thread), nodes local to it.
 impl Bvh {
     /// Builds a BVH over the given primitive bounds.
     pub fn build(bounds: &[Aabb]) -> Bvh {
@@ -57,7 +54,6 @@ fn leaf(bounds: Aabb, first: usize, count: usize) -> Node {
         bounds,
         index: first as u32,
         count: count as u16,
-        axis: 0,
     }
 }
 
@@ -66,7 +62,6 @@ const PLACEHOLDER: Node = Node {
     bounds: Aabb::EMPTY,
     index: 0,
     count: 0,
-    axis: 0,
 };
 
 /// The subtree over `order` (which starts at `offset` in the full order) in
@@ -117,7 +112,7 @@ fn build_node(
         // (bvh4.rs) a node test is cheaper than testing more primitives
         // (single 16-spp renders on a noisy machine: the SAH leaf rule cost about
         // 7 % on cornell and 9 % on mesh).
-        sah_split(bounds, centroids, order, &cb, axis).map_or(order.len() / 2, |(_, mid)| mid)
+        sah_split(bounds, centroids, order, &cb, axis).unwrap_or(order.len() / 2)
     };
     let n = order.len();
     let (lo, hi) = order.split_at_mut(mid);
@@ -126,7 +121,6 @@ fn build_node(
         bounds: node_bounds,
         index: left as u32,
         count: 0,
-        axis: axis as u16,
     };
     if n >= PARALLEL_THRESHOLD {
         let (a, b) = rayon::join(
@@ -156,15 +150,16 @@ fn build_node(
     }
 }
 
-/// Binned SAH along `axis`: the best split's cost, with `order` partitioned so
-/// that the left side is `order[..mid]`. `None` when every centroid lands in one bin.
+/// Binned SAH along `axis`: `mid`, with `order` partitioned at the cheapest
+/// split so that the left side is `order[..mid]`. `None` when every centroid
+/// lands in one bin.
 fn sah_split(
     bounds: &[Aabb],
     centroids: &[Vec3],
     order: &mut [u32],
     cb: &Aabb,
     axis: usize,
-) -> Option<(f32, usize)> {
+) -> Option<usize> {
     let scale = BINS as f32 / (cb.max[axis] - cb.min[axis]);
     let bin_of =
         |i: u32| (((centroids[i as usize][axis] - cb.min[axis]) * scale) as usize).min(BINS - 1);
@@ -194,7 +189,7 @@ fn sah_split(
             best = Some((cost, b));
         }
     }
-    let (cost, split_bin) = best?;
+    let (_, split_bin) = best?;
     // Partition in place by bin.
     let (mut l, mut r) = (0, order.len());
     while l < r {
@@ -205,7 +200,7 @@ fn sah_split(
             order.swap(l, r);
         }
     }
-    Some((cost, l))
+    Some(l)
 }
 
 #[cfg(test)]

@@ -86,9 +86,9 @@ fn build_geometry(scene: &check::Scene, cache: &mut LowerCache) -> Result<Geomet
     let mut diags = Diagnostics::new();
     let mut prims: Vec<Prim> = Vec::new();
     let mut normals: Vec<[Vec3; 3]> = Vec::new();
-    let mut object_ranges = Vec::with_capacity(scene.objects.len());
-    for obj in &scene.objects {
-        let first = prims.len();
+    // The object each primitive came from, for diagnostics and spans.
+    let mut prim_object: Vec<u32> = Vec::new();
+    for (o, obj) in scene.objects.iter().enumerate() {
         let m = obj.transform;
         let pt = |p: DVec3| v3(m.transform_point3(p));
         let vec = |v: DVec3| v3(m.transform_vector3(v));
@@ -252,16 +252,9 @@ fn build_geometry(scene: &check::Scene, cache: &mut LowerCache) -> Result<Geomet
                 }
             }
         }
-        object_ranges.push(first..prims.len());
+        prim_object.resize(prims.len(), o as u32);
     }
     for (i, p) in prims.iter().enumerate() {
-        let origin = || {
-            let o = object_ranges
-                .iter()
-                .position(|r| r.contains(&i))
-                .unwrap_or(0);
-            scene.objects[o].span
-        };
         let b = p.shape.bounds();
         let bad = match p.shape {
             Shape::Plane { .. } => !p.shape.normal_at(Vec3::ZERO).is_finite(),
@@ -272,7 +265,7 @@ fn build_geometry(scene: &check::Scene, cache: &mut LowerCache) -> Result<Geomet
                 Diagnostic::error(
                     codes::NOT_FINITE,
                     "this object's geometry is not finite after its transforms",
-                    origin(),
+                    scene.objects[prim_object[i] as usize].span,
                 )
                 .with_label("NaN or infinite coordinates")
                 .with_help("check the sizes and transforms for overflow"),
@@ -286,10 +279,6 @@ fn build_geometry(scene: &check::Scene, cache: &mut LowerCache) -> Result<Geomet
     let mut bvh = build_bvh(&prims, scene.camera.shutter);
     // Store the primitives in the BVH's leaf order (planes last): a leaf's
     // primitives are then contiguous in memory, and the order is the identity.
-    let mut prim_object = vec![0u32; prims.len()];
-    for (o, r) in object_ranges.iter().enumerate() {
-        prim_object[r.clone()].fill(o as u32);
-    }
     let mut permutation = bvh.order.clone();
     permutation.extend(
         (0..prims.len() as u32).filter(|&i| matches!(prims[i as usize].shape, Shape::Plane { .. })),

@@ -16,9 +16,6 @@ pub const MAX_NESTING: usize = 128;
 
 /// Parses one file into an AST, or returns the first syntax error.
 pub fn parse(file: FileId, text: &str) -> Result<ast::File, Diagnostic> {
-    if let Some(d) = check_nesting(file, text) {
-        return Err(d);
-    }
     parse_in_pieces(file, text, PIECE)
 }
 
@@ -29,7 +26,8 @@ const PIECE: usize = 64 * 1024;
 /// parsed in parallel.
 fn parse_in_pieces(file: FileId, text: &str, min_piece: usize) -> Result<ast::File, Diagnostic> {
     use rayon::prelude::*;
-    let parsed: Vec<Option<Parsed>> = pieces(text, min_piece)
+    let pieces = pieces(text, min_piece).map_err(|at| too_deep(file, at))?;
+    let parsed: Vec<Option<Parsed>> = pieces
         .into_par_iter()
         .map(|(start, end)| parse_statements(file, &text[start..end], start))
         .collect();
@@ -57,9 +55,10 @@ struct Parsed {
 }
 
 /// The statements of `text` (which starts at byte `base` of the file), one
-/// per pest call: pest queues two tokens of about 40 bytes per pair, and a
-/// large file's queue was 25 times the size of its text (zeroing the fresh
-/// pages alone took a third of the parse). `None` on a syntax error.
+/// per pest call: pest queues two tokens of 40 bytes per pair, and a whole
+/// file's queue was 32 times the size of its text (360 MB for the 11 MB
+/// 100,000-sphere scene; zeroing its fresh pages took a third of the parse).
+/// `None` on a syntax error.
 fn parse_statements(file: FileId, text: &str, base: usize) -> Option<Parsed> {
     let builder = build::Builder {
         file,
@@ -111,14 +110,23 @@ fn parse_whole(file: FileId, text: &str) -> Result<ast::File, Diagnostic> {
 /// valid file such a character ends a statement (blocks close statements, `;`
 /// closes `let`), so the pieces parse alone into the file's statements; in an
 /// invalid one some piece fails and the whole file is parsed for the error.
-fn pieces(text: &str, min_piece: usize) -> Vec<(usize, usize)> {
+/// The same scan refuses nesting deeper than [`MAX_NESTING`], before pest
+/// runs: `Err` holds the offset of the bracket one level too deep.
+fn pieces(text: &str, min_piece: usize) -> Result<Vec<(usize, usize)>, usize> {
     let mut out = Vec::new();
     let mut start = 0;
-    let mut depth = 0i64;
+    let mut depth = 0usize;
+    let mut too_deep = None;
     for_each_code_byte(text, |i, b| {
         match b {
-            b'(' | b'<' | b'{' => depth += 1,
-            b')' | b'>' | b'}' => depth -= 1,
+            b'(' | b'<' | b'{' => {
+                depth += 1;
+                if depth > MAX_NESTING {
+                    too_deep = Some(i);
+                    return false;
+                }
+            }
+            b')' | b'>' | b'}' => depth = depth.saturating_sub(1),
             _ => {}
         }
         if depth == 0 && (b == b'}' || b == b';') && i + 1 - start >= min_piece {
@@ -127,8 +135,11 @@ fn pieces(text: &str, min_piece: usize) -> Vec<(usize, usize)> {
         }
         true
     });
+    if let Some(i) = too_deep {
+        return Err(i);
+    }
     out.push((start, text.len()));
-    out
+    Ok(out)
 }
 
 /// Calls `f(offset, byte)` for every byte of `text` outside comments and
@@ -169,34 +180,15 @@ pub(crate) fn for_each_code_byte(text: &str, mut f: impl FnMut(usize, u8) -> boo
     }
 }
 
-/// Finds nesting deeper than [`MAX_NESTING`], skipping comments and strings.
-fn check_nesting(file: FileId, text: &str) -> Option<Diagnostic> {
-    let mut depth = 0usize;
-    let mut too_deep = None;
-    for_each_code_byte(text, |i, b| {
-        match b {
-            b'(' | b'<' | b'{' => {
-                depth += 1;
-                if depth > MAX_NESTING {
-                    too_deep = Some(i);
-                    return false;
-                }
-            }
-            b')' | b'>' | b'}' => depth = depth.saturating_sub(1),
-            _ => {}
-        }
-        true
-    });
-    let i = too_deep?;
-    Some(
-        Diagnostic::error(
-            "pts::syntax::too_deep",
-            format!("nesting deeper than {MAX_NESTING} levels"),
-            Span::new(file, i, i + 1),
-        )
-        .with_label("this bracket opens one level too many")
-        .with_help("flatten the expression or block; use `let` for parts of it"),
+/// The error for a bracket at `i` nested deeper than [`MAX_NESTING`].
+fn too_deep(file: FileId, i: usize) -> Diagnostic {
+    Diagnostic::error(
+        "pts::syntax::too_deep",
+        format!("nesting deeper than {MAX_NESTING} levels"),
+        Span::new(file, i, i + 1),
     )
+    .with_label("this bracket opens one level too many")
+    .with_help("flatten the expression or block; use `let` for parts of it")
 }
 
 #[cfg(test)]
@@ -235,7 +227,12 @@ mod tests {
         // statements, three cuts, and the blank rest.
         let tricky = "mesh { file \"a};b.obj\" // } ;\n material m } /* }; */ let s = \"x;}\";\n\
                       render { output \"o}.png\" }\n";
-        assert_eq!(pieces(tricky, 1).len(), 4, "{:?}", pieces(tricky, 1));
+        assert_eq!(
+            pieces(tricky, 1).map(|p| p.len()),
+            Ok(4),
+            "{:?}",
+            pieces(tricky, 1)
+        );
         texts.push(tricky.to_string());
         for text in &texts {
             let whole = parse_whole(FileId(0), text).expect("parses");

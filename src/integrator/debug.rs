@@ -24,10 +24,7 @@ impl Integrator for Debug {
         };
         match self {
             Debug::Normals => hit.n_shading * 0.5 + Vec3::splat(0.5),
-            Debug::Albedo => {
-                let m = &scene.materials[scene.prims[hit.prim as usize].material as usize];
-                m.albedo()
-            }
+            Debug::Albedo => scene.material_of(hit.prim).albedo(),
             Debug::Depth => Vec3::splat(hit.t / (1.0 + hit.t)),
         }
     }

@@ -47,8 +47,7 @@ pub fn path_li(scene: &Scene, mut ray: Ray, sampler: &mut Sampler, nee: bool) ->
             }
             break;
         };
-        let prim = &scene.prims[hit.prim as usize];
-        let material = &scene.materials[prim.material as usize];
+        let material = scene.material_of(hit.prim);
         let wo = -ray.d;
         // Beer's law: leaving a dielectric means we travelled inside it.
         if material.transmission > 0.0
@@ -60,10 +59,12 @@ pub fn path_li(scene: &Scene, mut ray: Ray, sampler: &mut Sampler, nee: bool) ->
         // Emission seen along the path.
         let le = material.emitted(wo, hit.n_geo);
         if le != Vec3::ZERO {
-            let w = if nee && prev_pdf > 0.0 && prim.light != u32::MAX {
-                power_heuristic(prev_pdf, light_pdf(scene, prim.light, prev_p, &hit, ray.d))
-            } else {
-                1.0
+            let light = (nee && prev_pdf > 0.0).then(|| scene.area_light(hit.prim));
+            let w = match light.flatten() {
+                Some(light) => {
+                    power_heuristic(prev_pdf, light_pdf(scene, light, prev_p, &hit, ray.d))
+                }
+                None => 1.0,
             };
             radiance += beta * le * w;
         }

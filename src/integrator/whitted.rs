@@ -41,8 +41,7 @@ pub fn trace(scene: &Scene, ray: Ray, sampler: &mut Sampler, segment: u32, weigh
     let Some(hit) = scene.intersect(&ray, T_MIN, f32::INFINITY) else {
         return scene.background;
     };
-    let prim = &scene.prims[hit.prim as usize];
-    let m = &scene.materials[prim.material as usize];
+    let m = scene.material_of(hit.prim);
     let wo = -ray.d;
     let mut l = m.emitted(wo, hit.n_geo);
     if segment >= s.max_depth {

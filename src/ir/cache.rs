@@ -191,8 +191,20 @@ mod tests {
         // new material is used.
         let b = lower_text(dir.path(), &scene(30, 0.9, 2.0), &mut cache);
         assert_eq!((cache.mesh_loads, cache.bvh_builds), (1, 1));
-        assert_eq!(b.prims.len(), a.prims.len());
-        assert!((b.materials[b.prims[0].material as usize].diffuse.x - 0.9).abs() < 1e-6);
+        assert!(
+            std::sync::Arc::ptr_eq(&a.prims, &b.prims) && std::sync::Arc::ptr_eq(&a.wide, &b.wide),
+            "the geometry is shared, not copied"
+        );
+        let triangle = (0..b.prims.len() as u32)
+            .find(|&i| {
+                matches!(
+                    b.prims[i as usize].shape,
+                    crate::geometry::shape::Shape::Triangle { .. }
+                )
+            })
+            .unwrap();
+        assert!((a.material_of(triangle).diffuse.x - 0.5).abs() < 1e-6);
+        assert!((b.material_of(triangle).diffuse.x - 0.9).abs() < 1e-6);
         // A moved sphere: new BVH, same mesh.
         lower_text(dir.path(), &scene(30, 0.9, 3.0), &mut cache);
         assert_eq!((cache.mesh_loads, cache.bvh_builds), (1, 2));

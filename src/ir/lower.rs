@@ -15,6 +15,7 @@ use crate::light::Light;
 use crate::material::Material;
 use crate::render::camera::Camera;
 use glam::{DMat4, DVec3, Vec3};
+use std::sync::Arc;
 
 fn v3(v: DVec3) -> Vec3 {
     v.as_vec3()
@@ -54,7 +55,8 @@ pub fn lower_cached(scene: &check::Scene, cache: &mut LowerCache) -> Result<Scen
         return Ok(finish(scene, materials, geometry));
     }
     let key = cache.geometry_key(scene);
-    let mut geometry = match cache.reuse_geometry(key) {
+    // Shared, not copied: materials and lights live outside the geometry.
+    let geometry = match cache.reuse_geometry(key) {
         Some(g) => g,
         None => {
             let g = build_geometry(scene, cache)?;
@@ -62,24 +64,21 @@ pub fn lower_cached(scene: &check::Scene, cache: &mut LowerCache) -> Result<Scen
             g
         }
     };
-    // Materials follow the objects even when the geometry is reused.
-    for (p, &o) in geometry.prims.iter_mut().zip(&geometry.prim_object) {
-        p.material = scene.objects[o as usize].material as u32;
-        p.light = u32::MAX;
-    }
     Ok(finish(scene, materials, geometry))
 }
 
 /// The part of the IR that depends only on shapes, transforms, motion and
-/// mesh files.
+/// mesh files; a clone shares it.
 #[derive(Debug, Clone)]
 pub struct Geometry {
-    prims: Vec<Prim>,
-    normals: Vec<[Vec3; 3]>,
+    prims: Arc<Vec<Prim>>,
+    normals: Arc<Vec<[Vec3; 3]>>,
     bounds: Aabb,
-    wide: Bvh4,
+    wide: Arc<Bvh4>,
+    /// Unbounded primitives (planes).
+    unbounded: Arc<Vec<u32>>,
     /// The object each primitive came from.
-    prim_object: Vec<u32>,
+    prim_object: Arc<Vec<u32>>,
 }
 
 fn build_geometry(scene: &check::Scene, cache: &mut LowerCache) -> Result<Geometry, Diagnostics> {
@@ -92,15 +91,9 @@ fn build_geometry(scene: &check::Scene, cache: &mut LowerCache) -> Result<Geomet
         let m = obj.transform;
         let pt = |p: DVec3| v3(m.transform_point3(p));
         let vec = |v: DVec3| v3(m.transform_vector3(v));
-        let material = obj.material as u32;
         let velocity = v3(obj.velocity);
         let mut push = |shape: Shape| {
-            prims.push(Prim {
-                shape,
-                material,
-                light: u32::MAX,
-                velocity,
-            });
+            prims.push(Prim { shape, velocity });
         };
         match &obj.shape {
             check::Shape::Sphere { center, radius } => match uniform_scale(&m) {
@@ -234,8 +227,6 @@ fn build_geometry(scene: &check::Scene, cache: &mut LowerCache) -> Result<Geomet
                             e2,
                             normals: nidx,
                         },
-                        material,
-                        light: u32::MAX,
                         velocity,
                     });
                 }
@@ -289,12 +280,16 @@ fn build_geometry(scene: &check::Scene, cache: &mut LowerCache) -> Result<Geomet
     bvh.order = (0..bvh.order.len() as u32).collect();
     let wide = Bvh4::from_binary(&bvh);
     // The binary tree is dropped here: only the wide one is traversed.
+    let unbounded = (0..prims.len() as u32)
+        .filter(|&i| matches!(prims[i as usize].shape, Shape::Plane { .. }))
+        .collect();
     Ok(Geometry {
-        prims,
-        normals,
+        prims: Arc::new(prims),
+        normals: Arc::new(normals),
         bounds: bvh.bounds(),
-        wide,
-        prim_object,
+        wide: Arc::new(wide),
+        unbounded: Arc::new(unbounded),
+        prim_object: Arc::new(prim_object),
     })
 }
 
@@ -354,29 +349,28 @@ fn build_bvh(prims: &[Prim], shutter: (f64, f64)) -> Bvh {
 /// Lights, light selection and the camera on top of the geometry.
 fn finish(scene: &check::Scene, materials: Vec<Material>, geometry: Geometry) -> Scene {
     let object_spans = scene.objects.iter().map(|o| o.span).collect();
+    let object_material: Vec<u32> = scene.objects.iter().map(|o| o.material as u32).collect();
     let Geometry {
-        mut prims,
+        prims,
         prim_object,
         normals,
         bounds,
         wide,
-        ..
+        unbounded,
     } = geometry;
-    let unbounded: Vec<u32> = prims
-        .iter()
-        .enumerate()
-        .filter(|(_, p)| matches!(p.shape, Shape::Plane { .. }))
-        .map(|(i, _)| i as u32)
-        .collect();
 
-    // Lights: emissive primitives, explicit lights, the background.
-    let mut lights = Vec::new();
-    for (i, p) in prims.iter_mut().enumerate() {
-        if materials[p.material as usize].emission != Vec3::ZERO {
-            p.light = lights.len() as u32;
-            lights.push(Light::Area { prim: i as u32 });
-        }
-    }
+    // Lights: emissive primitives (in order), explicit lights, the background.
+    let emissive: Vec<bool> = object_material
+        .iter()
+        .map(|&m| materials[m as usize].emission != Vec3::ZERO)
+        .collect();
+    let area_lights: Vec<u32> = (0..prims.len() as u32)
+        .filter(|&i| emissive[prim_object[i as usize] as usize])
+        .collect();
+    let mut lights: Vec<Light> = area_lights
+        .iter()
+        .map(|&prim| Light::Area { prim })
+        .collect();
     for (l, _) in &scene.lights {
         lights.push(match l {
             check::Light::Point {
@@ -423,10 +417,12 @@ fn finish(scene: &check::Scene, materials: Vec<Material>, geometry: Geometry) ->
         prims,
         prim_object,
         object_spans,
+        object_material,
         wide,
         unbounded,
         materials,
         normals,
+        area_lights,
         lights,
         light_pmf: Vec::new(),
         light_cdf: Vec::new(),

@@ -15,19 +15,17 @@ use crate::material::Material;
 use crate::render::camera::Camera;
 use crate::span::Span;
 use glam::Vec3;
+use std::sync::Arc;
 
-/// One primitive. Exactly one cache line: a leaf's primitives are read
-/// during traversal, and a 64-byte record that straddled two lines would cost
-/// two memory fetches.
+/// One primitive: geometry only, so that `watch` shares it between compiles
+/// (its material is its object's, see [`Scene::material_of`]). Exactly one
+/// cache line: a leaf's primitives are read during traversal, and a 64-byte
+/// record that straddled two lines would cost two memory fetches.
 #[derive(Debug, Clone)]
 #[repr(align(64))]
 pub struct Prim {
     /// Geometry in world space at time 0.
     pub shape: Shape,
-    /// Index into [`Scene::materials`].
-    pub material: u32,
-    /// Index into [`Scene::lights`] if emissive, else `u32::MAX`.
-    pub light: u32,
     /// Linear motion per unit time.
     pub velocity: Vec3,
 }
@@ -54,20 +52,25 @@ pub struct Scene {
     pub settings: RenderSettings,
     /// The camera.
     pub camera: Camera,
-    /// Primitives.
-    pub prims: Vec<Prim>,
+    /// Primitives (shared with `watch`'s cache while the geometry is unchanged).
+    pub prims: Arc<Vec<Prim>>,
     /// The object each primitive came from (index into `object_spans`).
-    pub prim_object: Vec<u32>,
+    pub prim_object: Arc<Vec<u32>>,
     /// Where each object is written in the source.
     pub object_spans: Vec<Span>,
+    /// Each object's material (index into `materials`).
+    pub object_material: Vec<u32>,
     /// The BVH over the bounded primitives (4 wide, collapsed from a binary SAH tree).
-    pub wide: Bvh4,
+    pub wide: Arc<Bvh4>,
     /// Unbounded primitives (planes), tested separately.
-    pub unbounded: Vec<u32>,
+    pub unbounded: Arc<Vec<u32>>,
     /// Materials.
     pub materials: Vec<Material>,
     /// Vertex normals of smooth mesh triangles.
-    pub normals: Vec<[Vec3; 3]>,
+    pub normals: Arc<Vec<[Vec3; 3]>>,
+    /// The emissive primitives, ascending; the i-th is light i (area lights
+    /// come first in `lights`).
+    pub area_lights: Vec<u32>,
     /// Lights.
     pub lights: Vec<Light>,
     /// Selection probability of each light.
@@ -88,6 +91,17 @@ impl Scene {
     /// Where primitive `prim` was written in the source.
     pub fn origin(&self, prim: u32) -> Span {
         self.object_spans[self.prim_object[prim as usize] as usize]
+    }
+
+    /// The material of primitive `prim`.
+    pub fn material_of(&self, prim: u32) -> &Material {
+        let object = self.prim_object[prim as usize] as usize;
+        &self.materials[self.object_material[object] as usize]
+    }
+
+    /// The light that primitive `prim` is, if it is emissive.
+    pub fn area_light(&self, prim: u32) -> Option<u32> {
+        self.area_lights.binary_search(&prim).ok().map(|i| i as u32)
     }
 
     /// The ray moved into the frame of a (possibly moving) primitive.
@@ -111,7 +125,7 @@ impl Scene {
             uv = h.uv;
             Some(h.t)
         });
-        for &i in &self.unbounded {
+        for &i in self.unbounded.iter() {
             let p = &self.prims[i as usize];
             let tmax = best.map_or(t_max, |b| b.1);
             if let Some(h) = p.shape.intersect(&Self::local_ray(p, ray), t_min, tmax) {

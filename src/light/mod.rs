@@ -85,7 +85,7 @@ impl Light {
         match self {
             Light::Area { prim } => {
                 let p = &scene.prims[*prim as usize];
-                let m = &scene.materials[p.material as usize];
+                let m = scene.material_of(*prim);
                 let sides = if m.two_sided { 2.0 } else { 1.0 };
                 luminance(m.emission) * p.shape.area() * PI * sides
             }
@@ -124,7 +124,7 @@ impl Light {
                 }
                 let dist = d2.sqrt();
                 let wi = to / dist;
-                let m = &scene.materials[pr.material as usize];
+                let m = scene.material_of(*prim);
                 let cos_l = n.dot(-wi);
                 let li = m.emitted(-wi, n);
                 if li == Vec3::ZERO || cos_l.abs() < 1e-7 {

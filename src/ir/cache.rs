@@ -98,36 +98,43 @@ impl LowerCache {
     /// camera (but its shutter), lights and settings are left out, and so are
     /// source spans, so that edits elsewhere in the file keep the geometry.
     pub fn geometry_key(&mut self, scene: &check::Scene) -> u64 {
-        let mut h = std::collections::hash_map::DefaultHasher::new();
-        let numbers = |xs: &mut dyn Iterator<Item = f64>, h: &mut DefaultHasher| {
-            xs.for_each(|x| x.to_bits().hash(h))
+        let mut h = DefaultHasher::new();
+        let number = |x: f64, h: &mut DefaultHasher| x.to_bits().hash(h);
+        let points = |ps: &[DVec3], h: &mut DefaultHasher| {
+            ps.iter()
+                .flat_map(|p| p.to_array())
+                .for_each(|x| x.to_bits().hash(h))
         };
-        numbers(
-            &mut [scene.camera.shutter.0, scene.camera.shutter.1].into_iter(),
-            &mut h,
-        );
+        number(scene.camera.shutter.0, &mut h);
+        number(scene.camera.shutter.1, &mut h);
         for obj in &scene.objects {
-            numbers(&mut obj.transform.to_cols_array().into_iter(), &mut h);
-            numbers(&mut obj.velocity.to_array().into_iter(), &mut h);
+            obj.transform
+                .to_cols_array()
+                .into_iter()
+                .for_each(|x| number(x, &mut h));
+            points(&[obj.velocity], &mut h);
             std::mem::discriminant(&obj.shape).hash(&mut h);
-            let coords = |vs: &[DVec3]| vs.iter().flat_map(|v| v.to_array()).collect::<Vec<_>>();
-            let shape: Vec<f64> = match &obj.shape {
+            match &obj.shape {
                 check::Shape::Sphere { center, radius } => {
-                    [coords(&[*center]), vec![*radius]].concat()
+                    points(&[*center], &mut h);
+                    number(*radius, &mut h);
                 }
                 check::Shape::Disk {
                     center,
                     normal,
                     radius,
-                } => [coords(&[*center, *normal]), vec![*radius]].concat(),
-                check::Shape::Plane { point, normal } => coords(&[*point, *normal]),
+                } => {
+                    points(&[*center, *normal], &mut h);
+                    number(*radius, &mut h);
+                }
+                check::Shape::Plane { point, normal } => points(&[*point, *normal], &mut h),
                 check::Shape::Quad {
                     corner,
                     edge1,
                     edge2,
-                } => coords(&[*corner, *edge1, *edge2]),
-                check::Shape::Triangle { v } => coords(v),
-                check::Shape::Box { min, max } => coords(&[*min, *max]),
+                } => points(&[*corner, *edge1, *edge2], &mut h),
+                check::Shape::Triangle { v } => points(v, &mut h),
+                check::Shape::Box { min, max } => points(&[*min, *max], &mut h),
                 check::Shape::Mesh { path, smooth, .. } => {
                     path.hash(&mut h);
                     smooth.hash(&mut h);
@@ -137,10 +144,8 @@ impl LowerCache {
                         Ok(_) => self.meshes[path.as_path()].content.hash(&mut h),
                         Err(e) => e.hash(&mut h),
                     }
-                    Vec::new()
                 }
-            };
-            numbers(&mut shape.into_iter(), &mut h);
+            }
         }
         h.finish()
     }

@@ -92,6 +92,14 @@ fn setup() -> (tempfile::TempDir, PathBuf, PathBuf) {
     (dir, pts, png)
 }
 
+/// `watch` started on the first scene (field of view 40), done rendering it.
+fn watching_first_scene(pts: &Path) -> Watch {
+    std::fs::write(pts, scene(40, "")).unwrap();
+    let w = Watch::start(pts);
+    w.wait_for("done:", 0);
+    w
+}
+
 /// What `ptsc render` makes of the same scene (renders are deterministic).
 fn reference_render(pts: &Path) -> Vec<u8> {
     let out = pts.with_file_name("reference.png");
@@ -109,9 +117,7 @@ fn reference_render(pts: &Path) -> Vec<u8> {
 #[test]
 fn edits_render_broken_edits_keep_the_image_and_fixes_render_again() {
     let (_dir, pts, png) = setup();
-    std::fs::write(&pts, scene(40, "")).unwrap();
-    let w = Watch::start(&pts);
-    w.wait_for("done:", 0);
+    let w = watching_first_scene(&pts);
     let first = std::fs::read(&png).unwrap();
 
     w.save_and_wait(&pts, &scene(30, ""));
@@ -135,9 +141,7 @@ fn edits_render_broken_edits_keep_the_image_and_fixes_render_again() {
 #[test]
 fn fifty_rapid_saves_end_with_the_last_scene() {
     let (dir, pts, png) = setup();
-    std::fs::write(&pts, scene(40, "")).unwrap();
-    let w = Watch::start(&pts);
-    w.wait_for("done:", 0);
+    let w = watching_first_scene(&pts);
     for i in 0..50 {
         std::fs::write(&pts, scene(20 + i, "")).unwrap();
         std::thread::sleep(Duration::from_millis(7 * (i % 5) as u64));
@@ -215,9 +219,7 @@ fn atomic_saves_includes_and_meshes_trigger_renders() {
 #[test]
 fn ctrl_c_stops_cleanly() {
     let (_dir, pts, _png) = setup();
-    std::fs::write(&pts, scene(40, "")).unwrap();
-    let mut w = Watch::start(&pts);
-    w.wait_for("done:", 0);
+    let mut w = watching_first_scene(&pts);
     let status = Command::new("kill")
         .args(["-INT", &w.child.id().to_string()])
         .status()

@@ -114,7 +114,9 @@ fn parse_whole(file: FileId, text: &str) -> Result<ast::File, Diagnostic> {
 /// runs: `Err` holds the offset of the bracket one level too deep.
 fn pieces(text: &str, min_piece: usize) -> Result<Vec<(usize, usize)>, usize> {
     let mut out = Vec::new();
-    let mut start = 0;
+    // A byte order mark may open the file (and only there): the first piece
+    // starts after it, as `file` in the grammar skips it.
+    let mut start = if text.starts_with('\u{FEFF}') { 3 } else { 0 };
     let mut depth = 0usize;
     let mut too_deep = None;
     for_each_code_byte(text, |i, b| {
@@ -249,6 +251,25 @@ mod tests {
         for min_piece in [1, usize::MAX] {
             let got = parse_in_pieces(FileId(0), broken, min_piece).unwrap_err();
             assert_eq!(format!("{got:?}"), expected);
+        }
+    }
+
+    #[test]
+    fn a_byte_order_mark_is_blank_only_at_the_start() {
+        for min_piece in [1, usize::MAX] {
+            let parse = |text: &str| parse_in_pieces(FileId(0), text, min_piece);
+            assert!(parse("\u{FEFF}").is_ok());
+            assert_eq!(
+                parse("\u{FEFF}let a = 1;")
+                    .expect("parses")
+                    .statements
+                    .len(),
+                1
+            );
+            assert!(parse("let a = 1;\u{FEFF}let b = 2;").is_err());
+            // Rust's blanks: vertical tab, form feed, NEL and the line separator.
+            let blanks = "let\u{B}a\u{C}=\u{85}1\u{2028};";
+            assert_eq!(parse(blanks).expect("parses").statements.len(), 1);
         }
     }
 }

@@ -104,7 +104,11 @@ fn describe_found(text: &str, pos: usize) -> String {
             .collect();
         return format!("`{num}`");
     }
-    if c.is_control() || c == '\u{FFFD}' {
+    // Invisible characters (controls, format marks such as a byte order mark
+    // out of place, non-breaking blanks) are named by their code point.
+    let invisible =
+        matches!(c, '\u{AD}' | '\u{200B}'..='\u{200F}' | '\u{2060}'..='\u{2064}' | '\u{FEFF}');
+    if c.is_control() || c == '\u{FFFD}' || c.is_whitespace() || invisible {
         return format!("the character U+{:04X}", c as u32);
     }
     format!("`{c}`")

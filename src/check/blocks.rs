@@ -427,6 +427,6 @@ pub fn light(kind: BlockKind, p: &Params, diags: &mut Diagnostics) -> Option<Lig
 }
 
 /// The material schema (for inline and named materials).
-pub fn material_schema() -> Vec<&'static [super::params::ParamSpec]> {
-    vec![MATERIAL]
+pub fn material_schema() -> [&'static [super::params::ParamSpec]; 1] {
+    [MATERIAL]
 }

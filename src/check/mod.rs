@@ -470,10 +470,17 @@ impl Checker {
                 );
             }
         }
-        let base = self.base_dir(file);
+        // The folder relative paths (output, mesh files) start from; borrowed,
+        // not copied, as most blocks have no path.
+        let base = self
+            .sources
+            .get(file)
+            .path
+            .parent()
+            .unwrap_or(Path::new(""));
         match kind {
             BlockKind::Render => {
-                let settings = blocks::render_settings(&p, &base, &mut self.diags);
+                let settings = blocks::render_settings(&p, base, &mut self.diags);
                 if let Some((_, first)) = &self.render {
                     self.diags
                         .push(duplicate_block("render", kind_span, *first));
@@ -499,7 +506,13 @@ impl Checker {
             }
             _ => {
                 let material = self.object_material(&material_entries, span);
-                let shape = objects::shape(kind, &p, &base, &mut self.diags);
+                let base = self
+                    .sources
+                    .get(file)
+                    .path
+                    .parent()
+                    .unwrap_or(Path::new(""));
+                let shape = objects::shape(kind, &p, base, &mut self.diags);
                 let transform: DMat4 = objects::transform(&p, &mut self.diags);
                 let velocity = objects::velocity(&p);
                 if let (Some(shape), Some(material)) = (shape, material) {

@@ -223,10 +223,7 @@ pub fn velocity(p: &Params) -> DVec3 {
 }
 
 /// The schemas a shape block is checked against.
-pub fn shape_schemas(kind: BlockKind) -> Vec<&'static [super::params::ParamSpec]> {
-    if kind.is_shape() {
-        vec![super::params::shape_schema(kind), SHAPE_COMMON]
-    } else {
-        vec![super::params::shape_schema(kind)]
-    }
+pub fn shape_schemas(kind: BlockKind) -> [&'static [super::params::ParamSpec]; 2] {
+    let common: &[_] = if kind.is_shape() { SHAPE_COMMON } else { &[] };
+    [super::params::shape_schema(kind), common]
 }

@@ -6,7 +6,7 @@ use super::eval::{eval, Env, Value};
 use crate::diag::{did_you_mean, Diagnostic, Diagnostics};
 use crate::span::Span;
 use crate::syntax::ast::{Block, Entry, ExprKind};
-use std::collections::HashMap;
+use std::borrow::Cow;
 
 /// The type a parameter expects.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -239,10 +239,12 @@ pub enum Val {
 /// The checked parameters of one block.
 pub struct Params {
     /// What the block is called in messages (`sphere`, `material glass`).
-    pub what: String,
+    pub what: Cow<'static, str>,
     /// Where the block's keyword or name is (missing-parameter errors point there).
     pub head: Span,
-    values: HashMap<&'static str, (Val, Span)>,
+    /// Well-typed single parameters. A block has a handful: a vector searched
+    /// in order beats hashing (SipHash was 5 % of checking 100,000 spheres).
+    values: Vec<(&'static str, (Val, Span))>,
     /// Repeatable parameters (transforms) in source order.
     pub ordered: Vec<(&'static str, Val, Span)>,
     /// Names that were given (well-typed or not), so a later "missing" is not reported twice.
@@ -255,7 +257,7 @@ impl Params {
     /// Checks `block` against `schema` (plus `extra`), evaluating values.
     /// Entries that are `material` references are left to the caller.
     pub fn collect(
-        what: impl Into<String>,
+        what: impl Into<Cow<'static, str>>,
         head: Span,
         block: &Block,
         schemas: &[&'static [ParamSpec]],
@@ -266,12 +268,12 @@ impl Params {
         let mut params = Params {
             what: what.clone(),
             head,
-            values: HashMap::new(),
+            values: Vec::new(),
             ordered: Vec::new(),
             given: Vec::new(),
             suggested: Vec::new(),
         };
-        let mut first_seen: HashMap<&'static str, Span> = HashMap::new();
+        let mut first_seen: Vec<(&'static str, Span)> = Vec::new();
         for entry in &block.entries {
             let Entry::Param { name, value, .. } = entry else {
                 continue;
@@ -316,7 +318,7 @@ impl Params {
                 continue;
             };
             if !spec.repeat {
-                if let Some(first) = first_seen.get(spec.name) {
+                if let Some((_, first)) = first_seen.iter().find(|(n, _)| *n == spec.name) {
                     diags.push(
                         Diagnostic::error(
                             codes::DUPLICATE_PARAM,
@@ -329,7 +331,7 @@ impl Params {
                     );
                     continue;
                 }
-                first_seen.insert(spec.name, name.span);
+                first_seen.push((spec.name, name.span));
             }
             params.given.push(spec.name);
             let Some(val) = typed_value(spec, value, env, diags) else {
@@ -338,7 +340,7 @@ impl Params {
             if spec.repeat {
                 params.ordered.push((spec.name, val, value.span));
             } else {
-                params.values.insert(spec.name, (val, value.span));
+                params.values.push((spec.name, (val, value.span)));
             }
         }
         params
@@ -346,7 +348,7 @@ impl Params {
 
     /// The value of an optional parameter.
     pub fn get(&self, name: &str) -> Option<&(Val, Span)> {
-        self.values.get(name)
+        self.values.iter().find(|(n, _)| *n == name).map(|(_, v)| v)
     }
 
     /// Whether the parameter was written (even if its value had an error).
@@ -361,7 +363,7 @@ impl Params {
         schema: &[ParamSpec],
         diags: &mut Diagnostics,
     ) -> Option<&(Val, Span)> {
-        if let Some(v) = self.values.get(spec_name) {
+        if let Some(v) = self.get(spec_name) {
             return Some(v);
         }
         if !self.given(spec_name) && !self.suggested.contains(&spec_name) {

@@ -86,6 +86,11 @@ fn invalid_utf8(file: FileId, at: usize) -> Diagnostic {
     .with_help("save the file as UTF-8 text")
 }
 
+/// The folder relative paths in `file` (output, mesh and include files) start from.
+fn folder_of(sources: &SourceMap, file: FileId) -> &Path {
+    sources.get(file).path.parent().unwrap_or(Path::new(""))
+}
+
 struct MaterialEntry {
     index: usize,
     span: Span,
@@ -138,27 +143,19 @@ impl Checker {
         }
     }
 
-    fn base_dir(&self, file: FileId) -> PathBuf {
-        self.sources
-            .get(file)
-            .path
-            .parent()
-            .map(Path::to_path_buf)
-            .unwrap_or_default()
-    }
-
     fn run_file(&mut self, id: FileId) {
         let text = self.sources.get(id).text.clone();
-        match crate::syntax::parse(id, &text) {
-            Ok(file) => {
-                for st in &file.statements {
-                    self.statement(st, id);
-                }
+        // Statements are checked while later parts of the file are parsed.
+        // After a syntax error the statements before it have been checked:
+        // their mistakes are reported with it.
+        let parsed = crate::syntax::parse_each(id, &text, &mut |statements| {
+            for st in &statements {
+                self.statement(st, id);
             }
-            Err(d) => {
-                self.syntax_failed = true;
-                self.diags.push(d);
-            }
+        });
+        if let Err(d) = parsed {
+            self.syntax_failed = true;
+            self.diags.push(d);
         }
     }
 
@@ -358,7 +355,7 @@ impl Checker {
     }
 
     fn include(&mut self, path: &str, path_span: Span, file: FileId) {
-        let target = self.base_dir(file).join(path);
+        let target = folder_of(&self.sources, file).join(path);
         let canonical = std::fs::canonicalize(&target).unwrap_or_else(|_| target.clone());
         if let Some(pos) = self.include_stack.iter().position(|(p, _)| *p == canonical) {
             let mut d = Diagnostic::error(
@@ -470,16 +467,9 @@ impl Checker {
                 );
             }
         }
-        // The folder relative paths (output, mesh files) start from; borrowed,
-        // not copied, as most blocks have no path.
-        let base = self
-            .sources
-            .get(file)
-            .path
-            .parent()
-            .unwrap_or(Path::new(""));
         match kind {
             BlockKind::Render => {
+                let base = folder_of(&self.sources, file);
                 let settings = blocks::render_settings(&p, base, &mut self.diags);
                 if let Some((_, first)) = &self.render {
                     self.diags
@@ -506,12 +496,11 @@ impl Checker {
             }
             _ => {
                 let material = self.object_material(&material_entries, span);
-                let base = self
-                    .sources
-                    .get(file)
-                    .path
-                    .parent()
-                    .unwrap_or(Path::new(""));
+                // Only a mesh has a path to resolve (Path::parent is not free).
+                let base = match kind {
+                    BlockKind::Mesh => folder_of(&self.sources, file),
+                    _ => Path::new(""),
+                };
                 let shape = objects::shape(kind, &p, base, &mut self.diags);
                 let transform: DMat4 = objects::transform(&p, &mut self.diags);
                 let velocity = objects::velocity(&p);

@@ -114,12 +114,19 @@ fn describe_found(text: &str, pos: usize) -> String {
     format!("`{c}`")
 }
 
-/// Converts a pest error into a diagnostic pointing at the failing token.
-pub fn convert_error(err: pest::error::Error<Rule>, file: FileId, text: &str) -> Diagnostic {
-    let pos = match err.location {
-        InputLocation::Pos(p) => p,
-        InputLocation::Span((s, _)) => s,
-    };
+/// Converts a pest error into a diagnostic pointing at the failing token;
+/// pest parsed `text[base..]`.
+pub fn convert_error(
+    err: pest::error::Error<Rule>,
+    file: FileId,
+    text: &str,
+    base: usize,
+) -> Diagnostic {
+    let pos = base
+        + match err.location {
+            InputLocation::Pos(p) => p,
+            InputLocation::Span((s, _)) => s,
+        };
     let rest = &text[pos.min(text.len())..];
     let token_len = rest
         .chars()

@@ -50,9 +50,7 @@ pub fn rule_name(rule: Rule) -> &'static str {
         Rule::ident => "a name",
         Rule::keyword => "a keyword",
         Rule::boundary => "the end of a word",
-        Rule::add_op => "`+` or `-`",
-        Rule::mul_op => "`*` or `/`",
-        Rule::bin_op => "an operator",
+        Rule::bin_op => "an operator (`+`, `-`, `*`, `/`)",
         Rule::neg => "`-`",
         Rule::equals => "`=`",
         Rule::semicolon => "`;`",
@@ -199,7 +197,7 @@ pub fn convert_error(
             let useful: Vec<&str> = names
                 .iter()
                 .copied()
-                .filter(|n| !matches!(*n, "`+` or `-`" | "`*` or `/`"))
+                .filter(|n| *n != rule_name(Rule::bin_op))
                 .collect();
             (if useful.is_empty() { names } else { useful }, neg)
         }

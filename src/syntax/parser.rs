@@ -229,7 +229,7 @@ pub fn convert_error(
 /// The byte offset of the last `{` without a matching `}`, skipping comments and strings.
 fn unclosed_brace(text: &str) -> Option<usize> {
     let mut stack = Vec::new();
-    super::for_each_code_byte(text, |i, b| {
+    super::for_each_code_mark(text, |i, b| {
         match b {
             b'{' => stack.push(i),
             b'}' => {

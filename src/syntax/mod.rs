@@ -33,12 +33,12 @@ pub fn parse_each(
     parse_each_in_pieces(file, text, PIECE, sink)
 }
 
-/// Least size of the pieces a file is cut into for parsing in parallel.
-const PIECE: usize = 64 * 1024;
+/// Least size of the pieces a file is cut into, each parsed in one pest call.
+const PIECE: usize = 16 * 1024;
 
-/// Pieces parsed in parallel between two hand-overs to the sink: enough to
-/// keep both cores busy, few enough that the sink starts early.
-const BATCH: usize = 8;
+/// Pieces parsed in parallel between two hand-overs to the sink (512 KB):
+/// enough to keep both cores busy, few enough that the sink starts early.
+const BATCH: usize = 32;
 
 /// [`parse`] with the text cut into pieces of at least `min_piece` bytes.
 fn parse_in_pieces(file: FileId, text: &str, min_piece: usize) -> Result<ast::File, Diagnostic> {
@@ -132,18 +132,34 @@ impl PieceError {
     }
 }
 
-/// The statements of `text` (which starts at byte `base` of the file), one
-/// per pest call: pest queues two tokens of 40 bytes per pair, and a whole
-/// file's queue was 32 times the size of its text (360 MB for the 11 MB
-/// 100,000-sphere scene; zeroing its fresh pages took a third of the parse).
+/// The statements of `text` (which starts at byte `base` of the file): the
+/// whole piece in one pest call, or, if that fails, one statement per call up
+/// to the error. Pieces are small: pest queues two tokens of 40 bytes per
+/// pair, and a whole file's queue was 32 times the size of its text (360 MB
+/// for the 11 MB 100,000-sphere scene; zeroing its fresh pages took a third
+/// of the parse), while a call per statement paid pest's set-up and the
+/// growth of its queue every time (5 % of the parse).
 /// Stops at the first syntax error or misused reserved word.
 fn parse_statements(file: FileId, text: &str, base: usize) -> Parsed {
     let builder = build::Builder {
         file,
         reserved: Default::default(),
-        base: Default::default(),
+        base: std::cell::Cell::new(base),
     };
     let mut statements = Vec::new();
+    if let Ok(mut pairs) = PtsParser::parse(Rule::file, text) {
+        let pairs = pairs.next().expect("file matched").into_inner();
+        for pair in pairs.filter(|p| p.as_rule() != Rule::EOI) {
+            let statement = builder.build_statement(pair);
+            if let Some(d) = builder.reserved.take() {
+                let error = Some(PieceError::Reserved(d));
+                return Parsed { statements, error };
+            }
+            statements.push(statement);
+        }
+        let error = None;
+        return Parsed { statements, error };
+    }
     let mut pos = 0;
     loop {
         let rest = &text[pos..];

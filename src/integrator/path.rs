@@ -94,12 +94,16 @@ pub fn path_li(scene: &Scene, mut ray: Ray, sampler: &mut Sampler, nee: bool) ->
         beta *= bs.weight;
         prev_pdf = bs.pdf;
         prev_p = hit.p;
-        // Russian roulette from rr_depth segments on; survivors are divided by
-        // their probability, so the estimate stays unbiased. The survival
-        // probability follows the largest channel of the throughput (as pbrt-v4
-        // and Mitsuba 3 do): luminance would end saturated red or blue paths
-        // too early and make those channels noisy.
-        if segments > s.rr_depth {
+        // Russian roulette once the path has rr_depth segments, deciding on the
+        // next one: Mitsuba 3's convention (its `depth >= rr_depth` after the
+        // depth-th interaction; this loop was one segment later until session
+        // 4, which traced longer paths than the reference it is timed
+        // against). Survivors are divided by their probability, so the
+        // estimate stays unbiased. The survival probability follows the
+        // largest channel of the throughput (as pbrt-v4 and Mitsuba 3 do):
+        // luminance would end saturated red or blue paths too early and make
+        // those channels noisy.
+        if segments >= s.rr_depth {
             let q = beta.max_element().clamp(0.05, 0.95);
             if sampler.next_f32() >= q {
                 break;

@@ -89,22 +89,28 @@ fn build_node(
     let node_bounds = order
         .iter()
         .fold(Aabb::EMPTY, |b, &i| b.union(bounds[i as usize]));
-    if order.len() <= MAX_LEAF {
-        match small_split(bounds, centroids, order, &node_bounds) {
-            Some(mid) => split_here(
-                bounds,
-                centroids,
-                order,
-                offset,
-                out,
-                root,
-                node_bounds,
-                mid,
-            ),
-            None => out[root] = leaf(node_bounds, offset, order.len()),
-        }
-        return;
+    let mid = if order.len() <= MAX_LEAF {
+        small_split(bounds, centroids, order, &node_bounds)
+    } else {
+        Some(large_split(bounds, centroids, order))
+    };
+    match mid {
+        Some(mid) => split_here(
+            bounds,
+            centroids,
+            order,
+            offset,
+            out,
+            root,
+            node_bounds,
+            mid,
+        ),
+        None => out[root] = leaf(node_bounds, offset, order.len()),
     }
+}
+
+/// The bounds of the centroids of `order` and their widest axis.
+fn centroid_bounds(centroids: &[Vec3], order: &[u32]) -> (Aabb, usize) {
     let cb = order
         .iter()
         .fold(Aabb::EMPTY, |b, &i| b.grow(centroids[i as usize]));
@@ -116,26 +122,22 @@ fn build_node(
     } else {
         2
     };
-    let mid = if extent[axis] <= 0.0 || !extent[axis].is_finite() {
+    (cb, axis)
+}
+
+/// Where a node of more than [`MAX_LEAF`] primitives splits: always, as with
+/// the 4-wide traversal (bvh4.rs) a node test is cheaper than testing more
+/// primitives (single 16-spp renders on a noisy machine: the SAH leaf rule
+/// cost about 7 % on cornell and 9 % on mesh). `order` is partitioned.
+fn large_split(bounds: &[Aabb], centroids: &[Vec3], order: &mut [u32]) -> usize {
+    let (cb, axis) = centroid_bounds(centroids, order);
+    let extent = cb.max[axis] - cb.min[axis];
+    if extent <= 0.0 || !extent.is_finite() {
         // All centroids coincide (or are infinite): split in the middle of the list.
         order.len() / 2
     } else {
-        // Always split down to MAX_LEAF primitives: with the 4-wide traversal
-        // (bvh4.rs) a node test is cheaper than testing more primitives
-        // (single 16-spp renders on a noisy machine: the SAH leaf rule cost about
-        // 7 % on cornell and 9 % on mesh). Below that, `small_split` decides.
         sah_split(bounds, centroids, order, &cb, axis).unwrap_or(order.len() / 2)
-    };
-    split_here(
-        bounds,
-        centroids,
-        order,
-        offset,
-        out,
-        root,
-        node_bounds,
-        mid,
-    );
+    }
 }
 
 /// Makes `out[root]` an inner node over `order` split at `mid`, and builds
@@ -213,11 +215,7 @@ fn small_split(
     if n < 2 {
         return None;
     }
-    let cb = order
-        .iter()
-        .fold(Aabb::EMPTY, |b, &i| b.grow(centroids[i as usize]));
-    let extent = cb.max - cb.min;
-    let axis = (0..3).max_by(|&a, &b| extent[a].total_cmp(&extent[b]))?;
+    let (_, axis) = centroid_bounds(centroids, order);
     order.sort_by(|&a, &b| centroids[a as usize][axis].total_cmp(&centroids[b as usize][axis]));
     let area = |part: &[u32]| {
         part.iter()

@@ -21,7 +21,8 @@ pub struct Node {
 /// A BVH over primitives given by their bounds.
 #[derive(Debug, Clone, Default)]
 pub struct Bvh {
-    /// Nodes; the root is node 0.
+    /// Nodes; the root is node 0. Only nodes reachable from the root mean
+    /// anything: between halves built in parallel some slots stay unused.
     pub nodes: Vec<Node>,
     /// Primitive indices in leaf order.
     pub order: Vec<u32>,
@@ -39,7 +40,18 @@ impl Bvh {
         }
         let centroids: Vec<Vec3> = bounds.iter().map(Aabb::center).collect();
         let mut order: Vec<u32> = (0..bounds.len() as u32).collect();
-        let nodes = subtree(bounds, &centroids, &mut order, 0);
+        // Room for the most nodes a tree over n primitives can have (2n - 1,
+        // leaves of one): the halves built in parallel get disjoint parts of
+        // this one array instead of arrays of their own that were copied
+        // into their parent's (which held every node twice at the peak).
+        let mut nodes = vec![PLACEHOLDER; 2 * bounds.len() - 1];
+        let (root, below) = nodes.split_at_mut(1);
+        let input = Input {
+            bounds,
+            centroids: &centroids,
+        };
+        let used = build_node(&input, &mut order, 0, &mut root[0], below, 1);
+        nodes.truncate(1 + used);
         Bvh { nodes, order }
     }
 
@@ -64,48 +76,62 @@ const PLACEHOLDER: Node = Node {
     count: 0,
 };
 
-/// The subtree over `order` (which starts at `offset` in the full order) in
-/// a node array of its own, its root first.
-fn subtree(bounds: &[Aabb], centroids: &[Vec3], order: &mut [u32], offset: usize) -> Vec<Node> {
-    // About 0.6 nodes per primitive with leaves of up to four.
-    let mut nodes = Vec::with_capacity(order.len() * 2 / 3 + 1);
-    nodes.push(PLACEHOLDER);
-    build_node(bounds, centroids, order, offset, &mut nodes, 0);
-    nodes
+/// What every step of the build reads.
+struct Input<'a> {
+    bounds: &'a [Aabb],
+    centroids: &'a [Vec3],
 }
 
-/// Builds the subtree over `order` into `out`, its root into the reserved
-/// slot `out[root]`. The two children of a node are reserved side by side and
-/// their subtrees appended after them: no node is copied, except where the
-/// two halves were built in parallel into arrays of their own.
+/// Builds the subtree over `order` (which starts at `offset` in the full
+/// order): its root into `root`, its other nodes into `below`, which starts
+/// at node `base` of the whole array and has room for them all (2·len − 2).
+/// Returns how many slots of `below` it used (the last used one + 1). The
+/// two children of a node sit side by side, their subtrees after them.
 fn build_node(
-    bounds: &[Aabb],
-    centroids: &[Vec3],
+    input: &Input,
     order: &mut [u32],
     offset: usize,
-    out: &mut Vec<Node>,
-    root: usize,
-) {
+    root: &mut Node,
+    below: &mut [Node],
+    base: usize,
+) -> usize {
     let node_bounds = order
         .iter()
-        .fold(Aabb::EMPTY, |b, &i| b.union(bounds[i as usize]));
+        .fold(Aabb::EMPTY, |b, &i| b.union(input.bounds[i as usize]));
     let mid = if order.len() <= MAX_LEAF {
-        small_split(bounds, centroids, order, &node_bounds)
+        small_split(input.bounds, input.centroids, order, &node_bounds)
     } else {
-        Some(large_split(bounds, centroids, order))
+        Some(large_split(input.bounds, input.centroids, order))
     };
-    match mid {
-        Some(mid) => split_here(
-            bounds,
-            centroids,
-            order,
-            offset,
-            out,
-            root,
-            node_bounds,
-            mid,
-        ),
-        None => out[root] = leaf(node_bounds, offset, order.len()),
+    let Some(mid) = mid else {
+        *root = leaf(node_bounds, offset, order.len());
+        return 0;
+    };
+    *root = Node {
+        bounds: node_bounds,
+        index: base as u32,
+        count: 0,
+    };
+    let n = order.len();
+    let (lo, hi) = order.split_at_mut(mid);
+    let (pair, rest) = below.split_at_mut(2);
+    let (left, right) = pair.split_at_mut(1);
+    if n >= PARALLEL_THRESHOLD {
+        // Each half gets the most room it can need; the unused rest of the
+        // left half's part stays a gap in the array.
+        let (rest_lo, rest_hi) = rest.split_at_mut(2 * lo.len() - 2);
+        let hi_base = base + 2 + rest_lo.len();
+        let (_, used_hi) = rayon::join(
+            || build_node(input, lo, offset, &mut left[0], rest_lo, base + 2),
+            || build_node(input, hi, offset + mid, &mut right[0], rest_hi, hi_base),
+        );
+        2 + rest_lo.len() + used_hi
+    } else {
+        let used_lo = build_node(input, lo, offset, &mut left[0], rest, base + 2);
+        let (_, rest_hi) = rest.split_at_mut(used_lo);
+        let hi_base = base + 2 + used_lo;
+        let used_hi = build_node(input, hi, offset + mid, &mut right[0], rest_hi, hi_base);
+        2 + used_lo + used_hi
     }
 }
 
@@ -137,55 +163,6 @@ fn large_split(bounds: &[Aabb], centroids: &[Vec3], order: &mut [u32]) -> usize 
         order.len() / 2
     } else {
         sah_split(bounds, centroids, order, &cb, axis).unwrap_or(order.len() / 2)
-    }
-}
-
-/// Makes `out[root]` an inner node over `order` split at `mid`, and builds
-/// its two children (in parallel for large halves).
-#[allow(clippy::too_many_arguments)]
-fn split_here(
-    bounds: &[Aabb],
-    centroids: &[Vec3],
-    order: &mut [u32],
-    offset: usize,
-    out: &mut Vec<Node>,
-    root: usize,
-    node_bounds: Aabb,
-    mid: usize,
-) {
-    let n = order.len();
-    let (lo, hi) = order.split_at_mut(mid);
-    let left = out.len();
-    out[root] = Node {
-        bounds: node_bounds,
-        index: left as u32,
-        count: 0,
-    };
-    if n >= PARALLEL_THRESHOLD {
-        let (a, b) = rayon::join(
-            || subtree(bounds, centroids, lo, offset),
-            || subtree(bounds, centroids, hi, offset + mid),
-        );
-        // The two roots side by side, then the rest of each half; local
-        // node k >= 1 of a half moves to base + k - 1.
-        let base_a = left + 2;
-        let base_b = base_a + a.len() - 1;
-        let remap = |mut node: Node, base: usize| {
-            if node.count == 0 {
-                node.index = (base + node.index as usize - 1) as u32;
-            }
-            node
-        };
-        out.reserve(a.len() + b.len());
-        out.push(remap(a[0], base_a));
-        out.push(remap(b[0], base_b));
-        out.extend(a[1..].iter().map(|&node| remap(node, base_a)));
-        out.extend(b[1..].iter().map(|&node| remap(node, base_b)));
-    } else {
-        out.push(PLACEHOLDER);
-        out.push(PLACEHOLDER);
-        build_node(bounds, centroids, lo, offset, out, left);
-        build_node(bounds, centroids, hi, offset + mid, out, left + 1);
     }
 }
 

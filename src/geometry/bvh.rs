@@ -21,8 +21,7 @@ pub struct Node {
 /// A BVH over primitives given by their bounds.
 #[derive(Debug, Clone, Default)]
 pub struct Bvh {
-    /// Nodes; the root is node 0. Only nodes reachable from the root mean
-    /// anything: between halves built in parallel some slots stay unused.
+    /// Nodes; the root is node 0.
     pub nodes: Vec<Node>,
     /// Primitive indices in leaf order.
     pub order: Vec<u32>,
@@ -44,6 +43,8 @@ impl Bvh {
         // leaves of one): the halves built in parallel get disjoint parts of
         // this one array instead of arrays of their own that were copied
         // into their parent's (which held every node twice at the peak).
+        // Leaves hold 1.5 primitives on average, so a third of it is given
+        // back at the end.
         let mut nodes = vec![PLACEHOLDER; 2 * bounds.len() - 1];
         let (root, below) = nodes.split_at_mut(1);
         let input = Input {
@@ -51,7 +52,9 @@ impl Bvh {
             centroids: &centroids,
         };
         let used = build_node(&input, &mut order, 0, &mut root[0], below, 1);
+        // Give back the room no node needed (freed pages, not a copy).
         nodes.truncate(1 + used);
+        nodes.shrink_to_fit();
         Bvh { nodes, order }
     }
 
@@ -117,15 +120,30 @@ fn build_node(
     let (pair, rest) = below.split_at_mut(2);
     let (left, right) = pair.split_at_mut(1);
     if n >= PARALLEL_THRESHOLD {
-        // Each half gets the most room it can need; the unused rest of the
-        // left half's part stays a gap in the array.
-        let (rest_lo, rest_hi) = rest.split_at_mut(2 * lo.len() - 2);
-        let hi_base = base + 2 + rest_lo.len();
-        let (_, used_hi) = rayon::join(
+        // Each half gets the most room it can need (2·len − 2 slots); then
+        // the right half's nodes move down to close the left half's unused
+        // room, so that the tree stays dense (2.0 M slots instead of 1.3 M
+        // nodes on the mesh otherwise).
+        let room_lo = 2 * lo.len() - 2;
+        let (rest_lo, rest_hi) = rest.split_at_mut(room_lo);
+        let hi_base = base + 2 + room_lo;
+        let (used_lo, used_hi) = rayon::join(
             || build_node(input, lo, offset, &mut left[0], rest_lo, base + 2),
             || build_node(input, hi, offset + mid, &mut right[0], rest_hi, hi_base),
         );
-        2 + rest_lo.len() + used_hi
+        let gap = (room_lo - used_lo) as u32;
+        if gap > 0 {
+            rest.copy_within(room_lo..room_lo + used_hi, used_lo);
+            for node in rest[used_lo..used_lo + used_hi]
+                .iter_mut()
+                .chain(std::iter::once(&mut right[0]))
+            {
+                if node.count == 0 {
+                    node.index -= gap;
+                }
+            }
+        }
+        2 + used_lo + used_hi
     } else {
         let used_lo = build_node(input, lo, offset, &mut left[0], rest, base + 2);
         let (_, rest_hi) = rest.split_at_mut(used_lo);
@@ -340,8 +358,11 @@ pub(crate) mod tests {
 
     #[test]
     fn large_build_keeps_every_primitive_once() {
+        // Boxes in identical pairs, which stay together in leaves of two:
+        // the halves built in parallel then leave room unused.
         let bounds: Vec<Aabb> = (0..50_000)
             .map(|i| {
+                let i = i / 2;
                 let p = Vec3::new(
                     (i % 97) as f32,
                     (i % 89) as f32 * 0.5,
@@ -356,7 +377,9 @@ pub(crate) mod tests {
         let bvh = Bvh::build(&bounds);
         let mut seen = vec![0u8; bounds.len()];
         let mut stack = vec![0usize];
+        let mut reached = 0;
         while let Some(n) = stack.pop() {
+            reached += 1;
             let node = bvh.nodes[n];
             if node.count > 0 {
                 for &p in &bvh.order[node.index as usize..node.index as usize + node.count as usize]
@@ -373,5 +396,8 @@ pub(crate) mod tests {
             }
         }
         assert!(seen.iter().all(|&c| c == 1));
+        // Built in parallel (50,000 > PARALLEL_THRESHOLD), yet dense: every
+        // slot is a node of the tree.
+        assert_eq!(reached, bvh.nodes.len());
     }
 }

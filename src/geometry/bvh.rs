@@ -102,9 +102,9 @@ fn build_node(
         .iter()
         .fold(Aabb::EMPTY, |b, &i| b.union(input.bounds[i as usize]));
     let mid = if order.len() <= MAX_LEAF {
-        small_split(input.bounds, input.centroids, order, &node_bounds)
+        small_split(input, order, &node_bounds)
     } else {
-        Some(large_split(input.bounds, input.centroids, order))
+        Some(large_split(input, order))
     };
     let Some(mid) = mid else {
         *root = leaf(node_bounds, offset, order.len());
@@ -173,22 +173,22 @@ fn centroid_bounds(centroids: &[Vec3], order: &[u32]) -> (Aabb, usize) {
 /// the 4-wide traversal (bvh4.rs) a node test is cheaper than testing more
 /// primitives (single 16-spp renders on a noisy machine: the SAH leaf rule
 /// cost about 7 % on cornell and 9 % on mesh). `order` is partitioned.
-fn large_split(bounds: &[Aabb], centroids: &[Vec3], order: &mut [u32]) -> usize {
-    let (cb, axis) = centroid_bounds(centroids, order);
+fn large_split(input: &Input, order: &mut [u32]) -> usize {
+    let (cb, axis) = centroid_bounds(input.centroids, order);
     let extent = cb.max[axis] - cb.min[axis];
     if extent <= 0.0 || !extent.is_finite() {
         // All centroids coincide (or are infinite): split in the middle of the list.
         order.len() / 2
     } else {
-        sah_split(bounds, centroids, order, &cb, axis).unwrap_or(order.len() / 2)
+        sah_split(input, order, &cb, axis).unwrap_or(order.len() / 2)
     }
 }
 
 /// The traversal cost of an inner node relative to one primitive test, in
 /// the surface area heuristic that decides small leaves. pbrt-v4 uses 0.5;
-/// below 0.9 the walls of a Cornell box part, and the higher it is, the more
-/// mesh triangles stay in pairs (a pair is split at 1.0 in 7 % of the cases,
-/// at 0.85 in about a quarter, at 0.5 in 99 %: memory).
+/// below 0.89 the walls of a Cornell box part, and the higher it is, the more
+/// mesh triangles stay in pairs (of the mesh's nodes of two, counted: 7 %
+/// split at 1.0, 14 % at 0.9, 59 % at 0.7, 99 % at 0.5: memory).
 const NODE_COST: f32 = 0.85;
 
 /// Whether a node of at most [`MAX_LEAF`] primitives is better split (by the
@@ -198,23 +198,20 @@ const NODE_COST: f32 = 0.85;
 /// a room) and scattered spheres end in leaves of one.
 /// Measured, 16-spp renders A/B against leaves of up to four: cornell
 /// 2.50 -> 2.15 s, mesh 2.37 -> 2.28, spheres 1.44 -> 1.32; mesh peak RSS
-/// 206 -> 227 MB, build 0.19 -> 0.28 s. Leaves of exactly one: cornell 2.03,
+/// 206 -> 227 MB, build 0.19 -> 0.28 s (with the build of then, which held
+/// nodes twice; now 177 MB, 0.25 s). Leaves of exactly one: cornell 2.03,
 /// spheres 1.36, but mesh 346 MB; of two: mesh 2.27, cornell 2.42.
-fn small_split(
-    bounds: &[Aabb],
-    centroids: &[Vec3],
-    order: &mut [u32],
-    node: &Aabb,
-) -> Option<usize> {
+fn small_split(input: &Input, order: &mut [u32], node: &Aabb) -> Option<usize> {
     let n = order.len();
     if n < 2 {
         return None;
     }
-    let (_, axis) = centroid_bounds(centroids, order);
-    order.sort_by(|&a, &b| centroids[a as usize][axis].total_cmp(&centroids[b as usize][axis]));
+    let (_, axis) = centroid_bounds(input.centroids, order);
+    let centroid = |i: u32| input.centroids[i as usize][axis];
+    order.sort_by(|&a, &b| centroid(a).total_cmp(&centroid(b)));
     let area = |part: &[u32]| {
         part.iter()
-            .fold(Aabb::EMPTY, |b, &i| b.union(bounds[i as usize]))
+            .fold(Aabb::EMPTY, |b, &i| b.union(input.bounds[i as usize]))
             .area()
     };
     let (cost, mid) = (1..n)
@@ -231,21 +228,16 @@ fn small_split(
 /// Binned SAH along `axis`: `mid`, with `order` partitioned at the cheapest
 /// split so that the left side is `order[..mid]`. `None` when every centroid
 /// lands in one bin.
-fn sah_split(
-    bounds: &[Aabb],
-    centroids: &[Vec3],
-    order: &mut [u32],
-    cb: &Aabb,
-    axis: usize,
-) -> Option<usize> {
+fn sah_split(input: &Input, order: &mut [u32], cb: &Aabb, axis: usize) -> Option<usize> {
     let scale = BINS as f32 / (cb.max[axis] - cb.min[axis]);
-    let bin_of =
-        |i: u32| (((centroids[i as usize][axis] - cb.min[axis]) * scale) as usize).min(BINS - 1);
+    let bin_of = |i: u32| {
+        (((input.centroids[i as usize][axis] - cb.min[axis]) * scale) as usize).min(BINS - 1)
+    };
     let mut bin_bounds = [Aabb::EMPTY; BINS];
     let mut bin_count = [0usize; BINS];
     for &i in order.iter() {
         let b = bin_of(i);
-        bin_bounds[b] = bin_bounds[b].union(bounds[i as usize]);
+        bin_bounds[b] = bin_bounds[b].union(input.bounds[i as usize]);
         bin_count[b] += 1;
     }
     let mut right_area = [0.0f32; BINS];

@@ -280,9 +280,8 @@ fn build_geometry(scene: &check::Scene, cache: &mut LowerCache) -> Result<Geomet
     bvh.order = (0..bvh.order.len() as u32).collect();
     let wide = Bvh4::from_binary(&bvh);
     // The binary tree is dropped here: only the wide one is traversed.
-    let unbounded = (0..prims.len() as u32)
-        .filter(|&i| matches!(prims[i as usize].shape, Shape::Plane { .. }))
-        .collect();
+    // The permutation put the planes last.
+    let unbounded = (bvh.order.len() as u32..prims.len() as u32).collect();
     Ok(Geometry {
         prims: Arc::new(prims),
         normals: Arc::new(normals),

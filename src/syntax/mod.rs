@@ -146,19 +146,32 @@ fn parse_statements(file: FileId, text: &str, base: usize) -> Parsed {
         reserved: Default::default(),
         base: std::cell::Cell::new(base),
     };
-    let mut statements = Vec::new();
+    let mut parsed = Parsed {
+        statements: Vec::new(),
+        error: None,
+    };
+    // Builds a statement pair into `parsed`; false at a misused reserved word.
+    let keep = |pair, parsed: &mut Parsed| {
+        let statement = builder.build_statement(pair);
+        match builder.reserved.take() {
+            Some(d) => {
+                parsed.error = Some(PieceError::Reserved(d));
+                false
+            }
+            None => {
+                parsed.statements.push(statement);
+                true
+            }
+        }
+    };
     if let Ok(mut pairs) = PtsParser::parse(Rule::file, text) {
         let pairs = pairs.next().expect("file matched").into_inner();
         for pair in pairs.filter(|p| p.as_rule() != Rule::EOI) {
-            let statement = builder.build_statement(pair);
-            if let Some(d) = builder.reserved.take() {
-                let error = Some(PieceError::Reserved(d));
-                return Parsed { statements, error };
+            if !keep(pair, &mut parsed) {
+                break;
             }
-            statements.push(statement);
         }
-        let error = None;
-        return Parsed { statements, error };
+        return parsed;
     }
     let mut pos = 0;
     loop {
@@ -169,25 +182,18 @@ fn parse_statements(file: FileId, text: &str, base: usize) -> Parsed {
                 let end = pair.as_span().end();
                 builder.base.set(base + pos);
                 if let Some(statement) = pair.into_inner().next() {
-                    let statement = builder.build_statement(statement);
-                    if let Some(d) = builder.reserved.take() {
-                        let error = Some(PieceError::Reserved(d));
-                        return Parsed { statements, error };
+                    if !keep(statement, &mut parsed) {
+                        return parsed;
                     }
-                    statements.push(statement);
                 }
                 pos += end.max(1);
             }
-            Err(_) if PtsParser::parse(Rule::only_blanks, rest).is_ok() => break,
+            Err(_) if PtsParser::parse(Rule::only_blanks, rest).is_ok() => return parsed,
             Err(_) => {
-                let error = Some(PieceError::Syntax);
-                return Parsed { statements, error };
+                parsed.error = Some(PieceError::Syntax);
+                return parsed;
             }
         }
-    }
-    Parsed {
-        statements,
-        error: None,
     }
 }
 
@@ -369,7 +375,7 @@ mod tests {
         for text in &texts {
             let whole = parse_whole(FileId(0), text).expect("parses");
             // Pieces as small as possible (cut after every statement), and
-            // one piece parsed statement by statement.
+            // the whole text as one piece.
             for min_piece in [1, usize::MAX] {
                 let pieces = parse_in_pieces(FileId(0), text, min_piece).expect("parses");
                 assert_eq!(pieces, whole, "{text}");

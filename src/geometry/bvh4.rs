@@ -9,7 +9,10 @@
 //! hit children are visited nearest first.
 
 use super::bvh::Bvh;
+use super::shape::ShapeHit;
+use super::tri4::Tri4;
 use super::{Aabb, Ray};
+use glam::{Vec2, Vec3};
 
 /// One node: four child boxes, each child a node or a leaf range.
 #[derive(Debug, Clone, Copy)]
@@ -21,9 +24,14 @@ pub struct Node4 {
     pub max: [[f32; 4]; 3],
     /// Inner child: node index; leaf: first primitive; empty: unused.
     pub child: [u32; 4],
-    /// 0 for an inner child, else the number of primitives of the leaf.
+    /// 0 for an inner child, [`BLOCK`] for a leaf of triangles packed in
+    /// [`Bvh4::tris`] (`child` indexes it), else the number of primitives
+    /// of the leaf.
     pub count: [u32; 4],
 }
+
+/// The `count` of a leaf stored as a [`Tri4`].
+pub const BLOCK: u32 = u32::MAX;
 
 const EMPTY_NODE: Node4 = Node4 {
     min: [[f32::INFINITY; 4]; 3],
@@ -38,11 +46,15 @@ const EMPTY_NODE: Node4 = Node4 {
 pub struct Bvh4 {
     /// Nodes; the root is node 0.
     pub nodes: Vec<Node4>,
+    /// Leaves of up to four static triangles, tested together.
+    pub tris: Vec<Tri4>,
 }
 
 impl Bvh4 {
-    /// Collapses a binary BVH whose leaf order is the identity.
-    pub fn from_binary(bvh: &Bvh) -> Bvh4 {
+    /// Collapses a binary BVH whose leaf order is the identity. A leaf whose
+    /// primitives are all static triangles (`triangle(prim)` gives
+    /// `[p0, e1, e2]`) becomes a [`Tri4`] block.
+    pub fn from_binary(bvh: &Bvh, triangle: impl Fn(u32) -> Option<[Vec3; 3]>) -> Bvh4 {
         let mut out = Bvh4::default();
         if bvh.nodes.is_empty() {
             return out;
@@ -50,36 +62,38 @@ impl Bvh4 {
         debug_assert!(bvh.order.iter().enumerate().all(|(i, &p)| i as u32 == p));
         // At most one wide node per binary inner node (the dense binary tree
         // has n = 2·leaves − 1 nodes, leaves − 1 of them inner; in practice
-        // about half that: 315 k for the mesh's 645 k leaves), reserved up
-        // front so that the vector never grows (old and new buffers at once)
+        // about half that), and at most one block per leaf, reserved up
+        // front so that the vectors never grow (old and new buffers at once)
         // at the load's peak; pages never written cost no memory.
         out.nodes.reserve(bvh.nodes.len() / 2);
+        out.tris.reserve(bvh.nodes.len().div_ceil(2));
+        let mut collapse = Collapse {
+            bvh,
+            triangle,
+            out: &mut out,
+        };
         if bvh.nodes[0].count > 0 {
             // A single leaf: one node with one child.
             let mut n = EMPTY_NODE;
-            set_lane(
-                &mut n,
-                0,
-                &bvh.nodes[0].bounds,
-                bvh.nodes[0].index,
-                bvh.nodes[0].count as u32,
-            );
+            collapse.set_child(&mut n, 0, 0);
             out.nodes.push(n);
         } else {
-            collapse(bvh, 0, &mut out.nodes);
+            collapse.node(0);
         }
         out
     }
 
-    /// The closest hit: `hit(prim, t_max)` returns the hit distance if
-    /// closer than `t_max`. Returns the primitive and distance.
+    /// The closest hit beyond `t_min` and before `t_max`: `hit(prim, t_max)`
+    /// tests a primitive that is not in a block and returns its hit if
+    /// closer than `t_max`. Returns the primitive and its hit.
     #[inline]
-    pub fn closest<F: FnMut(u32, f32) -> Option<f32>>(
+    pub fn closest<F: FnMut(u32, f32) -> Option<ShapeHit>>(
         &self,
         ray: &Ray,
+        t_min: f32,
         mut t_max: f32,
         mut hit: F,
-    ) -> Option<(u32, f32)> {
+    ) -> Option<(u32, ShapeHit)> {
         if self.nodes.is_empty() {
             return None;
         }
@@ -113,13 +127,23 @@ impl Bvh4 {
             // inner children, pushed far to near so the nearest pops first.
             for &lane in order[..k].iter().rev() {
                 let count = n.count[lane];
-                if count > 0 && t_near[lane] <= t_max {
-                    let first = n.child[lane];
-                    for p in first..first + count {
-                        if let Some(t) = hit(p, t_max) {
-                            t_max = t;
-                            best = Some((p, t));
-                        }
+                if count == 0 || t_near[lane] > t_max {
+                    continue;
+                }
+                let first = n.child[lane];
+                if count == BLOCK {
+                    let block = &self.tris[first as usize];
+                    if let Some(h) = block.closest(ray.o, ray.d, t_min, t_max) {
+                        t_max = h.t;
+                        let uv = Vec2::new(h.u, h.v);
+                        best = Some((block.prim[h.lane], ShapeHit { t: h.t, uv }));
+                    }
+                    continue;
+                }
+                for p in first..first + count {
+                    if let Some(h) = hit(p, t_max) {
+                        t_max = h.t;
+                        best = Some((p, h));
                     }
                 }
             }
@@ -132,9 +156,16 @@ impl Bvh4 {
         best
     }
 
-    /// Whether anything is hit before `t_max` (shadow rays).
+    /// Whether anything is hit beyond `t_min` and before `t_max` (shadow
+    /// rays); `hit` tests a primitive that is not in a block.
     #[inline]
-    pub fn any<F: FnMut(u32, f32) -> bool>(&self, ray: &Ray, t_max: f32, mut hit: F) -> bool {
+    pub fn any<F: FnMut(u32, f32) -> bool>(
+        &self,
+        ray: &Ray,
+        t_min: f32,
+        t_max: f32,
+        mut hit: F,
+    ) -> bool {
         if self.nodes.is_empty() {
             return false;
         }
@@ -147,14 +178,17 @@ impl Bvh4 {
                 if mask & (1 << lane) == 0 {
                     continue;
                 }
-                let count = n.count[lane];
-                if count == 0 {
-                    stack.push(n.child[lane]);
-                } else {
-                    let first = n.child[lane];
-                    if (first..first + count).any(|p| hit(p, t_max)) {
-                        return true;
+                let (count, first) = (n.count[lane], n.child[lane]);
+                let blocked = match count {
+                    0 => {
+                        stack.push(first);
+                        false
                     }
+                    BLOCK => self.tris[first as usize].any(ray.o, ray.d, t_min, t_max),
+                    _ => (first..first + count).any(|p| hit(p, t_max)),
+                };
+                if blocked {
+                    return true;
                 }
             }
         }
@@ -263,42 +297,71 @@ fn set_lane(n: &mut Node4, lane: usize, b: &Aabb, child: u32, count: u32) {
     n.count[lane] = count;
 }
 
-/// Builds the wide node for binary inner node `b`; returns its index.
-fn collapse(bvh: &Bvh, b: usize, out: &mut Vec<Node4>) -> u32 {
-    let node = &bvh.nodes[b];
-    let mut children = vec![node.index as usize, node.index as usize + 1];
-    // Open the largest inner child until there are four.
-    while children.len() < 4 {
-        let Some((i, _)) = children
-            .iter()
-            .enumerate()
-            .filter(|(_, &c)| bvh.nodes[c].count == 0)
-            .max_by(|a, b| {
-                let area = |c: usize| bvh.nodes[c].bounds.area();
-                area(*a.1).total_cmp(&area(*b.1))
-            })
-        else {
-            break;
-        };
-        let c = children.swap_remove(i);
-        let first = bvh.nodes[c].index as usize;
-        children.push(first);
-        children.push(first + 1);
+/// The collapse of a binary tree into wide nodes and triangle blocks.
+struct Collapse<'a, T> {
+    bvh: &'a Bvh,
+    triangle: T,
+    out: &'a mut Bvh4,
+}
+
+impl<T: Fn(u32) -> Option<[Vec3; 3]>> Collapse<'_, T> {
+    /// Builds the wide node for binary inner node `b`; returns its index.
+    fn node(&mut self, b: usize) -> u32 {
+        let nodes = &self.bvh.nodes;
+        let node = &nodes[b];
+        let mut children = vec![node.index as usize, node.index as usize + 1];
+        // Open the largest inner child until there are four.
+        while children.len() < 4 {
+            let Some((i, _)) = children
+                .iter()
+                .enumerate()
+                .filter(|(_, &c)| nodes[c].count == 0)
+                .max_by(|a, b| {
+                    let area = |c: usize| nodes[c].bounds.area();
+                    area(*a.1).total_cmp(&area(*b.1))
+                })
+            else {
+                break;
+            };
+            let c = children.swap_remove(i);
+            let first = nodes[c].index as usize;
+            children.push(first);
+            children.push(first + 1);
+        }
+        let index = self.out.nodes.len();
+        self.out.nodes.push(EMPTY_NODE);
+        let mut n = EMPTY_NODE;
+        for (lane, &c) in children.iter().enumerate() {
+            self.set_child(&mut n, lane, c);
+        }
+        self.out.nodes[index] = n;
+        index as u32
     }
-    let index = out.len();
-    out.push(EMPTY_NODE);
-    let mut n = EMPTY_NODE;
-    for (lane, &c) in children.iter().enumerate() {
-        let cn = &bvh.nodes[c];
-        if cn.count > 0 {
-            set_lane(&mut n, lane, &cn.bounds, cn.index, cn.count as u32);
+
+    /// Fills `lane` of `n` with binary node `c`: a wide node, a block or a
+    /// leaf range.
+    fn set_child(&mut self, n: &mut Node4, lane: usize, c: usize) {
+        let cn = self.bvh.nodes[c];
+        if cn.count == 0 {
+            let child = self.node(c);
+            set_lane(n, lane, &cn.bounds, child, 0);
+            return;
+        }
+        let mut tris = [(0, [Vec3::ZERO; 3]); 4];
+        let count = cn.count as usize;
+        let packed = count <= 4
+            && (0..count).all(|k| {
+                let p = cn.index + k as u32;
+                (self.triangle)(p).map(|t| tris[k] = (p, t)).is_some()
+            });
+        if packed {
+            let block = self.out.tris.len() as u32;
+            self.out.tris.push(Tri4::new(&tris[..count]));
+            set_lane(n, lane, &cn.bounds, block, BLOCK);
         } else {
-            let child = collapse(bvh, c, out);
-            set_lane(&mut n, lane, &cn.bounds, child, 0);
+            set_lane(n, lane, &cn.bounds, cn.index, cn.count as u32);
         }
     }
-    out[index] = n;
-    index as u32
 }
 
 #[cfg(test)]
@@ -313,10 +376,14 @@ mod tests {
     /// lowering does.
     fn wide(shapes: &mut Vec<Shape>) -> Bvh4 {
         let bounds: Vec<Aabb> = shapes.iter().map(Shape::bounds).collect();
-        let mut bvh = Bvh::build(&bounds);
+        let is_triangle = |i: u32| matches!(shapes[i as usize], Shape::Triangle { .. });
+        let mut bvh = Bvh::build(&bounds, &is_triangle);
         *shapes = bvh.order.iter().map(|&i| shapes[i as usize]).collect();
         bvh.order = (0..shapes.len() as u32).collect();
-        Bvh4::from_binary(&bvh)
+        Bvh4::from_binary(&bvh, |p| match shapes[p as usize] {
+            Shape::Triangle { p0, e1, e2, .. } => Some([p0, e1, e2]),
+            _ => None,
+        })
     }
 
     proptest! {
@@ -334,18 +401,18 @@ mod tests {
                     continue;
                 }
                 let ray = Ray::new(Vec3::new(ox, oy, oz), d.normalize(), 0.0);
-                let got = w.closest(&ray, f32::INFINITY, |i, tmax| {
-                    shapes[i as usize].intersect(&ray, 1e-4, tmax).map(|h| h.t)
+                let got = w.closest(&ray, 1e-4, f32::INFINITY, |i, tmax| {
+                    shapes[i as usize].intersect(&ray, 1e-4, tmax)
                 });
                 let want = brute(&shapes, &ray);
-                prop_assert_eq!(got.map(|g| g.1), want.map(|w| w.1));
-                let any = w.any(&ray, f32::INFINITY, |i, tmax| {
+                prop_assert_eq!(got.map(|g| g.1.t), want.map(|w| w.1));
+                let any = w.any(&ray, 1e-4, f32::INFINITY, |i, tmax| {
                     shapes[i as usize].intersect(&ray, 1e-4, tmax).is_some()
                 });
                 prop_assert_eq!(any, want.is_some());
                 if let Some((_, t)) = want {
                     // Any-hit bounded just before the closest hit sees nothing.
-                    let blocked = w.any(&ray, t * 0.999, |i, tmax| {
+                    let blocked = w.any(&ray, 1e-4, t * 0.999, |i, tmax| {
                         shapes[i as usize].intersect(&ray, 1e-4, tmax).is_some()
                     });
                     prop_assert!(!blocked);
@@ -366,10 +433,13 @@ mod tests {
             .collect();
         let w = wide(&mut shapes);
         let ray = Ray::new(Vec3::new(-1.0, 0.0, 0.0), Vec3::X, 0.0);
-        let hit = w.closest(&ray, f32::INFINITY, |i, tmax| {
-            shapes[i as usize].intersect(&ray, 1e-4, tmax).map(|h| h.t)
+        let hit = w.closest(&ray, 1e-4, f32::INFINITY, |i, tmax| {
+            shapes[i as usize].intersect(&ray, 1e-4, tmax)
         });
-        assert!(hit.is_some_and(|(_, t)| (t - 1.99).abs() < 1e-3), "{hit:?}");
+        assert!(
+            hit.is_some_and(|(_, h)| (h.t - 1.99).abs() < 1e-3),
+            "{hit:?}"
+        );
         let mut stack = Stack::new(0u32);
         for i in 1..200 {
             stack.push(i);
@@ -388,12 +458,12 @@ mod tests {
         }];
         let w = wide(&mut one);
         let ray = Ray::new(Vec3::new(0.0, 0.0, 5.0), -Vec3::Z, 0.0);
-        let hit = w.closest(&ray, f32::INFINITY, |i, tmax| {
-            one[i as usize].intersect(&ray, 1e-4, tmax).map(|h| h.t)
+        let hit = w.closest(&ray, 1e-4, f32::INFINITY, |i, tmax| {
+            one[i as usize].intersect(&ray, 1e-4, tmax)
         });
         assert_eq!(hit.map(|h| h.0), Some(0));
         let empty = Bvh4::default();
-        assert!(empty.closest(&ray, 1.0, |_, _| Some(0.5)).is_none());
-        assert!(!empty.any(&ray, 1.0, |_, _| true));
+        assert!(empty.closest(&ray, 0.0, 1.0, |_, _| None).is_none());
+        assert!(!empty.any(&ray, 0.0, 1.0, |_, _| true));
     }
 }

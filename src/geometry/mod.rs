@@ -7,6 +7,7 @@ pub mod plane;
 pub mod quad;
 pub mod shape;
 pub mod sphere;
+pub mod tri4;
 pub mod triangle;
 
 use glam::Vec3;

@@ -278,7 +278,7 @@ fn build_geometry(scene: &check::Scene, cache: &mut LowerCache) -> Result<Geomet
     permute(&mut prims, &permutation);
     permute(&mut prim_object, &permutation);
     bvh.order = (0..bvh.order.len() as u32).collect();
-    let wide = Bvh4::from_binary(&bvh);
+    let wide = Bvh4::from_binary(&bvh, |i| packed_triangle(&prims[i as usize]));
     // The binary tree is dropped here: only the wide one is traversed.
     // The permutation put the planes last.
     let unbounded = (bvh.order.len() as u32..prims.len() as u32).collect();
@@ -310,6 +310,16 @@ fn permute<T>(v: &mut [T], perm: &[u32]) {
     }
 }
 
+/// The vertices (`p0, e1, e2`) of a primitive the wide BVH tests four at a
+/// time in a [`Tri4`](crate::geometry::tri4::Tri4): a triangle that does
+/// not move.
+fn packed_triangle(p: &Prim) -> Option<[Vec3; 3]> {
+    match p.shape {
+        Shape::Triangle { p0, e1, e2, .. } if p.velocity == Vec3::ZERO => Some([p0, e1, e2]),
+        _ => None,
+    }
+}
+
 /// BVH over bounded primitives, expanded over the shutter for moving ones
 /// (planes are kept apart, see [`Scene::unbounded`]).
 fn build_bvh(prims: &[Prim], shutter: (f64, f64)) -> Bvh {
@@ -337,7 +347,8 @@ fn build_bvh(prims: &[Prim], shutter: (f64, f64)) -> Bvh {
         bounded.push(i as u32);
         boxes.push(b);
     }
-    let mut bvh = Bvh::build(&boxes);
+    let packable = |j: u32| packed_triangle(&prims[bounded[j as usize] as usize]).is_some();
+    let mut bvh = Bvh::build(&boxes, &packable);
     // Map the BVH's order from positions in `bounded` to primitive indices.
     for o in bvh.order.iter_mut() {
         *o = bounded[*o as usize];

@@ -116,24 +116,18 @@ impl Scene {
 
     /// The closest hit along `ray` beyond `t_min`.
     pub fn intersect(&self, ray: &Ray, t_min: f32, t_max: f32) -> Option<Hit> {
-        // The BVH accepts every hit the closure returns (each is closer than the
-        // last), so the last surface parameters kept are those of the closest hit.
-        let mut uv = glam::Vec2::ZERO;
-        let mut best = self.wide.closest(ray, t_max, |i, tmax| {
+        let mut best = self.wide.closest(ray, t_min, t_max, |i, tmax| {
             let p = &self.prims[i as usize];
-            let h = p.shape.intersect(&Self::local_ray(p, ray), t_min, tmax)?;
-            uv = h.uv;
-            Some(h.t)
+            p.shape.intersect(&Self::local_ray(p, ray), t_min, tmax)
         });
         for &i in self.unbounded.iter() {
             let p = &self.prims[i as usize];
-            let tmax = best.map_or(t_max, |b| b.1);
+            let tmax = best.map_or(t_max, |b| b.1.t);
             if let Some(h) = p.shape.intersect(&Self::local_ray(p, ray), t_min, tmax) {
-                best = Some((i, h.t));
-                uv = h.uv;
+                best = Some((i, h));
             }
         }
-        let (i, t) = best?;
+        let (i, ShapeHit { t, uv }) = best?;
         let prim = &self.prims[i as usize];
         let local = Self::local_ray(prim, ray);
         let p_local = prim.shape.surface_point(&local, &ShapeHit { t, uv });
@@ -160,7 +154,7 @@ impl Scene {
 
     /// Whether anything blocks the segment from `ray.o` to `ray.at(t_max)`.
     pub fn occluded(&self, ray: &Ray, t_min: f32, t_max: f32) -> bool {
-        self.wide.any(ray, t_max, |i, tmax| {
+        self.wide.any(ray, t_min, t_max, |i, tmax| {
             let p = &self.prims[i as usize];
             p.shape
                 .intersect(&Self::local_ray(p, ray), t_min, tmax)

@@ -10,7 +10,7 @@
 
 use super::bvh::Bvh;
 use super::shape::ShapeHit;
-use super::tri4::Tri4;
+use super::tri4::{PackedTriangle, Tri4, PLAIN};
 use super::{Aabb, Ray};
 use glam::{Vec2, Vec3};
 
@@ -40,6 +40,18 @@ const EMPTY_NODE: Node4 = Node4 {
     count: [0; 4],
 };
 
+/// The closest hit found by [`Bvh4::closest`].
+#[derive(Debug, Clone, Copy)]
+pub struct TreeHit {
+    /// The primitive hit.
+    pub prim: u32,
+    /// Where.
+    pub hit: ShapeHit,
+    /// `[p0, e1, e2]` when the primitive is a plain triangle of a block
+    /// (see [`PLAIN`]): all its hit needs, without the primitive's record.
+    pub plain: Option<[Vec3; 3]>,
+}
+
 /// The wide BVH. Leaves index primitives directly (the binary BVH's order
 /// must be the identity, see `ir::lower`).
 #[derive(Debug, Clone, Default)]
@@ -51,10 +63,10 @@ pub struct Bvh4 {
 }
 
 impl Bvh4 {
-    /// Collapses a binary BVH whose leaf order is the identity. A leaf whose
-    /// primitives are all static triangles (`triangle(prim)` gives
-    /// `[p0, e1, e2]`) becomes a [`Tri4`] block.
-    pub fn from_binary(bvh: &Bvh, triangle: impl Fn(u32) -> Option<[Vec3; 3]>) -> Bvh4 {
+    /// Collapses a binary BVH whose leaf order is the identity. A leaf of up
+    /// to four primitives that `triangle(prim)` packs (static triangles)
+    /// becomes a [`Tri4`] block.
+    pub fn from_binary(bvh: &Bvh, triangle: impl Fn(u32) -> Option<PackedTriangle>) -> Bvh4 {
         let mut out = Bvh4::default();
         if bvh.nodes.is_empty() {
             return out;
@@ -93,12 +105,14 @@ impl Bvh4 {
         t_min: f32,
         mut t_max: f32,
         mut hit: F,
-    ) -> Option<(u32, ShapeHit)> {
+    ) -> Option<TreeHit> {
         if self.nodes.is_empty() {
             return None;
         }
         let r = RayLanes::new(ray);
-        let mut best = None;
+        let mut best: Option<TreeHit> = None;
+        // The block and lane of the best hit, if it is in a block.
+        let mut best_lane = None;
         let mut stack = Stack::new((0u32, 0.0f32));
         while let Some((node, t_enter)) = stack.pop() {
             if t_enter > t_max {
@@ -135,15 +149,27 @@ impl Bvh4 {
                     let block = &self.tris[first as usize];
                     if let Some(h) = block.closest(ray.o, ray.d, t_min, t_max) {
                         t_max = h.t;
-                        let uv = Vec2::new(h.u, h.v);
-                        best = Some((block.prim[h.lane], ShapeHit { t: h.t, uv }));
+                        best = Some(TreeHit {
+                            prim: block.prim(h.lane).0,
+                            hit: ShapeHit {
+                                t: h.t,
+                                uv: Vec2::new(h.u, h.v),
+                            },
+                            plain: None,
+                        });
+                        best_lane = Some((block, h.lane));
                     }
                     continue;
                 }
                 for p in first..first + count {
-                    if let Some(h) = hit(p, t_max) {
-                        t_max = h.t;
-                        best = Some((p, h));
+                    if let Some(hit) = hit(p, t_max) {
+                        t_max = hit.t;
+                        best = Some(TreeHit {
+                            prim: p,
+                            hit,
+                            plain: None,
+                        });
+                        best_lane = None;
                     }
                 }
             }
@@ -151,6 +177,12 @@ impl Bvh4 {
                 if n.count[lane] == 0 {
                     stack.push((n.child[lane], t_near[lane]));
                 }
+            }
+        }
+        // The hit block was read last or recently: still in the cache.
+        if let (Some(hit), Some((block, lane))) = (&mut best, best_lane) {
+            if block.prim(lane).1 {
+                hit.plain = Some(block.vertices(lane));
             }
         }
         best
@@ -304,7 +336,7 @@ struct Collapse<'a, T> {
     out: &'a mut Bvh4,
 }
 
-impl<T: Fn(u32) -> Option<[Vec3; 3]>> Collapse<'_, T> {
+impl<T: Fn(u32) -> Option<PackedTriangle>> Collapse<'_, T> {
     /// Builds the wide node for binary inner node `b`; returns its index.
     fn node(&mut self, b: usize) -> u32 {
         let nodes = &self.bvh.nodes;
@@ -347,9 +379,16 @@ impl<T: Fn(u32) -> Option<[Vec3; 3]>> Collapse<'_, T> {
             set_lane(n, lane, &cn.bounds, child, 0);
             return;
         }
-        let mut tris = [(0, [Vec3::ZERO; 3]); 4];
+        let unused = PackedTriangle {
+            vertices: [Vec3::ZERO; 3],
+            plain: false,
+        };
+        let mut tris = [(0, unused); 4];
         let count = cn.count as usize;
+        // (Primitive indices from PLAIN up cannot be packed: 2^31 records
+        // would take 128 GiB.)
         let packed = count <= 4
+            && cn.index + (count as u32) < PLAIN
             && (0..count).all(|k| {
                 let p = cn.index + k as u32;
                 (self.triangle)(p).map(|t| tris[k] = (p, t)).is_some()
@@ -381,7 +420,10 @@ mod tests {
         *shapes = bvh.order.iter().map(|&i| shapes[i as usize]).collect();
         bvh.order = (0..shapes.len() as u32).collect();
         Bvh4::from_binary(&bvh, |p| match shapes[p as usize] {
-            Shape::Triangle { p0, e1, e2, .. } => Some([p0, e1, e2]),
+            Shape::Triangle { p0, e1, e2, .. } => Some(PackedTriangle {
+                vertices: [p0, e1, e2],
+                plain: p % 2 == 0,
+            }),
             _ => None,
         })
     }
@@ -405,7 +447,15 @@ mod tests {
                     shapes[i as usize].intersect(&ray, 1e-4, tmax)
                 });
                 let want = brute(&shapes, &ray);
-                prop_assert_eq!(got.map(|g| g.1.t), want.map(|w| w.1));
+                prop_assert_eq!(got.map(|g| g.hit.t), want.map(|w| w.1));
+                if let Some(TreeHit { prim, plain: Some(v), .. }) = got {
+                    // Only even triangles are packed as plain, and the block
+                    // hands back their own vertices.
+                    let Shape::Triangle { p0, e1, e2, .. } = shapes[prim as usize] else {
+                        panic!("a plain hit on a non-triangle");
+                    };
+                    prop_assert!(prim % 2 == 0 && v == [p0, e1, e2]);
+                }
                 let any = w.any(&ray, 1e-4, f32::INFINITY, |i, tmax| {
                     shapes[i as usize].intersect(&ray, 1e-4, tmax).is_some()
                 });
@@ -437,7 +487,7 @@ mod tests {
             shapes[i as usize].intersect(&ray, 1e-4, tmax)
         });
         assert!(
-            hit.is_some_and(|(_, h)| (h.t - 1.99).abs() < 1e-3),
+            hit.is_some_and(|h| (h.hit.t - 1.99).abs() < 1e-3),
             "{hit:?}"
         );
         let mut stack = Stack::new(0u32);
@@ -461,7 +511,7 @@ mod tests {
         let hit = w.closest(&ray, 1e-4, f32::INFINITY, |i, tmax| {
             one[i as usize].intersect(&ray, 1e-4, tmax)
         });
-        assert_eq!(hit.map(|h| h.0), Some(0));
+        assert_eq!(hit.map(|h| h.prim), Some(0));
         let empty = Bvh4::default();
         assert!(empty.closest(&ray, 0.0, 1.0, |_, _| None).is_none());
         assert!(!empty.any(&ray, 0.0, 1.0, |_, _| true));

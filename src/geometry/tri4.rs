@@ -22,8 +22,24 @@ pub struct Tri4 {
     pub e1: [[f32; 4]; 3],
     /// Edge to the third vertex, per axis.
     pub e2: [[f32; 4]; 3],
-    /// The primitive each lane is (`u32::MAX` for an unused lane).
+    /// The primitive each lane is, with [`PLAIN`] set when the triangle
+    /// alone describes its surface (`u32::MAX` for an unused lane).
     pub prim: [u32; 4],
+}
+
+/// The bit of [`Tri4::prim`] that marks a plain triangle: one whose hit
+/// needs nothing but its vertices (no vertex normals), so that the renderer
+/// can shade it without fetching the primitive's record.
+pub const PLAIN: u32 = 1 << 31;
+
+/// A triangle to pack: its vertex and edges `[p0, e1, e2]`, and whether it is
+/// plain (see [`PLAIN`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PackedTriangle {
+    /// `[p0, e1, e2]`.
+    pub vertices: [Vec3; 3],
+    /// Whether the vertices alone describe the surface.
+    pub plain: bool,
 }
 
 const _: () = assert!(std::mem::size_of::<Tri4>() == 160);
@@ -42,8 +58,9 @@ pub struct LaneHit {
 }
 
 impl Tri4 {
-    /// Packs up to four `(prim, [p0, e1, e2])` triangles.
-    pub fn new(tris: &[(u32, [Vec3; 3])]) -> Tri4 {
+    /// Packs up to four `(prim, triangle)` pairs; `prim` must be below
+    /// [`PLAIN`].
+    pub fn new(tris: &[(u32, PackedTriangle)]) -> Tri4 {
         assert!(tris.len() <= 4, "a Tri4 holds at most four triangles");
         let mut block = Tri4 {
             p0: [[0.0; 4]; 3],
@@ -51,15 +68,29 @@ impl Tri4 {
             e2: [[0.0; 4]; 3],
             prim: [u32::MAX; 4],
         };
-        for (lane, &(prim, [p0, e1, e2])) in tris.iter().enumerate() {
+        for (lane, &(prim, tri)) in tris.iter().enumerate() {
+            debug_assert!(prim < PLAIN);
+            let [p0, e1, e2] = tri.vertices;
             for axis in 0..3 {
                 block.p0[axis][lane] = p0[axis];
                 block.e1[axis][lane] = e1[axis];
                 block.e2[axis][lane] = e2[axis];
             }
-            block.prim[lane] = prim;
+            block.prim[lane] = if tri.plain { prim | PLAIN } else { prim };
         }
         block
+    }
+
+    /// The primitive in `lane`, and whether it is plain.
+    #[inline]
+    pub fn prim(&self, lane: usize) -> (u32, bool) {
+        (self.prim[lane] & !PLAIN, self.prim[lane] & PLAIN != 0)
+    }
+
+    /// The triangle `[p0, e1, e2]` in `lane`.
+    pub fn vertices(&self, lane: usize) -> [Vec3; 3] {
+        let v = |a: &[[f32; 4]; 3]| Vec3::new(a[0][lane], a[1][lane], a[2][lane]);
+        [v(&self.p0), v(&self.e1), v(&self.e2)]
     }
 
     /// Möller–Trumbore on all four lanes: per lane the hit distance and
@@ -150,15 +181,21 @@ mod tests {
         ) {
             prop_assume!(d.length_squared() > 1e-3);
             let ray = Ray::new(o, d.normalize(), 0.0);
-            let packed: Vec<(u32, [Vec3; 3])> = tris
+            let packed: Vec<(u32, PackedTriangle)> = tris
                 .iter()
                 .enumerate()
-                .map(|(i, &(p, e1, e2))| (i as u32 + 10, [p, e1, e2]))
+                .map(|(i, &(p, e1, e2))| {
+                    let tri = PackedTriangle { vertices: [p, e1, e2], plain: i % 2 == 0 };
+                    (i as u32 + 10, tri)
+                })
                 .collect();
             let block = Tri4::new(&packed);
             let mut want: Option<LaneHit> = None;
             let mut t_best = t_max;
-            for (lane, &(_, [p, e1, e2])) in packed.iter().enumerate() {
+            for (lane, &(prim, tri)) in packed.iter().enumerate() {
+                prop_assert_eq!(block.prim(lane), (prim, tri.plain));
+                prop_assert_eq!(block.vertices(lane), tri.vertices);
+                let [p, e1, e2] = tri.vertices;
                 if let Some(h) = triangle::intersect(p, e1, e2, &ray, 1e-4, t_best) {
                     t_best = h.t;
                     want = Some(LaneHit { lane, t: h.t, u: h.uv.x, v: h.uv.y });
@@ -176,11 +213,15 @@ mod tests {
         // A ray through the origin, where the degenerate lanes sit.
         assert_eq!(block.closest(Vec3::Z, -Vec3::Z, 0.0, f32::INFINITY), None);
         assert!(!block.any(Vec3::Z, -Vec3::Z, 0.0, f32::INFINITY));
+        let vertices = [Vec3::new(-1.0, -1.0, 0.0), Vec3::X * 3.0, Vec3::Y * 3.0];
         let one = Tri4::new(&[(
             7,
-            [Vec3::new(-1.0, -1.0, 0.0), Vec3::X * 3.0, Vec3::Y * 3.0],
+            PackedTriangle {
+                vertices,
+                plain: false,
+            },
         )]);
         let hit = one.closest(Vec3::Z, -Vec3::Z, 0.0, f32::INFINITY).unwrap();
-        assert_eq!((hit.lane, one.prim[hit.lane], hit.t), (0, 7, 1.0));
+        assert_eq!((hit.lane, one.prim(hit.lane), hit.t), (0, (7, false), 1.0));
     }
 }

@@ -10,6 +10,7 @@ use crate::diag::{Diagnostic, Diagnostics};
 use crate::geometry::bvh::Bvh;
 use crate::geometry::bvh4::Bvh4;
 use crate::geometry::shape::Shape;
+use crate::geometry::tri4::PackedTriangle;
 use crate::geometry::Aabb;
 use crate::light::Light;
 use crate::material::Material;
@@ -310,12 +311,20 @@ fn permute<T>(v: &mut [T], perm: &[u32]) {
     }
 }
 
-/// The vertices (`p0, e1, e2`) of a primitive the wide BVH tests four at a
-/// time in a [`Tri4`](crate::geometry::tri4::Tri4): a triangle that does
-/// not move.
-fn packed_triangle(p: &Prim) -> Option<[Vec3; 3]> {
+/// A primitive the wide BVH tests four at a time in a
+/// [`Tri4`](crate::geometry::tri4::Tri4): a triangle that does not move;
+/// plain when it has no vertex normals.
+fn packed_triangle(p: &Prim) -> Option<PackedTriangle> {
     match p.shape {
-        Shape::Triangle { p0, e1, e2, .. } if p.velocity == Vec3::ZERO => Some([p0, e1, e2]),
+        Shape::Triangle {
+            p0,
+            e1,
+            e2,
+            normals,
+        } if p.velocity == Vec3::ZERO => Some(PackedTriangle {
+            vertices: [p0, e1, e2],
+            plain: normals == u32::MAX,
+        }),
         _ => None,
     }
 }

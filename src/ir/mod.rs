@@ -115,6 +115,11 @@ impl Scene {
     }
 
     /// The closest hit along `ray` beyond `t_min`.
+    // Inlined into the integrators, as are the BSDF's and the lights' `sample`
+    // and `eval`: called out of line, perf put 12-17 % of `path_li` on the
+    // first loads of the `Hit` and `BsdfSample` they returned through memory.
+    // A/B 16 spp: cornell 2.09 -> 1.87 s, spheres 1.25 -> 1.16, mesh 1.78 -> 1.72.
+    #[inline]
     pub fn intersect(&self, ray: &Ray, t_min: f32, t_max: f32) -> Option<Hit> {
         let mut best = self.wide.closest(ray, t_min, t_max, |i, tmax| {
             let p = &self.prims[i as usize];

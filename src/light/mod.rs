@@ -105,6 +105,7 @@ impl Light {
 
     /// Samples light arriving at `p`.
     /// `time` is the ray's: a moving emitter is sampled where it is then.
+    #[inline]
     pub fn sample(
         &self,
         scene: &crate::ir::Scene,

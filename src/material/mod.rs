@@ -131,6 +131,7 @@ impl Material {
 
     /// Value (f) and mixture pdf of the non-delta lobes for `wo` → `wi` at a
     /// surface with normal `n` (either orientation).
+    #[inline]
     pub fn eval(&self, wo: Vec3, wi: Vec3, n: Vec3) -> (Vec3, f32) {
         let nf = if wo.dot(n) < 0.0 { -n } else { n };
         let cos_i = wi.dot(nf);
@@ -163,6 +164,7 @@ impl Material {
 
     /// Samples an incident direction for `wo` at a surface whose outward
     /// geometric normal is `n`.
+    #[inline]
     pub fn sample(&self, wo: Vec3, n: Vec3, u_lobe: f32, u: Vec2) -> Option<BsdfSample> {
         let outside = wo.dot(n) >= 0.0;
         let nf = if outside { n } else { -n };

@@ -432,17 +432,8 @@ pub(crate) mod tests {
             min: Vec3::from(lo),
             max: Vec3::from(hi),
         };
-        let leaves = |bounds: &[Aabb], packable: bool| {
-            let bvh = Bvh::build(bounds, &|_| packable);
-            let mut sizes: Vec<u16> = bvh
-                .nodes
-                .iter()
-                .filter(|n| n.count > 0)
-                .map(|n| n.count)
-                .collect();
-            sizes.sort();
-            sizes
-        };
+        let leaves =
+            |bounds: &[Aabb], packable: bool| leaf_sizes(&Bvh::build(bounds, &|_| packable));
         // Two walls of a room meeting in an edge, or two small spheres apart:
         // a ray rarely meets both boxes, so each is its own leaf.
         let walls = [

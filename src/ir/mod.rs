@@ -142,20 +142,25 @@ impl Scene {
             plain,
         } = best?;
         let ShapeHit { t, uv } = hit;
-        if let Some([p0, e1, e2]) = plain {
-            // What the record's `surface_point` and `normal_at` compute, from
-            // the block the traversal just read instead of a record that is
-            // likely not in the cache (mesh renders −4 %).
-            let n_geo = e1.cross(e2).normalize();
-            return Some(Hit {
-                t,
-                p: p0 + uv.x * e1 + uv.y * e2,
-                n_geo,
-                n_shading: n_geo,
-                prim: i,
-            });
-        }
-        let prim = &self.prims[i as usize];
+        // A plain triangle's hit is finished from the block the traversal
+        // just read instead of the record, likely not in the cache (mesh
+        // renders -4 %).
+        let record;
+        let prim = match plain {
+            Some([p0, e1, e2]) => {
+                record = Prim {
+                    shape: Shape::Triangle {
+                        p0,
+                        e1,
+                        e2,
+                        normals: u32::MAX,
+                    },
+                    velocity: Vec3::ZERO,
+                };
+                &record
+            }
+            None => &self.prims[i as usize],
+        };
         let local = Self::local_ray(prim, ray);
         let p_local = prim.shape.surface_point(&local, &hit);
         let n_geo = prim.shape.normal_at(p_local);

@@ -21,8 +21,8 @@ pub struct Node {
 /// A BVH over primitives given by their bounds.
 #[derive(Debug, Clone, Default)]
 pub struct Bvh {
-    /// Nodes; the root is node 0.
-    pub nodes: Vec<Node>,
+    /// Nodes (see [`Bvh::node`]); the root is node 0.
+    slots: Vec<Slot>,
     /// Primitive indices in leaf order.
     pub order: Vec<u32>,
 }
@@ -46,10 +46,10 @@ impl Bvh {
         // leaves of one): the halves built in parallel get disjoint parts of
         // this one array instead of arrays of their own that were copied
         // into their parent's (which held every node twice at the peak).
-        // Leaves hold 1.5 primitives on average, so a third of it is given
-        // back at the end.
-        let mut nodes = vec![PLACEHOLDER; 2 * bounds.len() - 1];
-        let (root, below) = nodes.split_at_mut(1);
+        // Zeroed slots, so that the pages no node is written to are never
+        // mapped: the mesh's tree needs a quarter of them.
+        let mut slots = vec![[0u32; 8]; 2 * bounds.len() - 1];
+        let (root, below) = slots.split_at_mut(1);
         // Asked once per primitive here rather than at every level.
         let packable: Vec<bool> = (0..bounds.len() as u32).map(packable).collect();
         let input = Input {
@@ -59,14 +59,32 @@ impl Bvh {
         };
         let used = build_node(&input, &mut order, 0, &mut root[0], below, 1);
         // Give back the room no node needed (freed pages, not a copy).
-        nodes.truncate(1 + used);
-        nodes.shrink_to_fit();
-        Bvh { nodes, order }
+        slots.truncate(1 + used);
+        slots.shrink_to_fit();
+        Bvh { slots, order }
+    }
+
+    /// Node `i`.
+    #[inline]
+    pub fn node(&self, i: usize) -> Node {
+        Node::from_slot(&self.slots[i])
+    }
+
+    /// How many nodes there are.
+    pub fn len(&self) -> usize {
+        self.slots.len()
+    }
+
+    /// Whether there are no nodes (no primitives).
+    pub fn is_empty(&self) -> bool {
+        self.slots.is_empty()
     }
 
     /// Bounds of everything.
     pub fn bounds(&self) -> Aabb {
-        self.nodes.first().map_or(Aabb::EMPTY, |n| n.bounds)
+        self.slots
+            .first()
+            .map_or(Aabb::EMPTY, |s| Node::from_slot(s).bounds)
     }
 }
 
@@ -78,12 +96,49 @@ fn leaf(bounds: Aabb, first: usize, count: usize) -> Node {
     }
 }
 
-/// A node slot to be filled in.
-const PLACEHOLDER: Node = Node {
-    bounds: Aabb::EMPTY,
-    index: 0,
-    count: 0,
-};
+/// A node's bits, as the tree stores them. Plain integers, so that
+/// `vec![[0; 8]; n]` is one zeroed allocation whose pages are mapped only
+/// when written: the `Vec<Node>` filled with a placeholder that this
+/// replaced wrote all 2n − 1 slots (mesh: 64 MB for 17 MB of nodes).
+type Slot = [u32; 8];
+/// Where [`Node::index`] and [`Node::count`] sit in a [`Slot`].
+const SLOT_INDEX: usize = 6;
+const SLOT_COUNT: usize = 7;
+
+impl Node {
+    fn to_slot(self) -> Slot {
+        let (lo, hi) = (self.bounds.min, self.bounds.max);
+        let f = |x: f32| x.to_bits();
+        [
+            f(lo.x),
+            f(lo.y),
+            f(lo.z),
+            f(hi.x),
+            f(hi.y),
+            f(hi.z),
+            self.index,
+            self.count as u32,
+        ]
+    }
+
+    fn from_slot(s: &Slot) -> Node {
+        let v = |i: usize| {
+            Vec3::new(
+                f32::from_bits(s[i]),
+                f32::from_bits(s[i + 1]),
+                f32::from_bits(s[i + 2]),
+            )
+        };
+        Node {
+            bounds: Aabb {
+                min: v(0),
+                max: v(3),
+            },
+            index: s[SLOT_INDEX],
+            count: s[SLOT_COUNT] as u16,
+        }
+    }
+}
 
 /// What every step of the build reads.
 struct Input<'a> {
@@ -101,8 +156,8 @@ fn build_node(
     input: &Input,
     order: &mut [u32],
     offset: usize,
-    root: &mut Node,
-    below: &mut [Node],
+    root: &mut Slot,
+    below: &mut [Slot],
     base: usize,
 ) -> usize {
     // The node's bounds and its centroids' bounds, in one pass.
@@ -116,14 +171,15 @@ fn build_node(
         Some(large_split(input, order, &cb))
     };
     let Some(mid) = mid else {
-        *root = leaf(node_bounds, offset, order.len());
+        *root = leaf(node_bounds, offset, order.len()).to_slot();
         return 0;
     };
     *root = Node {
         bounds: node_bounds,
         index: base as u32,
         count: 0,
-    };
+    }
+    .to_slot();
     let n = order.len();
     let (lo, hi) = order.split_at_mut(mid);
     let (pair, rest) = below.split_at_mut(2);
@@ -147,8 +203,8 @@ fn build_node(
                 .iter_mut()
                 .chain(std::iter::once(&mut right[0]))
             {
-                if node.count == 0 {
-                    node.index -= gap;
+                if node[SLOT_COUNT] == 0 {
+                    node[SLOT_INDEX] -= gap;
                 }
             }
         }
@@ -468,8 +524,9 @@ pub(crate) mod tests {
     /// Leaf sizes of a build, ascending.
     fn leaf_sizes(bvh: &Bvh) -> Vec<u16> {
         let mut sizes: Vec<u16> = bvh
-            .nodes
+            .slots
             .iter()
+            .map(Node::from_slot)
             .filter(|n| n.count > 0)
             .map(|n| n.count)
             .collect();
@@ -492,8 +549,7 @@ pub(crate) mod tests {
             })
             .collect();
         let bvh = Bvh::build(&bounds, &|_| false);
-        let children = &bvh.nodes[1..3];
-        for c in children {
+        for c in [bvh.node(1), bvh.node(2)] {
             assert!(c.bounds.max.y - c.bounds.min.y < 1.0, "{:?}", c.bounds);
         }
     }
@@ -549,7 +605,7 @@ pub(crate) mod tests {
         let mut reached = 0;
         while let Some(n) = stack.pop() {
             reached += 1;
-            let node = bvh.nodes[n];
+            let node = bvh.node(n);
             if node.count > 0 {
                 for &p in &bvh.order[node.index as usize..node.index as usize + node.count as usize]
                 {
@@ -567,6 +623,6 @@ pub(crate) mod tests {
         assert!(seen.iter().all(|&c| c == 1));
         // Built in parallel (50,000 > PARALLEL_THRESHOLD), yet dense: every
         // slot is a node of the tree.
-        assert_eq!(reached, bvh.nodes.len());
+        assert_eq!(reached, bvh.len());
     }
 }

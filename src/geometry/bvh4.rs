@@ -68,7 +68,7 @@ impl Bvh4 {
     /// becomes a [`Tri4`] block.
     pub fn from_binary(bvh: &Bvh, triangle: impl Fn(u32) -> Option<PackedTriangle>) -> Bvh4 {
         let mut out = Bvh4::default();
-        if bvh.nodes.is_empty() {
+        if bvh.is_empty() {
             return out;
         }
         debug_assert!(bvh.order.iter().enumerate().all(|(i, &p)| i as u32 == p));
@@ -77,14 +77,14 @@ impl Bvh4 {
         // about half that), and at most one block per leaf, reserved up
         // front so that the vectors never grow (old and new buffers at once)
         // at the load's peak; pages never written cost no memory.
-        out.nodes.reserve(bvh.nodes.len() / 2);
-        out.tris.reserve(bvh.nodes.len().div_ceil(2));
+        out.nodes.reserve(bvh.len() / 2);
+        out.tris.reserve(bvh.len().div_ceil(2));
         let mut collapse = Collapse {
             bvh,
             triangle,
             out: &mut out,
         };
-        if bvh.nodes[0].count > 0 {
+        if bvh.node(0).count > 0 {
             // A single leaf: one node with one child.
             let mut n = EMPTY_NODE;
             collapse.set_child(&mut n, 0, 0);
@@ -339,24 +339,24 @@ struct Collapse<'a, T> {
 impl<T: Fn(u32) -> Option<PackedTriangle>> Collapse<'_, T> {
     /// Builds the wide node for binary inner node `b`; returns its index.
     fn node(&mut self, b: usize) -> u32 {
-        let nodes = &self.bvh.nodes;
-        let node = &nodes[b];
+        let bvh = self.bvh;
+        let node = bvh.node(b);
         let mut children = vec![node.index as usize, node.index as usize + 1];
         // Open the largest inner child until there are four.
         while children.len() < 4 {
             let Some((i, _)) = children
                 .iter()
                 .enumerate()
-                .filter(|(_, &c)| nodes[c].count == 0)
+                .filter(|(_, &c)| bvh.node(c).count == 0)
                 .max_by(|a, b| {
-                    let area = |c: usize| nodes[c].bounds.area();
+                    let area = |c: usize| bvh.node(c).bounds.area();
                     area(*a.1).total_cmp(&area(*b.1))
                 })
             else {
                 break;
             };
             let c = children.swap_remove(i);
-            let first = nodes[c].index as usize;
+            let first = bvh.node(c).index as usize;
             children.push(first);
             children.push(first + 1);
         }
@@ -373,7 +373,7 @@ impl<T: Fn(u32) -> Option<PackedTriangle>> Collapse<'_, T> {
     /// Fills `lane` of `n` with binary node `c`: a wide node, a block or a
     /// leaf range.
     fn set_child(&mut self, n: &mut Node4, lane: usize, c: usize) {
-        let cn = self.bvh.nodes[c];
+        let cn = self.bvh.node(c);
         if cn.count == 0 {
             let child = self.node(c);
             set_lane(n, lane, &cn.bounds, child, 0);

@@ -40,7 +40,6 @@ impl Bvh {
         if bounds.is_empty() {
             return Bvh::default();
         }
-        let centroids: Vec<Vec3> = bounds.iter().map(Aabb::center).collect();
         let mut order: Vec<u32> = (0..bounds.len() as u32).collect();
         // Room for the most nodes a tree over n primitives can have (2n - 1,
         // leaves of one): the halves built in parallel get disjoint parts of
@@ -54,7 +53,6 @@ impl Bvh {
         let packable: Vec<bool> = (0..bounds.len() as u32).map(packable).collect();
         let input = Input {
             bounds,
-            centroids: &centroids,
             packable: &packable,
         };
         let used = build_node(&input, &mut order, 0, &mut root[0], below, 1);
@@ -143,8 +141,17 @@ impl Node {
 /// What every step of the build reads.
 struct Input<'a> {
     bounds: &'a [Aabb],
-    centroids: &'a [Vec3],
     packable: &'a [bool],
+}
+
+impl Input<'_> {
+    /// The centroid of primitive `i`'s box, computed where needed: an array
+    /// of them cost 12 bytes per primitive at the load's peak (mesh: peak
+    /// RSS 168 -> 159 MB, build 0.32 -> 0.345 s).
+    #[inline]
+    fn centroid(&self, i: u32) -> Vec3 {
+        self.bounds[i as usize].center()
+    }
 }
 
 /// Builds the subtree over `order` (which starts at `offset` in the full
@@ -163,7 +170,8 @@ fn build_node(
     // The node's bounds and its centroids' bounds, in one pass.
     let (node_bounds, cb) = order.iter().fold((Aabb::EMPTY, Aabb::EMPTY), |(b, c), &i| {
         let i = i as usize;
-        (b.union(input.bounds[i]), c.grow(input.centroids[i]))
+        let bounds = input.bounds[i];
+        (b.union(bounds), c.grow(bounds.center()))
     });
     let mid = if order.len() <= MAX_LEAF {
         small_split(input, order, &node_bounds, &cb)
@@ -270,7 +278,7 @@ fn large_split(input: &Input, order: &mut [u32], cb: &Aabb) -> usize {
     };
     let (mut l, mut r) = (0, order.len());
     while l < r {
-        if bins.bin_of(input.centroids[order[l] as usize], axis) <= split_bin {
+        if bins.bin_of(input.centroid(order[l]), axis) <= split_bin {
             l += 1;
         } else {
             r -= 1;
@@ -339,7 +347,7 @@ impl AxisBins {
         for &i in part {
             let b = input.bounds[i as usize];
             let (lo, hi) = (Vec3A::from(b.min), Vec3A::from(b.max));
-            let k = bins.bins_of(input.centroids[i as usize]);
+            let k = bins.bins_of(b.center());
             let packed = input.packable[i as usize] as u32;
             for axis in 0..3 {
                 let k = k[axis];
@@ -427,7 +435,7 @@ fn small_split(input: &Input, order: &mut [u32], node: &Aabb, cb: &Aabb) -> Opti
         return None;
     }
     let axis = widest_axis(cb);
-    let centroid = |i: u32| input.centroids[i as usize][axis];
+    let centroid = |i: u32| input.centroid(i)[axis];
     order.sort_by(|&a, &b| centroid(a).total_cmp(&centroid(b)));
     let area = |part: &[u32]| {
         part.iter()

@@ -195,8 +195,7 @@ fn build_node(
     if n >= PARALLEL_THRESHOLD {
         // Each half gets the most room it can need (2·len − 2 slots); then
         // the right half's nodes move down to close the left half's unused
-        // room, so that the tree stays dense (2.0 M slots instead of 1.3 M
-        // nodes on the mesh otherwise).
+        // room, so that the tree stays dense: its slots are its nodes.
         let room_lo = 2 * lo.len() - 2;
         let (rest_lo, rest_hi) = rest.split_at_mut(room_lo);
         let hi_base = base + 2 + room_lo;
@@ -374,11 +373,11 @@ impl AxisBins {
     }
 
     /// The cheapest split along `axis`: SAH cost and the last bin of the
-    /// left side; `None` when one side would be empty. Primitives count in
-    /// blocks of four (Embree's cost for its four-triangle leaves): the
-    /// tree's triangles end in fuller blocks (mesh: 3.2 -> 3.8 per block).
+    /// left side; `None` when one side would be empty. Packable primitives
+    /// count in blocks of four (Embree's cost for its four-triangle leaves),
+    /// so that cuts leave full blocks (mesh: 3.2 -> 3.6 triangles per block
+    /// by this count alone, 3.8 with all three axes tried).
     fn cheapest_split(&self, axis: usize) -> Option<(f32, usize)> {
-        // Packable primitives count in blocks of four.
         let cost = |n: u32, packed: u32| (n - packed + packed.div_ceil(4)) as f32;
         let (count, packed) = (&self.count[axis], &self.packed[axis]);
         let bounds = |b: usize| Aabb {
@@ -411,21 +410,22 @@ impl AxisBins {
 
 /// The traversal cost of an inner node relative to one primitive test, in
 /// the surface area heuristic that decides small leaves. pbrt-v4 uses 0.5;
-/// below 0.89 the walls of a Cornell box part, and the higher it is, the more
-/// mesh triangles stay in pairs (of the mesh's nodes of two, counted: 7 %
-/// split at 1.0, 14 % at 0.9, 59 % at 0.7, 99 % at 0.5: memory).
+/// below 0.89 the walls of a Cornell box part. (Measured in session 4,
+/// when mesh triangles still came here: the higher it is, the more of them
+/// stayed in pairs; of the mesh's nodes of two, 7 % split at 1.0, 14 % at
+/// 0.9, 59 % at 0.7, 99 % at 0.5.)
 const NODE_COST: f32 = 0.85;
 
 /// Whether a node of at most [`MAX_LEAF`] primitives is better split (by the
 /// surface area heuristic, every split along the widest centroid axis
-/// tried): `mid`, with `order` sorted along that axis. Small, adjacent mesh
-/// triangles mostly stay together in leaves of two; big quads (the walls of
-/// a room) and scattered spheres end in leaves of one.
-/// Measured, 16-spp renders A/B against leaves of up to four: cornell
-/// 2.50 -> 2.15 s, mesh 2.37 -> 2.28, spheres 1.44 -> 1.32; mesh peak RSS
-/// 206 -> 227 MB, build 0.19 -> 0.28 s (with the build of then, which held
-/// nodes twice; now 177 MB, 0.25 s). Leaves of exactly one: cornell 2.03,
-/// spheres 1.36, but mesh 346 MB; of two: mesh 2.27, cornell 2.42.
+/// tried): `mid`, with `order` sorted along that axis. Up to four packable
+/// primitives (static triangles) always stay together; big quads (the
+/// walls of a room) and scattered spheres end in leaves of one, small
+/// overlapping primitives that cannot be packed (moving triangles) in
+/// shared leaves.
+/// Measured in session 4 (before triangle blocks), 16-spp renders A/B
+/// against leaves of up to four: cornell 2.50 -> 2.15 s, mesh 2.37 -> 2.28,
+/// spheres 1.44 -> 1.32. Leaves of exactly one: cornell 2.03, spheres 1.36.
 fn small_split(input: &Input, order: &mut [u32], node: &Aabb, cb: &Aabb) -> Option<usize> {
     let n = order.len();
     // Four packable primitives cost one test: always cheaper than a node
@@ -569,13 +569,8 @@ pub(crate) mod tests {
         // sequence). Counted one by one the SAH cuts anywhere, leaving many
         // leaves of one to three; counted in blocks of four it prefers cuts
         // that leave full blocks.
-        let mut x = 12345u32;
-        let mut next = || {
-            x ^= x << 13;
-            x ^= x >> 17;
-            x ^= x << 5;
-            x as f32 / u32::MAX as f32
-        };
+        let mut sampler = crate::render::sampler::Sampler::new(1, 2, 3, 4);
+        let mut next = || sampler.next_f32();
         let bounds: Vec<Aabb> = (0..4000)
             .map(|_| {
                 let p = Vec3::new(next(), next(), next()) * 20.0;
@@ -585,7 +580,7 @@ pub(crate) mod tests {
                 }
             })
             .collect();
-        // Measured: 3.56 per leaf in blocks, 2.99 counted one by one.
+        // Measured: 3.56 per leaf in blocks, 3.02 counted one by one.
         let leaves = leaf_sizes(&Bvh::build(&bounds, &|_| true)).len();
         assert!(4000.0 / leaves as f32 > 3.4, "{leaves} leaves");
     }

@@ -22,11 +22,11 @@ pub struct Node4 {
     pub min: [[f32; 4]; 3],
     /// Box maxima per axis, one lane per child.
     pub max: [[f32; 4]; 3],
-    /// Inner child: node index; leaf: first primitive; empty: unused.
+    /// Inner child: node index; block: index into [`Bvh4::tris`]; other
+    /// leaf: first primitive; empty: unused.
     pub child: [u32; 4],
     /// 0 for an inner child, [`BLOCK`] for a leaf of triangles packed in
-    /// [`Bvh4::tris`] (`child` indexes it), else the number of primitives
-    /// of the leaf.
+    /// a [`Tri4`], else the number of primitives of the leaf.
     pub count: [u32; 4],
 }
 
@@ -498,6 +498,36 @@ mod tests {
             assert_eq!(stack.pop(), Some(i));
         }
         assert_eq!(stack.pop(), None);
+    }
+
+    #[test]
+    fn a_plain_block_hit_hands_back_its_triangle() {
+        // Two triangles far apart in one block; `wide` packs the even one
+        // (in leaf order) as plain: it comes back with its vertices, the
+        // odd one without.
+        let tri = |x: f32| Shape::Triangle {
+            p0: Vec3::new(x, 0.0, 0.0),
+            e1: Vec3::X,
+            e2: Vec3::Y,
+            normals: u32::MAX,
+        };
+        let mut shapes = vec![tri(0.0), tri(5.0)];
+        let w = wide(&mut shapes);
+        assert_eq!(w.tris.len(), 1);
+        let mut seen = Vec::new();
+        for x in [0.2, 5.2] {
+            let ray = Ray::new(Vec3::new(x, 0.2, 1.0), -Vec3::Z, 0.0);
+            let not_alone = |_, _| panic!("a block's triangle tested alone");
+            let hit = w.closest(&ray, 1e-4, f32::INFINITY, not_alone).unwrap();
+            let Shape::Triangle { p0, e1, e2, .. } = shapes[hit.prim as usize] else {
+                unreachable!()
+            };
+            let plain = hit.prim.is_multiple_of(2);
+            assert_eq!(hit.plain, plain.then_some([p0, e1, e2]), "{x}");
+            seen.push(plain);
+        }
+        seen.sort();
+        assert_eq!(seen, [false, true]);
     }
 
     #[test]

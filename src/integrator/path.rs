@@ -96,9 +96,8 @@ pub fn path_li(scene: &Scene, mut ray: Ray, sampler: &mut Sampler, nee: bool) ->
         prev_p = hit.p;
         // Russian roulette once the path has rr_depth segments, deciding on the
         // next one: Mitsuba 3's convention (its `depth >= rr_depth` after the
-        // depth-th interaction; this loop was one segment later until session
-        // 4, which traced longer paths than the reference it is timed
-        // against). Survivors are divided by their probability, so the
+        // depth-th interaction), so that both trace paths of the same length
+        // when timed side by side. Survivors are divided by their probability, so the
         // estimate stays unbiased. The survival probability follows the
         // largest channel of the throughput (as pbrt-v4 and Mitsuba 3 do):
         // luminance would end saturated red or blue paths too early and make

@@ -83,8 +83,8 @@ pub fn direct_light_mis(
 pub fn light_pdf(scene: &Scene, light: u32, from: Vec3, hit: &Hit, dir: Vec3) -> f32 {
     let pick = scene.light_pmf[light as usize];
     match &scene.lights[light as usize] {
-        crate::light::Light::Area { prim } => {
-            let area = scene.prims[*prim as usize].shape.area();
+        crate::light::Light::Area { shape, .. } => {
+            let area = shape.area();
             let d2 = (hit.p - from).length_squared();
             let cos = hit.n_geo.dot(-dir).abs();
             if cos <= 0.0 {

@@ -200,14 +200,11 @@ mod tests {
             std::sync::Arc::ptr_eq(&a.prims, &b.prims) && std::sync::Arc::ptr_eq(&a.wide, &b.wide),
             "the geometry is shared, not copied"
         );
-        let triangle = (0..b.prims.len() as u32)
-            .find(|&i| {
-                matches!(
-                    b.prims[i as usize].shape,
-                    crate::geometry::shape::Shape::Triangle { .. }
-                )
-            })
+        // The mesh is object 0; its one triangle is plain (no record).
+        let triangle = (0..b.prim_object.len() as u32)
+            .find(|&i| b.prim_object[i as usize] == 0)
             .unwrap();
+        assert!(triangle as usize >= b.prims.len());
         assert!((a.material_of(triangle).diffuse.x - 0.5).abs() < 1e-6);
         assert!((b.material_of(triangle).diffuse.x - 0.9).abs() < 1e-6);
         // A moved sphere: new BVH, same mesh.

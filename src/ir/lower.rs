@@ -4,13 +4,14 @@
 //! sphere under a non-uniform scale) are diagnostics with the object's span.
 
 use super::cache::LowerCache;
+use super::collect::{Collected, PlainMesh};
+use super::numbering::Numbering;
 use super::{Prim, Scene};
 use crate::check::{self, codes};
 use crate::diag::{Diagnostic, Diagnostics};
 use crate::geometry::bvh::Bvh;
 use crate::geometry::bvh4::Bvh4;
 use crate::geometry::shape::Shape;
-use crate::geometry::tri4::PackedTriangle;
 use crate::geometry::Aabb;
 use crate::light::Light;
 use crate::material::Material;
@@ -84,17 +85,24 @@ pub struct Geometry {
 
 fn build_geometry(scene: &check::Scene, cache: &mut LowerCache) -> Result<Geometry, Diagnostics> {
     let mut diags = Diagnostics::new();
-    let mut prims: Vec<Prim> = Vec::new();
+    let mut prims = Collected::default();
     let mut normals: Vec<[Vec3; 3]> = Vec::new();
-    // The object each primitive came from, for diagnostics and spans.
-    let mut prim_object: Vec<u32> = Vec::new();
+    // The first object whose geometry is not finite after its transforms.
+    let mut not_finite: Option<usize> = None;
     for (o, obj) in scene.objects.iter().enumerate() {
         let m = obj.transform;
         let pt = |p: DVec3| v3(m.transform_point3(p));
         let vec = |v: DVec3| v3(m.transform_vector3(v));
         let velocity = v3(obj.velocity);
         let mut push = |shape: Shape| {
-            prims.push(Prim { shape, velocity });
+            let bad = match shape {
+                Shape::Plane { .. } => !shape.normal_at(Vec3::ZERO).is_finite(),
+                _ => !(shape.bounds().min.is_finite() && shape.bounds().max.is_finite()),
+            };
+            if bad {
+                not_finite.get_or_insert(o);
+            }
+            prims.push(Prim { shape, velocity }, o as u32);
         };
         match &obj.shape {
             check::Shape::Sphere { center, radius } => match uniform_scale(&m) {
@@ -201,14 +209,24 @@ fn build_geometry(scene: &check::Scene, cache: &mut LowerCache) -> Result<Geomet
                 } else {
                     Vec::new()
                 };
+                // A static mesh without vertex normals keeps its triangles as
+                // vertex indices: most of them will never need a record.
+                let plain = !use_normals && velocity == Vec3::ZERO;
+                let mut kept: Vec<[u32; 3]> = Vec::new();
                 let mut degenerate = 0usize;
-                prims.reserve(data.triangles.len());
                 for t in &data.triangles {
                     let [a, b, c] = if flip { [t[0], t[2], t[1]] } else { *t };
                     let p0 = pos[a as usize];
                     let (e1, e2) = (pos[b as usize] - p0, pos[c as usize] - p0);
                     if e1.cross(e2).length_squared() == 0.0 {
                         degenerate += 1;
+                        continue;
+                    }
+                    if !(p0.is_finite() && e1.is_finite() && e2.is_finite()) {
+                        not_finite.get_or_insert(o);
+                    }
+                    if plain {
+                        kept.push([a, b, c]);
                         continue;
                     }
                     let nidx = if use_normals {
@@ -221,15 +239,13 @@ fn build_geometry(scene: &check::Scene, cache: &mut LowerCache) -> Result<Geomet
                     } else {
                         u32::MAX
                     };
-                    prims.push(Prim {
-                        shape: Shape::Triangle {
-                            p0,
-                            e1,
-                            e2,
-                            normals: nidx,
-                        },
-                        velocity,
-                    });
+                    let shape = Shape::Triangle {
+                        p0,
+                        e1,
+                        e2,
+                        normals: nidx,
+                    };
+                    prims.push(Prim { shape, velocity }, o as u32);
                 }
                 if degenerate == data.triangles.len() {
                     diags.push(
@@ -241,128 +257,77 @@ fn build_geometry(scene: &check::Scene, cache: &mut LowerCache) -> Result<Geomet
                         .with_label(format!("{degenerate} degenerate triangles"))
                         .with_help("check the mesh file and the transform's scale"),
                     );
+                } else if plain {
+                    // The file's data is dropped here (a one-off compile
+                    // keeps no copy): only the world-space vertices and the
+                    // kept triangles stay.
+                    prims.push_mesh(PlainMesh {
+                        positions: pos,
+                        triangles: kept,
+                        object: o as u32,
+                    });
                 }
             }
         }
-        prim_object.resize(prims.len(), o as u32);
     }
-    for (i, p) in prims.iter().enumerate() {
-        let b = p.shape.bounds();
-        let bad = match p.shape {
-            Shape::Plane { .. } => !p.shape.normal_at(Vec3::ZERO).is_finite(),
-            _ => !(b.min.is_finite() && b.max.is_finite()),
-        };
-        if bad {
-            diags.push(
-                Diagnostic::error(
-                    codes::NOT_FINITE,
-                    "this object's geometry is not finite after its transforms",
-                    scene.objects[prim_object[i] as usize].span,
-                )
-                .with_label("NaN or infinite coordinates")
-                .with_help("check the sizes and transforms for overflow"),
-            );
-            break;
-        }
+    if let Some(o) = not_finite {
+        diags.push(
+            Diagnostic::error(
+                codes::NOT_FINITE,
+                "this object's geometry is not finite after its transforms",
+                scene.objects[o].span,
+            )
+            .with_label("NaN or infinite coordinates")
+            .with_help("check the sizes and transforms for overflow"),
+        );
     }
     if diags.has_errors() {
         return Err(diags);
     }
-    let mut bvh = build_bvh(&prims, scene.camera.shutter);
-    // Store the primitives in the BVH's leaf order (planes last): a leaf's
-    // primitives are then contiguous in memory, and the order is the identity.
-    let mut permutation = bvh.order.clone();
-    permutation.extend(
-        (0..prims.len() as u32).filter(|&i| matches!(prims[i as usize].shape, Shape::Plane { .. })),
-    );
-    // In place: a second copy of a million primitives would double the peak memory.
-    permute(&mut prims, &permutation);
-    permute(&mut prim_object, &permutation);
-    bvh.order = (0..bvh.order.len() as u32).collect();
-    let wide = Bvh4::from_binary(&bvh, |i| packed_triangle(&prims[i as usize]));
-    // The binary tree is dropped here: only the wide one is traversed.
-    // The permutation put the planes last.
-    let unbounded = (bvh.order.len() as u32..prims.len() as u32).collect();
+    let (t0, t1) = scene.camera.shutter;
+    let shutter = (t0 as f32, t1 as f32);
+    let n = prims.len();
+    let boxes: Vec<Aabb> = (0..n as u32).map(|i| prims.bounds(i, shutter)).collect();
+    let mut bvh = Bvh::build(&boxes, &|i| prims.packed(i).is_some());
+    drop(boxes);
+    // The wide tree numbers primitives by their place in the binary tree's
+    // order: a leaf's primitives are consecutive. The binary tree is dropped
+    // before the blocks are filled: the load's peak memory is there.
+    let mut wide = Bvh4::from_binary(&bvh);
+    let bounds = bvh.bounds();
+    let order = std::mem::take(&mut bvh.order);
+    drop(bvh);
+    wide.pack_triangles(|place| prims.packed(order[place as usize]));
+    let planes = std::mem::take(&mut prims.planes);
+    let numbering = Numbering::new(&wide, n, planes.len());
+    wide.renumber(|place| numbering.id(place));
+    // Records in leaf order, so that a leaf's are contiguous in memory; the
+    // planes after them; then the plain triangles, which have none.
+    let mut records = Vec::with_capacity(numbering.plain_from as usize);
+    for (place, &u) in order.iter().enumerate() {
+        if numbering.id(place as u32) < numbering.plain_from {
+            records.push(prims.record(u));
+        }
+    }
+    let bounded_records = records.len() as u32;
+    let objects = prims.into_objects();
+    let mut prim_object = vec![0u32; (numbering.plain_from + numbering.plain) as usize];
+    for (place, &u) in order.iter().enumerate() {
+        prim_object[numbering.id(place as u32) as usize] = objects.of(u);
+    }
+    for (plane, o) in planes {
+        prim_object[records.len()] = o;
+        records.push(plane);
+    }
+    let unbounded = (bounded_records..numbering.plain_from).collect();
     Ok(Geometry {
-        prims: Arc::new(prims),
+        prims: Arc::new(records),
         normals: Arc::new(normals),
-        bounds: bvh.bounds(),
+        bounds,
         wide: Arc::new(wide),
         unbounded: Arc::new(unbounded),
         prim_object: Arc::new(prim_object),
     })
-}
-
-/// Reorders `v` in place so that the new `v[i]` is the old `v[perm[i]]`, by
-/// following the permutation's cycles.
-fn permute<T>(v: &mut [T], perm: &[u32]) {
-    let mut done = vec![false; v.len()];
-    for start in 0..v.len() {
-        let mut i = start;
-        while !done[i] {
-            done[i] = true;
-            let j = perm[i] as usize;
-            if j == start {
-                break;
-            }
-            v.swap(i, j);
-            i = j;
-        }
-    }
-}
-
-/// A primitive the wide BVH tests four at a time in a
-/// [`Tri4`](crate::geometry::tri4::Tri4): a triangle that does not move;
-/// plain when it has no vertex normals.
-fn packed_triangle(p: &Prim) -> Option<PackedTriangle> {
-    match p.shape {
-        Shape::Triangle {
-            p0,
-            e1,
-            e2,
-            normals,
-        } if p.velocity == Vec3::ZERO => Some(PackedTriangle {
-            vertices: [p0, e1, e2],
-            plain: normals == u32::MAX,
-        }),
-        _ => None,
-    }
-}
-
-/// BVH over bounded primitives, expanded over the shutter for moving ones
-/// (planes are kept apart, see [`Scene::unbounded`]).
-fn build_bvh(prims: &[Prim], shutter: (f64, f64)) -> Bvh {
-    let (t0, t1) = (shutter.0 as f32, shutter.1 as f32);
-    let mut bounded = Vec::with_capacity(prims.len());
-    let mut boxes = Vec::with_capacity(prims.len());
-    for (i, p) in prims.iter().enumerate() {
-        if matches!(p.shape, Shape::Plane { .. }) {
-            continue;
-        }
-        let b = p.shape.bounds();
-        let b = if p.velocity != Vec3::ZERO {
-            let m0 = Aabb {
-                min: b.min + p.velocity * t0,
-                max: b.max + p.velocity * t0,
-            };
-            let m1 = Aabb {
-                min: b.min + p.velocity * t1,
-                max: b.max + p.velocity * t1,
-            };
-            m0.union(m1)
-        } else {
-            b
-        };
-        bounded.push(i as u32);
-        boxes.push(b);
-    }
-    let packable = |j: u32| packed_triangle(&prims[bounded[j as usize] as usize]).is_some();
-    let mut bvh = Bvh::build(&boxes, &packable);
-    // Map the BVH's order from positions in `bounded` to primitive indices.
-    for o in bvh.order.iter_mut() {
-        *o = bounded[*o as usize];
-    }
-    bvh
 }
 
 /// Lights, light selection and the camera on top of the geometry.
@@ -383,12 +348,48 @@ fn finish(scene: &check::Scene, materials: Vec<Material>, geometry: Geometry) ->
         .iter()
         .map(|&m| materials[m as usize].emission != Vec3::ZERO)
         .collect();
-    let area_lights: Vec<u32> = (0..prims.len() as u32)
+    let area_lights: Vec<u32> = (0..prim_object.len() as u32)
         .filter(|&i| emissive[prim_object[i as usize] as usize])
         .collect();
+    // A plain triangle has no record: its light takes the triangle from its
+    // block (emission is a material's, so this is not part of the geometry).
+    let mut plain_lights: Vec<(u32, [Vec3; 3])> = Vec::new();
+    if area_lights
+        .last()
+        .is_some_and(|&p| p as usize >= prims.len())
+    {
+        plain_lights = wide
+            .plain_triangles()
+            .filter(|&(p, _)| emissive[prim_object[p as usize] as usize])
+            .collect();
+        plain_lights.sort_unstable_by_key(|&(p, _)| p);
+    }
+    let mut plain_lights = plain_lights.into_iter();
     let mut lights: Vec<Light> = area_lights
         .iter()
-        .map(|&prim| Light::Area { prim })
+        .map(|&prim| match prims.get(prim as usize) {
+            Some(p) => Light::Area {
+                prim,
+                shape: p.shape,
+                velocity: p.velocity,
+            },
+            None => {
+                let (p, [p0, e1, e2]) = plain_lights
+                    .next()
+                    .expect("every plain triangle is in a block");
+                debug_assert_eq!(p, prim);
+                Light::Area {
+                    prim,
+                    shape: Shape::Triangle {
+                        p0,
+                        e1,
+                        e2,
+                        normals: u32::MAX,
+                    },
+                    velocity: Vec3::ZERO,
+                }
+            }
+        })
         .collect();
     for (l, _) in &scene.lights {
         lights.push(match l {
@@ -495,19 +496,4 @@ fn non_uniform(span: crate::span::Span, what: &str) -> Diagnostic {
     .with_help(format!(
         "scale the {what} by a single number, or use a mesh for ellipsoids"
     ))
-}
-
-#[cfg(test)]
-mod tests {
-    use super::permute;
-
-    #[test]
-    fn permute_in_place_matches_gathering() {
-        let perm = [3u32, 0, 4, 1, 2, 6, 5, 7];
-        let old: Vec<u32> = (10..18).collect();
-        let mut v = old.clone();
-        permute(&mut v, &perm);
-        let want: Vec<u32> = perm.iter().map(|&i| old[i as usize]).collect();
-        assert_eq!(v, want);
-    }
 }

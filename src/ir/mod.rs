@@ -3,8 +3,10 @@
 //! [`lower`](lower::lower); every primitive remembers the span it came from.
 
 pub mod cache;
+mod collect;
 pub mod lower;
 pub mod mesh;
+mod numbering;
 
 use crate::check::RenderSettings;
 use crate::geometry::bvh4::{Bvh4, TreeHit};
@@ -52,9 +54,13 @@ pub struct Scene {
     pub settings: RenderSettings,
     /// The camera.
     pub camera: Camera,
-    /// Primitives (shared with `watch`'s cache while the geometry is unchanged).
+    /// The records of the primitives that need one (shared with `watch`'s
+    /// cache while the geometry is unchanged): all but the plain triangles
+    /// of the BVH's blocks, which their blocks describe completely and
+    /// whose numbers come after these (see `ir::numbering`).
     pub prims: Arc<Vec<Prim>>,
-    /// The object each primitive came from (index into `object_spans`).
+    /// The object each primitive came from (index into `object_spans`), for
+    /// every primitive, records or not.
     pub prim_object: Arc<Vec<u32>>,
     /// Where each object is written in the source.
     pub object_spans: Vec<Span>,
@@ -119,7 +125,9 @@ impl Scene {
     // and `eval`: called out of line, perf put 12-17 % of `path_li` on the
     // first loads of the `Hit` and `BsdfSample` they returned through memory.
     // A/B 16 spp: cornell 2.09 -> 1.87 s, spheres 1.25 -> 1.16, mesh 1.78 -> 1.72.
-    #[inline]
+    // `always` (here, in `Bvh4::closest`, `Light::sample` and
+    // `Material::sample`): a plain `#[inline]` was dropped by LLVM's
+    // heuristics after unrelated changes (session 6: cornell 1.90 -> 2.09 s).
     pub fn intersect(&self, ray: &Ray, t_min: f32, t_max: f32) -> Option<Hit> {
         let mut best = self.wide.closest(ray, t_min, t_max, |i, tmax| {
             let p = &self.prims[i as usize];
@@ -143,8 +151,7 @@ impl Scene {
         } = best?;
         let ShapeHit { t, uv } = hit;
         // A plain triangle's hit is finished from the block the traversal
-        // just read instead of the record, likely not in the cache (mesh
-        // renders -4 %).
+        // just read: it has no record (and reading one cost a cache miss).
         let record;
         let prim = match plain {
             Some([p0, e1, e2]) => {

@@ -2,6 +2,7 @@
 //! and the constant background. Each can be sampled from a shading point;
 //! lights are chosen in proportion to their power.
 
+use crate::geometry::shape::Shape;
 use crate::geometry::Aabb;
 use glam::{Vec2, Vec3};
 use std::f32::consts::PI;
@@ -13,6 +14,10 @@ pub enum Light {
     Area {
         /// Index of the primitive.
         prim: u32,
+        /// Its shape (a copy: a plain mesh triangle has no record to read).
+        shape: Shape,
+        /// Its linear motion per unit time.
+        velocity: Vec3,
     },
     /// Isotropic point light.
     Point {
@@ -83,11 +88,10 @@ impl Light {
     pub fn power(&self, scene: &crate::ir::Scene, bounds: Aabb) -> f32 {
         let radius = 0.5 * (bounds.max - bounds.min).length().min(1e6);
         match self {
-            Light::Area { prim } => {
-                let p = &scene.prims[*prim as usize];
+            Light::Area { prim, shape, .. } => {
                 let m = scene.material_of(*prim);
                 let sides = if m.two_sided { 2.0 } else { 1.0 };
-                luminance(m.emission) * p.shape.area() * PI * sides
+                luminance(m.emission) * shape.area() * PI * sides
             }
             Light::Point { intensity, .. } => 4.0 * PI * luminance(*intensity),
             Light::Spot {
@@ -105,7 +109,7 @@ impl Light {
 
     /// Samples light arriving at `p`.
     /// `time` is the ray's: a moving emitter is sampled where it is then.
-    #[inline]
+    #[inline(always)]
     pub fn sample(
         &self,
         scene: &crate::ir::Scene,
@@ -114,10 +118,13 @@ impl Light {
         u: Vec2,
     ) -> Option<LightSample> {
         match self {
-            Light::Area { prim } => {
-                let pr = &scene.prims[*prim as usize];
-                let (q, n) = pr.shape.sample_area(u);
-                let q = q + pr.velocity * time;
+            Light::Area {
+                prim,
+                shape,
+                velocity,
+            } => {
+                let (q, n) = shape.sample_area(u);
+                let q = q + *velocity * time;
                 let to = q - p;
                 let d2 = to.length_squared();
                 if d2 == 0.0 {
@@ -131,7 +138,7 @@ impl Light {
                 if li == Vec3::ZERO || cos_l.abs() < 1e-7 {
                     return None;
                 }
-                let pdf = d2 / (cos_l.abs() * pr.shape.area());
+                let pdf = d2 / (cos_l.abs() * shape.area());
                 Some(LightSample { wi, dist, li, pdf })
             }
             Light::Point {

@@ -164,7 +164,7 @@ impl Material {
 
     /// Samples an incident direction for `wo` at a surface whose outward
     /// geometric normal is `n`.
-    #[inline]
+    #[inline(always)]
     pub fn sample(&self, wo: Vec3, n: Vec3, u_lobe: f32, u: Vec2) -> Option<BsdfSample> {
         let outside = wo.dot(n) >= 0.0;
         let nf = if outside { n } else { -n };

@@ -9,7 +9,12 @@ use std::path::Path;
 use std::sync::atomic::AtomicBool;
 
 fn film_of(text: &str, threads: usize) -> Film {
-    let c = check_str(Path::new("test.pts"), text);
+    film_at(Path::new("test.pts"), text, threads)
+}
+
+/// Renders `text` as if it were the scene file `path` (for relative mesh files).
+fn film_at(path: &Path, text: &str, threads: usize) -> Film {
+    let c = check_str(path, text);
     let scene = c
         .scene
         .unwrap_or_else(|| panic!("{}", c.diagnostics.render_human(&c.sources, false)));
@@ -216,6 +221,46 @@ plane {{ normal <0, 1, 0> material {{ diffuse rgb 0.8 }} }}
         assert!(
             (moving[k] - fixed[k]).abs() < 1e-3 * fixed[k],
             "moving {moving:?} vs fixed {fixed:?}"
+        );
+    }
+}
+
+#[test]
+fn plain_mesh_triangles_light_the_scene_as_records_do() {
+    // A flat mesh's triangles have no 64-byte record (their blocks in the
+    // BVH hold them); an emissive one must still be sampled as a light, as
+    // the same triangle with vertex normals (which keeps its record) is. The
+    // floor is a plain mesh too, so that blocks also hold triangles that
+    // are not lights.
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(
+        dir.path().join("light.obj"),
+        "v -1 2 -1\nv 1 2 -1\nv 0 2 1\nvn 0 -1 0\nf 1//1 2//1 3//1\n",
+    )
+    .unwrap();
+    std::fs::write(
+        dir.path().join("floor.obj"),
+        "v -5 0 -5\nv -5 0 5\nv 5 0 5\nv 5 0 -5\nf 1 2 3\nf 1 3 4\n",
+    )
+    .unwrap();
+    let scene = |smooth: bool| {
+        format!(
+            "render {{ resolution <24, 24> samples 16 max_depth 3 }}
+camera {{ position <0, 6, 4> look_at <0, 0, 0> fov 50 }}
+mesh {{ file \"floor.obj\" material {{ diffuse rgb 0.8 }} }}
+mesh {{ file \"light.obj\" smooth {smooth} material {{ diffuse rgb 0 emission rgb 5 }} }}
+"
+        )
+    };
+    let path = dir.path().join("s.pts");
+    let plain = mean(&film_at(&path, &scene(false), 2));
+    let record = mean(&film_at(&path, &scene(true), 2));
+    // The same random numbers drive both renders: only float rounding differs.
+    assert!(plain[0] > 0.05, "the floor is lit: {plain:?}");
+    for k in 0..3 {
+        assert!(
+            (plain[k] - record[k]).abs() < 1e-3 * record[k],
+            "plain {plain:?} vs record {record:?}"
         );
     }
 }

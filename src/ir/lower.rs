@@ -222,7 +222,8 @@ fn build_geometry(scene: &check::Scene, cache: &mut LowerCache) -> Result<Geomet
                         degenerate += 1;
                         continue;
                     }
-                    if !(p0.is_finite() && e1.is_finite() && e2.is_finite()) {
+                    // As the bounds test of other shapes: the BVH adds the edges.
+                    if !(p0.is_finite() && (p0 + e1).is_finite() && (p0 + e2).is_finite()) {
                         not_finite.get_or_insert(o);
                     }
                     if plain {

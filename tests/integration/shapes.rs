@@ -229,3 +229,35 @@ fn offsets_scale_with_the_hit_point() {
         );
     }
 }
+
+#[test]
+fn a_mesh_that_overflows_is_a_diagnostic() {
+    // Flat (no vertex normals) and smooth meshes are lowered apart (a flat
+    // one keeps no per-triangle record); both must report coordinates that
+    // overflow f32 after the transform, or an edge that does.
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(
+        dir.path().join("t.obj"),
+        "v 0 0 0\nv 10 0 0\nv 0 10 0\nvn 0 0 1\nf 1//1 2//1 3//1\n",
+    )
+    .unwrap();
+    std::fs::write(
+        dir.path().join("wide.obj"),
+        "v -3e38 0 0\nv 3e38 0 0\nv 0 1 0\nf 1 2 3\n",
+    )
+    .unwrap();
+    for mesh in [
+        r#"mesh { file "t.obj" scale 1e38 }"#,
+        r#"mesh { file "t.obj" scale 1e38 smooth true }"#,
+        r#"mesh { file "wide.obj" }"#,
+    ] {
+        let path = dir.path().join("shape.pts");
+        let c = check_str(&path, &format!("{HEADER}{mesh}\n"));
+        let scene = c.scene.expect("the text checks");
+        let codes: Vec<&str> = match lower(&scene) {
+            Ok(_) => panic!("{mesh} lowered"),
+            Err(d) => d.items.iter().map(|d| d.code).collect(),
+        };
+        assert_eq!(codes, ["pts::check::not_finite"], "{mesh}");
+    }
+}

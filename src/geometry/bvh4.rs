@@ -190,12 +190,47 @@ impl Bvh4 {
         let mut best: Option<TreeHit> = None;
         // The block and lane of the best hit, if it is in a block.
         let mut best_lane = None;
-        let mut stack = Stack::new((0u32, 0.0f32));
-        while let Some((node, t_enter)) = stack.pop() {
+        // Children of every kind wait on the stack, nearest on top: a leaf
+        // is tested only when nothing nearer is left. (Leaves tested as soon
+        // as their parent was, before nearer inner children: A/B 16 spp,
+        // mesh 1.90 -> 1.85 s, spheres 1.20 -> 1.17, cornell 1.97 -> 2.00.)
+        // An entry is `(child, count, t_enter)` as in a node's lane.
+        let mut stack = Stack::new((0u32, 0u32, 0.0f32));
+        while let Some((first, count, t_enter)) = stack.pop() {
             if t_enter > t_max {
                 continue;
             }
-            let n = &self.nodes[node as usize];
+            if count == BLOCK {
+                let block = &self.tris[first as usize];
+                if let Some(h) = block.closest(ray.o, ray.d, t_min, t_max) {
+                    t_max = h.t;
+                    best = Some(TreeHit {
+                        prim: block.prim(h.lane).0,
+                        hit: ShapeHit {
+                            t: h.t,
+                            uv: Vec2::new(h.u, h.v),
+                        },
+                        plain: None,
+                    });
+                    best_lane = Some((block, h.lane));
+                }
+                continue;
+            }
+            if count > 0 {
+                for p in first..first + count {
+                    if let Some(hit) = hit(p, t_max) {
+                        t_max = hit.t;
+                        best = Some(TreeHit {
+                            prim: p,
+                            hit,
+                            plain: None,
+                        });
+                        best_lane = None;
+                    }
+                }
+                continue;
+            }
+            let n = &self.nodes[first as usize];
             let (t_near, mask) = r.slab4(n, t_max);
             if mask == 0 {
                 continue;
@@ -214,46 +249,8 @@ impl Bvh4 {
                     k += 1;
                 }
             }
-            // Leaves first, nearest first, so t_max shrinks early; then the
-            // inner children, pushed far to near so the nearest pops first.
-            for &lane in order[..k].iter().rev() {
-                let count = n.count[lane];
-                if count == 0 || t_near[lane] > t_max {
-                    continue;
-                }
-                let first = n.child[lane];
-                if count == BLOCK {
-                    let block = &self.tris[first as usize];
-                    if let Some(h) = block.closest(ray.o, ray.d, t_min, t_max) {
-                        t_max = h.t;
-                        best = Some(TreeHit {
-                            prim: block.prim(h.lane).0,
-                            hit: ShapeHit {
-                                t: h.t,
-                                uv: Vec2::new(h.u, h.v),
-                            },
-                            plain: None,
-                        });
-                        best_lane = Some((block, h.lane));
-                    }
-                    continue;
-                }
-                for p in first..first + count {
-                    if let Some(hit) = hit(p, t_max) {
-                        t_max = hit.t;
-                        best = Some(TreeHit {
-                            prim: p,
-                            hit,
-                            plain: None,
-                        });
-                        best_lane = None;
-                    }
-                }
-            }
             for &lane in &order[..k] {
-                if n.count[lane] == 0 {
-                    stack.push((n.child[lane], t_near[lane]));
-                }
+                stack.push((n.child[lane], n.count[lane], t_near[lane]));
             }
         }
         // The hit block was read last or recently: still in the cache.

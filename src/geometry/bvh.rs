@@ -473,7 +473,7 @@ pub(crate) mod tests {
         best
     }
 
-    /// Random spheres and triangles in a 20-unit cube.
+    /// Random spheres, triangles and quads in a 20-unit cube.
     pub(crate) fn shape_strategy() -> impl Strategy<Value = Shape> {
         let v = || {
             (-10.0f32..10.0, -10.0f32..10.0, -10.0f32..10.0)
@@ -489,6 +489,7 @@ pub(crate) mod tests {
                 e2,
                 normals: u32::MAX
             }),
+            (v(), e(), e()).prop_map(|(p, e1, e2)| Shape::Quad { p, e1, e2 }),
         ]
     }
 

@@ -9,8 +9,9 @@
 //! hit children are visited nearest first.
 
 use super::bvh::Bvh;
+use super::shape::Shape;
 use super::shape::ShapeHit;
-use super::tri4::{PackedTriangle, Tri4, PLAIN};
+use super::tri4::{PackedTriangle, Tri4, PLAIN, QUAD};
 use super::{Aabb, Ray};
 use glam::{Vec2, Vec3};
 
@@ -112,6 +113,7 @@ impl Bvh4 {
         let unused = PackedTriangle {
             vertices: [Vec3::ZERO; 3],
             plain: false,
+            quad: false,
         };
         for lane in 0..4 {
             let n = &self.nodes[node];
@@ -122,9 +124,9 @@ impl Bvh4 {
                 }
                 continue;
             }
-            // (Primitive numbers from PLAIN up cannot be packed: 2^31
-            // records would take 128 GiB.)
-            if !packable_count(count) || first + count >= PLAIN {
+            // (Primitive numbers from QUAD up cannot be packed: 2^30
+            // records would take 64 GiB.)
+            if !packable_count(count) || first + count >= QUAD {
                 continue;
             }
             let mut tris = [(0, unused); 4];
@@ -132,7 +134,9 @@ impl Bvh4 {
                 let p = first + k;
                 triangle(p).map(|t| tris[k as usize] = (p, t)).is_some()
             });
-            if packed {
+            // A lone quad is cheaper to test from its record.
+            let lone_quad = count == 1 && tris[0].1.quad;
+            if packed && !lone_quad {
                 let n = &mut self.nodes[node];
                 n.child[lane] = self.tris.len() as u32;
                 n.count[lane] = BLOCK;
@@ -154,19 +158,32 @@ impl Bvh4 {
         }
         for block in &mut self.tris {
             for p in block.prim.iter_mut().filter(|p| **p != u32::MAX) {
-                let id = new(*p & !PLAIN);
-                debug_assert!(id < PLAIN);
-                *p = id | (*p & PLAIN);
+                let id = new(*p & !(PLAIN | QUAD));
+                debug_assert!(id < QUAD);
+                *p = id | (*p & (PLAIN | QUAD));
             }
         }
     }
 
-    /// The plain triangles of the blocks (see [`PLAIN`]): each one's
-    /// primitive and `[p0, e1, e2]`, in block order.
-    pub fn plain_triangles(&self) -> impl Iterator<Item = (u32, [Vec3; 3])> + '_ {
+    /// The plain triangles and parallelograms of the blocks (see
+    /// [`PLAIN`]): each one's primitive and shape, in block order.
+    pub fn plain_shapes(&self) -> impl Iterator<Item = (u32, Shape)> + '_ {
         self.tris.iter().flat_map(|block| {
             (0..4).filter_map(move |lane| match block.prim(lane) {
-                (p, true) if block.prim[lane] != u32::MAX => Some((p, block.vertices(lane))),
+                (p, true) if block.prim[lane] != u32::MAX => {
+                    let [p0, e1, e2] = block.vertices(lane);
+                    let shape = if block.is_quad(lane) {
+                        Shape::Quad { p: p0, e1, e2 }
+                    } else {
+                        Shape::Triangle {
+                            p0,
+                            e1,
+                            e2,
+                            normals: u32::MAX,
+                        }
+                    };
+                    Some((p, shape))
+                }
                 _ => None,
             })
         })
@@ -476,8 +493,13 @@ mod tests {
     /// lowering does.
     fn wide(shapes: &mut Vec<Shape>) -> Bvh4 {
         let bounds: Vec<Aabb> = shapes.iter().map(Shape::bounds).collect();
-        let is_triangle = |i: u32| matches!(shapes[i as usize], Shape::Triangle { .. });
-        let mut bvh = Bvh::build(&bounds, &is_triangle);
+        let packable = |i: u32| {
+            matches!(
+                shapes[i as usize],
+                Shape::Triangle { .. } | Shape::Quad { .. }
+            )
+        };
+        let mut bvh = Bvh::build(&bounds, &packable);
         *shapes = bvh.order.iter().map(|&i| shapes[i as usize]).collect();
         bvh.order = (0..shapes.len() as u32).collect();
         let mut w = Bvh4::from_binary(&bvh);
@@ -485,6 +507,12 @@ mod tests {
             Shape::Triangle { p0, e1, e2, .. } => Some(PackedTriangle {
                 vertices: [p0, e1, e2],
                 plain: p % 2 == 0,
+                quad: false,
+            }),
+            Shape::Quad { p: p0, e1, e2 } => Some(PackedTriangle {
+                vertices: [p0, e1, e2],
+                plain: p % 2 == 0,
+                quad: true,
             }),
             _ => None,
         });
@@ -512,10 +540,12 @@ mod tests {
                 let want = brute(&shapes, &ray);
                 prop_assert_eq!(got.map(|g| g.hit.t), want.map(|w| w.1));
                 if let Some(TreeHit { prim, plain: Some(v), .. }) = got {
-                    // Only even triangles are packed as plain, and the block
-                    // hands back their own vertices.
-                    let Shape::Triangle { p0, e1, e2, .. } = shapes[prim as usize] else {
-                        panic!("a plain hit on a non-triangle");
+                    // Only even triangles and quads are packed as plain, and
+                    // the block hands back their own vertices.
+                    let (Shape::Triangle { p0, e1, e2, .. } | Shape::Quad { p: p0, e1, e2 }) =
+                        shapes[prim as usize]
+                    else {
+                        panic!("a plain hit on a sphere");
                     };
                     prop_assert!(prim % 2 == 0 && v == [p0, e1, e2]);
                 }

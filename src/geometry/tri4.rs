@@ -12,7 +12,8 @@
 
 use glam::{Vec3, Vec4};
 
-/// Up to four triangles `p0, p0 + e1, p0 + e2`, one per lane; unused lanes
+/// Up to four triangles `p0, p0 + e1, p0 + e2` or parallelograms spanned by
+/// `e1` and `e2` from `p0` (quads, see [`QUAD`]), one per lane; unused lanes
 /// are degenerate (zero edges never hit).
 #[derive(Debug, Clone, Copy)]
 #[repr(C, align(32))]
@@ -24,7 +25,8 @@ pub struct Tri4 {
     /// Edge to the third vertex, per axis.
     pub e2: [[f32; 4]; 3],
     /// The primitive each lane is, with [`PLAIN`] set when the triangle
-    /// alone describes its surface (`u32::MAX` for an unused lane).
+    /// alone describes its surface and [`QUAD`] when it is a parallelogram
+    /// (`u32::MAX` for an unused lane).
     pub prim: [u32; 4],
 }
 
@@ -33,14 +35,21 @@ pub struct Tri4 {
 /// can shade it without fetching the primitive's record.
 pub const PLAIN: u32 = 1 << 31;
 
-/// A triangle to pack: its vertex and edges `[p0, e1, e2]`, and whether it is
-/// plain (see [`PLAIN`]).
+/// The bit of [`Tri4::prim`] that marks a parallelogram: the same
+/// Möller–Trumbore test ([`super::quad`] shares it with triangles), with
+/// `v <= 1` in place of `u + v <= 1`. Walls and floors of rooms are quads.
+pub const QUAD: u32 = 1 << 30;
+
+/// A triangle (or parallelogram) to pack: its vertex and edges `[p0, e1,
+/// e2]`, and whether it is plain (see [`PLAIN`]) and a parallelogram.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct PackedTriangle {
     /// `[p0, e1, e2]`.
     pub vertices: [Vec3; 3],
     /// Whether the vertices alone describe the surface.
     pub plain: bool,
+    /// Whether it is the parallelogram `p0 + u·e1 + v·e2`, u, v in [0, 1].
+    pub quad: bool,
 }
 
 const _: () = assert!(std::mem::size_of::<Tri4>() == 160);
@@ -60,7 +69,7 @@ pub struct LaneHit {
 
 impl Tri4 {
     /// Packs up to four `(prim, triangle)` pairs; `prim` must be below
-    /// [`PLAIN`].
+    /// [`QUAD`].
     pub fn new(tris: &[(u32, PackedTriangle)]) -> Tri4 {
         assert!(tris.len() <= 4, "a Tri4 holds at most four triangles");
         let mut block = Tri4 {
@@ -70,14 +79,16 @@ impl Tri4 {
             prim: [u32::MAX; 4],
         };
         for (lane, &(prim, tri)) in tris.iter().enumerate() {
-            debug_assert!(prim < PLAIN);
+            debug_assert!(prim < QUAD);
             let [p0, e1, e2] = tri.vertices;
             for axis in 0..3 {
                 block.p0[axis][lane] = p0[axis];
                 block.e1[axis][lane] = e1[axis];
                 block.e2[axis][lane] = e2[axis];
             }
-            block.prim[lane] = if tri.plain { prim | PLAIN } else { prim };
+            let plain = if tri.plain { PLAIN } else { 0 };
+            let quad = if tri.quad { QUAD } else { 0 };
+            block.prim[lane] = prim | plain | quad;
         }
         block
     }
@@ -85,7 +96,15 @@ impl Tri4 {
     /// The primitive in `lane`, and whether it is plain.
     #[inline]
     pub fn prim(&self, lane: usize) -> (u32, bool) {
-        (self.prim[lane] & !PLAIN, self.prim[lane] & PLAIN != 0)
+        (
+            self.prim[lane] & !(PLAIN | QUAD),
+            self.prim[lane] & PLAIN != 0,
+        )
+    }
+
+    /// Whether `lane` holds a parallelogram.
+    pub fn is_quad(&self, lane: usize) -> bool {
+        self.prim[lane] & QUAD != 0
     }
 
     /// The triangle `[p0, e1, e2]` in `lane`.
@@ -124,10 +143,21 @@ impl Tri4 {
             & u.cmpge(Vec4::ZERO)
             & u.cmple(Vec4::ONE)
             & v.cmpge(Vec4::ZERO)
-            & (u + v).cmple(Vec4::ONE)
             & t.cmpgt(Vec4::splat(t_min))
             & t.cmplt(Vec4::splat(t_max));
-        (t, u, v, ok.bitmask())
+        // The far edge: u + v <= 1 for a triangle, v <= 1 for a parallelogram.
+        let quads = self.quads();
+        let far_edge =
+            ((u + v).cmple(Vec4::ONE).bitmask() & !quads) | (v.cmple(Vec4::ONE).bitmask() & quads);
+        (t, u, v, ok.bitmask() & far_edge)
+    }
+
+    /// The lanes that hold parallelograms, as a bit mask (unused lanes too:
+    /// they never hit).
+    #[inline(always)]
+    fn quads(&self) -> u32 {
+        let bit = |lane: usize| ((self.prim[lane] & QUAD) >> 30) << lane;
+        bit(0) | bit(1) | bit(2) | bit(3)
     }
 
     /// The closest hit in `(t_min, t_max)` of the ray `o + t·d`; on equal
@@ -162,8 +192,8 @@ impl Tri4 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::geometry::triangle;
     use crate::geometry::Ray;
+    use crate::geometry::{quad, triangle};
     use proptest::prelude::*;
 
     fn vec3() -> impl Strategy<Value = Vec3> {
@@ -186,7 +216,11 @@ mod tests {
                 .iter()
                 .enumerate()
                 .map(|(i, &(p, e1, e2))| {
-                    let tri = PackedTriangle { vertices: [p, e1, e2], plain: i % 2 == 0 };
+                    let tri = PackedTriangle {
+                        vertices: [p, e1, e2],
+                        plain: i % 2 == 0,
+                        quad: i % 3 == 1,
+                    };
                     (i as u32 + 10, tri)
                 })
                 .collect();
@@ -197,7 +231,9 @@ mod tests {
                 prop_assert_eq!(block.prim(lane), (prim, tri.plain));
                 prop_assert_eq!(block.vertices(lane), tri.vertices);
                 let [p, e1, e2] = tri.vertices;
-                if let Some(h) = triangle::intersect(p, e1, e2, &ray, 1e-4, t_best) {
+                prop_assert_eq!(block.is_quad(lane), tri.quad);
+                let scalar = if tri.quad { quad::intersect } else { triangle::intersect };
+                if let Some(h) = scalar(p, e1, e2, &ray, 1e-4, t_best) {
                     t_best = h.t;
                     want = Some(LaneHit { lane, t: h.t, u: h.uv.x, v: h.uv.y });
                 }
@@ -220,6 +256,7 @@ mod tests {
             PackedTriangle {
                 vertices,
                 plain: false,
+                quad: false,
             },
         )]);
         let hit = one.closest(Vec3::Z, -Vec3::Z, 0.0, f32::INFINITY).unwrap();

@@ -108,6 +108,7 @@ impl Collected {
             None => Some(PackedTriangle {
                 vertices: self.mesh_triangle(i).1,
                 plain: true,
+                quad: false,
             }),
         }
     }
@@ -163,17 +164,27 @@ impl Objects {
 }
 
 /// A record that the wide BVH can test four at a time in a block: a triangle
-/// that does not move; plain when it has no vertex normals.
+/// or a parallelogram that does not move; plain when its vertices describe
+/// it completely (no vertex normals).
 fn packed_record(p: &Prim) -> Option<PackedTriangle> {
+    if p.velocity != Vec3::ZERO {
+        return None;
+    }
     match p.shape {
         Shape::Triangle {
             p0,
             e1,
             e2,
             normals,
-        } if p.velocity == Vec3::ZERO => Some(PackedTriangle {
+        } => Some(PackedTriangle {
             vertices: [p0, e1, e2],
             plain: normals == u32::MAX,
+            quad: false,
+        }),
+        Shape::Quad { p, e1, e2 } => Some(PackedTriangle {
+            vertices: [p, e1, e2],
+            plain: true,
+            quad: true,
         }),
         _ => None,
     }

@@ -352,15 +352,16 @@ fn finish(scene: &check::Scene, materials: Vec<Material>, geometry: Geometry) ->
     let area_lights: Vec<u32> = (0..prim_object.len() as u32)
         .filter(|&i| emissive[prim_object[i as usize] as usize])
         .collect();
-    // A plain triangle has no record: its light takes the triangle from its
-    // block (emission is a material's, so this is not part of the geometry).
-    let mut plain_lights: Vec<(u32, [Vec3; 3])> = Vec::new();
+    // A plain triangle or quad has no record: its light takes the shape
+    // from its block (emission is a material's, so this is not part of the
+    // geometry).
+    let mut plain_lights: Vec<(u32, Shape)> = Vec::new();
     if area_lights
         .last()
         .is_some_and(|&p| p as usize >= prims.len())
     {
         plain_lights = wide
-            .plain_triangles()
+            .plain_shapes()
             .filter(|&(p, _)| emissive[prim_object[p as usize] as usize])
             .collect();
         plain_lights.sort_unstable_by_key(|&(p, _)| p);
@@ -375,18 +376,13 @@ fn finish(scene: &check::Scene, materials: Vec<Material>, geometry: Geometry) ->
                 velocity: p.velocity,
             },
             None => {
-                let (p, [p0, e1, e2]) = plain_lights
+                let (p, shape) = plain_lights
                     .next()
-                    .expect("every plain triangle is in a block");
+                    .expect("every plain primitive is in a block");
                 debug_assert_eq!(p, prim);
                 Light::Area {
                     prim,
-                    shape: Shape::Triangle {
-                        p0,
-                        e1,
-                        e2,
-                        normals: u32::MAX,
-                    },
+                    shape,
                     velocity: Vec3::ZERO,
                 }
             }

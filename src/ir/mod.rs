@@ -152,6 +152,7 @@ impl Scene {
         let ShapeHit { t, uv } = hit;
         // A plain triangle's hit is finished from the block the traversal
         // just read: it has no record (and reading one cost a cache miss).
+        // A plain quad's too: its point and normal have a triangle's formulas.
         let record;
         let prim = match plain {
             Some([p0, e1, e2]) => {

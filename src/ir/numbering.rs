@@ -29,7 +29,7 @@ impl Numbering {
     /// planes to number after the records.
     pub fn new(wide: &Bvh4, places: usize, planes: usize) -> Numbering {
         let mut plain_bits = vec![0u64; places.div_ceil(64)];
-        for (place, _) in wide.plain_triangles() {
+        for (place, _) in wide.plain_shapes() {
             plain_bits[place as usize / 64] |= 1 << (place % 64);
         }
         let mut plain = 0u32;
@@ -76,6 +76,7 @@ mod tests {
             let plain = PackedTriangle {
                 vertices: [glam::Vec3::ZERO; 3],
                 plain: true,
+                quad: false,
             };
             (p, plain)
         };

@@ -171,16 +171,12 @@ impl Bvh4 {
         self.tris.iter().flat_map(|block| {
             (0..4).filter_map(move |lane| match block.prim(lane) {
                 (p, true) if block.prim[lane] != u32::MAX => {
-                    let [p0, e1, e2] = block.vertices(lane);
+                    let vertices = block.vertices(lane);
                     let shape = if block.is_quad(lane) {
-                        Shape::Quad { p: p0, e1, e2 }
+                        let [p, e1, e2] = vertices;
+                        Shape::Quad { p, e1, e2 }
                     } else {
-                        Shape::Triangle {
-                            p0,
-                            e1,
-                            e2,
-                            normals: u32::MAX,
-                        }
+                        Shape::flat_triangle(vertices)
                     };
                     Some((p, shape))
                 }

@@ -65,6 +65,17 @@ pub struct ShapeHit {
 }
 
 impl Shape {
+    /// The triangle `p0, p0 + e1, p0 + e2` from `[p0, e1, e2]`, without
+    /// vertex normals.
+    pub fn flat_triangle([p0, e1, e2]: [Vec3; 3]) -> Shape {
+        Shape::Triangle {
+            p0,
+            e1,
+            e2,
+            normals: u32::MAX,
+        }
+    }
+
     /// Bounds (infinite for planes).
     pub fn bounds(&self) -> Aabb {
         match *self {

@@ -85,18 +85,10 @@ impl Collected {
     pub fn record(&self, i: u32) -> Prim {
         match self.records.get(i as usize) {
             Some(p) => p.clone(),
-            None => {
-                let [p0, e1, e2] = self.mesh_triangle(i).1;
-                Prim {
-                    shape: Shape::Triangle {
-                        p0,
-                        e1,
-                        e2,
-                        normals: u32::MAX,
-                    },
-                    velocity: Vec3::ZERO,
-                }
-            }
+            None => Prim {
+                shape: Shape::flat_triangle(self.mesh_triangle(i).1),
+                velocity: Vec3::ZERO,
+            },
         }
     }
 

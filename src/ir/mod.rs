@@ -155,14 +155,9 @@ impl Scene {
         // A plain quad's too: its point and normal have a triangle's formulas.
         let record;
         let prim = match plain {
-            Some([p0, e1, e2]) => {
+            Some(vertices) => {
                 record = Prim {
-                    shape: Shape::Triangle {
-                        p0,
-                        e1,
-                        e2,
-                        normals: u32::MAX,
-                    },
+                    shape: Shape::flat_triangle(vertices),
                     velocity: Vec3::ZERO,
                 };
                 &record

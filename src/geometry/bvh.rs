@@ -38,7 +38,7 @@ const PARALLEL_THRESHOLD: usize = 16 * 1024;
 impl Bvh {
     /// Builds a BVH over the given primitive bounds. `packable(i)` says
     /// whether primitive `i` is one the wide tree tests four at a time
-    /// (static triangles, see `bvh4.rs`): nodes of up to four such
+    /// (static triangles and quads, see `bvh4.rs`): nodes of up to four such
     /// primitives stay leaves.
     pub fn build(bounds: &[Aabb], packable: &(dyn Fn(u32) -> bool + Sync)) -> Bvh {
         if bounds.is_empty() {
@@ -420,10 +420,10 @@ const NODE_COST: f32 = 0.85;
 /// Whether a node of at most [`MAX_LEAF`] primitives is better split (by the
 /// surface area heuristic, every split along the widest centroid axis
 /// tried): `mid`, with `order` sorted along that axis. Up to four packable
-/// primitives (static triangles) always stay together; big quads (the
-/// walls of a room) and scattered spheres end in leaves of one, small
-/// overlapping primitives that cannot be packed (moving triangles) in
-/// shared leaves.
+/// primitives (static triangles and, since session 6, quads: the walls of a
+/// room share a block) always stay together; scattered spheres end in
+/// leaves of one, small overlapping primitives that cannot be packed
+/// (moving triangles) in shared leaves.
 /// Measured in session 4 (before triangle blocks), 16-spp renders A/B
 /// against leaves of up to four: cornell 2.50 -> 2.15 s, mesh 2.37 -> 2.28,
 /// spheres 1.44 -> 1.32. Leaves of exactly one: cornell 2.03, spheres 1.36.

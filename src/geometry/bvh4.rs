@@ -59,7 +59,7 @@ pub struct TreeHit {
 pub struct Bvh4 {
     /// Nodes; the root is node 0.
     pub nodes: Vec<Node4>,
-    /// Leaves of up to four static triangles, tested together.
+    /// Leaves of up to four static triangles or quads, tested together.
     pub tris: Vec<Tri4>,
 }
 
@@ -91,7 +91,7 @@ impl Bvh4 {
     }
 
     /// Turns every leaf of up to four primitives that `triangle(prim)` packs
-    /// (static triangles) into a [`Tri4`] block. A pass of its own after the
+    /// (static triangles and quads) into a [`Tri4`] block. A pass of its own after the
     /// collapse, so that lowering can drop the binary tree before it reads
     /// the triangles (the load's peak memory is here).
     pub fn pack_triangles(&mut self, triangle: impl Fn(u32) -> Option<PackedTriangle>) {

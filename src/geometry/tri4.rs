@@ -1,6 +1,6 @@
 //! Four triangles tested against one ray at once: the leaf format of the
-//! wide BVH for static triangles (Embree's "Triangle4"; Wald et al. 2014,
-//! "Embree: A Kernel Framework for Efficient CPU Ray Tracing").
+//! wide BVH for static triangles and quads (Embree's "Triangle4"; Wald et
+//! al. 2014, "Embree: A Kernel Framework for Efficient CPU Ray Tracing").
 //!
 //! Each triangle is one lane of structure-of-arrays data, so Möller–Trumbore
 //! ([`super::triangle`]) runs on all four with the same few vector

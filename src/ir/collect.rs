@@ -93,7 +93,7 @@ impl Collected {
     }
 
     /// Primitive `i` packed for a [`Tri4`](crate::geometry::tri4::Tri4)
-    /// block, if it is a static triangle.
+    /// block, if it is a static triangle or quad.
     pub fn packed(&self, i: u32) -> Option<PackedTriangle> {
         match self.records.get(i as usize) {
             Some(p) => packed_record(p),

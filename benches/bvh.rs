@@ -12,7 +12,7 @@
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use glam::Vec3;
 use ptsc::check::check_str;
-use ptsc::geometry::{bvh::Bvh, Aabb, Ray};
+use ptsc::geometry::{bvh::Bvh, shape::Shape, Aabb, Ray};
 use ptsc::ir::lower::lower;
 use ptsc::ir::Scene;
 use std::path::{Path, PathBuf};
@@ -96,12 +96,8 @@ fn bench(c: &mut Criterion) {
         .triangles
         .iter()
         .map(|t| {
-            let p = t.map(|i| mesh.positions[i as usize]);
-            let p0 = p[0];
-            Aabb::EMPTY
-                .grow(p0)
-                .grow(p0 + (p[1] - p0))
-                .grow(p0 + (p[2] - p0))
+            let [p0, p1, p2] = t.map(|i| mesh.positions[i as usize]);
+            Shape::flat_triangle([p0, p1 - p0, p2 - p0]).bounds()
         })
         .collect();
     let mut g = c.benchmark_group("bvh_mesh_1M");

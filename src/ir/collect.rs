@@ -92,6 +92,14 @@ impl Collected {
         }
     }
 
+    /// Whether [`Collected::packed`] gives primitive `i` a block lane (without
+    /// gathering a mesh triangle's vertices, which the build does not need).
+    pub fn packable(&self, i: u32) -> bool {
+        self.records
+            .get(i as usize)
+            .is_none_or(|p| packed_record(p).is_some())
+    }
+
     /// Primitive `i` packed for a [`Tri4`](crate::geometry::tri4::Tri4)
     /// block, if it is a static triangle or quad.
     pub fn packed(&self, i: u32) -> Option<PackedTriangle> {
@@ -108,8 +116,7 @@ impl Collected {
     /// The bounds of primitive `i` over the shutter interval `(t0, t1)`.
     pub fn bounds(&self, i: u32, (t0, t1): (f32, f32)) -> Aabb {
         let Some(p) = self.records.get(i as usize) else {
-            let [p0, e1, e2] = self.mesh_triangle(i).1;
-            return Aabb::EMPTY.grow(p0).grow(p0 + e1).grow(p0 + e2);
+            return Shape::flat_triangle(self.mesh_triangle(i).1).bounds();
         };
         let b = p.shape.bounds();
         if p.velocity == Vec3::ZERO {
@@ -224,7 +231,8 @@ mod tests {
         // Records are numbered first even when pushed after a mesh.
         assert_eq!(c.len(), 6);
         assert_eq!(c.planes.len(), 1);
-        assert!(c.packed(0).is_none());
+        assert!(c.packed(0).is_none() && !c.packable(0));
+        assert!((1..6).all(|i| c.packable(i) == c.packed(i).is_some()));
         let t = c.packed(5).unwrap();
         assert!(t.plain);
         let p = Vec3::new(0.0, 0.0, 7.0);

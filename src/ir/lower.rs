@@ -213,6 +213,11 @@ fn build_geometry(scene: &check::Scene, cache: &mut LowerCache) -> Result<Geomet
                 // vertex indices: most of them will never need a record.
                 let plain = !use_normals && velocity == Vec3::ZERO;
                 let mut kept: Vec<[u32; 3]> = Vec::new();
+                if plain {
+                    kept.reserve_exact(data.triangles.len());
+                } else {
+                    prims.records.reserve(data.triangles.len());
+                }
                 let mut degenerate = 0usize;
                 for t in &data.triangles {
                     let [a, b, c] = if flip { [t[0], t[2], t[1]] } else { *t };
@@ -289,7 +294,7 @@ fn build_geometry(scene: &check::Scene, cache: &mut LowerCache) -> Result<Geomet
     let shutter = (t0 as f32, t1 as f32);
     let n = prims.len();
     let boxes: Vec<Aabb> = (0..n as u32).map(|i| prims.bounds(i, shutter)).collect();
-    let mut bvh = Bvh::build(&boxes, &|i| prims.packed(i).is_some());
+    let mut bvh = Bvh::build(&boxes, &|i| prims.packable(i));
     drop(boxes);
     // The wide tree numbers primitives by their place in the binary tree's
     // order: a leaf's primitives are consecutive. The binary tree is dropped

@@ -29,7 +29,7 @@ impl Numbering {
     /// planes to number after the records.
     pub fn new(wide: &Bvh4, places: usize, planes: usize) -> Numbering {
         let mut plain_bits = vec![0u64; places.div_ceil(64)];
-        for (place, _) in wide.plain_shapes() {
+        for place in wide.plain_prims() {
             plain_bits[place as usize / 64] |= 1 << (place % 64);
         }
         let mut plain = 0u32;

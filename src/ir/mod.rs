@@ -128,6 +128,7 @@ impl Scene {
     // `always` (here, in `Bvh4::closest`, `Light::sample` and
     // `Material::sample`): a plain `#[inline]` was dropped by LLVM's
     // heuristics after unrelated changes (session 6: cornell 1.90 -> 2.09 s).
+    #[inline(always)]
     pub fn intersect(&self, ray: &Ray, t_min: f32, t_max: f32) -> Option<Hit> {
         let mut best = self.wide.closest(ray, t_min, t_max, |i, tmax| {
             let p = &self.prims[i as usize];

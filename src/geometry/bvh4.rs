@@ -13,6 +13,7 @@ use super::shape::Shape;
 use super::shape::ShapeHit;
 use super::tri4::{PackedTriangle, Tri4, PLAIN, QUAD};
 use super::{Aabb, Ray};
+use arrayvec::ArrayVec;
 use glam::{Vec2, Vec3};
 
 /// One node: four child boxes, each child a node or a leaf range.
@@ -329,12 +330,12 @@ impl Bvh4 {
     }
 }
 
-/// The traversal stack: a small array (cheap to set up for every ray) that
-/// spills to the heap in the rare deep trees binned SAH can make from very
-/// unevenly spaced primitives.
+/// The traversal stack: a small array (cheap to set up for every ray: an
+/// `ArrayVec` leaves its slots unwritten until pushed, where an array of
+/// entries was zero-filled per ray) that spills to the heap in the rare deep
+/// trees binned SAH can make from very unevenly spaced primitives.
 struct Stack<T: Copy> {
-    inline: [T; STACK],
-    len: usize,
+    inline: ArrayVec<T, STACK>,
     spill: Vec<T>,
 }
 
@@ -344,31 +345,25 @@ impl<T: Copy> Stack<T> {
     /// A stack holding the root.
     #[inline(always)]
     fn new(root: T) -> Self {
+        let mut inline = ArrayVec::new();
+        inline.push(root);
         Stack {
-            inline: [root; STACK],
-            len: 1,
+            inline,
             spill: Vec::new(),
         }
     }
 
     #[inline(always)]
     fn push(&mut self, v: T) {
-        if self.len < STACK {
-            self.inline[self.len] = v;
-        } else {
-            self.spill.push(v);
+        if let Err(full) = self.inline.try_push(v) {
+            self.spill.push(full.element());
         }
-        self.len += 1;
     }
 
     #[inline(always)]
     fn pop(&mut self) -> Option<T> {
-        if self.len == 0 {
-            return None;
-        }
-        self.len -= 1;
-        if self.len < STACK {
-            Some(self.inline[self.len])
+        if self.spill.is_empty() {
+            self.inline.pop()
         } else {
             self.spill.pop()
         }

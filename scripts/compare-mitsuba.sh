@@ -37,7 +37,7 @@ for round in $(seq "$RUNS"); do
     python3 "$BENCH/cpuload.py" wait >/dev/null 2>&1 || true
     line=$("$PTSC" render "$ROOT/examples/bench/$s.pts" --resolution "${RES}x${RES}" --spp "$SPP" \
              --threads "$THREADS" -o "$OUT/$s.exr" 2>&1 | tail -1)
-    # "...: WxH, N spp in T s (P M paths/s; load L s) → OUT"
+    # "...: WxH, N spp in T s (P M paths/s, R M rays/s: ...; load L s; peak memory M MB) → OUT"
     t=$(sed -E 's/.* in ([0-9.]+) s .*/\1/' <<<"$line")
     ptsc_runs[$s]+="$t "
     ptsc_load[$s]=$(sed -E 's/.*load ([0-9.]+) s.*/\1/' <<<"$line")

@@ -152,7 +152,11 @@ fn run_on_pool(args: &RenderArgs) -> u8 {
     let exposure = s.exposure as f32;
     let mut write_error = None;
     let mut last_write = Instant::now();
-    let (film, outcome) = crate::render::render(
+    let crate::render::Rendered {
+        film,
+        outcome,
+        rays,
+    } = crate::render::render(
         &ir,
         integrator.as_ref(),
         &cancel,
@@ -185,7 +189,7 @@ fn run_on_pool(args: &RenderArgs) -> u8 {
     }
     let paths = s.width as f64 * s.height as f64 * film.samples as f64;
     eprintln!(
-        "{}: {}×{}, {} spp{} in {:.2} s ({:.2} M paths/s; load {:.2} s) → {}",
+        "{}: {}×{}, {} spp{} in {:.2} s ({:.2} M paths/s, {:.2} M rays/s: {:.2} closest-hit and {:.2} shadow rays per path; load {:.2} s{}) → {}",
         args.file.display(),
         s.width,
         s.height,
@@ -197,10 +201,25 @@ fn run_on_pool(args: &RenderArgs) -> u8 {
         },
         secs,
         paths / secs / 1e6,
+        rays.total() as f64 / secs / 1e6,
+        rays.closest as f64 / paths.max(1.0),
+        rays.shadow as f64 / paths.max(1.0),
         load_s,
+        peak_memory()
+            .map(|mb| format!("; peak memory {mb:.0} MB"))
+            .unwrap_or_default(),
         output.display()
     );
     EXIT_OK
+}
+
+/// The process's peak resident memory so far in MB (10^6 bytes), where the
+/// system tells it (Linux: `VmHWM` in /proc/self/status).
+fn peak_memory() -> Option<f64> {
+    let status = std::fs::read_to_string("/proc/self/status").ok()?;
+    let line = status.lines().find(|l| l.starts_with("VmHWM:"))?;
+    let kib: f64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    Some(kib * 1024.0 / 1e6)
 }
 
 fn progress_bar(total: u64) -> indicatif::ProgressBar {

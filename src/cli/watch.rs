@@ -260,7 +260,7 @@ fn render_progressively(ir: &Scene, output: &Path, cancel: &AtomicBool, changed_
     }
     let mut pass = 0;
     let mut last = Instant::now();
-    let (_, outcome) = crate::render::render(
+    let outcome = crate::render::render(
         ir,
         integrator.as_ref(),
         cancel,
@@ -277,7 +277,8 @@ fn render_progressively(ir: &Scene, output: &Path, cancel: &AtomicBool, changed_
             }
             last = Instant::now();
         },
-    );
+    )
+    .outcome;
     if outcome == crate::render::Outcome::Complete {
         status(&format!(
             "done: {} spp in {:.2} s → {}",

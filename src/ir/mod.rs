@@ -7,6 +7,7 @@ mod collect;
 pub mod lower;
 pub mod mesh;
 mod numbering;
+pub mod ray_count;
 
 use crate::check::RenderSettings;
 use crate::geometry::bvh4::{Bvh4, TreeHit};
@@ -130,6 +131,7 @@ impl Scene {
     // heuristics after unrelated changes (session 6: cornell 1.90 -> 2.09 s).
     #[inline(always)]
     pub fn intersect(&self, ray: &Ray, t_min: f32, t_max: f32) -> Option<Hit> {
+        ray_count::closest();
         let mut best = self.wide.closest(ray, t_min, t_max, |i, tmax| {
             let p = &self.prims[i as usize];
             p.shape.intersect(&Self::local_ray(p, ray), t_min, tmax)
@@ -190,6 +192,7 @@ impl Scene {
 
     /// Whether anything blocks the segment from `ray.o` to `ray.at(t_max)`.
     pub fn occluded(&self, ray: &Ray, t_min: f32, t_max: f32) -> bool {
+        ray_count::shadow();
         self.wide.any(ray, t_min, t_max, |i, tmax| {
             let p = &self.prims[i as usize];
             p.shape

@@ -9,6 +9,7 @@ pub mod sampler;
 pub mod sampling;
 
 use crate::integrator::Integrator;
+use crate::ir::ray_count::{self, RayCounts};
 use crate::ir::Scene;
 use film::Film;
 use glam::{Vec2, Vec3};
@@ -19,8 +20,9 @@ use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 /// Side of a square tile in pixels.
 pub const TILE: u32 = 16;
 
-/// A tile's corner and the sample sums of its pixels, row-major.
-type TileResult = ((u32, u32), Vec<Vec3>);
+/// A tile's corner, the sample sums of its pixels (row-major) and the rays
+/// traced for it.
+type TileResult = ((u32, u32), Vec<Vec3>, RayCounts);
 
 /// How a render went.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -29,6 +31,17 @@ pub enum Outcome {
     Complete,
     /// Cancelled; the film holds the passes that finished.
     Cancelled,
+}
+
+/// What a render produced.
+#[derive(Debug, Clone)]
+pub struct Rendered {
+    /// The accumulated image.
+    pub film: Film,
+    /// Whether every pass finished.
+    pub outcome: Outcome,
+    /// The rays traced (all passes that ran).
+    pub rays: RayCounts,
 }
 
 /// Sample counts at the end of each progressive pass: 1, 2, 4, … up to `spp`.
@@ -52,7 +65,7 @@ pub fn render(
     cancel: &AtomicBool,
     progress: &(dyn Fn(u64) + Sync),
     on_pass: &mut dyn FnMut(&Film, u32),
-) -> (Film, Outcome) {
+) -> Rendered {
     let s = &scene.settings;
     let view = View {
         width: s.width,
@@ -78,8 +91,8 @@ pub fn render_preview(
         samples: 1,
         scale: divisor,
     };
-    let (film, outcome) = render_view(scene, integrator, view, cancel, &|_| {}, &mut |_, _| {});
-    (outcome == Outcome::Complete).then_some(film)
+    let r = render_view(scene, integrator, view, cancel, &|_| {}, &mut |_, _| {});
+    (r.outcome == Outcome::Complete).then_some(r.film)
 }
 
 /// The image to render: its size, samples per pixel, and how many pixels of
@@ -100,7 +113,7 @@ fn render_view(
     cancel: &AtomicBool,
     progress: &(dyn Fn(u64) + Sync),
     on_pass: &mut dyn FnMut(&Film, u32),
-) -> (Film, Outcome) {
+) -> Rendered {
     let (w, h) = (view.width, view.height);
     let scale = view.scale as f32;
     let mut film = Film::new(w, h);
@@ -108,6 +121,7 @@ fn render_view(
         .flat_map(|ty| (0..w.div_ceil(TILE)).map(move |tx| (tx * TILE, ty * TILE)))
         .collect();
     let done = AtomicU64::new(0);
+    let mut rays = RayCounts::default();
     let mut start = 0;
     for end in pass_ends(view.samples) {
         let results: Vec<Option<TileResult>> = tiles
@@ -117,6 +131,7 @@ fn render_view(
                     return None;
                 }
                 let (x1, y1) = ((x0 + TILE).min(w), (y0 + TILE).min(h));
+                let rays_before = ray_count::this_thread();
                 let mut out = Vec::with_capacity(((x1 - x0) * (y1 - y0)) as usize);
                 for y in y0..y1 {
                     for x in x0..x1 {
@@ -129,13 +144,19 @@ fn render_view(
                 }
                 let n = done.fetch_add(out.len() as u64 * (end - start) as u64, Ordering::Relaxed);
                 progress(n + out.len() as u64 * (end - start) as u64);
-                Some(((x0, y0), out))
+                Some(((x0, y0), out, ray_count::this_thread() - rays_before))
             })
             .collect();
+        // A cancelled pass's tiles are dropped, their rays too.
         if results.iter().any(Option::is_none) {
-            return (film, Outcome::Cancelled);
+            return Rendered {
+                film,
+                outcome: Outcome::Cancelled,
+                rays,
+            };
         }
-        for ((x0, y0), out) in results.into_iter().flatten() {
+        for ((x0, y0), out, tile_rays) in results.into_iter().flatten() {
+            rays = rays + tile_rays;
             let x1 = (x0 + TILE).min(w);
             for (i, v) in out.into_iter().enumerate() {
                 let (x, y) = (x0 + i as u32 % (x1 - x0), y0 + i as u32 / (x1 - x0));
@@ -146,7 +167,11 @@ fn render_view(
         on_pass(&film, end);
         start = end;
     }
-    (film, Outcome::Complete)
+    Rendered {
+        film,
+        outcome: Outcome::Complete,
+        rays,
+    }
 }
 
 /// One sample of pixel (x, y): a jittered position (box filter), lens and

@@ -29,7 +29,7 @@ fn render_file(path: &Path, kind: IntegratorKind, size: Option<(u32, u32, u32)>)
     let ir = lower(&scene).unwrap_or_else(|d| panic!("{}", d.render_human(&c.sources, false)));
     let integ = integrator::make(kind);
     let cancel = AtomicBool::new(false);
-    render(&ir, integ.as_ref(), &cancel, &|_| {}, &mut |_, _| {}).0
+    render(&ir, integ.as_ref(), &cancel, &|_| {}, &mut |_, _| {}).film
 }
 
 /// Relative mean absolute error: Σ|a − b| / Σ|b| over every channel.

@@ -55,7 +55,7 @@ fn check_scene(name: &str) {
     for seed in 0..SEEDS {
         ir.settings.seed = 1000 + seed;
         let px = render(&ir, integ.as_ref(), &cancel, &|_| {}, &mut |_, _| {})
-            .0
+            .film
             .pixels();
         total += sum(&px);
         let abs: f64 = px

@@ -4,7 +4,8 @@
 use ptsc::check::check_str;
 use ptsc::integrator;
 use ptsc::ir::lower::lower;
-use ptsc::render::{film::Film, render};
+use ptsc::ir::ray_count::RayCounts;
+use ptsc::render::{film::Film, render, Rendered};
 use std::path::Path;
 use std::sync::atomic::AtomicBool;
 
@@ -14,6 +15,10 @@ fn film_of(text: &str, threads: usize) -> Film {
 
 /// Renders `text` as if it were the scene file `path` (for relative mesh files).
 fn film_at(path: &Path, text: &str, threads: usize) -> Film {
+    rendered_at(path, text, threads).film
+}
+
+fn rendered_at(path: &Path, text: &str, threads: usize) -> Rendered {
     let c = check_str(path, text);
     let scene = c
         .scene
@@ -26,7 +31,6 @@ fn film_at(path: &Path, text: &str, threads: usize) -> Film {
         .unwrap();
     let cancel = AtomicBool::new(false);
     pool.install(|| render(&ir, integ.as_ref(), &cancel, &|_| {}, &mut |_, _| {}))
-        .0
 }
 
 fn mean(f: &Film) -> [f64; 3] {
@@ -56,6 +60,32 @@ fn same_image_for_one_and_two_threads() {
         std::fs::read(dir.path().join("b.exr")).unwrap()
     );
     assert!(mean(&a)[0] > 0.01, "the cornell box is not black");
+}
+
+#[test]
+fn a_render_counts_the_rays_it_traced() {
+    // Looking straight down at a plane that fills the view, a point light
+    // above it, two segments: every path is a camera ray, one shadow ray and
+    // one BSDF ray (traced to see whether it meets an emitter; then the path
+    // ends). Counted per thread and summed per tile: the same for any
+    // thread count.
+    let text = "render { resolution <8, 8> samples 4 max_depth 2 }
+camera { position <0, 1, 0> look_at <0, 0, 0> up <0, 0, -1> fov 10 }
+plane { normal <0, 1, 0> material { diffuse rgb 0.6 } }
+point_light { position <0, 2, 0> intensity rgb 10 }
+";
+    let paths = 8 * 8 * 4;
+    for threads in [1, 2] {
+        let r = rendered_at(Path::new("test.pts"), text, threads);
+        assert_eq!(
+            r.rays,
+            RayCounts {
+                closest: 2 * paths,
+                shadow: paths
+            },
+            "{threads} threads"
+        );
+    }
 }
 
 const FURNACE: &str = "render { resolution <16, 16> samples 256 max_depth 64 rr_depth 5 }

@@ -58,19 +58,20 @@ thread_local! {
 /// Counts one closest-hit query on this thread.
 #[inline(always)]
 pub(super) fn closest() {
-    COUNTS.with(|c| {
-        let mut n = c.get();
-        n.closest += 1;
-        c.set(n);
-    });
+    bump(|n| n.closest += 1);
 }
 
 /// Counts one shadow query on this thread.
 #[inline(always)]
 pub(super) fn shadow() {
+    bump(|n| n.shadow += 1);
+}
+
+#[inline(always)]
+fn bump(count: impl FnOnce(&mut RayCounts)) {
     COUNTS.with(|c| {
         let mut n = c.get();
-        n.shadow += 1;
+        count(&mut n);
         c.set(n);
     });
 }

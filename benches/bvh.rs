@@ -8,11 +8,17 @@
 //!   comparable with Embree's incoherent-ray figure).
 //! - `primary`: closest hits of the camera's rays (coherent), one thread.
 //! - `shadow`: any-hit queries on the incoherent rays, one thread.
+//! - `surface`: closest hits of rays that leave the points the camera's rays
+//!   hit, cosine-distributed about the surface normal (a path's first
+//!   bounce: the rays where ptsc trails Mitsuba's packets most, see
+//!   docs/performance.md), one thread.
+//! - `surface_shadow`: any-hit queries from the same points to points on
+//!   the mesh scene's light (a quad above the blob), one thread.
 
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use glam::Vec3;
 use ptsc::check::check_str;
-use ptsc::geometry::{bvh::Bvh, shape::Shape, Aabb, Ray};
+use ptsc::geometry::{bvh::Bvh, offset_origin, shape::Shape, Aabb, Ray};
 use ptsc::ir::lower::lower;
 use ptsc::ir::Scene;
 use std::path::{Path, PathBuf};
@@ -85,6 +91,33 @@ fn primary_rays() -> Vec<Ray> {
         .collect()
 }
 
+/// Rays leaving the surface points the camera's rays hit: cosine-weighted
+/// about the normal (closest-hit rays), and toward points on the mesh
+/// scene's light with the distance to them (shadow rays).
+fn surface_rays(scene: &Scene, primary: &[Ray]) -> (Vec<Ray>, Vec<(Ray, f32)>) {
+    let mut s = 0x2545_f491;
+    let mut bounce = Vec::new();
+    let mut shadow = Vec::new();
+    for ray in primary {
+        let Some(hit) = scene.intersect(ray, 0.0, f32::INFINITY) else {
+            continue;
+        };
+        let u = glam::Vec2::new(uniform(&mut s), uniform(&mut s));
+        let local = ptsc::render::sampling::cosine_hemisphere(u);
+        let (t, b) = hit.n_shading.any_orthonormal_pair();
+        let d = (local.x * t + local.y * b + local.z * hit.n_shading).normalize();
+        bounce.push(Ray::new(offset_origin(hit.p, hit.n_geo, d), d, 0.0));
+        // The light of examples/bench/mesh.pts: corner <-2.5, 4.5, 0>,
+        // edges <2, 0, 0> and <0, 0, 2>.
+        let q = Vec3::new(-2.5 + 2.0 * uniform(&mut s), 4.5, 2.0 * uniform(&mut s));
+        let to = q - hit.p;
+        let dist = to.length();
+        let d = to / dist;
+        shadow.push((Ray::new(offset_origin(hit.p, hit.n_geo, d), d, 0.0), dist));
+    }
+    (bounce, shadow)
+}
+
 fn bench(c: &mut Criterion) {
     let Some(scene) = load_scene() else {
         return;
@@ -108,12 +141,18 @@ fn bench(c: &mut Criterion) {
 
     let incoherent = incoherent_rays(&scene);
     let primary = primary_rays();
-    for (name, rays) in [("incoherent", &incoherent), ("primary", &primary)] {
+    let (surface, surface_shadow) = surface_rays(&scene, &primary);
+    // Rays that leave a surface start at the integrators' T_MIN.
+    for (name, rays, t_min) in [
+        ("incoherent", &incoherent, 0.0),
+        ("primary", &primary, 0.0),
+        ("surface", &surface, 1e-5),
+    ] {
         g.throughput(Throughput::Elements(rays.len() as u64));
         g.bench_function(name, |b| {
             b.iter(|| {
                 rays.iter()
-                    .filter(|r| scene.intersect(r, 0.0, f32::INFINITY).is_some())
+                    .filter(|r| scene.intersect(r, t_min, f32::INFINITY).is_some())
                     .count()
             })
         });
@@ -124,6 +163,15 @@ fn bench(c: &mut Criterion) {
             incoherent
                 .iter()
                 .filter(|r| scene.occluded(r, 0.0, f32::INFINITY))
+                .count()
+        })
+    });
+    g.throughput(Throughput::Elements(surface_shadow.len() as u64));
+    g.bench_function("surface_shadow", |b| {
+        b.iter(|| {
+            surface_shadow
+                .iter()
+                .filter(|(r, dist)| scene.occluded(r, 1e-5, dist * (1.0 - 1e-4)))
                 .count()
         })
     });

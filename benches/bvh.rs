@@ -18,7 +18,12 @@
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use glam::Vec3;
 use ptsc::check::check_str;
-use ptsc::geometry::{bvh::Bvh, offset_origin, shape::Shape, Aabb, Ray};
+use ptsc::geometry::{
+    bvh::{Bvh, Packing},
+    offset_origin,
+    shape::Shape,
+    Aabb, Ray,
+};
 use ptsc::ir::lower::lower;
 use ptsc::ir::Scene;
 use std::path::{Path, PathBuf};
@@ -136,8 +141,10 @@ fn bench(c: &mut Criterion) {
     let mut g = c.benchmark_group("bvh_mesh_1M");
     g.sample_size(10);
     g.throughput(Throughput::Elements(bounds.len() as u64));
-    // Every primitive of the mesh is a static triangle, packed four to a leaf.
-    g.bench_function("build", |b| b.iter(|| Bvh::build(&bounds, &|_| true)));
+    // Every primitive of the mesh is a static triangle, packed in blocks.
+    g.bench_function("build", |b| {
+        b.iter(|| Bvh::build(&bounds, &|_| Packing::Blocks))
+    });
 
     let incoherent = incoherent_rays(&scene);
     let primary = primary_rays();

@@ -3,6 +3,7 @@
 //! for large nodes; a flat node array. It is not traversed itself:
 //! `bvh4.rs` collapses it into the 4-wide tree the renderer uses.
 
+use super::bvh4::MAX_BLOCKS;
 use super::Aabb;
 use glam::{Vec3, Vec3A};
 
@@ -33,14 +34,38 @@ pub struct Bvh {
 
 const BINS: usize = 16;
 const MAX_LEAF: usize = 4;
+
+/// Nodes of up to this many static triangles stay leaves of up to
+/// [`MAX_BLOCKS`] blocks, whatever the SAH says. On the 1M-triangle mesh
+/// (A/B 16 spp against leaves of at most four): up to 8 1.63 → 1.57 s,
+/// up to 12 1.63 → 1.55, up to 16 1.56, and a tree 15 % smaller (peak
+/// memory 90 → 77 MB, load 0.60 → 0.51 s); the SAH asked instead (a leaf
+/// when its blocks cost no more than a node and the best split) gained
+/// only 1.69 → 1.66, also with twice the node cost. Traversal dominates
+/// there: a node visit costs more than its share of a triangle test.
+const SHARED_LEAF: usize = 4 * MAX_BLOCKS as usize;
+
+/// How the wide tree tests a primitive (see `bvh4.rs`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Packing {
+    /// On its own, from its record: spheres, moving shapes, planes.
+    Alone,
+    /// In a [`Tri4`](super::tri4::Tri4) block, a leaf holding one block:
+    /// quads. (The few big walls of a room are better apart: with the
+    /// Cornell box's walls in one leaf of two blocks its renders took 2–3 %
+    /// longer.)
+    Block,
+    /// In blocks, up to [`MAX_BLOCKS`] of them to a leaf: static triangles.
+    Blocks,
+}
 const PARALLEL_THRESHOLD: usize = 16 * 1024;
 
 impl Bvh {
-    /// Builds a BVH over the given primitive bounds. `packable(i)` says
+    /// Builds a BVH over the given primitive bounds. `packing(i)` says
     /// whether primitive `i` is one the wide tree tests four at a time
     /// (static triangles and quads, see `bvh4.rs`): nodes of up to four such
-    /// primitives stay leaves.
-    pub fn build(bounds: &[Aabb], packable: &(dyn Fn(u32) -> bool + Sync)) -> Bvh {
+    /// primitives stay leaves, nodes of up to [`SHARED_LEAF`] triangles too.
+    pub fn build(bounds: &[Aabb], packing: &(dyn Fn(u32) -> Packing + Sync)) -> Bvh {
         if bounds.is_empty() {
             return Bvh::default();
         }
@@ -54,10 +79,10 @@ impl Bvh {
         let mut slots = vec![[0u32; 8]; 2 * bounds.len() - 1];
         let (root, below) = slots.split_at_mut(1);
         // Asked once per primitive here rather than at every level.
-        let packable: Vec<bool> = (0..bounds.len() as u32).map(packable).collect();
+        let packing: Vec<Packing> = (0..bounds.len() as u32).map(packing).collect();
         let input = Input {
             bounds,
-            packable: &packable,
+            packing: &packing,
         };
         let (used, nodes) = build_node(&input, &mut order, 0, &mut root[0], below, 1);
         // Give back the room after the last node (freed pages, not a copy).
@@ -149,10 +174,16 @@ impl Node {
 /// What every step of the build reads.
 struct Input<'a> {
     bounds: &'a [Aabb],
-    packable: &'a [bool],
+    packing: &'a [Packing],
 }
 
 impl Input<'_> {
+    /// Whether primitive `i` goes in a block.
+    #[inline]
+    fn packable(&self, i: u32) -> bool {
+        self.packing[i as usize] != Packing::Alone
+    }
+
     /// The centroid of primitive `i`'s box, computed where needed: an array
     /// of them cost 12 bytes per primitive at the load's peak (mesh: peak
     /// RSS 168 -> 159 MB, build 0.32 -> 0.345 s).
@@ -182,8 +213,15 @@ fn build_node(
         let bounds = input.bounds[i];
         (b.union(bounds), c.grow(bounds.center()))
     });
-    let mid = if order.len() <= MAX_LEAF {
+    let n = order.len();
+    let mid = if n <= MAX_LEAF {
         small_split(input, order, &node_bounds, &cb)
+    } else if n <= SHARED_LEAF
+        && order
+            .iter()
+            .all(|&i| input.packing[i as usize] == Packing::Blocks)
+    {
+        None
     } else {
         Some(large_split(input, order, &cb))
     };
@@ -349,7 +387,7 @@ impl AxisBins {
             let b = input.bounds[i as usize];
             let (lo, hi) = (Vec3A::from(b.min), Vec3A::from(b.max));
             let k = bins.bins_of(b.center());
-            let packed = input.packable[i as usize] as u32;
+            let packed = input.packable(i) as u32;
             for axis in 0..3 {
                 let k = k[axis];
                 bins.lo[axis][k] = bins.lo[axis][k].min(lo);
@@ -433,7 +471,7 @@ fn small_split(input: &Input, order: &mut [u32], node: &Aabb, cb: &Aabb) -> Opti
     // and a test on each side (single 16-spp mesh renders, A/B: leaves of
     // up to four in blocks 1.97 s, mostly pairs in blocks 2.33 s, pairs
     // tested one by one 2.25 s).
-    if n < 2 || order.iter().all(|&i| input.packable[i as usize]) {
+    if n < 2 || order.iter().all(|&i| input.packable(i)) {
         return None;
     }
     let axis = widest_axis(cb);
@@ -494,25 +532,25 @@ pub(crate) mod tests {
     }
 
     #[test]
-    fn small_leaves_split_room_walls_but_keep_a_triangle_pair() {
+    fn small_leaves_split_room_walls_but_keep_triangles_together() {
         let b = |lo: [f32; 3], hi: [f32; 3]| Aabb {
             min: Vec3::from(lo),
             max: Vec3::from(hi),
         };
         let leaves =
-            |bounds: &[Aabb], packable: bool| leaf_sizes(&Bvh::build(bounds, &|_| packable));
+            |bounds: &[Aabb], packing: Packing| leaf_sizes(&Bvh::build(bounds, &|_| packing));
         // Two walls of a room meeting in an edge, or two small spheres apart:
         // a ray rarely meets both boxes, so each is its own leaf.
         let walls = [
             b([-1., -1., -1.], [1., -1., 1.]),
             b([-1., -1., -1.], [-1., 1., 1.]),
         ];
-        assert_eq!(leaves(&walls, false), vec![1, 1]);
+        assert_eq!(leaves(&walls, Packing::Alone), vec![1, 1]);
         let spheres = [
             b([0., 0., 0.], [0.2, 0.2, 0.2]),
             b([1., 0., 0.], [1.2, 0.2, 0.2]),
         ];
-        assert_eq!(leaves(&spheres, false), vec![1, 1]);
+        assert_eq!(leaves(&spheres, Packing::Alone), vec![1, 1]);
         // Two neighbouring triangles of a strip, boxes overlapping by half:
         // splitting saves too little for a node (it would below a node cost
         // of 2/3), so they share a leaf.
@@ -520,16 +558,20 @@ pub(crate) mod tests {
             b([0., 0., 0.], [0.01, 0.01, 0.]),
             b([0.005, 0., 0.], [0.015, 0.01, 0.]),
         ];
-        assert_eq!(leaves(&pair, false), vec![2]);
+        assert_eq!(leaves(&pair, Packing::Alone), vec![2]);
         // Up to four packable primitives (tested at once) always share a
-        // leaf, even far apart; a fifth forces a split.
-        assert_eq!(leaves(&walls, true), vec![2]);
-        let strip: Vec<Aabb> = (0..5)
+        // leaf, even far apart; a fifth quad forces a split.
+        assert_eq!(leaves(&walls, Packing::Block), vec![2]);
+        let strip: Vec<Aabb> = (0..13)
             .map(|i| b([i as f32, 0., 0.], [i as f32 + 0.5, 0.5, 0.]))
             .collect();
-        assert_eq!(leaves(&strip[..4], true), vec![4]);
-        assert_eq!(leaves(&strip, true).iter().sum::<u16>(), 5);
-        assert!(leaves(&strip, true).len() > 1);
+        assert_eq!(leaves(&strip[..4], Packing::Block), vec![4]);
+        assert_eq!(leaves(&strip[..5], Packing::Block).iter().sum::<u16>(), 5);
+        assert!(leaves(&strip[..5], Packing::Block).len() > 1);
+        // Triangles share leaves of up to three blocks; a thirteenth splits.
+        assert_eq!(leaves(&strip[..12], Packing::Blocks), vec![12]);
+        assert_eq!(leaves(&strip, Packing::Blocks).iter().sum::<u16>(), 13);
+        assert!(leaves(&strip, Packing::Blocks).len() > 1);
     }
 
     /// Leaf sizes of a build, ascending.
@@ -559,7 +601,7 @@ pub(crate) mod tests {
                 }
             })
             .collect();
-        let bvh = Bvh::build(&bounds, &|_| false);
+        let bvh = Bvh::build(&bounds, &|_| Packing::Alone);
         for c in [bvh.node(1), bvh.node(2)] {
             assert!(c.bounds.max.y - c.bounds.min.y < 1.0, "{:?}", c.bounds);
         }
@@ -583,7 +625,7 @@ pub(crate) mod tests {
             })
             .collect();
         // Measured: 3.56 per leaf in blocks, 3.02 counted one by one.
-        let leaves = leaf_sizes(&Bvh::build(&bounds, &|_| true)).len();
+        let leaves = leaf_sizes(&Bvh::build(&bounds, &|_| Packing::Block)).len();
         assert!(4000.0 / leaves as f32 > 3.4, "{leaves} leaves");
     }
 
@@ -605,7 +647,7 @@ pub(crate) mod tests {
                 }
             })
             .collect();
-        let bvh = Bvh::build(&bounds, &|_| false);
+        let bvh = Bvh::build(&bounds, &|_| Packing::Alone);
         let mut seen = vec![0u8; bounds.len()];
         let mut stack = vec![0usize];
         let mut reached = 0;

@@ -28,12 +28,30 @@ pub struct Node4 {
     /// leaf: first primitive; empty: unused.
     pub child: [u32; 4],
     /// 0 for an inner child, [`BLOCK`] for a leaf of triangles packed in
-    /// a [`Tri4`], else the number of primitives of the leaf.
+    /// a [`Tri4`] (`BLOCK - 1` for two consecutive blocks, and so on: see
+    /// [`blocks`]), else the number of primitives of the leaf.
     pub count: [u32; 4],
 }
 
-/// The `count` of a leaf stored as a [`Tri4`].
+/// The `count` of a leaf stored as one [`Tri4`].
 pub const BLOCK: u32 = u32::MAX;
+
+/// The most blocks in a leaf (a mesh's leaves hold up to twelve
+/// triangles: see `bvh.rs`).
+pub const MAX_BLOCKS: u32 = 3;
+
+/// The smallest `count` that stands for blocks.
+const FIRST_BLOCKS: u32 = BLOCK - (MAX_BLOCKS - 1);
+
+/// How many consecutive blocks a lane of `count` holds (0: none).
+#[inline(always)]
+pub fn blocks(count: u32) -> u32 {
+    if count >= FIRST_BLOCKS {
+        BLOCK - count + 1
+    } else {
+        0
+    }
+}
 
 const EMPTY_NODE: Node4 = Node4 {
     min: [[f32::INFINITY; 4]; 3],
@@ -91,15 +109,21 @@ impl Bvh4 {
         out
     }
 
-    /// Turns every leaf of up to four primitives that `triangle(prim)` packs
-    /// (static triangles and quads) into a [`Tri4`] block. A pass of its own after the
+    /// Turns every leaf of primitives that `triangle(prim)` packs (static
+    /// triangles and quads) into [`Tri4`] blocks, four primitives to a block. A pass of its own after the
     /// collapse, so that lowering can drop the binary tree before it reads
     /// the triangles (the load's peak memory is here).
     pub fn pack_triangles(&mut self, triangle: impl Fn(u32) -> Option<PackedTriangle>) {
         let leaves = self
             .nodes
             .iter()
-            .map(|n| n.count.iter().filter(|&&c| packable_count(c)).count())
+            .map(|n| {
+                n.count
+                    .iter()
+                    .filter(|&&c| packable_count(c))
+                    .map(|&c| c.div_ceil(4) as usize)
+                    .sum::<usize>()
+            })
             .sum();
         self.tris.reserve_exact(leaves);
         if !self.nodes.is_empty() {
@@ -131,7 +155,7 @@ impl Bvh4 {
             if !packable_count(count) || first + count >= QUAD {
                 continue;
             }
-            let mut tris = [(0, unused); 4];
+            let mut tris = [(0, unused); 4 * MAX_BLOCKS as usize];
             let packed = (0..count).all(|k| {
                 let p = first + k;
                 triangle(p).map(|t| tris[k as usize] = (p, t)).is_some()
@@ -141,8 +165,10 @@ impl Bvh4 {
             if packed && !lone_quad {
                 let n = &mut self.nodes[node];
                 n.child[lane] = self.tris.len() as u32;
-                n.count[lane] = BLOCK;
-                self.tris.push(Tri4::new(&tris[..count as usize]));
+                n.count[lane] = BLOCK - (count.div_ceil(4) - 1);
+                for block in tris[..count as usize].chunks(4) {
+                    self.tris.push(Tri4::new(block));
+                }
             }
         }
     }
@@ -153,7 +179,7 @@ impl Bvh4 {
     pub fn renumber(&mut self, new: impl Fn(u32) -> u32) {
         for n in &mut self.nodes {
             for lane in 0..4 {
-                if n.count[lane] != 0 && n.count[lane] != BLOCK {
+                if n.count[lane] != 0 && blocks(n.count[lane]) == 0 {
                     n.child[lane] = new(n.child[lane]);
                 }
             }
@@ -226,19 +252,21 @@ impl Bvh4 {
             if t_enter > t_max {
                 continue;
             }
-            if count == BLOCK {
-                let block = &self.tris[first as usize];
-                if let Some(h) = block.closest(ray.o, ray.d, t_min, t_max) {
-                    t_max = h.t;
-                    best = Some(TreeHit {
-                        prim: block.prim(h.lane).0,
-                        hit: ShapeHit {
-                            t: h.t,
-                            uv: Vec2::new(h.u, h.v),
-                        },
-                        plain: None,
-                    });
-                    best_lane = Some((block, h.lane));
+            if count >= FIRST_BLOCKS {
+                for b in first..first + blocks(count) {
+                    let block = &self.tris[b as usize];
+                    if let Some(h) = block.closest(ray.o, ray.d, t_min, t_max) {
+                        t_max = h.t;
+                        best = Some(TreeHit {
+                            prim: block.prim(h.lane).0,
+                            hit: ShapeHit {
+                                t: h.t,
+                                uv: Vec2::new(h.u, h.v),
+                            },
+                            plain: None,
+                        });
+                        best_lane = Some((block, h.lane));
+                    }
                 }
                 continue;
             }
@@ -318,7 +346,8 @@ impl Bvh4 {
                         stack.push(first);
                         false
                     }
-                    BLOCK => self.tris[first as usize].any(ray.o, ray.d, t_min, t_max),
+                    FIRST_BLOCKS..=BLOCK => (first..first + blocks(count))
+                        .any(|b| self.tris[b as usize].any(ray.o, ray.d, t_min, t_max)),
                     _ => (first..first + count).any(|p| hit(p, t_max)),
                 };
                 if blocked {
@@ -416,9 +445,9 @@ impl RayLanes {
     }
 }
 
-/// Whether a leaf of `count` primitives fits in a block.
+/// Whether a leaf of `count` primitives fits in blocks.
 fn packable_count(count: u32) -> bool {
-    count != BLOCK && (1..=4).contains(&count)
+    (1..=4 * MAX_BLOCKS).contains(&count)
 }
 
 fn set_lane(n: &mut Node4, lane: usize, b: &Aabb, child: u32, count: u32) {
@@ -486,6 +515,7 @@ impl Collapse<'_> {
 mod tests {
     use super::*;
     use crate::geometry::bvh::tests::{brute, shape_strategy};
+    use crate::geometry::bvh::Packing;
     use crate::geometry::shape::Shape;
     use glam::Vec3;
     use proptest::prelude::*;
@@ -494,13 +524,12 @@ mod tests {
     /// lowering does.
     fn wide(shapes: &mut Vec<Shape>) -> Bvh4 {
         let bounds: Vec<Aabb> = shapes.iter().map(Shape::bounds).collect();
-        let packable = |i: u32| {
-            matches!(
-                shapes[i as usize],
-                Shape::Triangle { .. } | Shape::Quad { .. }
-            )
+        let packing = |i: u32| match shapes[i as usize] {
+            Shape::Triangle { .. } => Packing::Blocks,
+            Shape::Quad { .. } => Packing::Block,
+            _ => Packing::Alone,
         };
-        let mut bvh = Bvh::build(&bounds, &packable);
+        let mut bvh = Bvh::build(&bounds, &packing);
         *shapes = bvh.order.iter().map(|&i| shapes[i as usize]).collect();
         bvh.order = (0..shapes.len() as u32).collect();
         let mut w = Bvh4::from_binary(&bvh);

@@ -78,7 +78,8 @@ pub struct TreeHit {
 pub struct Bvh4 {
     /// Nodes; the root is node 0.
     pub nodes: Vec<Node4>,
-    /// Leaves of up to four static triangles or quads, tested together.
+    /// Blocks of up to four static triangles or quads, tested together; a
+    /// leaf holds up to [`MAX_BLOCKS`] consecutive ones.
     pub tris: Vec<Tri4>,
 }
 

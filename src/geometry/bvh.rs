@@ -64,7 +64,8 @@ impl Bvh {
     /// Builds a BVH over the given primitive bounds. `packing(i)` says
     /// whether primitive `i` is one the wide tree tests four at a time
     /// (static triangles and quads, see `bvh4.rs`): nodes of up to four such
-    /// primitives stay leaves, nodes of up to [`SHARED_LEAF`] triangles too.
+    /// primitives stay leaves, nodes of up to twelve triangles too (three
+    /// blocks).
     pub fn build(bounds: &[Aabb], packing: &(dyn Fn(u32) -> Packing + Sync)) -> Bvh {
         if bounds.is_empty() {
             return Bvh::default();

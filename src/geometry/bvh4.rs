@@ -204,12 +204,13 @@ impl Bvh4 {
         })
     }
 
-    /// The primitives of [`Bvh4::plain_lanes`].
+    /// The primitives in the blocks' plain lanes (plain triangles and
+    /// parallelograms, see [`PLAIN`]), in block order.
     pub fn plain_prims(&self) -> impl Iterator<Item = u32> + '_ {
         self.plain_lanes().map(|(block, lane)| block.prim(lane).0)
     }
 
-    /// The primitives of [`Bvh4::plain_lanes`] and their shapes.
+    /// The primitives of the plain lanes (as `plain_prims`) and their shapes.
     pub fn plain_shapes(&self) -> impl Iterator<Item = (u32, Shape)> + '_ {
         self.plain_lanes().map(|(block, lane)| {
             let vertices = block.vertices(lane);

@@ -18,12 +18,7 @@
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use glam::Vec3;
 use ptsc::check::check_str;
-use ptsc::geometry::{
-    bvh::{Bvh, Packing},
-    offset_origin,
-    shape::Shape,
-    Aabb, Ray,
-};
+use ptsc::geometry::{bvh::Bvh, offset_origin, shape::Shape, Aabb, Ray};
 use ptsc::ir::lower::lower;
 use ptsc::ir::Scene;
 use std::path::{Path, PathBuf};
@@ -142,9 +137,7 @@ fn bench(c: &mut Criterion) {
     g.sample_size(10);
     g.throughput(Throughput::Elements(bounds.len() as u64));
     // Every primitive of the mesh is a static triangle, packed in blocks.
-    g.bench_function("build", |b| {
-        b.iter(|| Bvh::build(&bounds, &|_| Packing::Blocks))
-    });
+    g.bench_function("build", |b| b.iter(|| Bvh::build(&bounds, &|_| true)));
 
     let incoherent = incoherent_rays(&scene);
     let primary = primary_rays();

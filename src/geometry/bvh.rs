@@ -35,8 +35,9 @@ pub struct Bvh {
 const BINS: usize = 16;
 const MAX_LEAF: usize = 4;
 
-/// Nodes of up to this many static triangles stay leaves of up to
-/// [`MAX_BLOCKS`] blocks, whatever the SAH says. On the 1M-triangle mesh
+/// Nodes of up to this many static triangles or quads stay leaves of up to
+/// [`MAX_BLOCKS`] blocks, whatever the SAH says (if small, see
+/// [`SHARED_LEAF_AREA`]). On the 1M-triangle mesh
 /// (A/B 16 spp against leaves of at most four): up to 8 1.63 → 1.57 s,
 /// up to 12 1.63 → 1.55, up to 16 1.56, and a tree 15 % smaller (peak
 /// memory 90 → 77 MB, load 0.60 → 0.51 s); the SAH asked instead (a leaf
@@ -50,32 +51,20 @@ const SHARED_LEAF: usize = 4 * MAX_BLOCKS as usize;
 /// rays from outside the box, holds for small boxes, and fails for a room
 /// of a few big triangles with the camera inside. (The Cornell box's walls
 /// as twelve triangles, A/B 16 spp, 7 rounds: leaves of four 2.01 s, one
-/// shared leaf 2.03, with this rule 2.02; within noise.) The mesh's leaves
-/// are about 10⁻⁵ of its scene.
+/// shared leaf 2.03, with this rule 2.02; within noise. Its seven quads in
+/// one leaf of two blocks: 2–3 % slower, and with this rule as fast as
+/// before.) The mesh's leaves are about 10⁻⁵ of its scene.
 const SHARED_LEAF_AREA: f32 = 1e-4;
 
-/// How the wide tree tests a primitive (see `bvh4.rs`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Packing {
-    /// On its own, from its record: spheres, moving shapes, planes.
-    Alone,
-    /// In a [`Tri4`](super::tri4::Tri4) block, a leaf holding one block:
-    /// quads. (The few big walls of a room are better apart: with the
-    /// Cornell box's walls in one leaf of two blocks its renders took 2–3 %
-    /// longer.)
-    Block,
-    /// In blocks, up to [`MAX_BLOCKS`] of them to a leaf: static triangles.
-    Blocks,
-}
 const PARALLEL_THRESHOLD: usize = 16 * 1024;
 
 impl Bvh {
-    /// Builds a BVH over the given primitive bounds. `packing(i)` says
+    /// Builds a BVH over the given primitive bounds. `packable(i)` says
     /// whether primitive `i` is one the wide tree tests four at a time
     /// (static triangles and quads, see `bvh4.rs`): nodes of up to four such
-    /// primitives stay leaves, nodes of up to twelve triangles too (three
+    /// primitives stay leaves, small nodes of up to twelve too (three
     /// blocks).
-    pub fn build(bounds: &[Aabb], packing: &(dyn Fn(u32) -> Packing + Sync)) -> Bvh {
+    pub fn build(bounds: &[Aabb], packable: &(dyn Fn(u32) -> bool + Sync)) -> Bvh {
         if bounds.is_empty() {
             return Bvh::default();
         }
@@ -89,11 +78,11 @@ impl Bvh {
         let mut slots = vec![[0u32; 8]; 2 * bounds.len() - 1];
         let (root, below) = slots.split_at_mut(1);
         // Asked once per primitive here rather than at every level.
-        let packing: Vec<Packing> = (0..bounds.len() as u32).map(packing).collect();
+        let packable: Vec<bool> = (0..bounds.len() as u32).map(packable).collect();
         let scene = bounds.iter().fold(Aabb::EMPTY, |a, &b| a.union(b));
         let input = Input {
             bounds,
-            packing: &packing,
+            packable: &packable,
             shared_leaf_area: scene.area() * SHARED_LEAF_AREA,
         };
         let (used, nodes) = build_node(&input, &mut order, 0, &mut root[0], below, 1);
@@ -186,7 +175,7 @@ impl Node {
 /// What every step of the build reads.
 struct Input<'a> {
     bounds: &'a [Aabb],
-    packing: &'a [Packing],
+    packable: &'a [bool],
     /// The largest surface area of a node that may become a shared leaf.
     shared_leaf_area: f32,
 }
@@ -195,7 +184,7 @@ impl Input<'_> {
     /// Whether primitive `i` goes in a block.
     #[inline]
     fn packable(&self, i: u32) -> bool {
-        self.packing[i as usize] != Packing::Alone
+        self.packable[i as usize]
     }
 
     /// The centroid of primitive `i`'s box, computed where needed: an array
@@ -232,9 +221,7 @@ fn build_node(
         small_split(input, order, &node_bounds, &cb)
     } else if n <= SHARED_LEAF
         && node_bounds.area() <= input.shared_leaf_area
-        && order
-            .iter()
-            .all(|&i| input.packing[i as usize] == Packing::Blocks)
+        && order.iter().all(|&i| input.packable(i))
     {
         None
     } else {
@@ -553,19 +540,19 @@ pub(crate) mod tests {
             max: Vec3::from(hi),
         };
         let leaves =
-            |bounds: &[Aabb], packing: Packing| leaf_sizes(&Bvh::build(bounds, &|_| packing));
+            |bounds: &[Aabb], packable: bool| leaf_sizes(&Bvh::build(bounds, &|_| packable));
         // Two walls of a room meeting in an edge, or two small spheres apart:
         // a ray rarely meets both boxes, so each is its own leaf.
         let walls = [
             b([-1., -1., -1.], [1., -1., 1.]),
             b([-1., -1., -1.], [-1., 1., 1.]),
         ];
-        assert_eq!(leaves(&walls, Packing::Alone), vec![1, 1]);
+        assert_eq!(leaves(&walls, false), vec![1, 1]);
         let spheres = [
             b([0., 0., 0.], [0.2, 0.2, 0.2]),
             b([1., 0., 0.], [1.2, 0.2, 0.2]),
         ];
-        assert_eq!(leaves(&spheres, Packing::Alone), vec![1, 1]);
+        assert_eq!(leaves(&spheres, false), vec![1, 1]);
         // Two neighbouring triangles of a strip, boxes overlapping by half:
         // splitting saves too little for a node (it would below a node cost
         // of 2/3), so they share a leaf.
@@ -573,18 +560,16 @@ pub(crate) mod tests {
             b([0., 0., 0.], [0.01, 0.01, 0.]),
             b([0.005, 0., 0.], [0.015, 0.01, 0.]),
         ];
-        assert_eq!(leaves(&pair, Packing::Alone), vec![2]);
+        assert_eq!(leaves(&pair, false), vec![2]);
         // Up to four packable primitives (tested at once) always share a
-        // leaf, even far apart; a fifth quad forces a split.
-        assert_eq!(leaves(&walls, Packing::Block), vec![2]);
+        // leaf, even far apart.
+        assert_eq!(leaves(&walls, true), vec![2]);
         let strip: Vec<Aabb> = (0..13)
             .map(|i| b([i as f32, 0., 0.], [i as f32 + 0.5, 0.5, 0.]))
             .collect();
-        assert_eq!(leaves(&strip[..4], Packing::Block), vec![4]);
-        assert_eq!(leaves(&strip[..5], Packing::Block).iter().sum::<u16>(), 5);
-        assert!(leaves(&strip[..5], Packing::Block).len() > 1);
-        // Triangles small against their scene share leaves of up to three
-        // blocks; a thirteenth splits. The scene: the strip and, far away,
+        assert_eq!(leaves(&strip[..4], true), vec![4]);
+        // Up to twelve, small against their scene, share leaves of up to
+        // three blocks; a thirteenth splits. The scene: the strip and, far away,
         // a second one that makes it large (sizes 0.5 in a scene of 10^4).
         let far = |d: f32| {
             strip
@@ -592,14 +577,15 @@ pub(crate) mod tests {
                 .map(move |s| b([s.min.x + d, d, 0.], [s.max.x + d, 0.5 + d, 0.]))
         };
         let scene = |n: usize| -> Vec<Aabb> { far(0.0).take(n).chain(far(1e4).take(n)).collect() };
-        assert_eq!(leaves(&scene(12), Packing::Blocks), vec![12, 12]);
-        let split = leaves(&scene(13), Packing::Blocks);
+        assert_eq!(leaves(&scene(12), true), vec![12, 12]);
+        let split = leaves(&scene(13), true);
         assert!(
             split.len() > 2 && split.iter().all(|&n| n <= 12),
             "{split:?}"
         );
-        // Twelve triangles that are the whole scene (a room) split as quads do.
-        assert!(leaves(&strip[..12], Packing::Blocks).len() > 1);
+        // Five that are the whole scene (a room's walls) split.
+        assert_eq!(leaves(&strip[..5], true).iter().sum::<u16>(), 5);
+        assert!(leaves(&strip[..5], true).len() > 1);
     }
 
     /// Leaf sizes of a build, ascending.
@@ -629,7 +615,7 @@ pub(crate) mod tests {
                 }
             })
             .collect();
-        let bvh = Bvh::build(&bounds, &|_| Packing::Alone);
+        let bvh = Bvh::build(&bounds, &|_| false);
         for c in [bvh.node(1), bvh.node(2)] {
             assert!(c.bounds.max.y - c.bounds.min.y < 1.0, "{:?}", c.bounds);
         }
@@ -653,7 +639,7 @@ pub(crate) mod tests {
             })
             .collect();
         // Measured: 3.56 per leaf in blocks, 3.02 counted one by one.
-        let leaves = leaf_sizes(&Bvh::build(&bounds, &|_| Packing::Block)).len();
+        let leaves = leaf_sizes(&Bvh::build(&bounds, &|_| true)).len();
         assert!(4000.0 / leaves as f32 > 3.4, "{leaves} leaves");
     }
 
@@ -675,7 +661,7 @@ pub(crate) mod tests {
                 }
             })
             .collect();
-        let bvh = Bvh::build(&bounds, &|_| Packing::Alone);
+        let bvh = Bvh::build(&bounds, &|_| false);
         let mut seen = vec![0u8; bounds.len()];
         let mut stack = vec![0usize];
         let mut reached = 0;

@@ -517,7 +517,6 @@ impl Collapse<'_> {
 mod tests {
     use super::*;
     use crate::geometry::bvh::tests::{brute, shape_strategy};
-    use crate::geometry::bvh::Packing;
     use crate::geometry::shape::Shape;
     use glam::Vec3;
     use proptest::prelude::*;
@@ -526,12 +525,13 @@ mod tests {
     /// lowering does.
     fn wide(shapes: &mut Vec<Shape>) -> Bvh4 {
         let bounds: Vec<Aabb> = shapes.iter().map(Shape::bounds).collect();
-        let packing = |i: u32| match shapes[i as usize] {
-            Shape::Triangle { .. } => Packing::Blocks,
-            Shape::Quad { .. } => Packing::Block,
-            _ => Packing::Alone,
+        let packable = |i: u32| {
+            matches!(
+                shapes[i as usize],
+                Shape::Triangle { .. } | Shape::Quad { .. }
+            )
         };
-        let mut bvh = Bvh::build(&bounds, &packing);
+        let mut bvh = Bvh::build(&bounds, &packable);
         *shapes = bvh.order.iter().map(|&i| shapes[i as usize]).collect();
         bvh.order = (0..shapes.len() as u32).collect();
         let mut w = Bvh4::from_binary(&bvh);

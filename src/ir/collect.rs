@@ -12,7 +12,6 @@
 //! triangles; planes are kept apart.
 
 use super::Prim;
-use crate::geometry::bvh::Packing;
 use crate::geometry::shape::Shape;
 use crate::geometry::tri4::PackedTriangle;
 use crate::geometry::Aabb;
@@ -93,17 +92,12 @@ impl Collected {
         }
     }
 
-    /// How the wide tree tests primitive `i`: in a block when
-    /// [`Collected::packed`] gives it a lane (told without gathering a mesh
-    /// triangle's vertices, which the build does not need), several blocks
-    /// to a leaf for triangles.
-    pub fn packing(&self, i: u32) -> Packing {
-        match self.records.get(i as usize).map(packed_record) {
-            None => Packing::Blocks,
-            Some(None) => Packing::Alone,
-            Some(Some(t)) if t.quad => Packing::Block,
-            Some(Some(_)) => Packing::Blocks,
-        }
+    /// Whether [`Collected::packed`] gives primitive `i` a block lane (without
+    /// gathering a mesh triangle's vertices, which the build does not need).
+    pub fn packable(&self, i: u32) -> bool {
+        self.records
+            .get(i as usize)
+            .is_none_or(|p| packed_record(p).is_some())
     }
 
     /// Primitive `i` packed for a [`Tri4`](crate::geometry::tri4::Tri4)
@@ -237,12 +231,8 @@ mod tests {
         // Records are numbered first even when pushed after a mesh.
         assert_eq!(c.len(), 6);
         assert_eq!(c.planes.len(), 1);
-        assert!(c.packed(0).is_none() && c.packing(0) == Packing::Alone);
-        assert!((1..6).all(|i| (c.packing(i) != Packing::Alone) == c.packed(i).is_some()));
-        assert!(
-            (2..6).all(|i| c.packing(i) == Packing::Blocks),
-            "mesh triangles"
-        );
+        assert!(c.packed(0).is_none() && !c.packable(0));
+        assert!((1..6).all(|i| c.packable(i) == c.packed(i).is_some()));
         let t = c.packed(5).unwrap();
         assert!(t.plain);
         let p = Vec3::new(0.0, 0.0, 7.0);

@@ -294,7 +294,7 @@ fn build_geometry(scene: &check::Scene, cache: &mut LowerCache) -> Result<Geomet
     let shutter = (t0 as f32, t1 as f32);
     let n = prims.len();
     let boxes: Vec<Aabb> = (0..n as u32).map(|i| prims.bounds(i, shutter)).collect();
-    let mut bvh = Bvh::build(&boxes, &|i| prims.packing(i));
+    let mut bvh = Bvh::build(&boxes, &|i| prims.packable(i));
     drop(boxes);
     // The wide tree numbers primitives by their place in the binary tree's
     // order: a leaf's primitives are consecutive. The binary tree is dropped

@@ -9,8 +9,8 @@
 //! - `primary`: closest hits of the camera's rays (coherent), one thread.
 //! - `shadow`: any-hit queries on the incoherent rays, one thread.
 //! - `surface`: closest hits of rays that leave the points the camera's rays
-//!   hit, cosine-distributed about the surface normal (a path's first
-//!   bounce: the rays where ptsc trails Mitsuba's packets most, see
+//!   hit, sampled from their (grey diffuse) material as a path's first
+//!   bounce is (the rays where ptsc trails Mitsuba's packets most, see
 //!   docs/performance.md), one thread.
 //! - `surface_shadow`: any-hit queries from the same points to points on
 //!   the mesh scene's light (a quad above the blob), one thread.
@@ -91,9 +91,10 @@ fn primary_rays() -> Vec<Ray> {
         .collect()
 }
 
-/// Rays leaving the surface points the camera's rays hit: cosine-weighted
-/// about the normal (closest-hit rays), and toward points on the mesh
-/// scene's light with the distance to them (shadow rays).
+/// Rays leaving the surface points the camera's rays hit: sampled from the
+/// surface's material as the path integrator does (closest-hit rays), and
+/// toward points on the mesh scene's light with the distance to them
+/// (shadow rays).
 fn surface_rays(scene: &Scene, primary: &[Ray]) -> (Vec<Ray>, Vec<(Ray, f32)>) {
     let mut s = 0x2545_f491;
     let mut bounce = Vec::new();
@@ -103,10 +104,11 @@ fn surface_rays(scene: &Scene, primary: &[Ray]) -> (Vec<Ray>, Vec<(Ray, f32)>) {
             continue;
         };
         let u = glam::Vec2::new(uniform(&mut s), uniform(&mut s));
-        let local = ptsc::render::sampling::cosine_hemisphere(u);
-        let (t, b) = hit.n_shading.any_orthonormal_pair();
-        let d = (local.x * t + local.y * b + local.z * hit.n_shading).normalize();
-        bounce.push(Ray::new(offset_origin(hit.p, hit.n_geo, d), d, 0.0));
+        let material = scene.material_of(hit.prim);
+        if let Some(bs) = material.sample(-ray.d, hit.n_shading, uniform(&mut s), u) {
+            let d = bs.wi;
+            bounce.push(Ray::new(offset_origin(hit.p, hit.n_geo, d), d, 0.0));
+        }
         // The light of examples/bench/mesh.pts: corner <-2.5, 4.5, 0>,
         // edges <2, 0, 0> and <0, 0, 2>.
         let q = Vec3::new(-2.5 + 2.0 * uniform(&mut s), 4.5, 2.0 * uniform(&mut s));

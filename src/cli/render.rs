@@ -216,7 +216,11 @@ fn run_on_pool(args: &RenderArgs) -> u8 {
 /// The process's peak resident memory so far in MB (10^6 bytes), where the
 /// system tells it (Linux: `VmHWM` in /proc/self/status).
 fn peak_memory() -> Option<f64> {
-    let status = std::fs::read_to_string("/proc/self/status").ok()?;
+    peak_memory_in(&std::fs::read_to_string("/proc/self/status").ok()?)
+}
+
+/// The `VmHWM` of a /proc/PID/status text (KiB) in MB.
+fn peak_memory_in(status: &str) -> Option<f64> {
     let line = status.lines().find(|l| l.starts_with("VmHWM:"))?;
     let kib: f64 = line.split_whitespace().nth(1)?.parse().ok()?;
     Some(kib * 1024.0 / 1e6)
@@ -236,4 +240,21 @@ fn progress_bar(total: u64) -> indicatif::ProgressBar {
         bar.set_draw_target(ProgressDrawTarget::hidden());
     }
     bar
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn peak_memory_reads_vm_hwm_in_kib() {
+        let status =
+            "Name:\tptsc\nVmPeak:\t  200000 kB\nVmHWM:\t   74500 kB\nVmRSS:\t   70000 kB\n";
+        assert_eq!(peak_memory_in(status), Some(74500.0 * 1024.0 / 1e6));
+        assert_eq!(peak_memory_in("Name:\tptsc\n"), None);
+        // This process has one on Linux.
+        if cfg!(target_os = "linux") {
+            assert!(peak_memory().is_some_and(|mb| mb > 0.0));
+        }
+    }
 }

@@ -37,13 +37,14 @@ const MAX_LEAF: usize = 4;
 
 /// Nodes of up to this many static triangles or quads stay leaves of up to
 /// [`MAX_BLOCKS`] blocks, whatever the SAH says (if small, see
-/// [`SHARED_LEAF_AREA`]). On the 1M-triangle mesh
-/// (A/B 16 spp against leaves of at most four): up to 8 1.63 → 1.57 s,
-/// up to 12 1.63 → 1.55, up to 16 1.56, and a tree 15 % smaller (peak
-/// memory 90 → 77 MB, load 0.60 → 0.51 s); the SAH asked instead (a leaf
-/// when its blocks cost no more than a node and the best split) gained
-/// only 1.69 → 1.66, also with twice the node cost. Traversal dominates
-/// there: a node visit costs more than its share of a triangle test.
+/// [`SHARED_LEAF_AREA`]). On the 1M-triangle mesh (A/B 16 spp against
+/// leaves of at most four): up to 8 1.63 → 1.57 s, up to 12 1.63 → 1.55,
+/// up to 16 1.56; with 12, wide nodes 138,949 → 52,704 and blocks 269,524
+/// → 260,100, peak memory 87.5 → 74.5 MB and load 0.62 → 0.54 s (five
+/// alternating runs). The SAH asked instead (a leaf when its blocks cost no
+/// more than a node and the best split) gained only 1.69 → 1.66, not more
+/// with a higher node cost. Traversal dominates there: a node visit costs
+/// more than its share of a triangle test.
 const SHARED_LEAF: usize = 4 * MAX_BLOCKS as usize;
 
 /// Only nodes whose surface area is at most this fraction of the scene's

@@ -41,9 +41,15 @@ pub const BLOCK: u32 = u32::MAX;
 pub const MAX_BLOCKS: u32 = 3;
 
 /// The smallest `count` that stands for blocks.
-const FIRST_BLOCKS: u32 = BLOCK - (MAX_BLOCKS - 1);
+const FIRST_BLOCKS: u32 = blocks_count(MAX_BLOCKS);
 
-/// How many consecutive blocks a lane of `count` holds (0: none).
+/// The `count` of a leaf of `k` consecutive blocks (1 to [`MAX_BLOCKS`]).
+const fn blocks_count(k: u32) -> u32 {
+    BLOCK - (k - 1)
+}
+
+/// How many consecutive blocks a lane of `count` holds (0: none); the
+/// inverse of `blocks_count`.
 #[inline(always)]
 pub fn blocks(count: u32) -> u32 {
     if count >= FIRST_BLOCKS {
@@ -115,18 +121,14 @@ impl Bvh4 {
     /// collapse, so that lowering can drop the binary tree before it reads
     /// the triangles (the load's peak memory is here).
     pub fn pack_triangles(&mut self, triangle: impl Fn(u32) -> Option<PackedTriangle>) {
-        let leaves = self
+        let most_blocks = self
             .nodes
             .iter()
-            .map(|n| {
-                n.count
-                    .iter()
-                    .filter(|&&c| packable_count(c))
-                    .map(|&c| c.div_ceil(4) as usize)
-                    .sum::<usize>()
-            })
+            .flat_map(|n| n.count)
+            .filter(|&c| packable_count(c))
+            .map(|c| c.div_ceil(4) as usize)
             .sum();
-        self.tris.reserve_exact(leaves);
+        self.tris.reserve_exact(most_blocks);
         if !self.nodes.is_empty() {
             self.pack_below(0, &triangle);
         }
@@ -166,7 +168,7 @@ impl Bvh4 {
             if packed && !lone_quad {
                 let n = &mut self.nodes[node];
                 n.child[lane] = self.tris.len() as u32;
-                n.count[lane] = BLOCK - (count.div_ceil(4) - 1);
+                n.count[lane] = blocks_count(count.div_ceil(4));
                 for block in tris[..count as usize].chunks(4) {
                     self.tris.push(Tri4::new(block));
                 }

@@ -262,17 +262,16 @@ fn plain_mesh_triangles_light_the_scene_as_records_do() {
     // the same triangle with vertex normals (which keeps its record) is. The
     // floor is a plain mesh too, so that blocks also hold triangles that
     // are not lights.
-    let dir = tempfile::tempdir().unwrap();
-    std::fs::write(
-        dir.path().join("light.obj"),
-        "v -1 2 -1\nv 1 2 -1\nv 0 2 1\nvn 0 -1 0\nf 1//1 2//1 3//1\n",
-    )
-    .unwrap();
-    std::fs::write(
-        dir.path().join("floor.obj"),
-        "v -5 0 -5\nv -5 0 5\nv 5 0 5\nv 5 0 -5\nf 1 2 3\nf 1 3 4\n",
-    )
-    .unwrap();
+    let dir = crate::temp_dir_with(&[
+        (
+            "light.obj",
+            "v -1 2 -1\nv 1 2 -1\nv 0 2 1\nvn 0 -1 0\nf 1//1 2//1 3//1\n",
+        ),
+        (
+            "floor.obj",
+            "v -5 0 -5\nv -5 0 5\nv 5 0 5\nv 5 0 -5\nf 1 2 3\nf 1 3 4\n",
+        ),
+    ]);
     let scene = |smooth: bool| {
         format!(
             "render {{ resolution <24, 24> samples 16 max_depth 3 }}

@@ -161,16 +161,14 @@ fn box_transformed_and_moving() {
 
 #[test]
 fn mesh_transformed_moving_and_smooth() {
-    let dir = tempfile::tempdir().unwrap();
     // A square of two triangles in the xy plane, with vertex normals tilted
     // outwards so smooth shading differs from flat shading.
-    std::fs::write(
-        dir.path().join("square.obj"),
+    let dir = crate::temp_dir_with(&[(
+        "square.obj",
         "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\n\
          vn -1 -1 1\nvn 1 -1 1\nvn 1 1 1\nvn -1 1 1\n\
          f 1//1 2//2 3//3\nf 1//1 3//3 4//4\n",
-    )
-    .unwrap();
+    )]);
     let s = scene_in(
         dir.path(),
         r#"mesh { file "square.obj" scale 2 translate <0, 0, 1> }"#,
@@ -235,17 +233,13 @@ fn a_mesh_that_overflows_is_a_diagnostic() {
     // Flat (no vertex normals) and smooth meshes are lowered apart (a flat
     // one keeps no per-triangle record); both must report coordinates that
     // overflow f32 after the transform, or an edge that does.
-    let dir = tempfile::tempdir().unwrap();
-    std::fs::write(
-        dir.path().join("t.obj"),
-        "v 0 0 0\nv 10 0 0\nv 0 10 0\nvn 0 0 1\nf 1//1 2//1 3//1\n",
-    )
-    .unwrap();
-    std::fs::write(
-        dir.path().join("wide.obj"),
-        "v -3e38 0 0\nv 3e38 0 0\nv 0 1 0\nf 1 2 3\n",
-    )
-    .unwrap();
+    let dir = crate::temp_dir_with(&[
+        (
+            "t.obj",
+            "v 0 0 0\nv 10 0 0\nv 0 10 0\nvn 0 0 1\nf 1//1 2//1 3//1\n",
+        ),
+        ("wide.obj", "v -3e38 0 0\nv 3e38 0 0\nv 0 1 0\nf 1 2 3\n"),
+    ]);
     for mesh in [
         r#"mesh { file "t.obj" scale 1e38 }"#,
         r#"mesh { file "t.obj" scale 1e38 smooth true }"#,

@@ -1,8 +1,9 @@
 //! The source map: every file read during a compile (the scene and its
-//! includes), addressed by a small `FileId`.
+//! includes), addressed by a small `FileId`, with a line index so that a
+//! position costs a binary search, not a scan of the file.
 
 use std::path::{Path, PathBuf};
-use std::sync::Arc;
+use std::sync::{Arc, OnceLock};
 
 /// Index of a file in a [`SourceMap`].
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
@@ -15,6 +16,65 @@ pub struct SourceFile {
     pub path: PathBuf,
     /// Full text (shared with miette diagnostics).
     pub text: Arc<String>,
+    /// Byte offset of the start of every line, built on first use.
+    line_starts: OnceLock<Arc<Vec<u32>>>,
+}
+
+impl SourceFile {
+    /// A file with this path and text.
+    pub fn new(path: impl Into<PathBuf>, text: String) -> SourceFile {
+        SourceFile {
+            path: path.into(),
+            text: Arc::new(text),
+            line_starts: OnceLock::new(),
+        }
+    }
+
+    /// Byte offsets where lines start (the first is 0; a text ending in a
+    /// line break has an empty last line).
+    pub fn line_starts(&self) -> &[u32] {
+        self.line_starts.get_or_init(|| {
+            let mut starts = vec![0u32];
+            starts.extend(
+                self.text
+                    .bytes()
+                    .enumerate()
+                    .filter(|&(_, b)| b == b'\n')
+                    .map(|(i, _)| i as u32 + 1),
+            );
+            Arc::new(starts)
+        })
+    }
+
+    /// The 0-based line holding byte `offset` (clamped to the text).
+    pub fn line_of(&self, offset: usize) -> usize {
+        let starts = self.line_starts();
+        let offset = offset.min(self.text.len()) as u32;
+        starts.partition_point(|&s| s <= offset) - 1
+    }
+
+    /// The byte range of 0-based line `line`, without its line break
+    /// (`\n` or `\r\n`).
+    pub fn line_range(&self, line: usize) -> std::ops::Range<usize> {
+        let starts = self.line_starts();
+        let start = starts[line] as usize;
+        let mut end = starts
+            .get(line + 1)
+            .map_or(self.text.len(), |&s| s as usize - 1);
+        if end > start && self.text.as_bytes()[end - 1] == b'\r' {
+            end -= 1;
+        }
+        start..end
+    }
+
+    /// The largest character boundary at or before `offset` (clamped to the text).
+    pub fn floor_char_boundary(&self, offset: usize) -> usize {
+        let mut cut = offset.min(self.text.len());
+        while !self.text.is_char_boundary(cut) {
+            cut -= 1;
+        }
+        cut
+    }
 }
 
 /// All files of a compile.
@@ -31,10 +91,7 @@ impl SourceMap {
 
     /// Adds a file and returns its id.
     pub fn add(&mut self, path: impl Into<PathBuf>, text: String) -> FileId {
-        self.files.push(SourceFile {
-            path: path.into(),
-            text: Arc::new(text),
-        });
+        self.files.push(SourceFile::new(path, text));
         FileId(self.files.len() as u32 - 1)
     }
 
@@ -48,7 +105,7 @@ impl SourceMap {
         &self.files
     }
 
-    /// Id of an already loaded file with this (canonical) path.
+    /// Id of an already loaded file with this path.
     pub fn find(&self, path: &Path) -> Option<FileId> {
         self.files
             .iter()
@@ -56,18 +113,44 @@ impl SourceMap {
             .map(|i| FileId(i as u32))
     }
 
-    /// 1-based line and column (in characters) of a byte offset.
+    /// Total size of the texts held, in bytes.
+    pub fn total_bytes(&self) -> usize {
+        self.files.iter().map(|f| f.text.len()).sum()
+    }
+
+    /// 1-based line and column (in characters) of a byte offset. Costs a
+    /// binary search plus the characters of the line before the offset.
     pub fn line_col(&self, id: FileId, offset: u32) -> (usize, usize) {
-        let text = &self.get(id).text;
-        let offset = (offset as usize).min(text.len());
-        let mut cut = offset;
-        while !text.is_char_boundary(cut) {
-            cut -= 1;
-        }
-        let before = &text[..cut];
-        let line = before.matches('\n').count() + 1;
-        let line_start = before.rfind('\n').map_or(0, |i| i + 1);
-        let col = before[line_start..].chars().count() + 1;
-        (line, col)
+        let file = self.get(id);
+        let cut = file.floor_char_boundary(offset as usize);
+        let line = file.line_of(cut);
+        let start = file.line_starts()[line] as usize;
+        let col = file.text[start..cut].chars().count() + 1;
+        (line + 1, col)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn lines_and_columns_from_the_index() {
+        let mut map = SourceMap::new();
+        let id = map.add("a.pts", "ab\r\nçd\n\nx".to_string());
+        let f = map.get(id);
+        assert_eq!(f.line_starts(), &[0, 4, 8, 9]);
+        assert_eq!(f.line_range(0), 0..2);
+        assert_eq!(f.line_range(1), 4..7);
+        assert_eq!(f.line_range(2), 8..8);
+        assert_eq!(f.line_range(3), 9..10);
+        assert_eq!(map.line_col(id, 0), (1, 1));
+        assert_eq!(map.line_col(id, 3), (1, 4));
+        // `ç` is two bytes, one column; inside it the column is its own.
+        assert_eq!(map.line_col(id, 6), (2, 2));
+        assert_eq!(map.line_col(id, 5), (2, 1));
+        assert_eq!(map.line_col(id, 9), (4, 1));
+        // Past the end: clamped.
+        assert_eq!(map.line_col(id, 1000), (4, 2));
     }
 }

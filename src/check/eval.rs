@@ -122,32 +122,38 @@ pub const FUNCTIONS: &[(&str, usize)] = &[
 /// Evaluates `e`; on failure the reason is in `diags` and `None` is returned.
 pub fn eval(e: &Expr, env: &mut Env, diags: &mut Diagnostics) -> Option<Value> {
     let v = eval_inner(e, env, diags)?;
-    // Reject non-finite results at the smallest expression that produced them.
-    let finite = match &v {
+    finite(v, e.span, matches!(e.kind, ExprKind::Number(_)), diags)
+}
+
+/// `v` if every number in it is finite; else reports it at `span` (the
+/// smallest expression that produced it) and returns `None`.
+fn finite(v: Value, span: Span, literal: bool, diags: &mut Diagnostics) -> Option<Value> {
+    let ok = match &v {
         Value::Num(x) => x.is_finite(),
         Value::Vector(v) => v.iter().all(|x| x.is_finite()),
         Value::Color(c) => c.iter().all(|x| x.is_finite()),
         _ => true,
     };
-    if !finite {
-        let (msg, help) = match &e.kind {
-            ExprKind::Number(_) => (
-                "number too large",
-                "numbers must fit a 64-bit float (about 1.8e308)",
-            ),
-            _ => (
-                "expression is not a finite number",
-                "the result is infinite or NaN; check for overflow, sqrt of a negative or a zero denominator",
-            ),
-        };
-        diags.push(
-            Diagnostic::error(codes::NOT_FINITE, msg, e.span)
-                .with_label("this is not finite")
-                .with_help(help),
-        );
-        return None;
+    if ok {
+        return Some(v);
     }
-    Some(v)
+    let (msg, help) = if literal {
+        (
+            "number too large",
+            "numbers must fit a 64-bit float (about 1.8e308)",
+        )
+    } else {
+        (
+            "expression is not a finite number",
+            "the result is infinite or NaN; check for overflow, sqrt of a negative or a zero denominator",
+        )
+    };
+    diags.push(
+        Diagnostic::error(codes::NOT_FINITE, msg, span)
+            .with_label("this is not finite")
+            .with_help(help),
+    );
+    None
 }
 
 fn eval_inner(e: &Expr, env: &mut Env, diags: &mut Diagnostics) -> Option<Value> {
@@ -236,10 +242,23 @@ fn eval_inner(e: &Expr, env: &mut Env, diags: &mut Diagnostics) -> Option<Value>
                 None
             }
         },
-        ExprKind::Binary { op, lhs, rhs } => {
-            let a = eval(lhs, env, diags);
-            let b = eval(rhs, env, diags);
-            binary(*op, a?, b?, lhs.span, rhs.span, e.span, diags)
+        ExprKind::Chain { first, rest } => {
+            // Left to right, as `((a op b) op c) …`: every operand is
+            // evaluated (all their mistakes reported), the fold stops at the
+            // first failure.
+            let mut acc = eval(first, env, diags);
+            let mut acc_span = first.span;
+            for (op, operand) in rest {
+                let b = eval(operand, env, diags);
+                let span = acc_span.join(operand.span);
+                acc = match (acc, b) {
+                    (Some(a), Some(b)) => binary(*op, a, b, acc_span, operand.span, span, diags)
+                        .and_then(|v| finite(v, span, false, diags)),
+                    _ => None,
+                };
+                acc_span = span;
+            }
+            acc
         }
         ExprKind::Call { func, args } => {
             let Some(&(_, arity)) = FUNCTIONS.iter().find(|(n, _)| *n == func.name) else {

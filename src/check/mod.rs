@@ -112,6 +112,8 @@ struct Checker {
     objects: Vec<Object>,
     lights: Vec<(Light, Span)>,
     lets: Vec<(String, Span)>,
+    /// The declarations in `lets` (a loop runs one declaration many times).
+    let_spans: HashSet<Span>,
     ambient_span: Option<Span>,
     /// Where `light_samples` was set, for the Whitted warning.
     light_samples_span: Option<Span>,
@@ -137,6 +139,7 @@ impl Checker {
             objects: Vec::new(),
             lights: Vec::new(),
             lets: Vec::new(),
+            let_spans: HashSet::new(),
             ambient_span: None,
             light_samples_span: None,
             syntax_failed: false,
@@ -188,7 +191,7 @@ impl Checker {
                         decl: name.span,
                     },
                 );
-                if !self.lets.iter().any(|(_, s)| *s == name.span) {
+                if self.let_spans.insert(name.span) {
                     self.lets.push((name.name.clone(), name.span));
                 }
             }

@@ -256,13 +256,13 @@ pub enum ExprKind {
     },
     /// `-x`
     Neg(Box<Expr>),
-    /// `a op b`
-    Binary {
-        /// The operator.
-        op: BinOp,
-        /// Left operand.
-        lhs: Box<Expr>,
-        /// Right operand.
-        rhs: Box<Expr>,
+    /// Operands of one precedence level, `a op b op c …`, folded from the
+    /// left: a sum of terms or a product of factors. One node per chain, not
+    /// one per operator, so a long chain adds no depth (the evaluator loops).
+    Chain {
+        /// The first operand.
+        first: Box<Expr>,
+        /// Each further operator with its operand, in source order.
+        rest: Vec<(BinOp, Expr)>,
     },
 }

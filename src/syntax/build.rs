@@ -208,11 +208,15 @@ impl Builder {
         match pair.as_rule() {
             Rule::expr => {
                 // The grammar keeps `a + b * -c` flat: operands and operators
-                // alternate. Precedence in one pass: products fold into
-                // `term`; a `+` or `-` closes the term into the pending sum.
+                // alternate. Precedence in one pass: factors gather into the
+                // current term; a `+` or `-` closes it into the sum. Each
+                // level is one `Chain` node, however long.
                 let mut inner = pair.into_inner();
-                let mut term = self.build_operand(&mut inner);
-                let mut sum: Option<(Expr, BinOp)> = None;
+                let first = self.build_operand(&mut inner);
+                // Each term: its first factor and the further ones; the
+                // operator before each term after the first.
+                let mut terms: Vec<(Expr, Vec<(BinOp, Expr)>)> = vec![(first, Vec::new())];
+                let mut sum_ops: Vec<BinOp> = Vec::new();
                 while let Some(op) = inner.next() {
                     let op = match op.as_str() {
                         "+" => BinOp::Add,
@@ -223,20 +227,15 @@ impl Builder {
                     };
                     let rhs = self.build_operand(&mut inner);
                     if matches!(op, BinOp::Mul | BinOp::Div) {
-                        term = binary(op, term, rhs);
+                        terms.last_mut().expect("one term").1.push((op, rhs));
                     } else {
-                        let lhs = match sum.take() {
-                            Some((lhs, pending)) => binary(pending, lhs, term),
-                            None => term,
-                        };
-                        sum = Some((lhs, op));
-                        term = rhs;
+                        sum_ops.push(op);
+                        terms.push((rhs, Vec::new()));
                     }
                 }
-                match sum {
-                    Some((lhs, pending)) => binary(pending, lhs, term),
-                    None => term,
-                }
+                let mut terms = terms.into_iter().map(chain);
+                let first = terms.next().expect("one term");
+                chain((first, sum_ops.into_iter().zip(terms).collect()))
             }
             Rule::number => Expr {
                 kind: ExprKind::Number(pair.as_str().parse().unwrap_or(f64::INFINITY)),
@@ -313,14 +312,17 @@ pub fn unescape(s: &str) -> String {
     out
 }
 
-/// `lhs op rhs`, spanning both.
-fn binary(op: BinOp, lhs: Expr, rhs: Expr) -> Expr {
-    Expr {
-        span: lhs.span.join(rhs.span),
-        kind: ExprKind::Binary {
-            op,
-            lhs: Box::new(lhs),
-            rhs: Box::new(rhs),
+/// `first op x op y …` as one node spanning all operands (the operand
+/// itself when there is no operator).
+fn chain((first, rest): (Expr, Vec<(BinOp, Expr)>)) -> Expr {
+    match rest.last() {
+        None => first,
+        Some((_, last)) => Expr {
+            span: first.span.join(last.span),
+            kind: ExprKind::Chain {
+                first: Box::new(first),
+                rest,
+            },
         },
     }
 }

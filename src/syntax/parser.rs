@@ -44,6 +44,7 @@ pub fn rule_name(rule: Rule) -> &'static str {
         Rule::vector | Rule::langle => "a vector `<x, y, z>`",
         Rule::rangle => "`>`",
         Rule::color | Rule::kw_rgb => "a colour `rgb …`",
+        Rule::color_value => "a grey level or an `<r, g, b>` triple",
         Rule::boolean | Rule::kw_true | Rule::kw_false => "`true` or `false`",
         Rule::number => "a number",
         Rule::string | Rule::string_body => "a string",
@@ -162,6 +163,15 @@ pub fn convert_error(
     }
 
     let found = describe_found(text, pos);
+    if found == "`rgb`" && after_rgb(text.get(..pos).unwrap_or("")) {
+        return Diagnostic::error(
+            "pts::syntax::rgb_of_rgb",
+            "`rgb` of `rgb`",
+            span,
+        )
+        .with_label("a colour is already a colour")
+        .with_help("write `rgb` once, e.g. `rgb 0.5`; to make a colour of an expression, put it in brackets: `rgb (a * 2)`");
+    }
     if rest.trim().is_empty() {
         if let Some(open) = unclosed_brace(text) {
             return Diagnostic::error(
@@ -224,6 +234,18 @@ pub fn convert_error(
     Diagnostic::error("pts::syntax::unexpected_token", message, span)
         .with_label(label)
         .with_help(help)
+}
+
+/// Whether `before` ends with the word `rgb` (and minus signs): a colour
+/// of a colour without brackets.
+fn after_rgb(before: &str) -> bool {
+    let t = before.trim_end_matches(|c: char| c.is_whitespace() || c == '-');
+    t.strip_suffix("rgb").is_some_and(|head| {
+        !head
+            .chars()
+            .next_back()
+            .is_some_and(|c| c.is_alphanumeric() || c == '_')
+    })
 }
 
 /// The byte offset of the last `{` without a matching `}`, skipping comments and strings.

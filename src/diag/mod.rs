@@ -2,11 +2,13 @@
 //! a message, a labelled span, a help line), collected for the whole run and
 //! rendered at the end by miette (human) or as JSON (editors, CI).
 
-use crate::source::SourceMap;
+mod excerpt;
+mod human;
+
+pub use human::{render_one, MAX_SHOWN};
+
+use crate::source::{FileId, SourceMap};
 use crate::span::Span;
-use miette::{GraphicalReportHandler, GraphicalTheme, LabeledSpan, NamedSource};
-use std::fmt;
-use std::sync::Arc;
 
 /// How bad a diagnostic is.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
@@ -126,18 +128,15 @@ impl Diagnostics {
             .sort_by_key(|d| d.span.map(|s| (s.file.0, s.start)).unwrap_or((u32::MAX, 0)));
     }
 
-    /// Renders every diagnostic for a terminal (`color` picks the theme),
-    /// followed by a summary line.
+    /// Renders the diagnostics for a terminal (`color` picks the theme): at
+    /// most [`MAX_SHOWN`] of them (errors first), then a line counting the rest.
     pub fn render_human(&self, sources: &SourceMap, color: bool) -> String {
-        let mut out = String::new();
-        for d in &self.items {
-            out.push_str(&render_one(d, sources, color));
-        }
-        out
+        human::render(self, sources, color)
     }
 
     /// Renders every diagnostic as a JSON array (one object per diagnostic).
     pub fn render_json(&self, sources: &SourceMap) -> String {
+        let mut columns = Columns::default();
         let arr: Vec<serde_json::Value> = self
             .items
             .iter()
@@ -150,8 +149,8 @@ impl Diagnostics {
                     "help": d.help,
                 });
                 if let Some(span) = d.span {
-                    let (line, column) = sources.line_col(span.file, span.start);
-                    let (end_line, end_column) = sources.line_col(span.file, span.end);
+                    let (line, column) = columns.line_col(sources, span.file, span.start);
+                    let (end_line, end_column) = columns.line_col(sources, span.file, span.end);
                     obj["file"] = sources.get(span.file).path.display().to_string().into();
                     obj["span"] = serde_json::json!({"start": span.start, "end": span.end});
                     obj["line"] = line.into();
@@ -166,131 +165,27 @@ impl Diagnostics {
     }
 }
 
-/// Renders one diagnostic with miette's graphical handler.
-pub fn render_one(d: &Diagnostic, sources: &SourceMap, color: bool) -> String {
-    let theme = if color {
-        GraphicalTheme::unicode()
-    } else {
-        GraphicalTheme::unicode_nocolor()
-    };
-    let handler = GraphicalReportHandler::new_themed(theme)
-        .with_width(100)
-        .with_links(false);
-    let mut labels = Vec::new();
-    let mut source = None;
-    if let Some(span) = d.span {
-        let file = sources.get(span.file);
-        source = Some(NamedSource::new(
-            file.path.display().to_string(),
-            file.text.clone(),
-        ));
-        let label = (!d.label.is_empty()).then(|| d.label.clone());
-        labels.push(LabeledSpan::new_primary_with_span(label, span));
-        for (s, l) in &d.secondary {
-            if s.file == span.file {
-                labels.push(LabeledSpan::new_with_span(Some(l.clone()), *s));
-            }
-        }
-    }
-    // Secondary spans in other files (e.g. an include chain) become related reports.
-    let related: Vec<MietteReport> = d
-        .span
-        .map(|span| {
-            d.secondary
-                .iter()
-                .filter(|(s, _)| s.file != span.file)
-                .map(|(s, l)| {
-                    let file = sources.get(s.file);
-                    MietteReport {
-                        message: l.clone(),
-                        code: None,
-                        severity: miette::Severity::Advice,
-                        help: None,
-                        source: Some(NamedSource::new(
-                            file.path.display().to_string(),
-                            file.text.clone(),
-                        )),
-                        labels: vec![LabeledSpan::new_primary_with_span(None, *s)],
-                        related: Vec::new(),
-                    }
-                })
-                .collect()
-        })
-        .unwrap_or_default();
-    let report = MietteReport {
-        message: d.message.clone(),
-        code: Some(d.code),
-        severity: match d.severity {
-            Severity::Error => miette::Severity::Error,
-            Severity::Warning => miette::Severity::Warning,
-        },
-        help: d.help.clone(),
-        source,
-        labels,
-        related,
-    };
-    let mut out = String::new();
-    handler
-        .render_report(&mut out, &report)
-        .expect("writing to a String cannot fail");
-    out
+/// Line and column lookups that remember the last one: diagnostics come in
+/// source order, so many on one long line cost that line once, not once each.
+#[derive(Default)]
+struct Columns {
+    /// File, 0-based line, byte offset and 1-based column of the last lookup.
+    last: Option<(FileId, usize, usize, usize)>,
 }
 
-/// What miette needs to draw one report.
-#[derive(Debug)]
-struct MietteReport {
-    message: String,
-    code: Option<&'static str>,
-    severity: miette::Severity,
-    help: Option<String>,
-    source: Option<NamedSource<Arc<String>>>,
-    labels: Vec<LabeledSpan>,
-    related: Vec<MietteReport>,
-}
-
-impl fmt::Display for MietteReport {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(&self.message)
-    }
-}
-
-impl std::error::Error for MietteReport {}
-
-impl miette::Diagnostic for MietteReport {
-    fn code<'a>(&'a self) -> Option<Box<dyn fmt::Display + 'a>> {
-        self.code.map(|c| Box::new(c) as Box<dyn fmt::Display>)
-    }
-
-    fn severity(&self) -> Option<miette::Severity> {
-        Some(self.severity)
-    }
-
-    fn help<'a>(&'a self) -> Option<Box<dyn fmt::Display + 'a>> {
-        self.help
-            .as_ref()
-            .map(|h| Box::new(h) as Box<dyn fmt::Display>)
-    }
-
-    fn source_code(&self) -> Option<&dyn miette::SourceCode> {
-        self.source.as_ref().map(|s| s as &dyn miette::SourceCode)
-    }
-
-    fn labels(&self) -> Option<Box<dyn Iterator<Item = LabeledSpan> + '_>> {
-        if self.labels.is_empty() {
-            None
-        } else {
-            Some(Box::new(self.labels.iter().cloned()))
-        }
-    }
-
-    fn related<'a>(&'a self) -> Option<Box<dyn Iterator<Item = &'a dyn miette::Diagnostic> + 'a>> {
-        if self.related.is_empty() {
-            None
-        } else {
-            Some(Box::new(
-                self.related.iter().map(|r| r as &dyn miette::Diagnostic),
-            ))
-        }
+impl Columns {
+    /// 1-based line and column (in characters) of byte `offset` of `file`.
+    fn line_col(&mut self, sources: &SourceMap, file: FileId, offset: u32) -> (usize, usize) {
+        let f = sources.get(file);
+        let cut = f.floor_char_boundary(offset as usize);
+        let line = f.line_of(cut);
+        let (from, col) = match self.last {
+            Some((lf, ll, lo, lc)) if lf == file && ll == line && lo <= cut => (lo, lc),
+            _ => (f.line_starts()[line] as usize, 1),
+        };
+        let col = col + f.text[from..cut].chars().count();
+        self.last = Some((file, line, cut, col));
+        (line + 1, col)
     }
 }
 

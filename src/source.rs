@@ -1,9 +1,103 @@
 //! The source map: every file read during a compile (the scene and its
 //! includes), addressed by a small `FileId`, with a line index so that a
-//! position costs a binary search, not a scan of the file.
+//! position costs a binary search, not a scan of the file; and the one way
+//! every file of a scene is read, with a size limit.
 
+use std::fmt;
+use std::io::Read;
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, OnceLock};
+
+/// The largest scene file (and the most text of a scene and its includes
+/// together). Spans hold 32-bit offsets; a scene this large is millions of
+/// objects, which belong in a mesh file.
+pub const MAX_SCENE_BYTES: u64 = 256 << 20;
+/// The largest mesh file (a binary PLY of about 70 million triangles).
+pub const MAX_MESH_BYTES: u64 = 2 << 30;
+
+/// Why a file of a scene could not be read.
+#[derive(Debug)]
+pub enum ReadError {
+    /// Nothing at that path.
+    NotFound,
+    /// A folder, a device, a pipe or a socket: never read (it could be
+    /// endless or wait forever).
+    NotRegular,
+    /// Larger than the limit (the size found, at least).
+    TooLarge {
+        /// The limit in bytes.
+        limit: u64,
+        /// The size found (for a file that grows while read: what was read).
+        size: u64,
+    },
+    /// Any other I/O error.
+    Io(std::io::Error),
+}
+
+impl fmt::Display for ReadError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            ReadError::NotFound => f.write_str("not found"),
+            ReadError::NotRegular => f.write_str("not a regular file"),
+            ReadError::TooLarge { limit, size } => write!(
+                f,
+                "larger than {} (the file has {})",
+                human_bytes(*limit),
+                human_bytes(*size)
+            ),
+            ReadError::Io(e) => write!(f, "{e}"),
+        }
+    }
+}
+
+/// `n` bytes in MiB or GiB, for messages.
+pub fn human_bytes(n: u64) -> String {
+    if n >= 1 << 30 {
+        format!("{:.1} GiB", n as f64 / (1u64 << 30) as f64)
+    } else {
+        format!("{:.0} MiB", (n as f64 / (1u64 << 20) as f64).max(1.0))
+    }
+}
+
+/// Reads a regular file of at most `limit` bytes. The size is checked before
+/// reading and the read stops one byte past the limit (a file that grows
+/// meanwhile is caught too).
+pub fn read_file(path: &Path, limit: u64) -> Result<Vec<u8>, ReadError> {
+    let meta = std::fs::metadata(path).map_err(|e| match e.kind() {
+        std::io::ErrorKind::NotFound => ReadError::NotFound,
+        _ => ReadError::Io(e),
+    })?;
+    if !meta.is_file() {
+        return Err(ReadError::NotRegular);
+    }
+    read_stream(
+        std::fs::File::open(path).map_err(ReadError::Io)?,
+        meta.len(),
+        limit,
+    )
+}
+
+/// Reads at most `limit` bytes from `r`, expecting about `expected` (the
+/// file's size, used to size the buffer).
+pub fn read_stream(r: impl Read, expected: u64, limit: u64) -> Result<Vec<u8>, ReadError> {
+    if expected > limit {
+        return Err(ReadError::TooLarge {
+            limit,
+            size: expected,
+        });
+    }
+    let mut bytes = Vec::with_capacity(expected as usize);
+    r.take(limit + 1)
+        .read_to_end(&mut bytes)
+        .map_err(ReadError::Io)?;
+    if bytes.len() as u64 > limit {
+        return Err(ReadError::TooLarge {
+            limit,
+            size: bytes.len() as u64,
+        });
+    }
+    Ok(bytes)
+}
 
 /// Index of a file in a [`SourceMap`].
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
@@ -152,5 +246,37 @@ mod tests {
         assert_eq!(map.line_col(id, 9), (4, 1));
         // Past the end: clamped.
         assert_eq!(map.line_col(id, 1000), (4, 2));
+    }
+
+    #[test]
+    fn reads_stop_at_the_limit() {
+        assert_eq!(read_stream(&b"abc"[..], 3, 3).unwrap(), b"abc");
+        // A stream longer than it said (a growing file, a device).
+        let endless = std::io::repeat(0);
+        assert!(matches!(
+            read_stream(endless, 0, 1000),
+            Err(ReadError::TooLarge {
+                limit: 1000,
+                size: 1001
+            })
+        ));
+        assert!(matches!(
+            read_stream(&b""[..], 5000, 1000),
+            Err(ReadError::TooLarge { size: 5000, .. })
+        ));
+        let dir = std::env::temp_dir();
+        assert!(matches!(read_file(&dir, 10), Err(ReadError::NotRegular)));
+        assert!(matches!(
+            read_file(&dir.join("no such file, surely"), 10),
+            Err(ReadError::NotFound)
+        ));
+        if Path::new("/dev/zero").exists() {
+            assert!(matches!(
+                read_file(Path::new("/dev/zero"), 10),
+                Err(ReadError::NotRegular)
+            ));
+        }
+        assert_eq!(human_bytes(MAX_SCENE_BYTES), "256 MiB");
+        assert_eq!(human_bytes(MAX_MESH_BYTES), "2.0 GiB");
     }
 }

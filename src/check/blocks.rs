@@ -15,6 +15,57 @@ pub const MAX_SIDE: f64 = 16384.0;
 /// The largest image area accepted, so a film always fits in memory.
 pub const MAX_PIXELS: f64 = 8192.0 * 8192.0;
 
+/// A whole-number setting and its range: the scene's `render { }` block
+/// and the command line's overrides check it by the same rule.
+#[derive(Debug, Clone, Copy)]
+pub struct WholeSetting {
+    /// Its name in `render { }`.
+    pub name: &'static str,
+    /// The least value.
+    pub min: u64,
+    /// The largest value.
+    pub max: u64,
+}
+
+impl WholeSetting {
+    /// `x` if it is a whole number in range, else what it must be.
+    pub fn check(&self, x: f64) -> Result<u64, String> {
+        if x.fract() == 0.0 && x >= self.min as f64 && x <= self.max as f64 {
+            Ok(x as u64)
+        } else {
+            Err(self.needs())
+        }
+    }
+
+    /// `text` (a command-line value) read as this setting.
+    pub fn parse(&self, text: &str) -> Result<u64, String> {
+        let x: f64 = text
+            .trim()
+            .parse()
+            .map_err(|_| format!("`{text}` is not a number; {}", self.needs()))?;
+        self.check(x)
+            .map_err(|needs| format!("{text} is out of range: {needs}"))
+    }
+
+    /// "a whole number from 1 to 1000000".
+    pub fn needs(&self) -> String {
+        format!("a whole number from {} to {}", self.min, self.max)
+    }
+}
+
+/// Samples per pixel (`samples`, `--spp`).
+pub const SAMPLES: WholeSetting = WholeSetting {
+    name: "samples",
+    min: 1,
+    max: 1_000_000,
+};
+/// The random seed (`seed`, `--seed`).
+pub const SEED: WholeSetting = WholeSetting {
+    name: "seed",
+    min: 0,
+    max: u32::MAX as u64,
+};
+
 pub(super) fn range_error(
     what: &str,
     name: &str,
@@ -77,6 +128,24 @@ impl Reader<'_> {
         }
     }
 
+    /// A whole-number setting checked by its rule, or the default.
+    pub fn whole(&mut self, setting: WholeSetting, default: u64) -> u64 {
+        match self.num(setting.name) {
+            Some((x, s)) => setting.check(x).unwrap_or_else(|needs| {
+                let what = self.p.what.clone();
+                self.diags.push(range_error(
+                    &what,
+                    setting.name,
+                    s,
+                    &needs,
+                    format!("`{}` is {x} here", setting.name),
+                ));
+                default
+            }),
+            None => default,
+        }
+    }
+
     /// A vector of 3, if given.
     pub fn vec3(&mut self, name: &str) -> Option<(DVec3, Span)> {
         match self.p.get(name) {
@@ -112,7 +181,7 @@ impl Reader<'_> {
         schema: &[super::params::ParamSpec],
     ) -> Option<DVec3> {
         let (v, s) = self.vec3_req(name, schema)?;
-        if v.length_squared() == 0.0 {
+        let Some(unit) = super::domain::unit(v) else {
             let what = self.p.what.clone();
             self.diags.push(range_error(
                 &what,
@@ -122,8 +191,8 @@ impl Reader<'_> {
                 "a direction needs a length; e.g. `<0, 1, 0>`".into(),
             ));
             return None;
-        }
-        Some(v.normalize())
+        };
+        Some(unit)
     }
 
     /// A colour with non-negative components, or the default.
@@ -201,10 +270,10 @@ pub fn render_settings(p: &Params, base_dir: &Path, diags: &mut Diagnostics) -> 
     RenderSettings {
         width,
         height,
-        samples: r.num_in("samples", 1.0, 1_000_000.0, false, d.samples as f64) as u32,
+        samples: r.whole(SAMPLES, d.samples as u64) as u32,
         max_depth: r.num_in("max_depth", 1.0, 1024.0, false, d.max_depth as f64) as u32,
         integrator,
-        seed: r.num_in("seed", 0.0, 4_294_967_295.0, false, 0.0) as u64,
+        seed: r.whole(SEED, 0),
         ambient: r.color("ambient", d.ambient),
         rr_depth: r.num_in("rr_depth", 1.0, 1024.0, false, d.rr_depth as f64) as u32,
         output: match p.get("output") {
@@ -260,12 +329,8 @@ pub fn camera(p: &Params, span: Span, diags: &mut Diagnostics) -> Option<Camera>
         );
         return None;
     }
-    if dir
-        .normalize()
-        .cross(up.normalize_or_zero())
-        .length_squared()
-        < 1e-12
-    {
+    let unit = |v| super::domain::unit(v).unwrap_or(DVec3::ZERO);
+    if unit(dir).cross(unit(up)).length_squared() < 1e-12 {
         let s = p.get("up").map(|v| v.1).unwrap_or(p.head);
         r.diags.push(
             Diagnostic::error(

@@ -20,7 +20,8 @@ impl Checker {
             };
         }
         for (name, span) in &self.lets {
-            if !self.env.used.contains(span) {
+            // A leading `_` says "unused on purpose".
+            if !self.env.used.contains(span) && !name.starts_with('_') {
                 self.diags.push(
                     Diagnostic::warning(
                         codes::UNUSED_CONSTANT,

@@ -4,16 +4,18 @@
 
 mod blocks;
 pub mod codes;
+pub mod domain;
 pub mod eval;
 mod finish;
 mod objects;
 pub mod params;
 pub mod scene;
 
+pub use blocks::{WholeSetting, MAX_PIXELS, MAX_SIDE, SAMPLES, SEED};
 pub use scene::*;
 
 use crate::diag::{did_you_mean, Diagnostic, Diagnostics};
-use crate::source::{FileId, SourceMap};
+use crate::source::{FileId, ReadError, SourceMap, MAX_SCENE_BYTES};
 use crate::span::Span;
 use crate::syntax::ast::{BlockKind, Entry, MaterialRef, Statement};
 use eval::{eval, Binding, Env, Value};
@@ -22,8 +24,23 @@ use params::Params;
 use std::collections::{HashMap, HashSet};
 use std::path::{Path, PathBuf};
 
-/// Most loop iterations in one compile (all loops together).
-pub const MAX_LOOP_ITERATIONS: u64 = 1_000_000;
+/// Most statements loops may run in one compile, all loops together: every
+/// statement of a loop body (a nested `for` and the statements of an
+/// included file too) counts each time it runs, one per 64 bytes of its
+/// text (at least one), and an iteration of an empty body counts one.
+/// Nested loops of 1,000 × 1,000 around a short statement run 1,001,000.
+/// A file included again (in a loop, or twice) counts as its statements
+/// plus its parse (32 and one per 64 bytes). Evaluation stays bounded (no loop or
+/// tree of includes runs forever) and so does the memory of the objects
+/// loops make (about 250 bytes each when checked).
+pub const MAX_LOOP_STATEMENTS: u64 = 4_000_000;
+/// A statement counts one against [`MAX_LOOP_STATEMENTS`] per this many
+/// bytes of its text (at least one): a long expression takes longer.
+const STATEMENT_BYTES: u64 = 64;
+/// What running an included file again costs against
+/// [`MAX_LOOP_STATEMENTS`] besides its size: a parse's set-up takes about
+/// as long as checking 30 statements.
+const INCLUDE_RUN_COST: u64 = 32;
 /// Deepest chain of includes.
 pub const MAX_INCLUDE_DEPTH: usize = 32;
 
@@ -40,8 +57,19 @@ pub struct Checked {
 
 /// Reads, parses and checks the scene at `path` and everything it includes.
 /// An unreadable root file is an I/O error (exit code 2), not a diagnostic.
+/// The root file may be a pipe (`ptsc check <(generate)`); it is read up to
+/// [`MAX_SCENE_BYTES`] like every file of a scene.
 pub fn check_file(path: &Path) -> std::io::Result<Checked> {
-    let bytes = std::fs::read(path)?;
+    let file = std::fs::File::open(path)?;
+    let meta = file.metadata()?;
+    if meta.is_dir() {
+        return Err(std::io::Error::other("it is a folder, not a scene file"));
+    }
+    let bytes =
+        crate::source::read_stream(file, meta.len(), MAX_SCENE_BYTES).map_err(|e| match e {
+            ReadError::Io(e) => e,
+            other => std::io::Error::other(other.to_string()),
+        })?;
     Ok(check_bytes(path, bytes))
 }
 
@@ -66,12 +94,22 @@ pub fn check_str(path: &Path, text: &str) -> Checked {
     check_bytes(path, text.as_bytes().to_vec())
 }
 
+/// The text of a file and the offset of its first invalid UTF-8 byte, if
+/// any. Each invalid byte becomes one `?`, so that every offset in the text
+/// is the same byte offset in the file (spans, line and column numbers
+/// match what an editor shows after the bad byte too).
 fn decode(bytes: Vec<u8>) -> (String, Option<usize>) {
     match String::from_utf8(bytes) {
         Ok(s) => (s, None),
         Err(e) => {
             let at = e.utf8_error().valid_up_to();
-            (String::from_utf8_lossy(e.as_bytes()).into_owned(), Some(at))
+            let bytes = e.into_bytes();
+            let mut text = String::with_capacity(bytes.len());
+            for chunk in bytes.utf8_chunks() {
+                text.push_str(chunk.valid());
+                text.extend(std::iter::repeat_n('?', chunk.invalid().len()));
+            }
+            (text, Some(at))
         }
     }
 }
@@ -101,7 +139,13 @@ struct Checker {
     diags: Diagnostics,
     env: Env,
     include_stack: Vec<(PathBuf, Span)>,
+    /// Statements loops may still run ([`MAX_LOOP_STATEMENTS`]).
     loop_budget: u64,
+    /// The loops and repeated includes running now, outermost first (a
+    /// loop's range, an include's path): their statements are charged.
+    loops: Vec<Span>,
+    /// The budget ran out: every loop stops (reported once).
+    loops_exhausted: bool,
     render: Option<(RenderSettings, Span)>,
     camera: Option<Camera>,
     camera_span: Option<Span>,
@@ -109,6 +153,8 @@ struct Checker {
     materials: Vec<Material>,
     material_names: HashMap<String, MaterialEntry>,
     used_materials: HashSet<usize>,
+    /// The material of objects that name none, once one needs it.
+    default_material: Option<usize>,
     objects: Vec<Object>,
     lights: Vec<(Light, Span)>,
     lets: Vec<(String, Span)>,
@@ -128,7 +174,9 @@ impl Checker {
             diags: Diagnostics::new(),
             env: Env::new(),
             include_stack: Vec::new(),
-            loop_budget: MAX_LOOP_ITERATIONS,
+            loop_budget: MAX_LOOP_STATEMENTS,
+            loops: Vec::new(),
+            loops_exhausted: false,
             render: None,
             camera: None,
             camera_span: None,
@@ -136,6 +184,7 @@ impl Checker {
             materials: Vec::new(),
             material_names: HashMap::new(),
             used_materials: HashSet::new(),
+            default_material: None,
             objects: Vec::new(),
             lights: Vec::new(),
             lets: Vec::new(),
@@ -162,7 +211,49 @@ impl Checker {
         }
     }
 
+    /// Charges one statement run by a loop; `false` once the loops have
+    /// run out of statements (the first time, with the diagnostic).
+    fn charge_loop_statement(&mut self) -> bool {
+        self.charge_loop(1)
+    }
+
+    /// Charges `units` statements to the loops running now (none outside
+    /// loops); `false` once they have run out (the first time, with the
+    /// diagnostic).
+    fn charge_loop(&mut self, units: u64) -> bool {
+        if self.loops.is_empty() {
+            return true;
+        }
+        if self.loops_exhausted {
+            return false;
+        }
+        if self.loop_budget < units {
+            self.loop_budget = 0;
+            self.loops_exhausted = true;
+            let outermost = self.loops[0];
+            self.diags.push(
+                Diagnostic::error(
+                    codes::LOOP_TOO_LONG,
+                    format!(
+                        "the loops (and repeated includes) of this scene run more than {} statements in all",
+                        group_digits(MAX_LOOP_STATEMENTS)
+                    ),
+                    outermost,
+                )
+                .with_label("these loops stop here")
+                .with_help("nested loops multiply: a loop of 1,000 around one of 10,000 runs 10,000,000 statements; shrink the ranges, or put generated geometry in a mesh file"),
+            );
+            return false;
+        }
+        self.loop_budget -= units;
+        true
+    }
+
     fn statement(&mut self, st: &Statement, file: FileId) {
+        // Checking a statement takes time in proportion to its text.
+        if !self.charge_loop(1 + st.span().len() as u64 / STATEMENT_BYTES) {
+            return;
+        }
         match st {
             Statement::Let { name, value, .. } => {
                 if let Some(prev) = self.env.in_current_frame(&name.name) {
@@ -234,22 +325,43 @@ impl Checker {
                 let b = bound(b, end.span, &mut self.diags);
                 let (Some(a), Some(b)) = (a, b) else { return };
                 let n = (b - a).max(0) as u64;
+                let range = start.span.join(end.span);
+                // Every iteration runs at least one statement (or counts one).
                 if n > self.loop_budget {
+                    let before = MAX_LOOP_STATEMENTS - self.loop_budget;
+                    let help = if before == 0 {
+                        "shrink the range; large generated scenes belong in a mesh file".to_string()
+                    } else {
+                        format!(
+                            "the loops before it ran {} statements already; shrink the ranges, or put generated geometry in a mesh file",
+                            group_digits(before)
+                        )
+                    };
                     self.diags.push(
                         Diagnostic::error(
                             codes::LOOP_TOO_LONG,
-                            format!("this loop runs {n} times, more than the {MAX_LOOP_ITERATIONS} iterations a scene may run in all"),
-                            start.span.join(end.span),
+                            format!(
+                                "this loop runs {} times, more than the {} statements loops may run in all",
+                                group_digits(n),
+                                group_digits(MAX_LOOP_STATEMENTS)
+                            ),
+                            range,
                         )
-                        .with_label(format!("{n} iterations"))
-                        .with_help("shrink the range; large generated scenes belong in a mesh file"),
+                        .with_label(format!("{} iterations", group_digits(n)))
+                        .with_help(help),
                     );
-                    self.loop_budget = 0;
+                    self.loops_exhausted = true;
                     return;
                 }
-                self.loop_budget -= n;
                 self.env.used.insert(var.span);
+                self.loops.push(range);
                 for i in a..b {
+                    if self.loops_exhausted {
+                        break;
+                    }
+                    if body.is_empty() && !self.charge_loop_statement() {
+                        break;
+                    }
                     let errors_before = self.diags.error_count();
                     self.env.push();
                     self.env.bind(
@@ -268,6 +380,7 @@ impl Checker {
                         break;
                     }
                 }
+                self.loops.pop();
             }
             Statement::Background { value, span } => {
                 let v = eval(value, &mut self.env, &mut self.diags);
@@ -277,7 +390,11 @@ impl Checker {
                 }
                 match v {
                     Some(Value::Color(c)) if c.iter().all(|x| *x >= 0.0) => {
-                        self.background = Some((c, *span))
+                        match domain::Quantity::Radiance.check_all(&c, "background", "", value.span)
+                        {
+                            Ok(()) => self.background = Some((c, *span)),
+                            Err(d) => self.diags.push(d),
+                        }
                     }
                     Some(Value::Color(_)) => self.diags.push(
                         Diagnostic::error(
@@ -386,25 +503,52 @@ impl Checker {
             );
             return;
         }
-        if target.is_dir() {
-            self.diags.push(
-                Diagnostic::error(
-                    codes::INCLUDE_NOT_FOUND,
-                    format!("`{path}` is a folder, not a file"),
-                    path_span,
-                )
-                .with_label("a folder")
-                .with_help("include a `.pts` file"),
-            );
+        // A file already read (an include in a loop, or included twice) is
+        // not read again; but it is parsed again, which costs as many
+        // statements as a parse's set-up plus one per 64 bytes (a typical
+        // statement's size).
+        if let Some(id) = self.sources.find(&target) {
+            let bytes = self.sources.get(id).text.len() as u64;
+            self.loops.push(path_span);
+            if self.charge_loop(INCLUDE_RUN_COST + bytes / STATEMENT_BYTES) {
+                self.include_stack.push((canonical, path_span));
+                self.run_file(id);
+                self.include_stack.pop();
+            }
+            self.loops.pop();
             return;
         }
-        let bytes = match std::fs::read(&target) {
+        let room = MAX_SCENE_BYTES.saturating_sub(self.sources.total_bytes() as u64);
+        let bytes = match crate::source::read_file(&target, room) {
             Ok(b) => b,
             Err(e) => {
-                let reason = if e.kind() == std::io::ErrorKind::NotFound {
-                    "not found".to_string()
-                } else {
-                    e.to_string()
+                let (reason, help) = match &e {
+                    ReadError::NotFound => (
+                        "not found".to_string(),
+                        "include paths are relative to the file that contains the `include`"
+                            .to_string(),
+                    ),
+                    ReadError::NotRegular if target.is_dir() => (
+                        "it is a folder, not a file".to_string(),
+                        "include a `.pts` or `.ptsi` file".to_string(),
+                    ),
+                    ReadError::NotRegular => (
+                        "not a regular file".to_string(),
+                        "devices, pipes and sockets are never read: include a file".to_string(),
+                    ),
+                    ReadError::TooLarge { size, .. } if *size <= MAX_SCENE_BYTES => (
+                        format!(
+                            "the scene's files would hold more than {} of text together",
+                            crate::source::human_bytes(MAX_SCENE_BYTES)
+                        ),
+                        "large generated geometry belongs in a mesh file (`mesh { file \"…\" }`)"
+                            .to_string(),
+                    ),
+                    other => (
+                        other.to_string(),
+                        "large generated geometry belongs in a mesh file (`mesh { file \"…\" }`)"
+                            .to_string(),
+                    ),
                 };
                 self.diags.push(
                     Diagnostic::error(
@@ -413,18 +557,13 @@ impl Checker {
                         path_span,
                     )
                     .with_label(format!("looked for {}", target.display()))
-                    .with_help(
-                        "include paths are relative to the file that contains the `include`",
-                    ),
+                    .with_help(help),
                 );
                 return;
             }
         };
         let (text, bad) = decode(bytes);
-        let id = match self.sources.find(&target) {
-            Some(id) => id,
-            None => self.sources.add(target.clone(), text),
-        };
+        let id = self.sources.add(target.clone(), text);
         if let Some(at) = bad {
             self.diags.push(invalid_utf8(id, at));
         }
@@ -541,10 +680,12 @@ impl Checker {
             );
         }
         match entries.first() {
-            None => {
+            // One grey material serves every object without one (a loop of
+            // a million spheres made a million copies of it).
+            None => Some(*self.default_material.get_or_insert_with(|| {
                 self.materials.push(Material::default_at(span));
-                Some(self.materials.len() - 1)
-            }
+                self.materials.len() - 1
+            })),
             Some((MaterialRef::Named(name), _)) => {
                 match self.material_names.get(&name.name) {
                     Some(m) => {
@@ -586,6 +727,19 @@ impl Checker {
             }
         }
     }
+}
+
+/// `n` with thousands separated: `4,000,000`.
+fn group_digits(n: u64) -> String {
+    let digits = n.to_string();
+    let mut out = String::new();
+    for (i, c) in digits.chars().enumerate() {
+        if i > 0 && (digits.len() - i).is_multiple_of(3) {
+            out.push(',');
+        }
+        out.push(c);
+    }
+    out
 }
 
 fn duplicate_block(what: &str, span: Span, first: Span) -> Diagnostic {

@@ -195,13 +195,35 @@ pub fn shape(
                 );
                 return None;
             }
-            if !path.is_file() {
-                r.diags.push(
-                    Diagnostic::error(codes::MESH_FILE, format!("mesh file `{f}` not found"), *s)
+            match std::fs::metadata(&path) {
+                Ok(m) if m.is_file() => {}
+                Ok(_) => {
+                    r.diags.push(
+                        Diagnostic::error(
+                            codes::MESH_FILE,
+                            format!("mesh file `{f}` is not a regular file"),
+                            *s,
+                        )
+                        .with_label(format!(
+                            "{} is a folder, a device or a pipe",
+                            path.display()
+                        ))
+                        .with_help("a mesh is read from an OBJ or PLY file"),
+                    );
+                    return None;
+                }
+                Err(_) => {
+                    r.diags.push(
+                        Diagnostic::error(
+                            codes::MESH_FILE,
+                            format!("mesh file `{f}` not found"),
+                            *s,
+                        )
                         .with_label(format!("looked for {}", path.display()))
                         .with_help("mesh paths are relative to the scene file that names them"),
-                );
-                return None;
+                    );
+                    return None;
+                }
             }
             Shape::Mesh {
                 path,

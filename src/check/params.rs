@@ -2,11 +2,13 @@
 //! entries against one: unknown, duplicate and ill-typed parameters.
 
 use super::codes;
+use super::domain::Quantity;
 use super::eval::{eval, Env, Value};
 use crate::diag::{did_you_mean, Diagnostic, Diagnostics};
 use crate::span::Span;
 use crate::syntax::ast::{Block, Entry, ExprKind};
 use std::borrow::Cow;
+use Quantity::{Direction, Magnitude, Radiance, Size};
 
 /// The type a parameter expects.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -62,6 +64,15 @@ pub struct ParamSpec {
     pub example: &'static str,
     /// Whether it may appear several times (transforms; order matters).
     pub repeat: bool,
+    /// What its numbers stand for, which fixes their range.
+    pub quantity: Quantity,
+}
+
+impl ParamSpec {
+    /// The same parameter, its numbers standing for `quantity`.
+    const fn of(self, quantity: Quantity) -> ParamSpec {
+        ParamSpec { quantity, ..self }
+    }
 }
 
 const fn p(name: &'static str, ty: Ty, example: &'static str) -> ParamSpec {
@@ -70,6 +81,7 @@ const fn p(name: &'static str, ty: Ty, example: &'static str) -> ParamSpec {
         ty,
         example,
         repeat: false,
+        quantity: Quantity::Plain,
     }
 }
 
@@ -79,16 +91,17 @@ const fn t(name: &'static str, ty: Ty, example: &'static str) -> ParamSpec {
         ty,
         example,
         repeat: true,
+        quantity: Quantity::Plain,
     }
 }
 
 /// Parameters every shape accepts besides `material`.
 pub const SHAPE_COMMON: &[ParamSpec] = &[
-    t("translate", Ty::Vec3, "<0, 1, 0>"),
+    t("translate", Ty::Vec3, "<0, 1, 0>").of(Magnitude),
     t("rotate", Ty::Vec3, "<0, 45, 0>"),
-    t("scale", Ty::NumOrVec3, "2"),
-    t("matrix", Ty::Matrix, "<1,0,0, 0,1,0, 0,0,1, 0,0,0>"),
-    p("velocity", Ty::Vec3, "<1, 0, 0>"),
+    t("scale", Ty::NumOrVec3, "2").of(Quantity::Scale),
+    t("matrix", Ty::Matrix, "<1,0,0, 0,1,0, 0,0,1, 0,0,0>").of(Magnitude),
+    p("velocity", Ty::Vec3, "<1, 0, 0>").of(Magnitude),
 ];
 
 /// Integrator names accepted by `render { integrator … }`.
@@ -101,7 +114,7 @@ pub const RENDER: &[ParamSpec] = &[
     p("max_depth", Ty::Int, "8"),
     p("integrator", Ty::Word(INTEGRATORS), "path"),
     p("seed", Ty::Int, "1"),
-    p("ambient", Ty::Color, "rgb 0.1"),
+    p("ambient", Ty::Color, "rgb 0.1").of(Radiance),
     p("rr_depth", Ty::Int, "5"),
     p("output", Ty::Str, "\"out.png\""),
     p("hybrid_weight", Ty::Num, "0.5"),
@@ -113,24 +126,24 @@ pub const RENDER: &[ParamSpec] = &[
 
 /// `camera { }`
 pub const CAMERA: &[ParamSpec] = &[
-    p("position", Ty::Vec3, "<0, 1, 5>"),
-    p("look_at", Ty::Vec3, "<0, 0, 0>"),
-    p("up", Ty::Vec3, "<0, 1, 0>"),
+    p("position", Ty::Vec3, "<0, 1, 5>").of(Magnitude),
+    p("look_at", Ty::Vec3, "<0, 0, 0>").of(Magnitude),
+    p("up", Ty::Vec3, "<0, 1, 0>").of(Direction),
     p("fov", Ty::Num, "40"),
-    p("aperture", Ty::Num, "0.05"),
-    p("focus_distance", Ty::Num, "5"),
-    p("shutter", Ty::Vec2, "<0, 1>"),
+    p("aperture", Ty::Num, "0.05").of(Magnitude),
+    p("focus_distance", Ty::Num, "5").of(Size),
+    p("shutter", Ty::Vec2, "<0, 1>").of(Magnitude),
 ];
 
 /// `material { }`
 pub const MATERIAL: &[ParamSpec] = &[
-    p("diffuse", Ty::Color, "rgb <0.8, 0.8, 0.8>"),
-    p("reflection", Ty::Color, "rgb 1"),
+    p("diffuse", Ty::Color, "rgb <0.8, 0.8, 0.8>").of(Magnitude),
+    p("reflection", Ty::Color, "rgb 1").of(Magnitude),
     p("gloss", Ty::Num, "0.3"),
     p("transmission", Ty::Num, "1"),
     p("ior", Ty::Num, "1.5"),
-    p("absorption", Ty::Color, "rgb <0.5, 0.1, 0.1>"),
-    p("emission", Ty::Color, "rgb 10"),
+    p("absorption", Ty::Color, "rgb <0.5, 0.1, 0.1>").of(Magnitude),
+    p("emission", Ty::Color, "rgb 10").of(Radiance),
     p("two_sided", Ty::Bool, "true"),
 ];
 
@@ -140,46 +153,46 @@ pub fn shape_schema(kind: crate::syntax::ast::BlockKind) -> &'static [ParamSpec]
     match kind {
         Sphere => {
             const S: &[ParamSpec] = &[
-                p("center", Ty::Vec3, "<0, 1, 0>"),
-                p("radius", Ty::Num, "1"),
+                p("center", Ty::Vec3, "<0, 1, 0>").of(Magnitude),
+                p("radius", Ty::Num, "1").of(Size),
             ];
             S
         }
         Plane => {
             const S: &[ParamSpec] = &[
-                p("point", Ty::Vec3, "<0, 0, 0>"),
-                p("normal", Ty::Vec3, "<0, 1, 0>"),
+                p("point", Ty::Vec3, "<0, 0, 0>").of(Magnitude),
+                p("normal", Ty::Vec3, "<0, 1, 0>").of(Direction),
             ];
             S
         }
         Quad => {
             const S: &[ParamSpec] = &[
-                p("corner", Ty::Vec3, "<-1, 0, -1>"),
-                p("edge1", Ty::Vec3, "<0, 0, 2>"),
-                p("edge2", Ty::Vec3, "<2, 0, 0>"),
+                p("corner", Ty::Vec3, "<-1, 0, -1>").of(Magnitude),
+                p("edge1", Ty::Vec3, "<0, 0, 2>").of(Magnitude),
+                p("edge2", Ty::Vec3, "<2, 0, 0>").of(Magnitude),
             ];
             S
         }
         Disk => {
             const S: &[ParamSpec] = &[
-                p("center", Ty::Vec3, "<0, 0, 0>"),
-                p("normal", Ty::Vec3, "<0, 1, 0>"),
-                p("radius", Ty::Num, "1"),
+                p("center", Ty::Vec3, "<0, 0, 0>").of(Magnitude),
+                p("normal", Ty::Vec3, "<0, 1, 0>").of(Direction),
+                p("radius", Ty::Num, "1").of(Size),
             ];
             S
         }
         Triangle => {
             const S: &[ParamSpec] = &[
-                p("v0", Ty::Vec3, "<0, 0, 0>"),
-                p("v1", Ty::Vec3, "<1, 0, 0>"),
-                p("v2", Ty::Vec3, "<0, 1, 0>"),
+                p("v0", Ty::Vec3, "<0, 0, 0>").of(Magnitude),
+                p("v1", Ty::Vec3, "<1, 0, 0>").of(Magnitude),
+                p("v2", Ty::Vec3, "<0, 1, 0>").of(Magnitude),
             ];
             S
         }
         Box => {
             const S: &[ParamSpec] = &[
-                p("min", Ty::Vec3, "<-1, -1, -1>"),
-                p("max", Ty::Vec3, "<1, 1, 1>"),
+                p("min", Ty::Vec3, "<-1, -1, -1>").of(Magnitude),
+                p("max", Ty::Vec3, "<1, 1, 1>").of(Magnitude),
             ];
             S
         }
@@ -192,16 +205,16 @@ pub fn shape_schema(kind: crate::syntax::ast::BlockKind) -> &'static [ParamSpec]
         }
         PointLight => {
             const S: &[ParamSpec] = &[
-                p("position", Ty::Vec3, "<0, 5, 0>"),
-                p("intensity", Ty::Color, "rgb 100"),
+                p("position", Ty::Vec3, "<0, 5, 0>").of(Magnitude),
+                p("intensity", Ty::Color, "rgb 100").of(Radiance),
             ];
             S
         }
         SpotLight => {
             const S: &[ParamSpec] = &[
-                p("position", Ty::Vec3, "<0, 5, 0>"),
-                p("look_at", Ty::Vec3, "<0, 0, 0>"),
-                p("intensity", Ty::Color, "rgb 100"),
+                p("position", Ty::Vec3, "<0, 5, 0>").of(Magnitude),
+                p("look_at", Ty::Vec3, "<0, 0, 0>").of(Magnitude),
+                p("intensity", Ty::Color, "rgb 100").of(Radiance),
                 p("angle", Ty::Num, "30"),
                 p("falloff", Ty::Num, "25"),
             ];
@@ -209,8 +222,8 @@ pub fn shape_schema(kind: crate::syntax::ast::BlockKind) -> &'static [ParamSpec]
         }
         DirectionalLight => {
             const S: &[ParamSpec] = &[
-                p("direction", Ty::Vec3, "<0, -1, 0>"),
-                p("irradiance", Ty::Color, "rgb 3"),
+                p("direction", Ty::Vec3, "<0, -1, 0>").of(Direction),
+                p("irradiance", Ty::Color, "rgb 3").of(Radiance),
             ];
             S
         }
@@ -337,6 +350,19 @@ impl Params {
             let Some(val) = typed_value(spec, value, env, diags) else {
                 continue;
             };
+            let numbers: &[f64] = match &val {
+                Val::Num(x) => std::slice::from_ref(x),
+                Val::Vector(v) => v,
+                Val::Color(c) => c,
+                _ => &[],
+            };
+            if let Err(d) = spec
+                .quantity
+                .check_all(numbers, spec.name, &what, value.span)
+            {
+                diags.push(d);
+                continue;
+            }
             if spec.repeat {
                 params.ordered.push((spec.name, val, value.span));
             } else {

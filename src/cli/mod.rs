@@ -13,6 +13,9 @@ pub const EXIT_OK: u8 = 0;
 pub const EXIT_SCENE_ERROR: u8 = 1;
 /// Exit code: bad usage or an I/O error.
 pub const EXIT_USAGE: u8 = 2;
+/// Exit code: interrupted by Ctrl-C (128 + SIGINT, the shell's convention);
+/// the image so far is written.
+pub const EXIT_INTERRUPTED: u8 = 130;
 
 /// ptsc: compile and render `.pts` scenes.
 #[derive(Debug, Parser)]

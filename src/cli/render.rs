@@ -1,8 +1,8 @@
 //! `ptsc render FILE`: check, lower, render with progress, write atomically.
 
-use super::{check::report, Format, EXIT_OK, EXIT_SCENE_ERROR, EXIT_USAGE};
+use super::{check::report, Format, EXIT_INTERRUPTED, EXIT_OK, EXIT_SCENE_ERROR, EXIT_USAGE};
 use crate::check::{check_file, IntegratorKind};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
 use std::time::{Duration, Instant};
@@ -18,14 +18,14 @@ pub struct RenderArgs {
     /// Output image (.png, .exr or .pfm); default: the scene's `output`, else FILE with .png.
     #[arg(short, long)]
     pub output: Option<PathBuf>,
-    /// Samples per pixel.
-    #[arg(long)]
+    /// Samples per pixel (1 to 1000000, as the scene's `samples`).
+    #[arg(long, value_parser = parse_spp)]
     pub spp: Option<u32>,
     /// Worker threads (default: all cores).
-    #[arg(long)]
+    #[arg(long, value_parser = parse_threads)]
     pub threads: Option<usize>,
-    /// Random seed.
-    #[arg(long)]
+    /// Random seed (0 to 4294967295, as the scene's `seed`).
+    #[arg(long, value_parser = parse_seed)]
     pub seed: Option<u64>,
     /// Image size as WxH, e.g. 640x480.
     #[arg(long, value_parser = parse_resolution)]
@@ -33,6 +33,26 @@ pub struct RenderArgs {
     /// Integrator: path, whitted, hybrid, normals, albedo or depth.
     #[arg(long, value_parser = parse_integrator)]
     pub integrator: Option<IntegratorKind>,
+}
+
+/// The most worker threads `--threads` starts.
+pub const MAX_THREADS: usize = 1024;
+
+fn parse_spp(s: &str) -> Result<u32, String> {
+    crate::check::SAMPLES.parse(s).map(|n| n as u32)
+}
+
+fn parse_seed(s: &str) -> Result<u64, String> {
+    crate::check::SEED.parse(s)
+}
+
+fn parse_threads(s: &str) -> Result<usize, String> {
+    let setting = crate::check::WholeSetting {
+        name: "threads",
+        min: 1,
+        max: MAX_THREADS as u64,
+    };
+    setting.parse(s).map(|n| n as usize)
 }
 
 fn parse_resolution(s: &str) -> Result<(u32, u32), String> {
@@ -47,7 +67,11 @@ fn parse_resolution(s: &str) -> Result<(u32, u32), String> {
         .trim()
         .parse()
         .map_err(|_| format!("`{h}` is not a height"))?;
-    if !(1..=16384).contains(&w) || !(1..=16384).contains(&h) || (w as u64 * h as u64) > 8192 * 8192
+    use crate::check::{MAX_PIXELS, MAX_SIDE};
+    let side = 1.0..=MAX_SIDE;
+    if !side.contains(&(w as f64))
+        || !side.contains(&(h as f64))
+        || w as f64 * h as f64 > MAX_PIXELS
     {
         return Err("each side must be 1..=16384 and the image at most 8192×8192 pixels".into());
     }
@@ -63,7 +87,7 @@ fn parse_integrator(s: &str) -> Result<IntegratorKind, String> {
 pub fn apply_overrides(scene: &mut crate::check::Scene, args: &RenderArgs) {
     let r = &mut scene.render;
     if let Some(n) = args.spp {
-        r.samples = n.max(1);
+        r.samples = n;
     }
     if let Some(s) = args.seed {
         r.seed = s;
@@ -83,6 +107,38 @@ pub fn output_path(args: &RenderArgs, scene: &crate::check::Scene) -> PathBuf {
         .clone()
         .or_else(|| scene.render.output.clone())
         .unwrap_or_else(|| args.file.with_extension("png"))
+}
+
+/// Why the image cannot be written at `output`, found before rendering: an
+/// unknown format, a folder, a missing or read-only folder, or a file the
+/// scene reads (the scene itself, an include, a mesh), which the image would
+/// replace.
+pub fn check_output(
+    output: &Path,
+    checked_sources: &crate::source::SourceMap,
+    scene: &crate::check::Scene,
+) -> Result<(), String> {
+    let same = |a: &Path, b: &Path| match (std::fs::canonicalize(a), std::fs::canonicalize(b)) {
+        (Ok(a), Ok(b)) => a == b,
+        _ => false,
+    };
+    let inputs = checked_sources
+        .files()
+        .iter()
+        .map(|f| f.path.as_path())
+        .chain(scene.objects.iter().filter_map(|o| match &o.shape {
+            crate::check::Shape::Mesh { path, .. } => Some(path.as_path()),
+            _ => None,
+        }));
+    for input in inputs {
+        if same(output, input) {
+            return Err(format!(
+                "{} is a file of the scene; the image would replace it (name another with -o)",
+                input.display()
+            ));
+        }
+    }
+    crate::render::film::check_writable(output)
 }
 
 /// Runs `render`; returns the exit code.
@@ -117,15 +173,9 @@ fn run_on_pool(args: &RenderArgs) -> u8 {
     };
     apply_overrides(&mut scene, args);
     let output = output_path(args, &scene);
-    if let Some(parent) = output.parent().filter(|p| !p.as_os_str().is_empty()) {
-        if !parent.is_dir() {
-            eprintln!(
-                "error: cannot write {}: the folder {} does not exist",
-                output.display(),
-                parent.display()
-            );
-            return EXIT_USAGE;
-        }
+    if let Err(why) = check_output(&output, &checked.sources, &scene) {
+        eprintln!("error: cannot write {}: {why}", output.display());
+        return EXIT_USAGE;
     }
     let ir = match crate::ir::lower::lower(&scene) {
         Ok(ir) => ir,
@@ -137,6 +187,9 @@ fn run_on_pool(args: &RenderArgs) -> u8 {
             return EXIT_SCENE_ERROR;
         }
     };
+    // The IR holds everything the render needs; the checked scene (about
+    // 250 bytes an object) goes before the film and the threads come.
+    drop(scene);
     let load_s = t0.elapsed().as_secs_f64();
     let cancel = Arc::new(AtomicBool::new(false));
     {
@@ -210,7 +263,11 @@ fn run_on_pool(args: &RenderArgs) -> u8 {
             .unwrap_or_default(),
         output.display()
     );
-    EXIT_OK
+    if outcome == crate::render::Outcome::Cancelled {
+        EXIT_INTERRUPTED
+    } else {
+        EXIT_OK
+    }
 }
 
 /// The process's peak resident memory so far in MB (10^6 bytes), where the

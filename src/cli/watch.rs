@@ -11,7 +11,7 @@
 //! editor's atomic save (write a temporary file, rename it over) counts as one
 //! change and the output file's own writes are ignored.
 
-use super::render::{apply_overrides, output_path, RenderArgs};
+use super::render::{apply_overrides, check_output, output_path, RenderArgs};
 use crate::check::check_file;
 use crate::ir::cache::LowerCache;
 use crate::ir::Scene;
@@ -172,6 +172,13 @@ impl State {
         }
         apply_overrides(&mut scene, &self.args);
         let output = output_path(&self.args, &scene);
+        if let Err(why) = check_output(&output, &checked.sources, &scene) {
+            status(&format!(
+                "cannot write {}: {why}; keeping the last image",
+                output.display()
+            ));
+            return;
+        }
         let (loads, builds) = (self.cache.mesh_loads, self.cache.bvh_builds);
         let ir = match crate::ir::lower::lower_cached(&scene, &mut self.cache) {
             Ok(ir) => ir,
@@ -260,6 +267,8 @@ fn render_progressively(ir: &Scene, output: &Path, cancel: &AtomicBool, changed_
     }
     let mut pass = 0;
     let mut last = Instant::now();
+    // Whether the last pass's image reached the disk.
+    let mut written = false;
     let outcome = crate::render::render(
         ir,
         integrator.as_ref(),
@@ -267,25 +276,40 @@ fn render_progressively(ir: &Scene, output: &Path, cancel: &AtomicBool, changed_
         &|_| {},
         &mut |film, spp| {
             pass += 1;
-            match film.write(output, exposure) {
-                Ok(()) => status(&format!(
-                    "pass {pass}: {spp} spp in {:.2} s (total {:.2} s)",
-                    last.elapsed().as_secs_f64(),
-                    t0.elapsed().as_secs_f64()
-                )),
-                Err(e) => status(&format!("cannot write {}: {e}", output.display())),
-            }
+            written = match film.write(output, exposure) {
+                Ok(()) => {
+                    status(&format!(
+                        "pass {pass}: {spp} spp in {:.2} s (total {:.2} s)",
+                        last.elapsed().as_secs_f64(),
+                        t0.elapsed().as_secs_f64()
+                    ));
+                    true
+                }
+                Err(e) => {
+                    status(&format!("cannot write {}: {e}", output.display()));
+                    false
+                }
+            };
             last = Instant::now();
         },
     )
     .outcome;
     if outcome == crate::render::Outcome::Complete {
-        status(&format!(
-            "done: {} spp in {:.2} s → {}",
-            ir.settings.samples,
-            t0.elapsed().as_secs_f64(),
-            output.display()
-        ));
+        if written {
+            status(&format!(
+                "done: {} spp in {:.2} s → {}",
+                ir.settings.samples,
+                t0.elapsed().as_secs_f64(),
+                output.display()
+            ));
+        } else {
+            status(&format!(
+                "finished {} spp in {:.2} s, but {} could not be written (see above); save the scene to try again",
+                ir.settings.samples,
+                t0.elapsed().as_secs_f64(),
+                output.display()
+            ));
+        }
     }
 }
 

@@ -68,7 +68,7 @@ impl LowerCache {
                 return Ok(c.data.clone());
             }
         }
-        let bytes = std::fs::read(path).map_err(|e| format!("cannot read the file: {e}"))?;
+        let bytes = mesh::read(path)?;
         if self.one_off {
             self.mesh_loads += 1;
             return mesh::parse(path, &bytes).map(Arc::new);

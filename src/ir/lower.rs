@@ -7,6 +7,7 @@ use super::cache::LowerCache;
 use super::collect::{Collected, PlainMesh};
 use super::numbering::Numbering;
 use super::{Prim, Scene};
+use crate::check::domain::{self, unit_f32, MAX_MAGNITUDE, MIN_SIZE};
 use crate::check::{self, codes};
 use crate::diag::{Diagnostic, Diagnostics};
 use crate::geometry::bvh::Bvh;
@@ -38,6 +39,57 @@ fn uniform_scale(m: &DMat4) -> Option<f64> {
         && y.dot(z).abs() <= 1e-9 * s * s
         && x.dot(z).abs() <= 1e-9 * s * s;
     ok.then_some(s)
+}
+
+/// Whether a primitive survives f32 ([`representable`]).
+enum Representable {
+    Yes,
+    /// Beyond ±[`MAX_MAGNITUDE`] (or not finite) somewhere in the shutter interval.
+    OutOfRange,
+    /// An area that rounds to zero.
+    TooSmall,
+}
+
+/// Checks a primitive against the numeric domain the checker enforces on
+/// the file's numbers, after transforms and motion: every coordinate within
+/// ±[`MAX_MAGNITUDE`] over the shutter interval, an area above zero.
+fn representable(shape: &Shape, velocity: Vec3, shutter: (f32, f32)) -> Representable {
+    if let Shape::Plane { point, normal } = *shape {
+        let ok = normal.is_finite()
+            && normal != Vec3::ZERO
+            && within_domain(
+                Aabb {
+                    min: point,
+                    max: point,
+                },
+                velocity,
+                shutter,
+            );
+        return if ok {
+            Representable::Yes
+        } else {
+            Representable::OutOfRange
+        };
+    }
+    if !within_domain(shape.bounds(), velocity, shutter) {
+        return Representable::OutOfRange;
+    }
+    let area = shape.area();
+    if area > 0.0 && area.is_finite() {
+        Representable::Yes
+    } else {
+        Representable::TooSmall
+    }
+}
+
+/// Whether `b`, moved by `velocity` over the shutter interval, stays within
+/// ±[`MAX_MAGNITUDE`] (a hair more: the limit itself rounds in f32).
+fn within_domain(b: Aabb, velocity: Vec3, (t0, t1): (f32, f32)) -> bool {
+    let limit = (MAX_MAGNITUDE * (1.0 + 1e-6)) as f32;
+    [t0, t1].iter().all(|&t| {
+        let (lo, hi) = (b.min + velocity * t, b.max + velocity * t);
+        lo.is_finite() && hi.is_finite() && lo.abs().max(hi.abs()).max_element() <= limit
+    })
 }
 
 /// Builds the IR; mesh problems and unsupported transforms are diagnostics.
@@ -87,20 +139,25 @@ fn build_geometry(scene: &check::Scene, cache: &mut LowerCache) -> Result<Geomet
     let mut diags = Diagnostics::new();
     let mut prims = Collected::default();
     let mut normals: Vec<[Vec3; 3]> = Vec::new();
-    // The first object whose geometry is not finite after its transforms.
-    let mut not_finite: Option<usize> = None;
+    // The first object whose geometry leaves the numeric domain after its
+    // transforms and motion, and the first too small for f32.
+    let mut out_of_range: Option<usize> = None;
+    let mut too_small: Option<usize> = None;
+    let shutter = (scene.camera.shutter.0 as f32, scene.camera.shutter.1 as f32);
     for (o, obj) in scene.objects.iter().enumerate() {
         let m = obj.transform;
         let pt = |p: DVec3| v3(m.transform_point3(p));
         let vec = |v: DVec3| v3(m.transform_vector3(v));
         let velocity = v3(obj.velocity);
         let mut push = |shape: Shape| {
-            let bad = match shape {
-                Shape::Plane { .. } => !shape.normal_at(Vec3::ZERO).is_finite(),
-                _ => !(shape.bounds().min.is_finite() && shape.bounds().max.is_finite()),
-            };
-            if bad {
-                not_finite.get_or_insert(o);
+            match representable(&shape, velocity, shutter) {
+                Representable::Yes => {}
+                Representable::OutOfRange => {
+                    out_of_range.get_or_insert(o);
+                }
+                Representable::TooSmall => {
+                    too_small.get_or_insert(o);
+                }
             }
             prims.push(Prim { shape, velocity }, o as u32);
         };
@@ -119,13 +176,13 @@ fn build_geometry(scene: &check::Scene, cache: &mut LowerCache) -> Result<Geomet
             } => match uniform_scale(&m) {
                 Some(s) => push(Shape::Disk {
                     center: pt(*center),
-                    normal: vec(*normal).normalize(),
+                    normal: unit_f32(m.transform_vector3(*normal)),
                     radius: (radius * s) as f32,
                 }),
                 None => diags.push(non_uniform(obj.span, "disk")),
             },
             check::Shape::Plane { point, normal } => {
-                let n = v3(m.inverse().transpose().transform_vector3(*normal)).normalize();
+                let n = unit_f32(m.inverse().transpose().transform_vector3(*normal));
                 push(Shape::Plane {
                     point: pt(*point),
                     normal: n,
@@ -199,12 +256,17 @@ fn build_geometry(scene: &check::Scene, cache: &mut LowerCache) -> Result<Geomet
                 };
                 let flip = m.determinant() < 0.0;
                 let pos: Vec<Vec3> = data.positions.iter().map(|p| pt(p.as_dvec3())).collect();
+                // The vertices' box, where the motion takes it: as the other shapes.
+                let reach = pos.iter().fold(Aabb::EMPTY, |b, p| b.grow(*p));
+                if !within_domain(reach, velocity, shutter) {
+                    out_of_range.get_or_insert(o);
+                }
                 let nm = m.inverse().transpose();
                 let use_normals = *smooth && !data.normals.is_empty();
                 let vnormals: Vec<Vec3> = if use_normals {
                     data.normals
                         .iter()
-                        .map(|n| v3(nm.transform_vector3(n.as_dvec3())).normalize_or_zero())
+                        .map(|n| unit_f32(nm.transform_vector3(n.as_dvec3())))
                         .collect()
                 } else {
                     Vec::new()
@@ -227,10 +289,7 @@ fn build_geometry(scene: &check::Scene, cache: &mut LowerCache) -> Result<Geomet
                         degenerate += 1;
                         continue;
                     }
-                    // As the bounds test of other shapes: the BVH adds the edges.
-                    if !(p0.is_finite() && (p0 + e1).is_finite() && (p0 + e2).is_finite()) {
-                        not_finite.get_or_insert(o);
-                    }
+
                     if plain {
                         kept.push([a, b, c]);
                         continue;
@@ -276,15 +335,32 @@ fn build_geometry(scene: &check::Scene, cache: &mut LowerCache) -> Result<Geomet
             }
         }
     }
-    if let Some(o) = not_finite {
+    if let Some(o) = out_of_range {
         diags.push(
             Diagnostic::error(
-                codes::NOT_FINITE,
-                "this object's geometry is not finite after its transforms",
+                codes::OUT_OF_RANGE,
+                format!(
+                    "this object reaches beyond ±{} after its transforms and motion",
+                    domain::number(MAX_MAGNITUDE)
+                ),
                 scene.objects[o].span,
             )
-            .with_label("NaN or infinite coordinates")
-            .with_help("check the sizes and transforms for overflow"),
+            .with_label(format!("coordinates beyond ±{}", domain::number(MAX_MAGNITUDE)))
+            .with_help("the renderer computes in 32-bit floats; check the sizes, transforms and velocity (times the shutter) for overflow"),
+        );
+    }
+    if let Some(o) = too_small {
+        diags.push(
+            Diagnostic::error(
+                codes::DEGENERATE,
+                "this object is too small for the renderer's 32-bit floats",
+                scene.objects[o].span,
+            )
+            .with_label("its area rounds to zero")
+            .with_help(format!(
+                "give it sizes of at least {} after its transforms",
+                domain::number(MIN_SIZE)
+            )),
         );
     }
     if diags.has_errors() {
@@ -460,28 +536,39 @@ fn finish(scene: &check::Scene, materials: Vec<Material>, geometry: Geometry) ->
             max: Vec3::ONE,
         }
     };
-    let powers: Vec<f32> = ir
+    let powers: Vec<f64> = ir
         .lights
         .iter()
-        .map(|l| l.power(&ir, scene_bounds).max(0.0))
+        .map(|l| l.power(&ir, scene_bounds))
         .collect();
-    let total: f32 = powers.iter().sum();
-    if total > 0.0 {
-        ir.light_pmf = powers.iter().map(|p| p / total).collect();
-        let mut acc = 0.0;
-        ir.light_cdf = ir
-            .light_pmf
-            .iter()
-            .map(|p| {
-                acc += p;
-                acc
-            })
-            .collect();
-        *ir.light_cdf.last_mut().unwrap() = 1.0;
-    } else {
-        ir.lights.clear();
+    match light_table(&powers) {
+        Some((pmf, cdf)) => (ir.light_pmf, ir.light_cdf) = (pmf, cdf),
+        None => ir.lights.clear(),
     }
     ir
+}
+
+/// The probability of choosing each light (its share of the total power)
+/// and the running sums, the last exactly 1; `None` when nothing emits.
+/// Summed in f64, so that no light's power, however large, overflows the
+/// table and turns every light off.
+pub fn light_table(powers: &[f64]) -> Option<(Vec<f32>, Vec<f32>)> {
+    let clean = |p: f64| if p.is_finite() && p > 0.0 { p } else { 0.0 };
+    let total: f64 = powers.iter().map(|&p| clean(p)).sum();
+    if !(total > 0.0 && total.is_finite()) {
+        return None;
+    }
+    let pmf: Vec<f32> = powers.iter().map(|&p| (clean(p) / total) as f32).collect();
+    let mut acc = 0.0f64;
+    let mut cdf: Vec<f32> = powers
+        .iter()
+        .map(|&p| {
+            acc += clean(p) / total;
+            acc as f32
+        })
+        .collect();
+    *cdf.last_mut().expect("at least one light") = 1.0;
+    Some((pmf, cdf))
 }
 
 fn rgb(c: &[f64; 3]) -> Vec3 {
@@ -498,4 +585,51 @@ fn non_uniform(span: crate::span::Span, what: &str) -> Diagnostic {
     .with_help(format!(
         "scale the {what} by a single number, or use a mesh for ellipsoids"
     ))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_light_keeps_its_share_however_large_the_others() {
+        // The largest powers the numeric domain allows beside a dim light:
+        // in f32 their sum overflowed and the table turned every light off.
+        let huge = 2.0 * std::f64::consts::PI * 1e12 * 4e18;
+        let (pmf, cdf) = light_table(&[huge, huge, 1.0]).expect("lights");
+        assert!(pmf.iter().all(|p| *p > 0.0 && p.is_finite()), "{pmf:?}");
+        assert_eq!(*cdf.last().unwrap(), 1.0);
+        assert!(cdf.windows(2).all(|w| w[0] <= w[1]));
+        // A light that cannot emit gets no share; none at all, no table.
+        let (pmf, _) = light_table(&[0.0, f64::NAN, 2.0]).expect("one light");
+        assert_eq!(pmf, vec![0.0, 0.0, 1.0]);
+        assert!(light_table(&[0.0, 0.0]).is_none());
+    }
+
+    #[test]
+    fn geometry_is_checked_in_f32_over_the_shutter() {
+        let unit = Shape::Sphere {
+            center: Vec3::ZERO,
+            radius: 1.0,
+        };
+        let still = (0.0, 0.0);
+        assert!(matches!(
+            representable(&unit, Vec3::ZERO, still),
+            Representable::Yes
+        ));
+        // Moving out of range by the end of the shutter interval.
+        assert!(matches!(
+            representable(&unit, Vec3::new(2e9, 0.0, 0.0), (0.0, 1.0)),
+            Representable::OutOfRange
+        ));
+        let tiny = Shape::Quad {
+            p: Vec3::ZERO,
+            e1: Vec3::new(1e-30, 0.0, 0.0),
+            e2: Vec3::new(0.0, 1e-30, 0.0),
+        };
+        assert!(matches!(
+            representable(&tiny, Vec3::ZERO, still),
+            Representable::TooSmall
+        ));
+    }
 }

@@ -2,6 +2,7 @@
 //! little and big endian; our own reader: the format is small and we want
 //! exact control over errors and memory).
 
+use crate::source::MAX_MESH_BYTES;
 use glam::Vec3;
 use std::path::Path;
 
@@ -18,8 +19,12 @@ pub struct MeshData {
 
 /// Reads an OBJ or PLY file; the error is a sentence for a diagnostic.
 pub fn load(path: &Path) -> Result<MeshData, String> {
-    let bytes = std::fs::read(path).map_err(|e| format!("cannot read the file: {e}"))?;
-    parse(path, &bytes)
+    parse(path, &read(path)?)
+}
+
+/// The bytes of a mesh file, at most [`MAX_MESH_BYTES`].
+pub fn read(path: &Path) -> Result<Vec<u8>, String> {
+    crate::source::read_file(path, MAX_MESH_BYTES).map_err(|e| format!("cannot read the file: {e}"))
 }
 
 /// Parses the bytes of an OBJ or PLY file (the format follows `path`'s
@@ -188,6 +193,21 @@ impl Reader<'_> {
     }
 }
 
+/// A vertex index read from a PLY list: a whole number in `0..2^32`.
+fn index(x: f64) -> Result<u32, String> {
+    if x < 0.0 {
+        Err(format!(
+            "a face refers to vertex {x}: indices are not negative"
+        ))
+    } else if x.fract() != 0.0 || x > u32::MAX as f64 {
+        Err(format!(
+            "a face refers to vertex {x}: indices are whole numbers below 2^32"
+        ))
+    } else {
+        Ok(x as u32)
+    }
+}
+
 /// Parses a PLY file from memory.
 pub fn parse_ply(bytes: &[u8]) -> Result<MeshData, String> {
     let header_end = bytes
@@ -265,12 +285,25 @@ pub fn parse_ply(bytes: &[u8]) -> Result<MeshData, String> {
     }
     let mut out = MeshData::default();
     for el in &elements {
-        // Guard against absurd counts before allocating.
-        if el.count > 500_000_000 || (format != Format::Ascii && el.count > data.len()) {
+        // Guard against absurd counts before allocating: an entry takes at
+        // least its scalars' bytes (binary) or two bytes per value (ASCII:
+        // a digit and a blank).
+        let least: usize = el
+            .props
+            .iter()
+            .map(|p| match (format, p) {
+                (Format::Ascii, _) => 2,
+                (_, Prop::Scalar(_, t)) | (_, Prop::List(_, t, _)) => t.size(),
+            })
+            .sum();
+        if el.count.saturating_mul(least) > data.len() {
             return Err(format!(
                 "element `{}` claims {} entries, more than the file holds",
                 el.name, el.count
             ));
+        }
+        if el.props.is_empty() {
+            continue;
         }
         let idx = |n: &str| {
             el.props
@@ -299,12 +332,15 @@ pub fn parse_ply(bytes: &[u8]) -> Result<MeshData, String> {
                     Prop::Scalar(_, t) => vals[k] = r.read(*t)?,
                     Prop::List(name, c, t) => {
                         let n = r.read(*c)?;
+                        if n.fract() != 0.0 {
+                            return Err(format!("a list has {n} entries, not a whole number"));
+                        }
                         if !(0.0..=1024.0).contains(&n) {
                             return Err(format!("a face has {n} vertices"));
                         }
                         list.clear();
                         for _ in 0..n as usize {
-                            list.push(r.read(*t)? as u32);
+                            list.push(index(r.read(*t)?)?);
                         }
                         if is_face
                             && (name == "vertex_indices" || name == "vertex_index")
@@ -372,5 +408,26 @@ mod tests {
         assert!(parse_ply(&ASCII.as_bytes()[..ASCII.len() - 6]).is_err());
         let huge = "ply\nformat binary_little_endian 1.0\nelement vertex 4000000000\nproperty float x\nproperty float y\nproperty float z\nend_header\n";
         assert!(parse_ply(huge.as_bytes()).is_err());
+        // ASCII counts are bounded by the data too (a reservation of 6 GB
+        // before reading a byte of it).
+        let huge = "ply\nformat ascii 1.0\nelement vertex 400000000\nproperty float x\nproperty float y\nproperty float z\nend_header\n0 0 0\n";
+        assert!(parse_ply(huge.as_bytes())
+            .unwrap_err()
+            .contains("more than the file holds"));
+        let empty_elements = "ply\nformat ascii 1.0\nelement nothing 4000000000\nend_header\n";
+        assert!(parse_ply(empty_elements.as_bytes()).is_ok());
+    }
+
+    #[test]
+    fn indices_and_counts_are_whole_numbers() {
+        let with_face = |face: &str| ASCII.replace("4 0 1 2 3", face);
+        let e = parse_ply(with_face("3 0 -1 2").as_bytes()).unwrap_err();
+        assert!(e.contains("not negative"), "{e}");
+        let e = parse_ply(with_face("3 0 1.5 2").as_bytes()).unwrap_err();
+        assert!(e.contains("whole numbers"), "{e}");
+        let e = parse_ply(with_face("3.5 0 1 2").as_bytes()).unwrap_err();
+        assert!(e.contains("not a whole number"), "{e}");
+        let e = parse_ply(with_face("3 0 1 5000000000").as_bytes()).unwrap_err();
+        assert!(e.contains("below 2^32"), "{e}");
     }
 }

@@ -5,7 +5,6 @@
 use crate::geometry::shape::Shape;
 use crate::geometry::Aabb;
 use glam::{Vec2, Vec3};
-use std::f32::consts::PI;
 
 /// One light.
 #[derive(Debug, Clone)]
@@ -84,26 +83,31 @@ pub fn spot_falloff(cos: f32, cos_total: f32, cos_falloff: f32) -> f32 {
 }
 
 impl Light {
-    /// Power used to choose among lights (any positive value keeps the estimate unbiased).
-    pub fn power(&self, scene: &crate::ir::Scene, bounds: Aabb) -> f32 {
-        let radius = 0.5 * (bounds.max - bounds.min).length().min(1e6);
+    /// Power used to choose among lights (any positive value keeps the
+    /// estimate unbiased). In f64: products of large accepted values (an
+    /// emission of 1e12 over an area of 4e18) and their sum over many
+    /// lights stay finite.
+    pub fn power(&self, scene: &crate::ir::Scene, bounds: Aabb) -> f64 {
+        let radius = 0.5 * ((bounds.max - bounds.min).length() as f64).min(1e6);
+        let lum = |c: Vec3| luminance(c) as f64;
+        let pi = std::f64::consts::PI;
         match self {
             Light::Area { prim, shape, .. } => {
                 let m = scene.material_of(*prim);
                 let sides = if m.two_sided { 2.0 } else { 1.0 };
-                luminance(m.emission) * shape.area() * PI * sides
+                lum(m.emission) * shape.area() as f64 * pi * sides
             }
-            Light::Point { intensity, .. } => 4.0 * PI * luminance(*intensity),
+            Light::Point { intensity, .. } => 4.0 * pi * lum(*intensity),
             Light::Spot {
                 intensity,
                 cos_total,
                 cos_falloff,
                 ..
-            } => 2.0 * PI * luminance(*intensity) * (1.0 - 0.5 * (cos_total + cos_falloff)),
-            Light::Directional { irradiance, .. } => PI * radius * radius * luminance(*irradiance),
-            Light::Environment { radiance } => {
-                4.0 * PI * PI * radius * radius * luminance(*radiance)
+            } => {
+                2.0 * pi * lum(*intensity) * (1.0 - 0.5 * (*cos_total as f64 + *cos_falloff as f64))
             }
+            Light::Directional { irradiance, .. } => pi * radius * radius * lum(*irradiance),
+            Light::Environment { radiance } => 4.0 * pi * pi * radius * radius * lum(*radiance),
         }
     }
 

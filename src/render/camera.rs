@@ -24,10 +24,19 @@ pub struct Camera {
 impl Camera {
     /// Builds the camera for an image of `width` × `height`.
     pub fn new(c: &crate::check::Camera, width: u32, height: u32) -> Camera {
-        let position = c.position.as_vec3();
-        let forward = (c.look_at - c.position).normalize().as_vec3();
-        let right = forward.cross(c.up.as_vec3()).normalize();
+        // The frame in f64, rounded once: `up` may be any non-zero vector
+        // (the checker's domain), which need not fit an f32.
+        let unit = crate::check::domain::unit;
+        let forward = unit(c.look_at - c.position).unwrap_or(glam::DVec3::NEG_Z);
+        let right =
+            unit(forward.cross(unit(c.up).unwrap_or(glam::DVec3::Y))).unwrap_or(glam::DVec3::X);
         let up = right.cross(forward);
+        let (position, forward, right, up) = (
+            c.position.as_vec3(),
+            forward.as_vec3(),
+            right.as_vec3(),
+            up.as_vec3(),
+        );
         Camera {
             position,
             right,

@@ -55,15 +55,11 @@ impl Film {
 
     /// Writes the image; the format follows the extension (.png, .exr, .pfm).
     pub fn write(&self, path: &Path, exposure: f32) -> std::io::Result<()> {
-        let ext = path
-            .extension()
-            .and_then(|e| e.to_str())
-            .map(str::to_ascii_lowercase);
-        let bytes = match ext.as_deref() {
-            Some("png") => self.png(exposure)?,
-            Some("exr") => self.exr()?,
-            Some("pfm") => self.pfm(),
-            _ => {
+        let bytes = match ImageFormat::of(path) {
+            Some(ImageFormat::Png) => self.png(exposure)?,
+            Some(ImageFormat::Exr) => self.exr()?,
+            Some(ImageFormat::Pfm) => self.pfm(),
+            None => {
                 return Err(std::io::Error::new(
                     std::io::ErrorKind::InvalidInput,
                     format!(
@@ -144,8 +140,56 @@ pub fn srgb_encode(c: f32) -> f32 {
     }
 }
 
-/// Writes `bytes` to a temporary file beside `path`, then renames it over `path`.
-pub fn write_atomically(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
+/// The image files ptsc writes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ImageFormat {
+    /// 8-bit sRGB PNG, exposure applied.
+    Png,
+    /// Linear float32 OpenEXR.
+    Exr,
+    /// Linear float32 PFM.
+    Pfm,
+}
+
+impl ImageFormat {
+    /// The format a path's extension names (any case).
+    pub fn of(path: &Path) -> Option<ImageFormat> {
+        let ext = path.extension()?.to_str()?.to_ascii_lowercase();
+        match ext.as_str() {
+            "png" => Some(ImageFormat::Png),
+            "exr" => Some(ImageFormat::Exr),
+            "pfm" => Some(ImageFormat::Pfm),
+            _ => None,
+        }
+    }
+}
+
+/// Whether an image can be written at `path`, found before a render starts
+/// rather than after it: a known format, not a folder, a folder that exists
+/// and takes a new file (a temporary one is created and removed).
+pub fn check_writable(path: &Path) -> Result<(), String> {
+    if path.is_dir() {
+        return Err("it is a folder; name an image file in it".into());
+    }
+    if ImageFormat::of(path).is_none() {
+        return Err("unknown image format (use .png, .exr or .pfm)".into());
+    }
+    let dir = path
+        .parent()
+        .filter(|p| !p.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    if !dir.is_dir() {
+        return Err(format!("the folder {} does not exist", dir.display()));
+    }
+    let probe = temporary_beside(path).map_err(|e| e.to_string())?;
+    std::fs::File::create(&probe)
+        .map_err(|e| format!("the folder {} does not take new files: {e}", dir.display()))?;
+    let _ = std::fs::remove_file(&probe);
+    Ok(())
+}
+
+/// The temporary file an atomic write of `path` goes through.
+fn temporary_beside(path: &Path) -> std::io::Result<PathBuf> {
     let dir = path
         .parent()
         .filter(|p| !p.as_os_str().is_empty())
@@ -153,11 +197,16 @@ pub fn write_atomically(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
     let name = path
         .file_name()
         .ok_or_else(|| std::io::Error::new(std::io::ErrorKind::InvalidInput, "no file name"))?;
-    let tmp: PathBuf = dir.join(format!(
+    Ok(dir.join(format!(
         ".{}.{}.tmp",
         name.to_string_lossy(),
         std::process::id()
-    ));
+    )))
+}
+
+/// Writes `bytes` to a temporary file beside `path`, then renames it over `path`.
+pub fn write_atomically(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
+    let tmp = temporary_beside(path)?;
     let result = (|| {
         let mut f = std::fs::File::create(&tmp)?;
         f.write_all(bytes)?;

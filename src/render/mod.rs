@@ -44,17 +44,29 @@ pub struct Rendered {
     pub rays: RayCounts,
 }
 
-/// Sample counts at the end of each progressive pass: 1, 2, 4, … up to `spp`.
+/// Sample counts at the end of each progressive pass: 1, 2, 4, … up to `spp`
+/// (at most 33 passes, whatever `spp`).
 pub fn pass_ends(spp: u32) -> Vec<u32> {
     let mut ends = Vec::new();
-    let mut n = 1;
+    let mut n = 1u32;
     while n < spp {
         ends.push(n);
-        n *= 2;
+        n = n.saturating_mul(2);
     }
-    ends.push(spp);
+    ends.push(spp.max(1));
     ends
 }
+
+/// How often a tile polls the cancellation flag: every this many samples
+/// of a pixel (and at every pixel). A relaxed atomic load costs next to
+/// nothing beside a sample, and Ctrl-C answers within a few samples' time
+/// however long the pass.
+const CANCEL_POLL: u32 = 4;
+
+/// The largest value one sample may add to a pixel (its largest channel):
+/// a million of them still sum to a finite f32. Only a sample that divides
+/// by a vanishing pdf comes near it; it is scaled down, keeping its colour.
+pub const MAX_SAMPLE: f32 = 1e30;
 
 /// Renders `scene` into a new film. After each pass, `on_pass(film, samples)`
 /// is called (preview writes); `progress(done_pixel_samples)` is called as
@@ -127,9 +139,6 @@ fn render_view(
         let results: Vec<Option<TileResult>> = tiles
             .par_iter()
             .map(|&(x0, y0)| {
-                if cancel.load(Ordering::Relaxed) {
-                    return None;
-                }
                 let (x1, y1) = ((x0 + TILE).min(w), (y0 + TILE).min(h));
                 let rays_before = ray_count::this_thread();
                 let mut out = Vec::with_capacity(((x1 - x0) * (y1 - y0)) as usize);
@@ -137,6 +146,9 @@ fn render_view(
                     for x in x0..x1 {
                         let mut sum = Vec3::ZERO;
                         for s in start..end {
+                            if (s - start).is_multiple_of(CANCEL_POLL) && cancel.load(Ordering::Relaxed) {
+                                return None;
+                            }
                             sum += sample(scene, integrator, x, y, s, scale);
                         }
                         out.push(sum);
@@ -184,11 +196,22 @@ fn sample(scene: &Scene, integrator: &dyn Integrator, x: u32, y: u32, s: u32, sc
     let t = sampler.next_f32();
     let ray = scene.camera.ray(film, lens, t);
     let l = integrator.li(scene, ray, &mut sampler);
-    // A NaN or infinite sample would poison the pixel: drop it (counted as black).
-    if l.is_finite() {
-        l
+    limit_sample(l)
+}
+
+/// A sample as it enters a pixel's sum: a NaN or infinite one would poison
+/// the pixel and is dropped (counted as black); a huge one is scaled down to
+/// [`MAX_SAMPLE`].
+#[inline]
+fn limit_sample(l: Vec3) -> Vec3 {
+    if !l.is_finite() {
+        return Vec3::ZERO;
+    }
+    let big = l.max_element();
+    if big > MAX_SAMPLE {
+        l * (MAX_SAMPLE / big)
     } else {
-        Vec3::ZERO
+        l
     }
 }
 
@@ -201,5 +224,21 @@ mod tests {
         assert_eq!(pass_ends(1), vec![1]);
         assert_eq!(pass_ends(6), vec![1, 2, 4, 6]);
         assert_eq!(pass_ends(8), vec![1, 2, 4, 8]);
+        // The doubling saturates instead of wrapping to 0 and looping.
+        let ends = pass_ends(u32::MAX);
+        assert_eq!(ends.len(), 33);
+        assert_eq!(*ends.last().unwrap(), u32::MAX);
+        assert_eq!(pass_ends(3_000_000_000).len(), 33);
+    }
+
+    #[test]
+    fn samples_enter_a_pixel_finite_and_bounded() {
+        assert_eq!(limit_sample(Vec3::new(f32::NAN, 1.0, 1.0)), Vec3::ZERO);
+        assert_eq!(limit_sample(Vec3::new(f32::INFINITY, 1.0, 1.0)), Vec3::ZERO);
+        let big = limit_sample(Vec3::new(2e30, 1e30, 0.0));
+        assert!((big.x - MAX_SAMPLE).abs() <= MAX_SAMPLE * 1e-6 && (big.y - 0.5e30).abs() < 1e24);
+        // A million of the largest samples sum to a finite value.
+        assert!((MAX_SAMPLE * 1e6).is_finite());
+        assert_eq!(limit_sample(Vec3::ONE), Vec3::ONE);
     }
 }

@@ -54,13 +54,26 @@ pub fn uniform_triangle(u: Vec2) -> Vec2 {
     Vec2::new(b0, b1)
 }
 
-/// Power heuristic with β = 2 (Veach 1997, §9.2.4).
+/// Power heuristic with β = 2 (Veach 1997, §9.2.4). A pdf above about
+/// 1.8e19 (an emitter seen at a grazing angle from afar) squares to
+/// infinity: the weight then comes from the ratio of the pdfs, so it stays
+/// in [0, 1] instead of becoming NaN.
 pub fn power_heuristic(pdf_a: f32, pdf_b: f32) -> f32 {
     let (a, b) = (pdf_a * pdf_a, pdf_b * pdf_b);
-    if a + b == 0.0 {
+    let sum = a + b;
+    if sum == 0.0 {
         0.0
+    } else if sum.is_finite() {
+        a / sum
+    } else if pdf_a.is_infinite() {
+        if pdf_b.is_infinite() {
+            0.5
+        } else {
+            1.0
+        }
     } else {
-        a / (a + b)
+        let r = pdf_b / pdf_a;
+        1.0 / (1.0 + r * r)
     }
 }
 
@@ -101,5 +114,19 @@ mod tests {
     fn power_heuristic_weights_sum_to_one() {
         let (a, b) = (0.3, 1.7);
         assert!((power_heuristic(a, b) + power_heuristic(b, a) - 1.0).abs() < 1e-6);
+        // Pdfs whose squares overflow, and infinite ones.
+        for (a, b) in [
+            (1e30f32, 1.0f32),
+            (1e30, 2e30),
+            (f32::INFINITY, 5.0),
+            (f32::INFINITY, f32::INFINITY),
+        ] {
+            let (wa, wb) = (power_heuristic(a, b), power_heuristic(b, a));
+            assert!(
+                (0.0..=1.0).contains(&wa) && (wa + wb - 1.0).abs() < 1e-6,
+                "{a} {b}: {wa} {wb}"
+            );
+        }
+        assert!((power_heuristic(1e30, 2e30) - 0.2).abs() < 1e-6);
     }
 }

@@ -82,6 +82,20 @@ pub enum Statement {
     },
 }
 
+impl Statement {
+    /// The whole statement.
+    pub fn span(&self) -> Span {
+        match self {
+            Statement::Let { span, .. }
+            | Statement::Include { span, .. }
+            | Statement::For { span, .. }
+            | Statement::Background { span, .. }
+            | Statement::Material { span, .. }
+            | Statement::Block { span, .. } => *span,
+        }
+    }
+}
+
 /// The kinds of block statement.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum BlockKind {

@@ -4,6 +4,7 @@ mod diagnostics;
 mod editors;
 mod examples;
 mod golden;
+mod hostile;
 mod mitsuba;
 mod nasty;
 mod render;

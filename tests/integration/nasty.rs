@@ -63,10 +63,13 @@ fn huge_and_non_finite_numbers() {
     let cam = "camera { position <0,0,5> look_at <0,0,0> }\n";
     let e = errors(format!("{cam}sphere {{ center <0,0,0> radius 1e400 }}").as_bytes());
     assert_eq!(e, vec!["pts::check::not_finite"]);
+    // Finite in f64, but beyond what the f32 renderer takes (the numeric domain).
     let e = errors(
         format!("{cam}sphere {{ center <0,0,0> radius 99999999999999999999999999999999 }}")
             .as_bytes(),
     );
+    assert_eq!(e, vec!["pts::check::out_of_range"]);
+    let e = errors(format!("{cam}sphere {{ center <0,0,0> radius 1e9 }}").as_bytes());
     assert!(e.is_empty(), "{e:?}");
     let e = errors(format!("{cam}sphere {{ center <0,0,0> radius NaN }}").as_bytes());
     assert_eq!(e, vec!["pts::check::unknown_name"]);

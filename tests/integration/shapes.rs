@@ -232,7 +232,7 @@ fn offsets_scale_with_the_hit_point() {
 fn a_mesh_that_overflows_is_a_diagnostic() {
     // Flat (no vertex normals) and smooth meshes are lowered apart (a flat
     // one keeps no per-triangle record); both must report coordinates that
-    // overflow f32 after the transform, or an edge that does.
+    // leave the numeric domain (±1e9) after the transform, or in the file.
     let dir = crate::temp_dir_with(&[
         (
             "t.obj",
@@ -241,8 +241,9 @@ fn a_mesh_that_overflows_is_a_diagnostic() {
         ("wide.obj", "v -3e38 0 0\nv 3e38 0 0\nv 0 1 0\nf 1 2 3\n"),
     ]);
     for mesh in [
-        r#"mesh { file "t.obj" scale 1e38 }"#,
-        r#"mesh { file "t.obj" scale 1e38 smooth true }"#,
+        r#"mesh { file "t.obj" scale 1e9 }"#,
+        r#"mesh { file "t.obj" scale 1e9 smooth true }"#,
+        r#"mesh { file "t.obj" translate <1e6, 0, 0> velocity <1e9, 0, 0> }"#,
         r#"mesh { file "wide.obj" }"#,
     ] {
         let path = dir.path().join("shape.pts");
@@ -252,6 +253,6 @@ fn a_mesh_that_overflows_is_a_diagnostic() {
             Ok(_) => panic!("{mesh} lowered"),
             Err(d) => d.items.iter().map(|d| d.code).collect(),
         };
-        assert_eq!(codes, ["pts::check::not_finite"], "{mesh}");
+        assert_eq!(codes, ["pts::check::out_of_range"], "{mesh}");
     }
 }

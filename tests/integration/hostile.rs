@@ -1,0 +1,505 @@
+//! `tests/hostile/`: inputs that once crashed, hung or exhausted ptsc, one
+//! file per problem, each run through the real binary under a memory limit
+//! and a time limit. A case fails on a signal, a panic or stack-overflow text,
+//! a wrong exit code, a missing or non-finite image, or a timeout.
+//!
+//! A case file opens with `//` directives (see `tests/hostile/README.md`):
+//! `run:` the arguments (`{scene}`, `{out}` and `{dir}` are replaced),
+//! `exit:` the expected exit code, `stderr:` / `stdout:` text that must appear,
+//! `stderr-not:` text that must not, `finite:` an EXR output whose every
+//! pixel must be finite and not all black, `interrupt:` seconds after which
+//! SIGINT is sent and `within:` the seconds the process then has to exit,
+//! `timeout:` the seconds the whole run may take (default 60).
+//! Inputs too large to keep in the repository are generated below and run
+//! through the same checks.
+
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Stdio};
+use std::time::{Duration, Instant};
+
+/// Address space a run may use: a hostile input must not take the machine.
+const MEMORY_LIMIT_KIB: u64 = 4 * 1024 * 1024;
+
+/// What a case runs and expects.
+#[derive(Debug, Default, Clone)]
+struct Case {
+    name: String,
+    args: Vec<String>,
+    exit: i32,
+    stderr: Vec<String>,
+    stderr_not: Vec<String>,
+    stdout: Vec<String>,
+    finite: Option<String>,
+    interrupt: Option<f64>,
+    within: Option<f64>,
+    timeout: f64,
+}
+
+impl Case {
+    /// Reads the directives at the top of a case file.
+    fn parse(name: &str, text: &str) -> Case {
+        let mut case = Case {
+            name: name.to_string(),
+            args: vec!["check".into(), "{scene}".into()],
+            timeout: 60.0,
+            ..Case::default()
+        };
+        for line in text.lines() {
+            let Some(rest) = line.strip_prefix("//") else {
+                break;
+            };
+            let Some((key, value)) = rest.trim().split_once(':') else {
+                continue;
+            };
+            let value = value.trim().to_string();
+            match key.trim() {
+                "run" => case.args = value.split_whitespace().map(String::from).collect(),
+                "exit" => case.exit = value.parse().expect("exit code"),
+                "stderr" => case.stderr.push(value),
+                "stderr-not" => case.stderr_not.push(value),
+                "stdout" => case.stdout.push(value),
+                "finite" => case.finite = Some(value),
+                "interrupt" => case.interrupt = Some(value.parse().expect("seconds")),
+                "within" => case.within = Some(value.parse().expect("seconds")),
+                "timeout" => case.timeout = value.parse().expect("seconds"),
+                _ => {}
+            }
+        }
+        case
+    }
+
+    /// Runs the case with `scene` as `{scene}`; outputs go to `dir`.
+    /// Returns a description of every way it failed.
+    fn run(&self, scene: &Path, dir: &Path) -> Vec<String> {
+        let fill = |a: &str| {
+            a.replace("{scene}", &scene.display().to_string())
+                .replace("{out}", &dir.join("out").display().to_string())
+                .replace("{dir}", &dir.display().to_string())
+        };
+        let args: Vec<String> = self.args.iter().map(|a| fill(a)).collect();
+        let mut child = Command::new("bash")
+            .arg("-c")
+            .arg(format!("ulimit -v {MEMORY_LIMIT_KIB}; exec \"$0\" \"$@\""))
+            .arg(env!("CARGO_BIN_EXE_ptsc"))
+            .args(&args)
+            .current_dir(scene.parent().unwrap_or(Path::new(".")))
+            .env("RAYON_NUM_THREADS", "2")
+            .env("MALLOC_ARENA_MAX", "2")
+            .env_remove("RUST_BACKTRACE")
+            .stdin(Stdio::null())
+            .stdout(Stdio::piped())
+            .stderr(Stdio::piped())
+            .spawn()
+            .expect("bash runs");
+        let (stdout, stderr) = (child.stdout.take().unwrap(), child.stderr.take().unwrap());
+        let read = |mut r: Box<dyn std::io::Read + Send>| {
+            std::thread::spawn(move || {
+                let mut s = Vec::new();
+                let _ = r.read_to_end(&mut s);
+                String::from_utf8_lossy(&s).into_owned()
+            })
+        };
+        let (out_thread, err_thread) = (read(Box::new(stdout)), read(Box::new(stderr)));
+        let start = Instant::now();
+        let mut failures = Vec::new();
+        let mut interrupted_at = None;
+        let status = loop {
+            if let Some(status) = child.try_wait().expect("wait") {
+                break Some(status);
+            }
+            let t = start.elapsed().as_secs_f64();
+            if let (Some(after), None) = (self.interrupt, interrupted_at) {
+                if t >= after {
+                    let _ = Command::new("kill")
+                        .args(["-INT", &child.id().to_string()])
+                        .status();
+                    interrupted_at = Some(Instant::now());
+                }
+            }
+            if t > self.timeout {
+                let _ = child.kill();
+                let _ = child.wait();
+                failures.push(format!("still running after {} s: killed", self.timeout));
+                break None;
+            }
+            std::thread::sleep(Duration::from_millis(20));
+        };
+        if let (Some(at), Some(within)) = (interrupted_at, self.within) {
+            let took = at.elapsed().as_secs_f64();
+            if status.is_some() && took > within + 0.05 {
+                failures.push(format!(
+                    "exited {took:.2} s after SIGINT (at most {within} s)"
+                ));
+            }
+        }
+        let (stdout, stderr) = (out_thread.join().unwrap(), err_thread.join().unwrap());
+        if let Some(status) = status {
+            match status.code() {
+                None => failures.push(format!("killed by a signal: {status:?}")),
+                Some(c) if c != self.exit => {
+                    failures.push(format!("exit code {c}, expected {}", self.exit))
+                }
+                Some(_) => {}
+            }
+        }
+        for bad in [
+            "panicked",
+            "has overflowed its stack",
+            "memory allocation",
+            "RUST_BACKTRACE",
+        ] {
+            if stderr.contains(bad) {
+                failures.push(format!("stderr contains `{bad}`"));
+            }
+        }
+        for want in &self.stderr {
+            if !stderr.contains(want.as_str()) {
+                failures.push(format!("stderr lacks `{want}`"));
+            }
+        }
+        for unwanted in &self.stderr_not {
+            if stderr.contains(unwanted.as_str()) {
+                failures.push(format!("stderr contains `{unwanted}`"));
+            }
+        }
+        for want in &self.stdout {
+            if !stdout.contains(want.as_str()) {
+                failures.push(format!("stdout lacks `{want}`"));
+            }
+        }
+        if let Some(image) = &self.finite {
+            let path = PathBuf::from(fill(image));
+            match ptsc::render::film::read_exr(&path) {
+                Ok((_, _, px)) => {
+                    if px.iter().any(|p| !p.is_finite()) {
+                        failures.push(format!("{} has non-finite pixels", path.display()));
+                    } else if px.iter().all(|p| *p == glam::Vec3::ZERO) {
+                        failures.push(format!("{} is black", path.display()));
+                    }
+                }
+                Err(e) => failures.push(format!("cannot read {}: {e}", path.display())),
+            }
+        }
+        if !failures.is_empty() {
+            let tail = |s: &str| {
+                let start = s.len().saturating_sub(2000);
+                let start = (start..s.len())
+                    .find(|&i| s.is_char_boundary(i))
+                    .unwrap_or(s.len());
+                s[start..].to_string()
+            };
+            failures.push(format!(
+                "--- {} {}\n--- stderr (end):\n{}\n--- stdout (end):\n{}",
+                self.name,
+                args.join(" "),
+                tail(&stderr),
+                tail(&stdout)
+            ));
+        }
+        failures
+    }
+}
+
+fn hostile_dir() -> PathBuf {
+    crate::root().join("tests/hostile")
+}
+
+/// Runs a case on a scene file it writes into a fresh temporary folder.
+fn run_generated(case: &Case, file_name: &str, text: &[u8]) {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = dir.path().join(file_name);
+    std::fs::write(&scene, text).unwrap();
+    let failures = case.run(&scene, dir.path());
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+/// A case with directives written as in a file.
+fn generated(name: &str, directives: &str) -> Case {
+    Case::parse(name, directives)
+}
+
+#[test]
+fn every_hostile_file_is_handled() {
+    let mut files: Vec<PathBuf> = std::fs::read_dir(hostile_dir())
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == "pts"))
+        .collect();
+    files.sort();
+    assert!(files.len() >= 20, "only {} hostile cases", files.len());
+    let mut failures = Vec::new();
+    for file in &files {
+        let text = std::fs::read_to_string(file).unwrap();
+        let name = file.file_stem().unwrap().to_string_lossy().to_string();
+        let case = Case::parse(&name, &text);
+        let dir = tempfile::tempdir().unwrap();
+        let f = case.run(file, dir.path());
+        if !f.is_empty() {
+            failures.push(format!("{name}:\n  {}", f.join("\n  ")));
+        }
+    }
+    assert!(
+        failures.is_empty(),
+        "{} of {} hostile cases failed:\n{}",
+        failures.len(),
+        files.len(),
+        failures.join("\n")
+    );
+}
+
+const CAMERA: &str = "camera { position <0, 0, 5> look_at <0, 0, 0> }\n";
+
+/// Item 1: a diagnostic past column 65,535 of a line panicked in miette.
+#[test]
+fn diagnostics_far_along_one_line() {
+    let line = format!(
+        "{} point_light {{ position <0, 5, 0> intensity rgb 10 }} {}let x = 1; sphere {{ center <0, 0, 0> radius 1 }}",
+        CAMERA.trim(),
+        " ".repeat(70_000)
+    );
+    let case = generated(
+        "long_line_warning",
+        "// exit: 0\n// stderr: constant `x` is never used\n// stderr: 1:70",
+    );
+    run_generated(&case, "long_line.pts", line.as_bytes());
+    // An error, a secondary label far from its primary one, and a render.
+    let line = format!(
+        "{} let r = 1; {}sphere {{ center <0, 0, 0> radius r radius 2 }}",
+        CAMERA.trim(),
+        "/* */ ".repeat(20_000)
+    );
+    let case = generated(
+        "long_line_error",
+        "// exit: 1\n// stderr: given twice\n// stderr: first given here",
+    );
+    run_generated(&case, "long_line.pts", line.as_bytes());
+    let line = format!(
+        "{} background rgb 1 {}let x = 1; sphere {{ center <0, 0, 0> radius 1 }}",
+        CAMERA.trim(),
+        " ".repeat(70_000)
+    );
+    let case = generated(
+        "long_line_render",
+        "// run: render {scene} -o {out}.exr --resolution 8x8 --spp 1\n// exit: 0\n// finite: {out}.exr",
+    );
+    run_generated(&case, "long_line.pts", line.as_bytes());
+}
+
+/// Item 4: a flat chain of 30,000 operators, and `rgb` nested 3,000 times
+/// without brackets, overflowed the stack.
+#[test]
+fn long_operator_chains_and_deep_rgb() {
+    for op in ["*", "+", "-", "/"] {
+        let chain = format!("100000{}", format!(" {op} 1").repeat(29_999));
+        let text = format!(
+            "{CAMERA}background rgb 1\nsphere {{ center <0, 0, 0> radius 2 + ({chain}) }}\n"
+        );
+        let case = generated(&format!("chain {op}"), "// exit: 0");
+        run_generated(&case, "chain.pts", text.as_bytes());
+    }
+    let text = format!(
+        "{CAMERA}background {}1\nsphere {{ center <0, 0, 0> radius 1 }}\n",
+        "rgb ".repeat(3_000)
+    );
+    let case = generated("rgb nesting", "// exit: 1\n// stderr: rgb");
+    run_generated(&case, "rgb.pts", text.as_bytes());
+    // The deepest brackets allowed, each level a chain, rendered on the
+    // render command's worker threads.
+    let mut e = "1".to_string();
+    for _ in 0..127 {
+        e = format!("({e} + {} - 1)", vec!["1"; 50].join(" * "));
+    }
+    let text = format!(
+        "{CAMERA}background rgb 1\nsphere {{ center <0, 0, 0> radius {e} }}\nrender {{ resolution <4, 4> samples 1 }}\n"
+    );
+    let case = generated(
+        "deep and long",
+        "// run: render {scene} -o {out}.exr\n// exit: 0\n// finite: {out}.exr",
+    );
+    run_generated(&case, "deep.pts", text.as_bytes());
+}
+
+/// Items 4 and 5: a chain of 32 includes, each nested as deeply as allowed.
+#[test]
+fn deepest_include_chain_with_deepest_expressions() {
+    let dir = tempfile::tempdir().unwrap();
+    let deep = format!("{}1{}", "(".repeat(127), ")".repeat(127));
+    for k in 0..40 {
+        let next = if k < 39 {
+            format!("include \"f{}.ptsi\"\n", k + 1)
+        } else {
+            String::new()
+        };
+        std::fs::write(
+            dir.path().join(format!("f{k}.ptsi")),
+            format!("let a{k} = {deep};\n{next}"),
+        )
+        .unwrap();
+    }
+    let scene = dir.path().join("scene.pts");
+    std::fs::write(
+        &scene,
+        format!("{CAMERA}background rgb 1\ninclude \"f0.ptsi\"\n"),
+    )
+    .unwrap();
+    let case = generated(
+        "include chain",
+        "// exit: 1\n// stderr: includes nested too deeply",
+    );
+    let failures = case.run(&scene, dir.path());
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+/// A tree of includes, each file including the next twice: 2^30 runs of
+/// the last without a single loop. Repeated includes count against the
+/// statements loops may run, so the tree stops.
+#[test]
+fn exponential_include_tree() {
+    let dir = tempfile::tempdir().unwrap();
+    for k in 0..30 {
+        let next = format!("include \"f{}.ptsi\"\n", k + 1);
+        std::fs::write(
+            dir.path().join(format!("f{k}.ptsi")),
+            format!("{next}{next}"),
+        )
+        .unwrap();
+    }
+    std::fs::write(dir.path().join("f30.ptsi"), "let _x = 1;\n").unwrap();
+    let scene = dir.path().join("scene.pts");
+    std::fs::write(
+        &scene,
+        format!("{CAMERA}background rgb 1\ninclude \"f0.ptsi\"\n"),
+    )
+    .unwrap();
+    let case = generated(
+        "include tree",
+        "// exit: 1\n// stderr: in all\n// timeout: 60",
+    );
+    let failures = case.run(&scene, dir.path());
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+/// Item 5: huge regular files are refused before they are read.
+#[test]
+fn files_over_the_size_limits() {
+    let dir = tempfile::tempdir().unwrap();
+    // Sparse: no disk space is used.
+    let big = std::fs::File::create(dir.path().join("big.ptsi")).unwrap();
+    big.set_len(300 << 20).unwrap();
+    let mesh = std::fs::File::create(dir.path().join("big.ply")).unwrap();
+    mesh.set_len(3 << 30).unwrap();
+    let scene = dir.path().join("scene.pts");
+    std::fs::write(&scene, format!("{CAMERA}include \"big.ptsi\"\n")).unwrap();
+    let case = generated("big include", "// exit: 1\n// stderr: larger than");
+    let failures = case.run(&scene, dir.path());
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+    std::fs::write(
+        &scene,
+        format!("{CAMERA}background rgb 1\nmesh {{ file \"big.ply\" }}\n"),
+    )
+    .unwrap();
+    let case = generated(
+        "big mesh",
+        "// run: render {scene} -o {out}.png\n// exit: 1\n// stderr: larger than",
+    );
+    let failures = case.run(&scene, dir.path());
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+    let case = generated(
+        "big scene",
+        "// run: check {dir}/big.ptsi\n// exit: 2\n// stderr: larger than",
+    );
+    let failures = case.run(&scene, dir.path());
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+/// Item 7: human diagnostics took quadratic time (20,000 took 25-55 s).
+#[test]
+fn fifty_thousand_diagnostics() {
+    let mut text = String::from(CAMERA);
+    text.push_str("background rgb 1\n");
+    for i in 0..50_000 {
+        text.push_str(&format!("let unused_{i} = {i};\n"));
+    }
+    let case = generated(
+        "many warnings",
+        "// exit: 0\n// stderr: 50000 warnings\n// stderr: more not shown\n// timeout: 60",
+    );
+    run_generated(&case, "many.pts", text.as_bytes());
+    let case = generated(
+        "many warnings, JSON",
+        "// run: check {scene} --format json\n// exit: 0\n// stdout: unused_49999\n// timeout: 60",
+    );
+    run_generated(&case, "many.pts", text.as_bytes());
+}
+
+/// A scene named like an image was overwritten by its own default output.
+#[test]
+fn a_scene_is_never_its_own_output() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = dir.path().join("scene.png");
+    let text = format!("{CAMERA}background rgb 1\nrender {{ resolution <4, 4> samples 1 }}\n");
+    std::fs::write(&scene, &text).unwrap();
+    let case = generated(
+        "scene.png",
+        "// run: render {scene}\n// exit: 2\n// stderr: scene",
+    );
+    let failures = case.run(&scene, dir.path());
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+    assert_eq!(std::fs::read_to_string(&scene).unwrap(), text);
+    // Nor is a file it includes.
+    std::fs::write(dir.path().join("part.pts"), "background rgb 1\n").unwrap();
+    let scene = dir.path().join("main.pts");
+    std::fs::write(&scene, format!("{CAMERA}include \"part.pts\"\n")).unwrap();
+    let case = generated(
+        "include as output",
+        "// run: render {scene} -o {dir}/part.pts\n// exit: 2",
+    );
+    let failures = case.run(&scene, dir.path());
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+    assert_eq!(
+        std::fs::read_to_string(dir.path().join("part.pts")).unwrap(),
+        "background rgb 1\n"
+    );
+}
+
+/// After invalid UTF-8, spans counted the bytes of the replacement text.
+#[test]
+fn spans_after_invalid_utf8_are_file_offsets() {
+    let mut text = b"// caf\xe9 \xff\xfe\n".to_vec();
+    text.extend_from_slice(CAMERA.as_bytes());
+    let at = text.len() + "sphere { center <0, 0, 0> ".len();
+    text.extend_from_slice(b"sphere { center <0, 0, 0> radus 1 }\n");
+    let case = generated(
+        "utf8 offsets",
+        &format!(
+            "// run: check {{scene}} --format json\n// exit: 1\n// stdout: \"end\": {},\n// stdout: \"start\": {at}",
+            at + "radus".len()
+        ),
+    );
+    run_generated(&case, "utf8.pts", &text);
+}
+
+/// Files of the hostile suite a case names by a relative path must exist
+/// (a typo would make a case pass for the wrong reason).
+#[test]
+fn hostile_cases_name_existing_files() {
+    for entry in std::fs::read_dir(hostile_dir()).unwrap() {
+        let path = entry.unwrap().path();
+        if path.extension().is_none_or(|e| e != "pts") {
+            continue;
+        }
+        let text = std::fs::read_to_string(&path).unwrap();
+        for line in text.lines().filter(|l| !l.starts_with("//")) {
+            if let Some(rest) = line.split("file \"").nth(1) {
+                let name = rest.split('"').next().unwrap();
+                assert!(
+                    hostile_dir().join(name).symlink_metadata().is_ok(),
+                    "{}: `{name}` does not exist",
+                    path.display()
+                );
+            }
+        }
+    }
+    let _ = std::io::stdout().flush();
+}

@@ -12,6 +12,7 @@
 pub mod check;
 pub mod cli;
 pub mod diag;
+pub mod fuzz;
 pub mod geometry;
 pub mod integrator;
 pub mod ir;

@@ -76,7 +76,13 @@ pub fn check_file(path: &Path) -> std::io::Result<Checked> {
 /// Checks a scene given as bytes, as if read from `path` (includes are
 /// resolved relative to it).
 pub fn check_bytes(path: &Path, bytes: Vec<u8>) -> Checked {
-    let mut c = Checker::new();
+    check_bytes_within(path, bytes, MAX_LOOP_STATEMENTS)
+}
+
+/// [`check_bytes`] with another budget of loop statements (a fuzzer keeps
+/// its inputs fast with a small one; the rules are the same).
+pub fn check_bytes_within(path: &Path, bytes: Vec<u8>, loop_statements: u64) -> Checked {
+    let mut c = Checker::new(loop_statements);
     let (text, bad_utf8) = decode(bytes);
     let id = c.sources.add(path, text);
     if let Some(at) = bad_utf8 {
@@ -139,8 +145,10 @@ struct Checker {
     diags: Diagnostics,
     env: Env,
     include_stack: Vec<(PathBuf, Span)>,
-    /// Statements loops may still run ([`MAX_LOOP_STATEMENTS`]).
+    /// Statements loops may still run (of `loop_statements`).
     loop_budget: u64,
+    /// Statements loops may run in all ([`MAX_LOOP_STATEMENTS`] but for fuzzers).
+    loop_statements: u64,
     /// The loops and repeated includes running now, outermost first (a
     /// loop's range, an include's path): their statements are charged.
     loops: Vec<Span>,
@@ -168,13 +176,14 @@ struct Checker {
 }
 
 impl Checker {
-    fn new() -> Self {
+    fn new(loop_statements: u64) -> Self {
         Checker {
             sources: SourceMap::new(),
             diags: Diagnostics::new(),
             env: Env::new(),
             include_stack: Vec::new(),
-            loop_budget: MAX_LOOP_STATEMENTS,
+            loop_budget: loop_statements,
+            loop_statements,
             loops: Vec::new(),
             loops_exhausted: false,
             render: None,
@@ -236,7 +245,7 @@ impl Checker {
                     codes::LOOP_TOO_LONG,
                     format!(
                         "the loops (and repeated includes) of this scene run more than {} statements in all",
-                        group_digits(MAX_LOOP_STATEMENTS)
+                        group_digits(self.loop_statements)
                     ),
                     outermost,
                 )
@@ -328,27 +337,34 @@ impl Checker {
                 let range = start.span.join(end.span);
                 // Every iteration runs at least one statement (or counts one).
                 if n > self.loop_budget {
-                    let before = MAX_LOOP_STATEMENTS - self.loop_budget;
-                    let help = if before == 0 {
-                        "shrink the range; large generated scenes belong in a mesh file".to_string()
-                    } else {
-                        format!(
-                            "the loops before it ran {} statements already; shrink the ranges, or put generated geometry in a mesh file",
-                            group_digits(before)
-                        )
-                    };
-                    self.diags.push(
-                        Diagnostic::error(
-                            codes::LOOP_TOO_LONG,
+                    let before = self.loop_statements - self.loop_budget;
+                    let (message, help) = if before == 0 {
+                        (
                             format!(
                                 "this loop runs {} times, more than the {} statements loops may run in all",
                                 group_digits(n),
-                                group_digits(MAX_LOOP_STATEMENTS)
+                                group_digits(self.loop_statements)
                             ),
-                            range,
+                            "shrink the range; large generated scenes belong in a mesh file".to_string(),
                         )
-                        .with_label(format!("{} iterations", group_digits(n)))
-                        .with_help(help),
+                    } else {
+                        (
+                            format!(
+                                "this loop runs {} times, more than the {} statements loops may still run ({} in all)",
+                                group_digits(n),
+                                group_digits(self.loop_budget),
+                                group_digits(self.loop_statements)
+                            ),
+                            format!(
+                                "the loops before it (and around it) ran {} statements already; nested loops multiply; shrink the ranges, or put generated geometry in a mesh file",
+                                group_digits(before)
+                            ),
+                        )
+                    };
+                    self.diags.push(
+                        Diagnostic::error(codes::LOOP_TOO_LONG, message, range)
+                            .with_label(format!("{} iterations", group_digits(n)))
+                            .with_help(help),
                     );
                     self.loops_exhausted = true;
                     return;

@@ -237,7 +237,10 @@ impl Bvh4 {
         mut t_max: f32,
         mut hit: F,
     ) -> Option<TreeHit> {
-        if self.nodes.is_empty() {
+        // A ray with a NaN or infinite coordinate hits nothing: its slab
+        // tests would pass empty lanes (f32::min and max drop NaN) and send
+        // the walk to a child that does not exist.
+        if self.nodes.is_empty() || !ray.is_finite() {
             return None;
         }
         let r = RayLanes::new(ray);
@@ -332,7 +335,8 @@ impl Bvh4 {
         t_max: f32,
         mut hit: F,
     ) -> bool {
-        if self.nodes.is_empty() {
+        // As in `closest`: a ray that is not finite hits nothing.
+        if self.nodes.is_empty() || !ray.is_finite() {
             return false;
         }
         let r = RayLanes::new(ray);
@@ -551,6 +555,37 @@ mod tests {
             _ => None,
         });
         w
+    }
+
+    #[test]
+    fn rays_that_are_not_finite_hit_nothing() {
+        // Before the guard, a NaN ray passed the slab test of empty lanes
+        // and indexed a child that does not exist (a panic).
+        for n in [2, 3, 5, 50] {
+            let mut shapes: Vec<Shape> = (0..n)
+                .map(|i| Shape::Sphere {
+                    center: Vec3::new(i as f32 * 3.0, 0.0, 0.0),
+                    radius: 0.4,
+                })
+                .collect();
+            let w = wide(&mut shapes);
+            nothing_is_hit(&w, &shapes);
+        }
+    }
+
+    fn nothing_is_hit(w: &Bvh4, shapes: &[Shape]) {
+        for (o, d) in [
+            (Vec3::new(f32::NAN, 0.0, -5.0), Vec3::Z),
+            (Vec3::new(0.0, 0.0, -5.0), Vec3::new(0.0, f32::NAN, 1.0)),
+            (Vec3::new(f32::INFINITY, 0.0, -5.0), Vec3::Z),
+            (Vec3::new(0.0, 0.0, -5.0), Vec3::splat(f32::NAN)),
+            (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NAN)),
+        ] {
+            let ray = Ray::new(o, d, 0.0);
+            let hit = |i: u32, t| shapes[i as usize].intersect(&ray, 1e-4, t);
+            assert!(w.closest(&ray, 1e-4, f32::INFINITY, hit).is_none());
+            assert!(!w.any(&ray, 1e-4, f32::INFINITY, |i, t| hit(i, t).is_some()));
+        }
     }
 
     proptest! {

@@ -51,6 +51,15 @@ pub fn parse(path: &Path, bytes: &[u8]) -> Result<MeshData, String> {
     if mesh.positions.iter().any(|p| !p.is_finite()) {
         return Err("a vertex position is not a finite number".into());
     }
+    // Normals go with positions one to one (the renderer indexes both by
+    // vertex), or there are none.
+    if !mesh.normals.is_empty() && mesh.normals.len() != mesh.positions.len() {
+        return Err(format!(
+            "the file has {} vertex normals for {} vertices",
+            mesh.normals.len(),
+            mesh.positions.len()
+        ));
+    }
     Ok(mesh)
 }
 
@@ -232,6 +241,9 @@ pub fn parse_ply(bytes: &[u8]) -> Result<MeshData, String> {
                     "binary_big_endian" => Format::Be,
                     other => return Err(format!("unknown PLY format `{other}`")),
                 })
+            }
+            ["element", "vertex", _] if elements.iter().any(|e| e.name == "vertex") => {
+                return Err("the PLY header declares `element vertex` twice".into());
             }
             ["element", name, count] => elements.push(Element {
                 name: name.to_string(),
@@ -416,6 +428,20 @@ mod tests {
             .contains("more than the file holds"));
         let empty_elements = "ply\nformat ascii 1.0\nelement nothing 4000000000\nend_header\n";
         assert!(parse_ply(empty_elements.as_bytes()).is_ok());
+    }
+
+    #[test]
+    fn one_vertex_element_and_normals_for_every_vertex() {
+        // Found by the ply fuzz target: normals for some vertices only.
+        let twice = "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nproperty float z\nproperty float nx\nproperty float ny\nproperty float nz\nelement vertex 2\nproperty float x\nproperty float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0 0 0 1\n1 0 0\n0 1 0\n3 0 1 2\n";
+        let e = parse_ply(twice.as_bytes()).unwrap_err();
+        assert!(e.contains("twice"), "{e}");
+        // An OBJ's normals are per vertex after tobj's single indexing.
+        let e = parse(
+            Path::new("m.obj"),
+            b"v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1//1 2//1 3//1\n",
+        );
+        assert!(e.is_ok_and(|m| m.normals.len() == 3));
     }
 
     #[test]

@@ -146,7 +146,9 @@ fn render_view(
                     for x in x0..x1 {
                         let mut sum = Vec3::ZERO;
                         for s in start..end {
-                            if (s - start).is_multiple_of(CANCEL_POLL) && cancel.load(Ordering::Relaxed) {
+                            if (s - start).is_multiple_of(CANCEL_POLL)
+                                && cancel.load(Ordering::Relaxed)
+                            {
                                 return None;
                             }
                             sum += sample(scene, integrator, x, y, s, scale);

@@ -11,7 +11,8 @@
 //! SIGINT is sent and `within:` the seconds the process then has to exit,
 //! `timeout:` the seconds the whole run may take (default 60).
 //! Inputs too large to keep in the repository are generated below and run
-//! through the same checks.
+//! through the same checks. `PTSC_HOSTILE_BIN=path/to/old/ptsc` runs the
+//! cases against another build (each case must fail before its fix).
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -81,7 +82,7 @@ impl Case {
         let mut child = Command::new("bash")
             .arg("-c")
             .arg(format!("ulimit -v {MEMORY_LIMIT_KIB}; exec \"$0\" \"$@\""))
-            .arg(env!("CARGO_BIN_EXE_ptsc"))
+            .arg(binary())
             .args(&args)
             .current_dir(scene.parent().unwrap_or(Path::new(".")))
             .env("RAYON_NUM_THREADS", "2")
@@ -199,6 +200,14 @@ impl Case {
         }
         failures
     }
+}
+
+/// The binary under test: this build's, or `PTSC_HOSTILE_BIN` (to show
+/// that a case fails on an older build).
+fn binary() -> PathBuf {
+    std::env::var_os("PTSC_HOSTILE_BIN")
+        .map(PathBuf::from)
+        .unwrap_or_else(|| PathBuf::from(env!("CARGO_BIN_EXE_ptsc")))
 }
 
 fn hostile_dir() -> PathBuf {

@@ -235,3 +235,140 @@ fn ctrl_c_stops_cleanly() {
     };
     assert_eq!(code, Some(0));
 }
+
+/// The kinds of save the soak test mixes: valid, broken, huge and hostile.
+fn soak_save(k: usize) -> Vec<u8> {
+    let valid = || scene(20 + (k % 40) as u32, "");
+    match k % 12 {
+        0 => valid().into_bytes(),
+        1 => scene(30, "sphere { radius -1 ").into_bytes(),
+        // A megabyte of constants: parsed and checked, then rendered.
+        2 => {
+            let mut s = valid();
+            for i in 0..60_000 {
+                s.push_str(&format!("let _a{i} = {i};\n"));
+            }
+            s.into_bytes()
+        }
+        3 => format!(
+            "{}{}let x = 1;",
+            valid().replace('\n', " "),
+            " ".repeat(70_000)
+        )
+        .into_bytes(),
+        4 => scene(30, &format!("let _c = {};", vec!["1"; 30_000].join(" * "))).into_bytes(),
+        5 => scene(30, &format!("background {}1", "rgb ".repeat(3_000))).into_bytes(),
+        6 => scene(30, "include \"/dev/zero\"").into_bytes(),
+        7 => valid().replace("fov", "shutter <0, 1e39> fov").into_bytes(),
+        8 => scene(30, "for i in 0..100000000 { }").into_bytes(),
+        9 => {
+            let mut b = valid().into_bytes();
+            b.extend_from_slice(b"\xff\xfe sphere {");
+            b
+        }
+        10 => Vec::new(),
+        _ => scene(30, "point_light { position <0, 5, 0> intensity rgb 1e38 }").into_bytes(),
+    }
+}
+
+#[test]
+fn watch_survives_hundreds_of_hostile_saves() {
+    let (_dir, pts, png) = setup();
+    let mut w = watching_first_scene(&pts);
+    let outcomes = |w: &Watch| w.count("keeping the last image") + w.count("compiled in");
+    for k in 0..240 {
+        // A third of the saves wait for their compile (each kind in turn);
+        // the rest arrive in bursts, batched.
+        let alone = (k + k / 12) % 3 == 0;
+        let before = outcomes(&w);
+        std::fs::write(&pts, soak_save(k)).unwrap();
+        if alone {
+            let t0 = Instant::now();
+            while outcomes(&w) <= before {
+                assert!(
+                    t0.elapsed() < TIMEOUT,
+                    "no compile after save {k}:\n{}",
+                    w.output()
+                );
+                std::thread::sleep(Duration::from_millis(10));
+            }
+        } else {
+            std::thread::sleep(Duration::from_millis(3 * (k % 7) as u64));
+        }
+        if k % 40 == 39 {
+            assert!(
+                w.child.try_wait().unwrap().is_none(),
+                "watch died after save {k}:\n{}",
+                w.output()
+            );
+        }
+    }
+    // The last save is a good scene: its image is the render of it.
+    std::fs::write(&pts, scene(33, "")).unwrap();
+    let expected = reference_render(&pts);
+    let t0 = Instant::now();
+    loop {
+        std::thread::sleep(Duration::from_millis(100));
+        let quiet = w
+            .lines
+            .lock()
+            .unwrap()
+            .last()
+            .is_some_and(|l| l.contains("done:"));
+        if quiet && std::fs::read(&png).unwrap() == expected {
+            break;
+        }
+        assert!(t0.elapsed() < TIMEOUT * 3, "{}", w.output());
+    }
+    assert!(w.child.try_wait().unwrap().is_none(), "watch ended");
+    let out = w.output();
+    for bad in ["panicked", "overflowed", "memory allocation"] {
+        assert!(!out.contains(bad), "`{bad}` in:\n{out}");
+    }
+    // Each hostile kind was answered with its diagnostic at least once.
+    for said in [
+        "never closed",
+        "`rgb` of `rgb`",
+        "not a regular file",
+        "shutter",
+        "UTF-8",
+    ] {
+        assert!(out.contains(said), "no `{said}` in:\n{out}");
+    }
+}
+
+#[test]
+fn an_output_folder_that_disappears_is_reported_not_claimed() {
+    let (dir, pts, _png) = setup();
+    let out_dir = dir.path().join("out");
+    std::fs::create_dir(&out_dir).unwrap();
+    let img = out_dir.join("img.png");
+    std::fs::write(&pts, scene(40, "")).unwrap();
+    let mut child = Command::new(env!("CARGO_BIN_EXE_ptsc"))
+        .args(["watch", pts.to_str().unwrap(), "-o", img.to_str().unwrap()])
+        .stderr(Stdio::piped())
+        .stdout(Stdio::null())
+        .spawn()
+        .unwrap();
+    let lines = Arc::new(Mutex::new(Vec::new()));
+    let sink = lines.clone();
+    let stderr = child.stderr.take().unwrap();
+    std::thread::spawn(move || {
+        for line in BufReader::new(stderr).lines().map_while(Result::ok) {
+            sink.lock().unwrap().push(line);
+        }
+    });
+    let w = Watch { child, lines };
+    w.wait_for("done:", 0);
+    std::fs::remove_dir_all(&out_dir).unwrap();
+    let before = w.count("keeping the last image");
+    std::fs::write(&pts, scene(30, "")).unwrap();
+    w.wait_for("keeping the last image", before);
+    assert!(w.output().contains("does not exist"), "{}", w.output());
+    std::thread::sleep(Duration::from_millis(300));
+    assert_eq!(w.count("done:"), 1, "{}", w.output());
+    // The folder back: the next save renders.
+    std::fs::create_dir(&out_dir).unwrap();
+    w.save_and_wait(&pts, &scene(35, ""));
+    assert!(img.is_file());
+}

@@ -1,0 +1,106 @@
+//! Fuzz targets: what a fuzzer feeds arbitrary bytes, and the invariants it
+//! checks. A target returns normally for every input; it panics only when
+//! ptsc broke a promise (a non-finite pixel, a diagnostic outside its file).
+//! Used by the coverage-guided targets in `fuzz/` (cargo-fuzz, libFuzzer)
+//! and by the in-process fuzzer `fuzz/inprocess.rs` that CI runs for a
+//! bounded time.
+
+use crate::check::check_bytes_within;
+use crate::ir::mesh;
+use std::path::Path;
+use std::sync::atomic::AtomicBool;
+
+/// The largest image a fuzzed scene renders: its resolution and samples are
+/// cut to this (the pipeline is the same; the fuzzer stays fast).
+const MAX_SIDE: u32 = 4;
+/// The most samples per pixel a fuzzed scene renders.
+const MAX_SAMPLES: u32 = 2;
+/// The longest paths a fuzzed scene traces, and its most shadow rays per
+/// Whitted hit: a scene may ask for slow renders; a fuzzer asks for many.
+const MAX_DEPTH: u32 = 16;
+/// See [`MAX_DEPTH`].
+const MAX_LIGHT_SAMPLES: u32 = 4;
+/// The statements a fuzzed scene's loops may run (the rule is the checker's;
+/// only the budget is smaller, so that a mutated `0..4` into `0..1000000`
+/// stays fast).
+const LOOP_STATEMENTS: u64 = 20_000;
+
+/// The whole pipeline on a scene given as bytes: parse, check, both
+/// diagnostic formats, lowering and a tiny render, whose every pixel must be
+/// finite. Relative paths (includes, meshes) start from the working folder.
+/// Returns whether the input got past the parser (a fuzzer's hint that it
+/// is worth mutating further).
+pub fn scene(bytes: &[u8]) -> bool {
+    let checked = check_bytes_within(Path::new("fuzz.pts"), bytes.to_vec(), LOOP_STATEMENTS);
+    diagnostics_stay_in_their_files(&checked.diagnostics, &checked.sources);
+    let _ = checked.diagnostics.render_human(&checked.sources, false);
+    let _ = checked.diagnostics.render_json(&checked.sources);
+    let parsed = !checked
+        .diagnostics
+        .items
+        .iter()
+        .any(|d| d.code.starts_with("pts::syntax"));
+    let Some(mut scene) = checked.scene else {
+        return parsed;
+    };
+    let r = &mut scene.render;
+    r.width = r.width.min(MAX_SIDE);
+    r.height = r.height.min(MAX_SIDE);
+    r.samples = r.samples.min(MAX_SAMPLES);
+    r.max_depth = r.max_depth.min(MAX_DEPTH);
+    r.light_samples = r.light_samples.min(MAX_LIGHT_SAMPLES);
+    let ir = match crate::ir::lower::lower(&scene) {
+        Ok(ir) => ir,
+        Err(d) => {
+            diagnostics_stay_in_their_files(&d, &checked.sources);
+            let _ = d.render_human(&checked.sources, false);
+            return true;
+        }
+    };
+    let integrator = crate::integrator::make(ir.settings.integrator);
+    let cancel = AtomicBool::new(false);
+    let film =
+        crate::render::render(&ir, integrator.as_ref(), &cancel, &|_| {}, &mut |_, _| {}).film;
+    if let Some(p) = film.pixels().iter().find(|p| !p.is_finite()) {
+        panic!("a pixel is not finite: {p}");
+    }
+    true
+}
+
+/// A PLY file given as bytes: parsed, and when it parses, a mesh whose
+/// every index names a vertex and every position is finite. Returns
+/// whether it parsed.
+pub fn ply(bytes: &[u8]) -> bool {
+    mesh_invariants(mesh::parse(Path::new("fuzz.ply"), bytes))
+}
+
+/// An OBJ file given as bytes, as [`ply`].
+pub fn obj(bytes: &[u8]) -> bool {
+    mesh_invariants(mesh::parse(Path::new("fuzz.obj"), bytes))
+}
+
+fn mesh_invariants(parsed: Result<mesh::MeshData, String>) -> bool {
+    let Ok(m) = parsed else { return false };
+    let n = m.positions.len();
+    assert!(!m.triangles.is_empty(), "a mesh without triangles parsed");
+    assert!(m.triangles.iter().flatten().all(|&i| (i as usize) < n));
+    assert!(m.positions.iter().all(|p| p.is_finite()));
+    assert!(m.normals.is_empty() || m.normals.len() == n);
+    true
+}
+
+fn diagnostics_stay_in_their_files(
+    diags: &crate::diag::Diagnostics,
+    sources: &crate::source::SourceMap,
+) {
+    for d in &diags.items {
+        for span in d.span.iter().chain(d.secondary.iter().map(|(s, _)| s)) {
+            let len = sources.get(span.file).text.len() as u32;
+            assert!(
+                span.start <= span.end && span.end <= len,
+                "{}: span {span:?} outside its file of {len} bytes",
+                d.code
+            );
+        }
+    }
+}

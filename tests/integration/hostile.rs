@@ -214,13 +214,33 @@ fn hostile_dir() -> PathBuf {
     crate::root().join("tests/hostile")
 }
 
+/// Runs a case on `scene` with outputs in `dir`; fails on any failure.
+fn check_case(case: &Case, scene: &Path, dir: &Path) {
+    let failures = case.run(scene, dir);
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
 /// Runs a case on a scene file it writes into a fresh temporary folder.
 fn run_generated(case: &Case, file_name: &str, text: &[u8]) {
     let dir = tempfile::tempdir().unwrap();
     let scene = dir.path().join(file_name);
     std::fs::write(&scene, text).unwrap();
-    let failures = case.run(&scene, dir.path());
-    assert!(failures.is_empty(), "{}", failures.join("\n"));
+    check_case(case, &scene, dir.path());
+}
+
+/// Writes the include files `f0.ptsi` … given by `file(k)` for `k` in
+/// `0..n` and a scene that includes `f0.ptsi`; returns the scene.
+fn include_files(dir: &Path, n: usize, file: impl Fn(usize) -> String) -> PathBuf {
+    for k in 0..n {
+        std::fs::write(dir.join(format!("f{k}.ptsi")), file(k)).unwrap();
+    }
+    let scene = dir.join("scene.pts");
+    std::fs::write(
+        &scene,
+        format!("{CAMERA}background rgb 1\ninclude \"f0.ptsi\"\n"),
+    )
+    .unwrap();
+    scene
 }
 
 /// A case with directives written as in a file.
@@ -262,37 +282,32 @@ const CAMERA: &str = "camera { position <0, 0, 5> look_at <0, 0, 0> }\n";
 /// Item 1: a diagnostic past column 65,535 of a line panicked in miette.
 #[test]
 fn diagnostics_far_along_one_line() {
-    let line = format!(
-        "{} point_light {{ position <0, 5, 0> intensity rgb 10 }} {}let x = 1; sphere {{ center <0, 0, 0> radius 1 }}",
-        CAMERA.trim(),
-        " ".repeat(70_000)
-    );
-    let case = generated(
-        "long_line_warning",
-        "// exit: 0\n// stderr: constant `x` is never used\n// stderr: 1:70",
-    );
-    run_generated(&case, "long_line.pts", line.as_bytes());
-    // An error, a secondary label far from its primary one, and a render.
-    let line = format!(
-        "{} let r = 1; {}sphere {{ center <0, 0, 0> radius r radius 2 }}",
-        CAMERA.trim(),
-        "/* */ ".repeat(20_000)
-    );
-    let case = generated(
-        "long_line_error",
-        "// exit: 1\n// stderr: given twice\n// stderr: first given here",
-    );
-    run_generated(&case, "long_line.pts", line.as_bytes());
-    let line = format!(
-        "{} background rgb 1 {}let x = 1; sphere {{ center <0, 0, 0> radius 1 }}",
-        CAMERA.trim(),
-        " ".repeat(70_000)
-    );
-    let case = generated(
-        "long_line_render",
-        "// run: render {scene} -o {out}.exr --resolution 8x8 --spp 1\n// exit: 0\n// finite: {out}.exr",
-    );
-    run_generated(&case, "long_line.pts", line.as_bytes());
+    let far = " ".repeat(70_000);
+    let cases = [
+        (
+            "long_line_warning",
+            format!("{} point_light {{ position <0, 5, 0> intensity rgb 10 }} {far}let x = 1; sphere {{ center <0, 0, 0> radius 1 }}", CAMERA.trim()),
+            "// exit: 0\n// stderr: constant `x` is never used\n// stderr: 1:70",
+        ),
+        // An error whose secondary label is far from its primary one.
+        (
+            "long_line_error",
+            format!("{} let r = 1; {}sphere {{ center <0, 0, 0> radius r radius 2 }}", CAMERA.trim(), "/* */ ".repeat(20_000)),
+            "// exit: 1\n// stderr: given twice\n// stderr: first given here",
+        ),
+        (
+            "long_line_render",
+            format!("{} background rgb 1 {far}let x = 1; sphere {{ center <0, 0, 0> radius 1 }}", CAMERA.trim()),
+            "// run: render {scene} -o {out}.exr --resolution 8x8 --spp 1\n// exit: 0\n// finite: {out}.exr",
+        ),
+    ];
+    for (name, line, directives) in cases {
+        run_generated(
+            &generated(name, directives),
+            "long_line.pts",
+            line.as_bytes(),
+        );
+    }
 }
 
 /// Item 4: a flat chain of 30,000 operators, and `rgb` nested 3,000 times
@@ -334,30 +349,19 @@ fn long_operator_chains_and_deep_rgb() {
 fn deepest_include_chain_with_deepest_expressions() {
     let dir = tempfile::tempdir().unwrap();
     let deep = format!("{}1{}", "(".repeat(127), ")".repeat(127));
-    for k in 0..40 {
+    let scene = include_files(dir.path(), 40, |k| {
         let next = if k < 39 {
             format!("include \"f{}.ptsi\"\n", k + 1)
         } else {
             String::new()
         };
-        std::fs::write(
-            dir.path().join(format!("f{k}.ptsi")),
-            format!("let a{k} = {deep};\n{next}"),
-        )
-        .unwrap();
-    }
-    let scene = dir.path().join("scene.pts");
-    std::fs::write(
-        &scene,
-        format!("{CAMERA}background rgb 1\ninclude \"f0.ptsi\"\n"),
-    )
-    .unwrap();
+        format!("let a{k} = {deep};\n{next}")
+    });
     let case = generated(
         "include chain",
         "// exit: 1\n// stderr: includes nested too deeply",
     );
-    let failures = case.run(&scene, dir.path());
-    assert!(failures.is_empty(), "{}", failures.join("\n"));
+    check_case(&case, &scene, dir.path());
 }
 
 /// A tree of includes, each file including the next twice: 2^30 runs of
@@ -366,27 +370,15 @@ fn deepest_include_chain_with_deepest_expressions() {
 #[test]
 fn exponential_include_tree() {
     let dir = tempfile::tempdir().unwrap();
-    for k in 0..30 {
-        let next = format!("include \"f{}.ptsi\"\n", k + 1);
-        std::fs::write(
-            dir.path().join(format!("f{k}.ptsi")),
-            format!("{next}{next}"),
-        )
-        .unwrap();
-    }
-    std::fs::write(dir.path().join("f30.ptsi"), "let _x = 1;\n").unwrap();
-    let scene = dir.path().join("scene.pts");
-    std::fs::write(
-        &scene,
-        format!("{CAMERA}background rgb 1\ninclude \"f0.ptsi\"\n"),
-    )
-    .unwrap();
+    let scene = include_files(dir.path(), 31, |k| match k {
+        30 => "let _x = 1;\n".to_string(),
+        _ => format!("include \"f{}.ptsi\"\n", k + 1).repeat(2),
+    });
     let case = generated(
         "include tree",
         "// exit: 1\n// stderr: in all\n// timeout: 60",
     );
-    let failures = case.run(&scene, dir.path());
-    assert!(failures.is_empty(), "{}", failures.join("\n"));
+    check_case(&case, &scene, dir.path());
 }
 
 /// Item 5: huge regular files are refused before they are read.
@@ -401,8 +393,7 @@ fn files_over_the_size_limits() {
     let scene = dir.path().join("scene.pts");
     std::fs::write(&scene, format!("{CAMERA}include \"big.ptsi\"\n")).unwrap();
     let case = generated("big include", "// exit: 1\n// stderr: larger than");
-    let failures = case.run(&scene, dir.path());
-    assert!(failures.is_empty(), "{}", failures.join("\n"));
+    check_case(&case, &scene, dir.path());
     std::fs::write(
         &scene,
         format!("{CAMERA}background rgb 1\nmesh {{ file \"big.ply\" }}\n"),
@@ -412,14 +403,12 @@ fn files_over_the_size_limits() {
         "big mesh",
         "// run: render {scene} -o {out}.png\n// exit: 1\n// stderr: larger than",
     );
-    let failures = case.run(&scene, dir.path());
-    assert!(failures.is_empty(), "{}", failures.join("\n"));
+    check_case(&case, &scene, dir.path());
     let case = generated(
         "big scene",
         "// run: check {dir}/big.ptsi\n// exit: 2\n// stderr: larger than",
     );
-    let failures = case.run(&scene, dir.path());
-    assert!(failures.is_empty(), "{}", failures.join("\n"));
+    check_case(&case, &scene, dir.path());
 }
 
 /// Item 7: human diagnostics took quadratic time (20,000 took 25-55 s).
@@ -453,8 +442,7 @@ fn a_scene_is_never_its_own_output() {
         "scene.png",
         "// run: render {scene}\n// exit: 2\n// stderr: scene",
     );
-    let failures = case.run(&scene, dir.path());
-    assert!(failures.is_empty(), "{}", failures.join("\n"));
+    check_case(&case, &scene, dir.path());
     assert_eq!(std::fs::read_to_string(&scene).unwrap(), text);
     // Nor is a file it includes.
     std::fs::write(dir.path().join("part.pts"), "background rgb 1\n").unwrap();
@@ -464,8 +452,7 @@ fn a_scene_is_never_its_own_output() {
         "include as output",
         "// run: render {scene} -o {dir}/part.pts\n// exit: 2",
     );
-    let failures = case.run(&scene, dir.path());
-    assert!(failures.is_empty(), "{}", failures.join("\n"));
+    check_case(&case, &scene, dir.path());
     assert_eq!(
         std::fs::read_to_string(dir.path().join("part.pts")).unwrap(),
         "background rgb 1\n"

@@ -16,8 +16,14 @@ struct Watch {
 
 impl Watch {
     fn start(scene: &Path) -> Watch {
+        Watch::start_with(scene, &["--threads", "2"])
+    }
+
+    /// `ptsc watch SCENE ARGS…`.
+    fn start_with(scene: &Path, args: &[&str]) -> Watch {
         let mut child = Command::new(env!("CARGO_BIN_EXE_ptsc"))
-            .args(["watch", scene.to_str().unwrap(), "--threads", "2"])
+            .args(["watch", scene.to_str().unwrap()])
+            .args(args)
             .stderr(Stdio::piped())
             .stdout(Stdio::null())
             .spawn()
@@ -64,6 +70,24 @@ impl Watch {
 
     fn output(&self) -> String {
         self.lines.lock().unwrap().join("\n")
+    }
+
+    /// Waits until the last line says `done:` and `image` holds `expected`.
+    fn wait_for_image(&self, image: &Path, expected: &[u8], timeout: Duration) {
+        let t0 = Instant::now();
+        loop {
+            std::thread::sleep(Duration::from_millis(100));
+            let quiet = self
+                .lines
+                .lock()
+                .unwrap()
+                .last()
+                .is_some_and(|l| l.contains("done:"));
+            if quiet && std::fs::read(image).unwrap() == expected {
+                return;
+            }
+            assert!(t0.elapsed() < timeout, "{}", self.output());
+        }
     }
 }
 
@@ -147,21 +171,7 @@ fn fifty_rapid_saves_end_with_the_last_scene() {
         std::thread::sleep(Duration::from_millis(7 * (i % 5) as u64));
     }
     // Let the last batch render to the end.
-    let t0 = Instant::now();
-    let expected = reference_render(&pts);
-    loop {
-        std::thread::sleep(Duration::from_millis(100));
-        let quiet = w
-            .lines
-            .lock()
-            .unwrap()
-            .last()
-            .is_some_and(|l| l.contains("done:"));
-        if quiet && std::fs::read(&png).unwrap() == expected {
-            break;
-        }
-        assert!(t0.elapsed() < TIMEOUT, "{}", w.output());
-    }
+    w.wait_for_image(&png, &reference_render(&pts), TIMEOUT);
     let names: Vec<String> = std::fs::read_dir(dir.path())
         .unwrap()
         .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
@@ -305,21 +315,7 @@ fn watch_survives_hundreds_of_hostile_saves() {
     }
     // The last save is a good scene: its image is the render of it.
     std::fs::write(&pts, scene(33, "")).unwrap();
-    let expected = reference_render(&pts);
-    let t0 = Instant::now();
-    loop {
-        std::thread::sleep(Duration::from_millis(100));
-        let quiet = w
-            .lines
-            .lock()
-            .unwrap()
-            .last()
-            .is_some_and(|l| l.contains("done:"));
-        if quiet && std::fs::read(&png).unwrap() == expected {
-            break;
-        }
-        assert!(t0.elapsed() < TIMEOUT * 3, "{}", w.output());
-    }
+    w.wait_for_image(&png, &reference_render(&pts), TIMEOUT * 3);
     assert!(w.child.try_wait().unwrap().is_none(), "watch ended");
     let out = w.output();
     for bad in ["panicked", "overflowed", "memory allocation"] {
@@ -344,21 +340,7 @@ fn an_output_folder_that_disappears_is_reported_not_claimed() {
     std::fs::create_dir(&out_dir).unwrap();
     let img = out_dir.join("img.png");
     std::fs::write(&pts, scene(40, "")).unwrap();
-    let mut child = Command::new(env!("CARGO_BIN_EXE_ptsc"))
-        .args(["watch", pts.to_str().unwrap(), "-o", img.to_str().unwrap()])
-        .stderr(Stdio::piped())
-        .stdout(Stdio::null())
-        .spawn()
-        .unwrap();
-    let lines = Arc::new(Mutex::new(Vec::new()));
-    let sink = lines.clone();
-    let stderr = child.stderr.take().unwrap();
-    std::thread::spawn(move || {
-        for line in BufReader::new(stderr).lines().map_while(Result::ok) {
-            sink.lock().unwrap().push(line);
-        }
-    });
-    let w = Watch { child, lines };
+    let w = Watch::start_with(&pts, &["-o", img.to_str().unwrap()]);
     w.wait_for("done:", 0);
     std::fs::remove_dir_all(&out_dir).unwrap();
     let before = w.count("keeping the last image");

@@ -24,12 +24,6 @@ pub struct Ray {
 }
 
 impl Ray {
-    /// Whether its origin, direction and time are all finite numbers.
-    #[inline]
-    pub fn is_finite(&self) -> bool {
-        self.o.is_finite() && self.d.is_finite() && self.time.is_finite()
-    }
-
     /// A ray from `o` along `d` at `time`.
     pub fn new(o: Vec3, d: Vec3, time: f32) -> Ray {
         Ray { o, d, time }

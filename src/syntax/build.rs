@@ -213,11 +213,17 @@ impl Builder {
                 // level is one `Chain` node, however long.
                 let mut inner = pair.into_inner();
                 let first = self.build_operand(&mut inner);
+                // Most expressions are one operand (a vector's components):
+                // no allocation for them.
+                let Some(op) = inner.next() else {
+                    return first;
+                };
                 // Each term: its first factor and the further ones; the
                 // operator before each term after the first.
                 let mut terms: Vec<(Expr, Vec<(BinOp, Expr)>)> = vec![(first, Vec::new())];
                 let mut sum_ops: Vec<BinOp> = Vec::new();
-                while let Some(op) = inner.next() {
+                let mut next_op = Some(op);
+                while let Some(op) = next_op.take().or_else(|| inner.next()) {
                     let op = match op.as_str() {
                         "+" => BinOp::Add,
                         "-" => BinOp::Sub,

@@ -23,21 +23,20 @@ use ptsc::ir::lower::lower;
 use ptsc::ir::Scene;
 use std::path::{Path, PathBuf};
 
-const RAYS: usize = 100_000;
-
-fn mesh_path() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/bench/data/mesh_blob.ply")
+fn mesh_path() -> Option<PathBuf> {
+    match ptsc::bench_data::ensure_mesh_blob(Path::new(env!("CARGO_MANIFEST_DIR"))) {
+        Ok(p) => Some(p),
+        Err(e) => {
+            eprintln!("bvh bench skipped: cannot write the mesh blob: {e}");
+            None
+        }
+    }
 }
 
+const RAYS: usize = 100_000;
+
 fn load_scene() -> Option<Scene> {
-    let path = mesh_path();
-    if !path.is_file() {
-        eprintln!(
-            "bvh bench skipped: {} not found (see ../shared/bench/README.md)",
-            path.display()
-        );
-        return None;
-    }
+    let path = mesh_path()?;
     let text = format!(
         "camera {{ position <0, 2, 5.5> look_at <0, 1, 0> fov 35 }}\n\
          mesh {{ file {:?} }}\n",
@@ -126,7 +125,7 @@ fn bench(c: &mut Criterion) {
     };
     // The triangles' boxes, as lowering computes them (the scene keeps no
     // per-triangle record of a flat mesh).
-    let mesh = ptsc::ir::mesh::load(&mesh_path()).expect("the mesh loads");
+    let mesh = ptsc::ir::mesh::load(&mesh_path().expect("made above")).expect("the mesh loads");
     let bounds: Vec<Aabb> = mesh
         .triangles
         .iter()

@@ -9,6 +9,7 @@
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
 
+pub mod bench_data;
 pub mod check;
 pub mod cli;
 pub mod diag;

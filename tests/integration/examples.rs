@@ -16,6 +16,8 @@ fn scenes(dir: &Path, out: &mut Vec<std::path::PathBuf>) {
 
 #[test]
 fn every_example_checks_clean() {
+    // The bench mesh is generated, not kept in the repository.
+    ptsc::bench_data::ensure_mesh_blob(&crate::root()).unwrap();
     let mut files = Vec::new();
     scenes(&crate::root().join("examples"), &mut files);
     assert!(files.len() >= 10, "found only {} examples", files.len());
@@ -29,4 +31,22 @@ fn every_example_checks_clean() {
         );
         assert!(c.scene.is_some());
     }
+}
+
+/// The generated bench mesh is the shared bench data byte for byte (the
+/// Mitsuba references were made from that file). Without `../shared` (a
+/// user's clone) there is nothing to compare with.
+#[test]
+fn the_generated_mesh_is_the_shared_one() {
+    let shared = crate::root().join("../shared/bench/data/mesh_blob.ply");
+    let Ok(expected) = std::fs::read(&shared) else {
+        eprintln!("{} not found: nothing to compare with", shared.display());
+        return;
+    };
+    let made = std::fs::read(ptsc::bench_data::ensure_mesh_blob(&crate::root()).unwrap()).unwrap();
+    assert!(
+        made == expected,
+        "the generated blob differs from {}",
+        shared.display()
+    );
 }

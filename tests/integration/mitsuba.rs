@@ -1,5 +1,6 @@
 //! Unbiasedness against an independent renderer: the three benchmark scenes of
-//! `../shared/bench` rendered by ptsc at 64×64 are compared with Mitsuba 3
+//! `../shared/bench` (their data made by `ptsc::bench_data`, so that no
+//! `../shared` is needed) rendered by ptsc at 64×64 are compared with Mitsuba 3
 //! references at 65,536 spp (`tests/mitsuba/*_ref_64_65536spp.exr`, made by
 //! `bash ../shared/bench/mitsuba.sh ref SCENE 64 65536`).
 //!
@@ -37,6 +38,7 @@ fn check_scene(name: &str) {
     let (w, h, reference) = read_exr(&dir.join(entry["reference"].as_str().unwrap())).unwrap();
     assert_eq!((w, h), (res, res));
 
+    ptsc::bench_data::ensure_mesh_blob(&crate::root()).unwrap();
     let path = crate::root().join(format!("examples/bench/{name}.pts"));
     let c = check_file(&path).unwrap();
     let mut scene = c

@@ -248,15 +248,25 @@ fn eval_inner(e: &Expr, env: &mut Env, diags: &mut Diagnostics) -> Option<Value>
             // first failure.
             let mut acc = eval(first, env, diags);
             let mut acc_span = first.span;
-            for (op, operand) in rest {
+            // `rgb 0.5 + 0.1` is `(rgb 0.5) + 0.1`: worth a hint when it fails.
+            let mut bare_rgb = matches!(first.kind, ExprKind::Color(_));
+            for (op, op_span, operand) in rest {
                 let b = eval(operand, env, diags);
                 let span = acc_span.join(operand.span);
+                let at = Operands {
+                    lhs: acc_span,
+                    op: *op_span,
+                    rhs: operand.span,
+                    bare_rgb,
+                };
                 acc = match (acc, b) {
-                    (Some(a), Some(b)) => binary(*op, a, b, acc_span, operand.span, span, diags)
-                        .and_then(|v| finite(v, span, false, diags)),
+                    (Some(a), Some(b)) => {
+                        binary(*op, a, b, at, diags).and_then(|v| finite(v, span, false, diags))
+                    }
                     _ => None,
                 };
                 acc_span = span;
+                bare_rgb = false;
             }
             acc
         }
@@ -315,29 +325,43 @@ fn eval_inner(e: &Expr, env: &mut Env, diags: &mut Diagnostics) -> Option<Value>
     }
 }
 
-fn mismatch(span: Span, msg: String, help: &str) -> Diagnostic {
-    Diagnostic::error(codes::TYPE_MISMATCH, msg, span)
+/// Where the parts of one operation are written.
+#[derive(Debug, Clone, Copy)]
+struct Operands {
+    /// The left operand (everything folded so far).
+    lhs: Span,
+    /// The operator.
+    op: Span,
+    /// The right operand.
+    rhs: Span,
+    /// Whether the left operand is a bare `rgb x`, which takes only `x`.
+    bare_rgb: bool,
+}
+
+/// A type mismatch labelled at the operator (so that the operands' labels
+/// fall under the operands, not all at the end of the expression).
+fn mismatch(at: Operands, msg: String, help: &str) -> Diagnostic {
+    let help = if at.bare_rgb {
+        "`rgb` takes only the value right after it (`rgb 0.5 + 0.1` is `(rgb 0.5) + 0.1`): to make a colour of the whole expression, put it in brackets, `rgb (0.5 + 0.1)`"
+    } else {
+        help
+    };
+    Diagnostic::error(codes::TYPE_MISMATCH, msg, at.op)
         .with_label("incompatible operands")
         .with_help(help.to_string())
 }
 
-fn binary(
-    op: BinOp,
-    a: Value,
-    b: Value,
-    a_span: Span,
-    b_span: Span,
-    span: Span,
-    diags: &mut Diagnostics,
-) -> Option<Value> {
+fn binary(op: BinOp, a: Value, b: Value, at: Operands, diags: &mut Diagnostics) -> Option<Value> {
+    let (a_span, b_span) = (at.lhs, at.rhs);
     use Value::*;
     let f = |x: f64, y: f64| match op {
         BinOp::Add => x + y,
         BinOp::Sub => x - y,
         BinOp::Mul => x * y,
         BinOp::Div => x / y,
+        BinOp::Rem => x % y,
     };
-    if op == BinOp::Div {
+    if matches!(op, BinOp::Div | BinOp::Rem) {
         let zero = match &b {
             Num(y) => *y == 0.0,
             Vector(v) => v.contains(&0.0),
@@ -367,7 +391,7 @@ fn binary(
         (Vector(u), Vector(v)) => {
             diags.push(
                 mismatch(
-                    span,
+                    at,
                     format!(
                         "cannot apply `{}` to vectors of {} and {} components",
                         op.symbol(),
@@ -384,7 +408,7 @@ fn binary(
         (x, y) => {
             diags.push(
                 mismatch(
-                    span,
+                    at,
                     format!(
                         "cannot apply `{}` to {} and {}",
                         op.symbol(),
@@ -540,6 +564,11 @@ mod tests {
             ("-(1 - 3) * 2", 4.0),
             ("2 * (1 + 2) - 1", 5.0),
             ("1 + 2 * 3 * 2 - 4 / 2", 11.0),
+            // `%` binds as `*` and `/`, with the sign of the dividend.
+            ("7 % 4", 3.0),
+            ("1 + 7 % 4 * 2", 7.0),
+            ("7.5 % 2", 1.5),
+            ("10 - -7 % 4", 13.0),
         ] {
             assert_eq!(radius(expr), want, "{expr}");
         }

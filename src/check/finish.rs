@@ -11,7 +11,8 @@ impl Checker {
         let render = self.render.take().map(|r| r.0).unwrap_or_default();
         // Warnings about the whole scene; a file that did not parse makes them noise.
         if self.syntax_failed {
-            dedup(&mut self.diags);
+            self.show_include_chains();
+            collapse_repeats(&mut self.diags);
             self.diags.sort();
             return Checked {
                 sources: self.sources,
@@ -19,6 +20,7 @@ impl Checker {
                 diagnostics: self.diags,
             };
         }
+        self.resolve_pending_materials();
         for (name, span) in &self.lets {
             // A leading `_` says "unused on purpose".
             if !self.env.used.contains(span) && !name.starts_with('_') {
@@ -127,7 +129,8 @@ impl Checker {
                 .with_help("add `camera { position <0, 1, 5> look_at <0, 0, 0> }`"),
             );
         }
-        dedup(&mut self.diags);
+        self.show_include_chains();
+        collapse_repeats(&mut self.diags);
         self.diags.sort();
         let scene = if self.diags.has_errors() {
             None
@@ -149,10 +152,111 @@ impl Checker {
     }
 }
 
-/// Removes repeated diagnostics (loops and includes can produce the same one many times).
-pub(super) fn dedup(diags: &mut Diagnostics) {
-    let mut seen = HashSet::new();
-    diags
-        .items
-        .retain(|d| seen.insert((d.code, d.span, d.message.clone())));
+impl Checker {
+    /// Gives the objects that named a material before its declaration
+    /// their material, and reports the names never declared (with a
+    /// did-you-mean, whose material then does not count as unused: the
+    /// typo already explains it).
+    fn resolve_pending_materials(&mut self) {
+        for (object, name) in std::mem::take(&mut self.pending_materials) {
+            if let Some(m) = self.material_names.get(&name.name) {
+                let index = m.index;
+                self.used_materials.insert(index);
+                self.objects[object].material = index;
+                if matches!(self.objects[object].shape, Shape::Plane { .. })
+                    && self.materials[index].is_emissive()
+                {
+                    self.diags.push(emissive_plane(self.objects[object].span));
+                }
+                continue;
+            }
+            // The scene has an error now; the object still needs a valid index.
+            let span = self.objects[object].span;
+            self.objects[object].material = *self.default_material.get_or_insert_with(|| {
+                self.materials.push(Material::default_at(span));
+                self.materials.len() - 1
+            });
+            let suggestion =
+                did_you_mean(&name.name, self.material_names.keys().map(String::as_str))
+                    .map(str::to_string);
+            let help = match &suggestion {
+                Some(s) => {
+                    let index = self.material_names[s].index;
+                    self.used_materials.insert(index);
+                    format!("did you mean `{s}`?")
+                }
+                None => format!(
+                    "declare it (anywhere in the scene): `material {} {{ diffuse rgb 0.8 }}`",
+                    name.name
+                ),
+            };
+            let mut d = Diagnostic::error(
+                codes::UNKNOWN_MATERIAL,
+                format!("unknown material `{}`", name.name),
+                name.span,
+            )
+            .with_label("no material with this name")
+            .with_help(help);
+            if let Some(s) = &suggestion {
+                d = d.with_secondary(
+                    self.material_names[s].span,
+                    format!("`{s}` is declared here"),
+                );
+            }
+            self.diags.push(d);
+        }
+    }
+}
+
+/// Keeps one of the diagnostics a loop or a repeated include produced at
+/// the same place (the same code and span; their messages may differ by
+/// the loop variable), with the count in its message.
+pub(super) fn collapse_repeats(diags: &mut Diagnostics) {
+    let mut first: HashMap<(&'static str, Option<Span>), usize> = HashMap::new();
+    let mut counts: Vec<usize> = Vec::with_capacity(diags.items.len());
+    let mut keep = Vec::with_capacity(diags.items.len());
+    for (i, d) in diags.items.iter().enumerate() {
+        match first.entry((d.code, d.span)) {
+            std::collections::hash_map::Entry::Occupied(e) => {
+                counts[*e.get()] += 1;
+                keep.push(false);
+            }
+            std::collections::hash_map::Entry::Vacant(e) => {
+                e.insert(i);
+                keep.push(true);
+            }
+        }
+        counts.push(1);
+    }
+    let mut i = 0;
+    diags.items.retain_mut(|d| {
+        let (kept, n) = (keep[i], counts[i]);
+        i += 1;
+        if kept && n > 1 {
+            d.message = format!("{} ({} times)", d.message, super::group_digits(n as u64));
+        }
+        kept
+    });
+}
+
+impl Checker {
+    /// Adds to every diagnostic in an included file the chain of includes
+    /// that led to it ("included from"), nearest first.
+    fn show_include_chains(&mut self) {
+        for d in &mut self.diags.items {
+            let Some(span) = d.span else { continue };
+            let mut file = span.file;
+            let mut depth = 0;
+            while let Some(&site) = self.included_from.get(&file) {
+                if !d.secondary.iter().any(|(s, _)| *s == site) {
+                    d.secondary.push((site, "included from".to_string()));
+                }
+                file = site.file;
+                depth += 1;
+                if depth > MAX_INCLUDE_DEPTH {
+                    break;
+                }
+            }
+        }
+    }
 }

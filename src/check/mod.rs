@@ -24,6 +24,10 @@ use params::Params;
 use std::collections::{HashMap, HashSet};
 use std::path::{Path, PathBuf};
 
+/// The material index of an object whose named material is not declared
+/// yet (resolved by `finish`, which reports the names never declared).
+const PENDING_MATERIAL: usize = usize::MAX;
+
 /// Most statements loops may run in one compile, all loops together: every
 /// statement of a loop body (a nested `for` and the statements of an
 /// included file too) counts each time it runs, one per 64 bytes of its
@@ -163,6 +167,11 @@ struct Checker {
     used_materials: HashSet<usize>,
     /// The material of objects that name none, once one needs it.
     default_material: Option<usize>,
+    /// Where each included file was first included (the include's path).
+    included_from: HashMap<FileId, Span>,
+    /// Objects whose material was named before its declaration: the
+    /// object's index and the name as written.
+    pending_materials: Vec<(usize, crate::syntax::ast::Ident)>,
     objects: Vec<Object>,
     lights: Vec<(Light, Span)>,
     lets: Vec<(String, Span)>,
@@ -194,6 +203,8 @@ impl Checker {
             material_names: HashMap::new(),
             used_materials: HashSet::new(),
             default_material: None,
+            pending_materials: Vec::new(),
+            included_from: HashMap::new(),
             objects: Vec::new(),
             lights: Vec::new(),
             lets: Vec::new(),
@@ -502,7 +513,7 @@ impl Checker {
             .with_label("this include closes a cycle")
             .with_help("remove one of the includes in the cycle");
             for (_, s) in self.include_stack[pos + 1..].iter() {
-                d = d.with_secondary(*s, "included from here");
+                d = d.with_secondary(*s, "included from");
             }
             self.diags.push(d);
             return;
@@ -580,6 +591,7 @@ impl Checker {
         };
         let (text, bad) = decode(bytes);
         let id = self.sources.add(target.clone(), text);
+        self.included_from.insert(id, path_span);
         if let Some(at) = bad {
             self.diags.push(invalid_utf8(id, at));
         }
@@ -664,14 +676,17 @@ impl Checker {
                 let velocity = objects::velocity(&p);
                 if let (Some(shape), Some(material)) = (shape, material) {
                     if matches!(shape, Shape::Plane { .. })
+                        && material != PENDING_MATERIAL
                         && self.materials[material].is_emissive()
                     {
-                        self.diags.push(
-                            Diagnostic::error(codes::DEGENERATE, "an infinite plane cannot emit light", kind_span)
-                                .with_label("this plane has an emissive material")
-                                .with_help("use a `quad` or a `disk` as an area light, or `background` for light from everywhere"),
-                        );
+                        self.diags.push(emissive_plane(kind_span));
                         return;
+                    }
+                    if material == PENDING_MATERIAL {
+                        if let Some((MaterialRef::Named(name), _)) = material_entries.first() {
+                            self.pending_materials
+                                .push((self.objects.len(), (*name).clone()));
+                        }
                     }
                     self.objects.push(Object {
                         shape,
@@ -702,30 +717,15 @@ impl Checker {
                 self.materials.push(Material::default_at(span));
                 self.materials.len() - 1
             })),
-            Some((MaterialRef::Named(name), _)) => {
-                match self.material_names.get(&name.name) {
-                    Some(m) => {
-                        self.used_materials.insert(m.index);
-                        Some(m.index)
-                    }
-                    None => {
-                        let help = match did_you_mean(&name.name, self.material_names.keys().map(String::as_str)) {
-                        Some(s) => format!("did you mean `{s}`?"),
-                        None => format!("declare it before this object: `material {} {{ diffuse rgb 0.8 }}`", name.name),
-                    };
-                        self.diags.push(
-                            Diagnostic::error(
-                                codes::UNKNOWN_MATERIAL,
-                                format!("unknown material `{}`", name.name),
-                                name.span,
-                            )
-                            .with_label("no material with this name")
-                            .with_help(help),
-                        );
-                        None
-                    }
+            Some((MaterialRef::Named(name), _)) => match self.material_names.get(&name.name) {
+                Some(m) => {
+                    self.used_materials.insert(m.index);
+                    Some(m.index)
                 }
-            }
+                // Declared further on, perhaps: names of materials are
+                // resolved when the whole scene has been read.
+                None => Some(PENDING_MATERIAL),
+            },
             Some((MaterialRef::Inline(block), s)) => {
                 let p = Params::collect(
                     "material",
@@ -745,8 +745,17 @@ impl Checker {
     }
 }
 
+/// The error for an infinite plane with an emissive material.
+fn emissive_plane(at: Span) -> Diagnostic {
+    Diagnostic::error(codes::DEGENERATE, "an infinite plane cannot emit light", at)
+        .with_label("this plane has an emissive material")
+        .with_help(
+            "use a `quad` or a `disk` as an area light, or `background` for light from everywhere",
+        )
+}
+
 /// `n` with thousands separated: `4,000,000`.
-fn group_digits(n: u64) -> String {
+pub(super) fn group_digits(n: u64) -> String {
     let digits = n.to_string();
     let mut out = String::new();
     for (i, c) in digits.chars().enumerate() {

@@ -1,14 +1,30 @@
 //! `ptsc check FILE`: parse and check, print diagnostics, set the exit code.
 
-use super::{Format, EXIT_OK, EXIT_SCENE_ERROR, EXIT_USAGE};
+use super::{Format, Verbosity, EXIT_OK, EXIT_SCENE_ERROR, EXIT_USAGE};
 use crate::check::{check_file, Checked};
+use crate::diag::{Diagnostics, Severity};
 use std::path::Path;
 
-/// Prints the diagnostics of a compile on stderr (human) or stdout (JSON).
-pub fn report(checked: &Checked, format: Format) {
+/// Prints the diagnostics of a compile on stderr (human) or stdout (JSON);
+/// `Quiet` leaves the warnings out.
+pub fn report(checked: &Checked, format: Format, verbosity: Verbosity) {
+    let quiet;
+    let d = if verbosity == Verbosity::Quiet {
+        quiet = Diagnostics {
+            items: checked
+                .diagnostics
+                .items
+                .iter()
+                .filter(|d| d.severity == Severity::Error)
+                .cloned()
+                .collect(),
+        };
+        &quiet
+    } else {
+        &checked.diagnostics
+    };
     match format {
         Format::Human => {
-            let d = &checked.diagnostics;
             eprint!(
                 "{}",
                 d.render_human(&checked.sources, super::stderr_is_terminal())
@@ -23,24 +39,40 @@ pub fn report(checked: &Checked, format: Format) {
                 );
             }
         }
-        Format::Json => println!("{}", checked.diagnostics.render_json(&checked.sources)),
+        Format::Json => println!("{}", d.render_json(&checked.sources)),
     }
 }
 
 /// Runs `check`; returns the exit code.
-pub fn run(file: &Path, format: Format) -> u8 {
+pub fn run(file: &Path, format: Format, verbosity: Verbosity) -> u8 {
     let checked = match check_file(file) {
         Ok(c) => c,
         Err(e) => {
-            eprintln!("error: cannot read {}: {e}", file.display());
+            let message = format!("cannot read {}: {e}", file.display());
+            match format {
+                Format::Human => eprintln!("error: {message}"),
+                // A client reading JSON gets JSON: one diagnostic, no span.
+                Format::Json => println!(
+                    "{}",
+                    serde_json::to_string_pretty(&serde_json::json!([{
+                        "severity": "error",
+                        "code": "pts::io::read",
+                        "message": message,
+                        "label": "",
+                        "help": "check the path and that the file is readable",
+                        "file": file.display().to_string(),
+                    }]))
+                    .expect("JSON of plain values")
+                ),
+            }
             return EXIT_USAGE;
         }
     };
-    report(&checked, format);
+    report(&checked, format, verbosity);
     if checked.diagnostics.has_errors() {
         EXIT_SCENE_ERROR
     } else {
-        if format == Format::Human {
+        if format == Format::Human && verbosity != Verbosity::Quiet {
             eprintln!("{}: ok", file.display());
         }
         EXIT_OK

@@ -2,6 +2,7 @@
 
 mod check;
 mod render;
+mod signals;
 mod watch;
 
 use clap::{Parser, Subcommand};
@@ -13,9 +14,29 @@ pub const EXIT_OK: u8 = 0;
 pub const EXIT_SCENE_ERROR: u8 = 1;
 /// Exit code: bad usage or an I/O error.
 pub const EXIT_USAGE: u8 = 2;
-/// Exit code: interrupted by Ctrl-C (128 + SIGINT, the shell's convention);
-/// the image so far is written.
-pub const EXIT_INTERRUPTED: u8 = 130;
+pub use signals::{EXIT_SIGINT, EXIT_SIGTERM};
+
+/// How much a command prints.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Verbosity {
+    /// Errors only.
+    Quiet,
+    /// Errors, warnings, progress and a summary line.
+    Normal,
+    /// Also the time of each stage and pass.
+    Verbose,
+}
+
+impl Verbosity {
+    /// From `--quiet` and `--verbose` (which clap keeps apart).
+    pub fn from_flags(quiet: bool, verbose: bool) -> Verbosity {
+        match (quiet, verbose) {
+            (true, _) => Verbosity::Quiet,
+            (_, true) => Verbosity::Verbose,
+            _ => Verbosity::Normal,
+        }
+    }
+}
 
 /// ptsc: compile and render `.pts` scenes.
 #[derive(Debug, Parser)]
@@ -45,6 +66,9 @@ pub enum Command {
         /// Output format of the diagnostics.
         #[arg(long, value_enum, default_value = "human")]
         format: Format,
+        /// Only errors (no warnings, no "ok" line).
+        #[arg(short, long)]
+        quiet: bool,
     },
     /// Render a scene to an image.
     Render(render::RenderArgs),
@@ -62,7 +86,11 @@ pub fn run() -> ExitCode {
         }
     };
     let code = match cli.command {
-        Command::Check { file, format } => check::run(&file, format),
+        Command::Check {
+            file,
+            format,
+            quiet,
+        } => check::run(&file, format, Verbosity::from_flags(quiet, false)),
         Command::Render(args) => render::run(&args),
         Command::Watch(args) => watch::run(&args),
     };

@@ -1,10 +1,9 @@
 //! `ptsc render FILE`: check, lower, render with progress, write atomically.
 
-use super::{check::report, Format, EXIT_INTERRUPTED, EXIT_OK, EXIT_SCENE_ERROR, EXIT_USAGE};
+use super::signals::Signals;
+use super::{check::report, Format, Verbosity, EXIT_OK, EXIT_SCENE_ERROR, EXIT_USAGE};
 use crate::check::{check_file, IntegratorKind};
 use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 /// Least time between two preview writes of a render's image.
@@ -33,6 +32,19 @@ pub struct RenderArgs {
     /// Integrator: path, whitted, hybrid, normals, albedo or depth.
     #[arg(long, value_parser = parse_integrator)]
     pub integrator: Option<IntegratorKind>,
+    /// Only errors: no warnings, progress or figures.
+    #[arg(short, long, conflicts_with = "verbose")]
+    pub quiet: bool,
+    /// Also the time of each stage and of each pass, and the scene's size.
+    #[arg(short, long)]
+    pub verbose: bool,
+}
+
+impl RenderArgs {
+    /// How much to print.
+    pub fn verbosity(&self) -> Verbosity {
+        Verbosity::from_flags(self.quiet, self.verbose)
+    }
 }
 
 /// The most worker threads `--threads` starts.
@@ -159,6 +171,7 @@ pub fn run(args: &RenderArgs) -> u8 {
 }
 
 fn run_on_pool(args: &RenderArgs) -> u8 {
+    let verbosity = args.verbosity();
     let t0 = Instant::now();
     let checked = match check_file(&args.file) {
         Ok(c) => c,
@@ -167,10 +180,11 @@ fn run_on_pool(args: &RenderArgs) -> u8 {
             return EXIT_USAGE;
         }
     };
-    report(&checked, Format::Human);
+    report(&checked, Format::Human, verbosity);
     let Some(mut scene) = checked.scene else {
         return EXIT_SCENE_ERROR;
     };
+    let checked_s = t0.elapsed().as_secs_f64();
     apply_overrides(&mut scene, args);
     let output = output_path(args, &scene);
     if let Err(why) = check_output(&output, &checked.sources, &scene) {
@@ -191,20 +205,26 @@ fn run_on_pool(args: &RenderArgs) -> u8 {
     // 250 bytes an object) goes before the film and the threads come.
     drop(scene);
     let load_s = t0.elapsed().as_secs_f64();
-    let cancel = Arc::new(AtomicBool::new(false));
-    {
-        let c = cancel.clone();
-        // Ctrl-C: finish the tiles in flight, then write what was accumulated.
-        let _ = ctrlc::set_handler(move || c.store(true, Ordering::Relaxed));
+    if verbosity == Verbosity::Verbose {
+        eprintln!(
+            "loaded in {load_s:.2} s (read and check {checked_s:.2} s, lower {:.2} s): {} primitives, {} lights",
+            load_s - checked_s,
+            ir.prim_object.len(),
+            ir.lights.len()
+        );
     }
+    // Ctrl-C or SIGTERM: stop within a few samples and write every sample
+    // done; a second one ends the process at once.
+    let signals = Signals::install();
     let s = &ir.settings;
     let total = s.width as u64 * s.height as u64 * s.samples as u64;
-    let bar = progress_bar(total);
+    let bar = progress_bar(total, verbosity);
     let integrator = crate::integrator::make(s.integrator);
     let t1 = Instant::now();
     let exposure = s.exposure as f32;
     let mut write_error = None;
     let mut last_write = Instant::now();
+    let mut last_pass = Instant::now();
     let crate::render::Rendered {
         film,
         outcome,
@@ -212,10 +232,19 @@ fn run_on_pool(args: &RenderArgs) -> u8 {
     } = crate::render::render(
         &ir,
         integrator.as_ref(),
-        &cancel,
+        &signals.stop,
         &|done| bar.set_position(done),
         &mut |film, spp| {
             bar.set_message(format!("{spp} spp"));
+            if verbosity == Verbosity::Verbose {
+                bar.suspend(|| {
+                    eprintln!(
+                        "pass to {spp} spp in {:.2} s",
+                        last_pass.elapsed().as_secs_f64()
+                    )
+                });
+                last_pass = Instant::now();
+            }
             // A long render replaces its image with the passes so far,
             // a preview that refines. The final image is written once,
             // below; writes in between are spaced (a ZIP-compressed EXR
@@ -234,37 +263,44 @@ fn run_on_pool(args: &RenderArgs) -> u8 {
         return EXIT_USAGE;
     }
     let secs = t1.elapsed().as_secs_f64();
-    if film.samples > 0 {
+    let (least, most, mean) = film.sample_counts();
+    if most > 0 {
         if let Err(e) = film.write(&output, exposure) {
             eprintln!("error: cannot write {}: {e}", output.display());
             return EXIT_USAGE;
         }
     }
-    let paths = s.width as f64 * s.height as f64 * film.samples as f64;
-    eprintln!(
-        "{}: {}×{}, {} spp{} in {:.2} s ({:.2} M paths/s, {:.2} M rays/s: {:.2} closest-hit and {:.2} shadow rays per path; load {:.2} s{}) → {}",
-        args.file.display(),
-        s.width,
-        s.height,
-        film.samples,
-        if outcome == crate::render::Outcome::Cancelled {
-            " (interrupted)"
+    let interrupted = outcome == crate::render::Outcome::Cancelled;
+    if verbosity != Verbosity::Quiet {
+        let paths = s.width as f64 * s.height as f64 * mean;
+        let samples = if interrupted {
+            format!("interrupted: {least} spp in every pixel, up to {most}, {mean:.1} on average")
         } else {
-            ""
-        },
-        secs,
-        paths / secs / 1e6,
-        rays.total() as f64 / secs / 1e6,
-        rays.closest as f64 / paths.max(1.0),
-        rays.shadow as f64 / paths.max(1.0),
-        load_s,
-        peak_memory()
-            .map(|mb| format!("; peak memory {mb:.0} MB"))
-            .unwrap_or_default(),
-        output.display()
-    );
-    if outcome == crate::render::Outcome::Cancelled {
-        EXIT_INTERRUPTED
+            format!("{least} spp")
+        };
+        eprintln!(
+            "{}: {}×{}, {samples} in {:.2} s ({:.2} M paths/s, {:.2} M rays/s: {:.2} closest-hit and {:.2} shadow rays per path; load {:.2} s{}) → {}",
+            args.file.display(),
+            s.width,
+            s.height,
+            secs,
+            paths / secs / 1e6,
+            rays.total() as f64 / secs / 1e6,
+            rays.closest as f64 / paths.max(1.0),
+            rays.shadow as f64 / paths.max(1.0),
+            load_s,
+            peak_memory()
+                .map(|mb| format!("; peak memory {mb:.0} MB"))
+                .unwrap_or_default(),
+            if most > 0 {
+                output.display().to_string()
+            } else {
+                "no sample, nothing written".to_string()
+            }
+        );
+    }
+    if interrupted || signals.stopped() {
+        signals.exit_code()
     } else {
         EXIT_OK
     }
@@ -283,15 +319,19 @@ fn peak_memory_in(status: &str) -> Option<f64> {
     Some(kib * 1024.0 / 1e6)
 }
 
-fn progress_bar(total: u64) -> indicatif::ProgressBar {
-    use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+fn progress_bar(total: u64, verbosity: Verbosity) -> indicatif::ProgressBar {
+    use indicatif::{ProgressBar, ProgressDrawTarget, ProgressState, ProgressStyle};
     let bar = ProgressBar::new(total);
-    if super::stderr_is_terminal() {
+    if super::stderr_is_terminal() && verbosity != Verbosity::Quiet {
         bar.set_style(
-            ProgressStyle::with_template(
-                "{bar:40} {percent:>3}% {msg} · {per_sec} samples · ETA {eta}",
-            )
-            .unwrap_or_else(|_| ProgressStyle::default_bar()),
+            ProgressStyle::with_template("{bar:40} {percent:>3}% {msg} · {rate} · ETA {eta}")
+                .unwrap_or_else(|_| ProgressStyle::default_bar())
+                .with_key(
+                    "rate",
+                    |state: &ProgressState, w: &mut dyn std::fmt::Write| {
+                        let _ = w.write_str(&samples_per_second(state.per_sec()));
+                    },
+                ),
         );
     } else {
         bar.set_draw_target(ProgressDrawTarget::hidden());
@@ -299,9 +339,27 @@ fn progress_bar(total: u64) -> indicatif::ProgressBar {
     bar
 }
 
+/// A rate of samples in human units: `1.51 M samples/s`, `820 k samples/s`.
+fn samples_per_second(rate: f64) -> String {
+    if rate >= 1e6 {
+        format!("{:.2} M samples/s", rate / 1e6)
+    } else if rate >= 1e3 {
+        format!("{:.0} k samples/s", rate / 1e3)
+    } else {
+        format!("{rate:.0} samples/s")
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn rates_read_in_human_units() {
+        assert_eq!(samples_per_second(1_508_066.182_1), "1.51 M samples/s");
+        assert_eq!(samples_per_second(820_400.0), "820 k samples/s");
+        assert_eq!(samples_per_second(12.3), "12 samples/s");
+    }
 
     #[test]
     fn peak_memory_reads_vm_hwm_in_kib() {

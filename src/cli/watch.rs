@@ -47,11 +47,8 @@ pub fn run(args: &RenderArgs) -> u8 {
             return super::EXIT_USAGE;
         }
     };
-    let quit = Arc::new(AtomicBool::new(false));
-    {
-        let q = quit.clone();
-        let _ = ctrlc::set_handler(move || q.store(true, Ordering::Relaxed));
-    }
+    // Ctrl-C (or SIGTERM) ends a watch: its normal end, exit code 0.
+    let signals = super::signals::Signals::install();
     let (tx, rx) = mpsc::channel();
     let mut watcher = match notify::recommended_watcher(move |e: notify::Result<notify::Event>| {
         // Only changes count: our own reads of the scene are access events.
@@ -79,6 +76,7 @@ pub fn run(args: &RenderArgs) -> u8 {
         files: BTreeSet::new(),
         watched_dirs: BTreeSet::new(),
         render: None,
+        renders: 0,
         pool,
     };
     state.files.insert(absolute(&args.file));
@@ -86,13 +84,14 @@ pub fn run(args: &RenderArgs) -> u8 {
         "watching {} (Ctrl-C to stop)",
         args.file.display()
     ));
-    let mut changed_at = Instant::now();
+    // The first compile follows the start, the others a save.
+    let mut changed_at = (Instant::now(), "starting");
     loop {
         state.compile(changed_at);
         state.update_watches(&mut watcher);
         // Wait for the next relevant change (or Ctrl-C).
         let first = loop {
-            if quit.load(Ordering::Relaxed) {
+            if signals.stopped() {
                 state.stop_render();
                 status("stopped");
                 return super::EXIT_OK;
@@ -116,7 +115,7 @@ pub fn run(args: &RenderArgs) -> u8 {
                 Err(_) => {}
             }
         }
-        changed_at = first;
+        changed_at = (first, "the save");
     }
 }
 
@@ -127,12 +126,15 @@ struct State {
     files: BTreeSet<PathBuf>,
     watched_dirs: BTreeSet<PathBuf>,
     render: Option<(Arc<AtomicBool>, JoinHandle<()>)>,
+    /// Renders started so far: each one's status lines carry its number.
+    renders: u32,
     pool: Arc<rayon::ThreadPool>,
 }
 
 impl State {
     /// Checks, lowers and (on success) starts rendering the scene.
-    fn compile(&mut self, changed_at: Instant) {
+    /// `changed_at` is when the change happened and what it was.
+    fn compile(&mut self, changed_at: (Instant, &'static str)) {
         let t0 = Instant::now();
         // Not on `self.pool`: the previous render keeps its threads busy
         // until this compile succeeds, and a job queued behind its tiles
@@ -156,7 +158,7 @@ impl State {
                 "{}",
                 checked.diagnostics.render_human(&checked.sources, colour)
             );
-            status("the scene has errors; keeping the last image");
+            status(&self.keeping());
             return;
         };
         for o in &scene.objects {
@@ -184,7 +186,7 @@ impl State {
             Ok(ir) => ir,
             Err(d) => {
                 eprint!("{}", d.render_human(&checked.sources, colour));
-                status("the scene has errors; keeping the last image");
+                status(&self.keeping());
                 return;
             }
         };
@@ -202,10 +204,24 @@ impl State {
         let cancel = Arc::new(AtomicBool::new(false));
         let c = cancel.clone();
         let pool = self.pool.clone();
+        self.renders += 1;
+        let number = self.renders;
         let handle = std::thread::spawn(move || {
-            pool.install(|| render_progressively(&ir, &output, &c, changed_at));
+            pool.install(|| render_progressively(&ir, &output, &c, changed_at, number));
         });
         self.render = Some((cancel, handle));
+    }
+
+    /// What a broken save says: the image stays, and which render (of the
+    /// last good scene) is still running, if one is.
+    fn keeping(&self) -> String {
+        match &self.render {
+            Some((_, handle)) if !handle.is_finished() => format!(
+                "the scene has errors; keeping the last image (render {} of the last good version goes on)",
+                self.renders
+            ),
+            _ => "the scene has errors; keeping the last image".to_string(),
+        }
     }
 
     /// Cancels the render in flight and waits for it (it stops between tiles).
@@ -240,8 +256,16 @@ impl State {
     }
 }
 
-/// A quick low-resolution preview, then the progressive passes.
-fn render_progressively(ir: &Scene, output: &Path, cancel: &AtomicBool, changed_at: Instant) {
+/// A quick low-resolution preview, then the progressive passes; its status
+/// lines start with `render N:`.
+fn render_progressively(
+    ir: &Scene,
+    output: &Path,
+    cancel: &AtomicBool,
+    (changed_at, change): (Instant, &str),
+    number: u32,
+) {
+    let status = |msg: &str| status(&format!("render {number}: {msg}"));
     let integrator = crate::integrator::make(ir.settings.integrator);
     let exposure = ir.settings.exposure as f32;
     let (w, h) = (ir.settings.width, ir.settings.height);
@@ -255,7 +279,7 @@ fn render_progressively(ir: &Scene, output: &Path, cancel: &AtomicBool, changed_
         let big = upscale(&film, w, h);
         match big.write(output, exposure) {
             Ok(()) => status(&format!(
-                "preview {}×{} at 1 spp in {} ms ({} ms after the save) → {}",
+                "preview {}×{} at 1 spp in {} ms ({} ms after {change}) → {}",
                 film.width,
                 film.height,
                 t0.elapsed().as_millis(),

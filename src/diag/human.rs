@@ -62,18 +62,21 @@ pub fn render_one(d: &Diagnostic, sources: &SourceMap, color: bool) -> String {
         .with_links(false);
     let mut labels = Vec::new();
     let mut source = None;
-    let mut related = Vec::new();
+    // A secondary label in another file (an include chain) is a note line
+    // under the report: `note: included from scene.pts:3:9`.
+    let mut notes = String::new();
     if let Some(span) = d.span {
         // The primary label and the secondary ones in its file share an
-        // excerpt; a secondary in another file (an include chain) becomes a
-        // related report of its own.
+        // excerpt.
         let mut here: Vec<(Span, Option<String>, bool)> =
             vec![(span, (!d.label.is_empty()).then(|| d.label.clone()), true)];
         for (s, l) in &d.secondary {
             if s.file == span.file {
                 here.push((*s, Some(l.clone()), false));
             } else {
-                related.push(report_at(sources, *s, l.clone()));
+                let (line, column) = sources.line_col(s.file, s.start);
+                let path = sources.get(s.file).path.display();
+                notes.push_str(&format!("  note: {l} {path}:{line}:{column}\n"));
             }
         }
         let (excerpt, spans) = excerpt(sources, &here);
@@ -96,12 +99,12 @@ pub fn render_one(d: &Diagnostic, sources: &SourceMap, color: bool) -> String {
         help: d.help.clone(),
         source,
         labels,
-        related,
     };
     let mut out = String::new();
     handler
         .render_report(&mut out, &report)
         .expect("writing to a String cannot fail");
+    out.push_str(&notes);
     out
 }
 
@@ -125,20 +128,6 @@ fn excerpt(
     )
 }
 
-/// A note pointing at `span` (a place in another file than the diagnostic's).
-fn report_at(sources: &SourceMap, span: Span, message: String) -> MietteReport {
-    let (source, spans) = excerpt(sources, &[(span, None, true)]);
-    MietteReport {
-        message,
-        code: None,
-        severity: miette::Severity::Advice,
-        help: None,
-        source: Some(source),
-        labels: vec![LabeledSpan::new_primary_with_span(None, spans[0])],
-        related: Vec::new(),
-    }
-}
-
 /// What miette needs to draw one report.
 #[derive(Debug)]
 struct MietteReport {
@@ -148,7 +137,6 @@ struct MietteReport {
     help: Option<String>,
     source: Option<ExcerptSource>,
     labels: Vec<LabeledSpan>,
-    related: Vec<MietteReport>,
 }
 
 impl fmt::Display for MietteReport {
@@ -183,16 +171,6 @@ impl miette::Diagnostic for MietteReport {
             None
         } else {
             Some(Box::new(self.labels.iter().cloned()))
-        }
-    }
-
-    fn related<'a>(&'a self) -> Option<Box<dyn Iterator<Item = &'a dyn miette::Diagnostic> + 'a>> {
-        if self.related.is_empty() {
-            None
-        } else {
-            Some(Box::new(
-                self.related.iter().map(|r| r as &dyn miette::Diagnostic),
-            ))
         }
     }
 }

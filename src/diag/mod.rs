@@ -158,6 +158,24 @@ impl Diagnostics {
                     obj["end_line"] = end_line.into();
                     obj["end_column"] = end_column.into();
                 }
+                // Secondary places: "first defined here", the include chain.
+                let notes: Vec<serde_json::Value> = d
+                    .secondary
+                    .iter()
+                    .map(|(s, label)| {
+                        let (line, column) = columns.line_col(sources, s.file, s.start);
+                        serde_json::json!({
+                            "label": label,
+                            "file": sources.get(s.file).path.display().to_string(),
+                            "span": {"start": s.start, "end": s.end},
+                            "line": line,
+                            "column": column,
+                        })
+                    })
+                    .collect();
+                if !notes.is_empty() {
+                    obj["notes"] = notes.into();
+                }
                 obj
             })
             .collect();

@@ -16,8 +16,11 @@ pub struct Film {
     pub height: u32,
     /// Sum of samples per pixel, row-major.
     pub sum: Vec<Vec3>,
-    /// Samples per pixel so far.
+    /// Samples per pixel in every pixel (the passes that finished).
     pub samples: u32,
+    /// Samples of a cancelled pass, per pixel, beyond `samples` (absent
+    /// while every pixel has `samples`).
+    pub extra: Option<Vec<u32>>,
 }
 
 impl Film {
@@ -28,6 +31,7 @@ impl Film {
             height,
             sum: vec![Vec3::ZERO; (width * height) as usize],
             samples: 0,
+            extra: None,
         }
     }
 
@@ -39,6 +43,7 @@ impl Film {
             height,
             sum: pixels,
             samples: 1,
+            extra: None,
         }
     }
 
@@ -52,11 +57,38 @@ impl Film {
         (0..self.sum.len()).map(|i| self.pixel(i)).collect()
     }
 
-    /// The mean radiance of pixel `i` (row-major). The encoders read pixels
-    /// one by one: a copy of a 8192 × 8192 film is 805 MB.
+    /// The mean radiance of pixel `i` (row-major); black without a sample.
+    /// The encoders read pixels one by one: a copy of a 8192 × 8192 film is
+    /// 805 MB.
     #[inline]
     pub fn pixel(&self, i: usize) -> Vec3 {
-        self.sum[i] * (1.0 / self.samples.max(1) as f32)
+        let n = self.samples + self.extra.as_ref().map_or(0, |e| e[i]);
+        self.sum[i] * (1.0 / n.max(1) as f32)
+    }
+
+    /// Adds `samples` samples of a pass that did not finish to a pixel.
+    pub fn add_partial(&mut self, x: u32, y: u32, v: Vec3, samples: u32) {
+        let i = (y * self.width + x) as usize;
+        self.sum[i] += v;
+        let n = self.sum.len();
+        self.extra.get_or_insert_with(|| vec![0; n])[i] += samples;
+    }
+
+    /// Samples in every pixel, the most in any pixel, and the mean.
+    pub fn sample_counts(&self) -> (u32, u32, f64) {
+        match &self.extra {
+            None => (self.samples, self.samples, self.samples as f64),
+            Some(e) => {
+                let min = e.iter().copied().min().unwrap_or(0);
+                let max = e.iter().copied().max().unwrap_or(0);
+                let mean = e.iter().map(|&n| n as f64).sum::<f64>() / e.len().max(1) as f64;
+                (
+                    self.samples + min,
+                    self.samples + max,
+                    self.samples as f64 + mean,
+                )
+            }
+        }
     }
 
     /// Writes the image; the format follows the extension (.png, .exr, .pfm).

@@ -20,16 +20,27 @@ use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 /// Side of a square tile in pixels.
 pub const TILE: u32 = 16;
 
-/// A tile's corner, the sample sums of its pixels (row-major) and the rays
-/// traced for it.
-type TileResult = ((u32, u32), Vec<Vec3>, RayCounts);
+/// What a tile of a pass produced.
+struct TileResult {
+    /// Its top-left pixel.
+    corner: (u32, u32),
+    /// The sample sums of its pixels, row-major: all of them, or (when the
+    /// pass was cancelled) those begun.
+    sums: Vec<Vec3>,
+    /// When cancelled: the samples the last pixel of `sums` got (the ones
+    /// before it got the whole pass).
+    cut: Option<u32>,
+    /// The rays traced for it.
+    rays: RayCounts,
+}
 
 /// How a render went.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Outcome {
     /// Every pass finished.
     Complete,
-    /// Cancelled; the film holds the passes that finished.
+    /// Cancelled; the film holds every sample done (the passes that
+    /// finished, and the part of the last one that ran).
     Cancelled,
 }
 
@@ -136,46 +147,69 @@ fn render_view(
     let mut rays = RayCounts::default();
     let mut start = 0;
     for end in pass_ends(view.samples) {
-        let results: Vec<Option<TileResult>> = tiles
+        let results: Vec<TileResult> = tiles
             .par_iter()
             .map(|&(x0, y0)| {
                 let (x1, y1) = ((x0 + TILE).min(w), (y0 + TILE).min(h));
                 let rays_before = ray_count::this_thread();
-                let mut out = Vec::with_capacity(((x1 - x0) * (y1 - y0)) as usize);
-                for y in y0..y1 {
+                let mut sums = Vec::with_capacity(((x1 - x0) * (y1 - y0)) as usize);
+                let mut cut = None;
+                'pixels: for y in y0..y1 {
                     for x in x0..x1 {
                         let mut sum = Vec3::ZERO;
                         for s in start..end {
                             if (s - start).is_multiple_of(CANCEL_POLL)
                                 && cancel.load(Ordering::Relaxed)
                             {
-                                return None;
+                                sums.push(sum);
+                                cut = Some(s - start);
+                                break 'pixels;
                             }
                             sum += sample(scene, integrator, x, y, s, scale);
                         }
-                        out.push(sum);
+                        sums.push(sum);
                     }
                 }
-                let n = done.fetch_add(out.len() as u64 * (end - start) as u64, Ordering::Relaxed);
-                progress(n + out.len() as u64 * (end - start) as u64);
-                Some(((x0, y0), out, ray_count::this_thread() - rays_before))
+                if cut.is_none() {
+                    let samples = sums.len() as u64 * (end - start) as u64;
+                    progress(done.fetch_add(samples, Ordering::Relaxed) + samples);
+                }
+                TileResult {
+                    corner: (x0, y0),
+                    sums,
+                    cut,
+                    rays: ray_count::this_thread() - rays_before,
+                }
             })
             .collect();
-        // A cancelled pass's tiles are dropped, their rays too.
-        if results.iter().any(Option::is_none) {
+        // A cancelled pass keeps every sample done: its pixels count their
+        // own samples beyond the film's whole passes.
+        let cancelled = results.iter().any(|t| t.cut.is_some());
+        for t in results {
+            rays = rays + t.rays;
+            let (x0, y0) = t.corner;
+            let x1 = (x0 + TILE).min(w);
+            let last = t.sums.len().saturating_sub(1);
+            for (i, v) in t.sums.into_iter().enumerate() {
+                let (x, y) = (x0 + i as u32 % (x1 - x0), y0 + i as u32 / (x1 - x0));
+                if cancelled {
+                    let n = if i == last {
+                        t.cut.unwrap_or(end - start)
+                    } else {
+                        end - start
+                    };
+                    film.add_partial(x, y, v, n);
+                } else {
+                    film.add(x, y, v);
+                }
+            }
+        }
+        if cancelled {
             return Rendered {
                 film,
                 outcome: Outcome::Cancelled,
                 rays,
             };
-        }
-        for ((x0, y0), out, tile_rays) in results.into_iter().flatten() {
-            rays = rays + tile_rays;
-            let x1 = (x0 + TILE).min(w);
-            for (i, v) in out.into_iter().enumerate() {
-                let (x, y) = (x0 + i as u32 % (x1 - x0), y0 + i as u32 / (x1 - x0));
-                film.add(x, y, v);
-            }
         }
         film.samples = end;
         on_pass(&film, end);

@@ -232,6 +232,9 @@ pub enum BinOp {
     Mul,
     /// `/`
     Div,
+    /// `%`: the remainder of a division, with the sign of the dividend
+    /// (C's `fmod`, POV-Ray's `mod`).
+    Rem,
 }
 
 impl BinOp {
@@ -242,6 +245,7 @@ impl BinOp {
             BinOp::Sub => "-",
             BinOp::Mul => "*",
             BinOp::Div => "/",
+            BinOp::Rem => "%",
         }
     }
 }
@@ -276,7 +280,8 @@ pub enum ExprKind {
     Chain {
         /// The first operand.
         first: Box<Expr>,
-        /// Each further operator with its operand, in source order.
-        rest: Vec<(BinOp, Expr)>,
+        /// Each further operator (with where it is written) and its
+        /// operand, in source order.
+        rest: Vec<(BinOp, Span, Expr)>,
     },
 }

@@ -220,28 +220,39 @@ impl Builder {
                 };
                 // Each term: its first factor and the further ones; the
                 // operator before each term after the first.
-                let mut terms: Vec<(Expr, Vec<(BinOp, Expr)>)> = vec![(first, Vec::new())];
-                let mut sum_ops: Vec<BinOp> = Vec::new();
+                type Links = Vec<(BinOp, Span, Expr)>;
+                let mut terms: Vec<(Expr, Links)> = vec![(first, Vec::new())];
+                let mut sum_ops: Vec<(BinOp, Span)> = Vec::new();
                 let mut next_op = Some(op);
                 while let Some(op) = next_op.take().or_else(|| inner.next()) {
+                    let op_span = self.span(&op);
                     let op = match op.as_str() {
                         "+" => BinOp::Add,
                         "-" => BinOp::Sub,
                         "*" => BinOp::Mul,
                         "/" => BinOp::Div,
+                        "%" => BinOp::Rem,
                         o => unreachable!("operator {o}"),
                     };
                     let rhs = self.build_operand(&mut inner);
-                    if matches!(op, BinOp::Mul | BinOp::Div) {
-                        terms.last_mut().expect("one term").1.push((op, rhs));
+                    if matches!(op, BinOp::Mul | BinOp::Div | BinOp::Rem) {
+                        terms
+                            .last_mut()
+                            .expect("one term")
+                            .1
+                            .push((op, op_span, rhs));
                     } else {
-                        sum_ops.push(op);
+                        sum_ops.push((op, op_span));
                         terms.push((rhs, Vec::new()));
                     }
                 }
                 let mut terms = terms.into_iter().map(chain);
                 let first = terms.next().expect("one term");
-                chain((first, sum_ops.into_iter().zip(terms).collect()))
+                let rest = sum_ops
+                    .into_iter()
+                    .zip(terms)
+                    .map(|((op, s), e)| (op, s, e));
+                chain((first, rest.collect()))
             }
             Rule::number => Expr {
                 kind: ExprKind::Number(pair.as_str().parse().unwrap_or(f64::INFINITY)),
@@ -320,10 +331,10 @@ pub fn unescape(s: &str) -> String {
 
 /// `first op x op y …` as one node spanning all operands (the operand
 /// itself when there is no operator).
-fn chain((first, rest): (Expr, Vec<(BinOp, Expr)>)) -> Expr {
+fn chain((first, rest): (Expr, Vec<(BinOp, Span, Expr)>)) -> Expr {
     match rest.last() {
         None => first,
-        Some((_, last)) => Expr {
+        Some((_, _, last)) => Expr {
             span: first.span.join(last.span),
             kind: ExprKind::Chain {
                 first: Box::new(first),

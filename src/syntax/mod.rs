@@ -3,6 +3,7 @@
 pub mod ast;
 mod build;
 pub mod parser;
+pub mod povray;
 
 use crate::diag::Diagnostic;
 use crate::source::FileId;

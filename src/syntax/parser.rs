@@ -51,7 +51,7 @@ pub fn rule_name(rule: Rule) -> &'static str {
         Rule::ident => "a name",
         Rule::keyword => "a keyword",
         Rule::boundary => "the end of a word",
-        Rule::bin_op => "an operator (`+`, `-`, `*`, `/`)",
+        Rule::bin_op => "an operator (`+`, `-`, `*`, `/`, `%`)",
         Rule::neg => "`-`",
         Rule::equals => "`=`",
         Rule::semicolon => "`;`",
@@ -173,15 +173,40 @@ pub fn convert_error(
         .with_help("write `rgb` once, e.g. `rgb 0.5`; to make a colour of an expression, put it in brackets: `rgb (a * 2)`");
     }
     if rest.trim().is_empty() {
-        if let Some(open) = unclosed_brace(text) {
-            return Diagnostic::error(
-                "pts::syntax::unclosed_block",
-                "this block is never closed",
-                Span::new(file, open, open + 1),
-            )
-            .with_label("this `{` has no matching `}`")
-            .with_help("add `}` at the end of the block");
+        if let Some(&open) = open_braces(text).last() {
+            return unclosed_block(file, open);
         }
+    }
+    // A statement keyword at the start of a line inside a block opened on
+    // an earlier line: that block lacks its `}` (reported at its `{`, not
+    // where the parser noticed).
+    let word = found.trim_matches('`');
+    if let Some((at, kw)) = statement_on_line(text, pos) {
+        if let Some(&open) = open_braces(&text[..at]).last() {
+            if block_brace(text, open) {
+                return unclosed_block(file, open).with_secondary(
+                    Span::new(file, at, at + kw.len()),
+                    format!("`{kw}` starts the next statement"),
+                );
+            }
+        }
+    }
+    if found == "`#`" {
+        let directive: String = rest[1..]
+            .chars()
+            .take_while(|c| c.is_alphanumeric() || *c == '_')
+            .collect();
+        let help = super::povray::hint(&directive).map_or_else(
+            || "ptsc has no `#` directives: statements are `let`, `include`, `for`, …".to_string(),
+            str::to_string,
+        );
+        return Diagnostic::error(
+            "pts::syntax::directive",
+            format!("`#{directive}` is a POV-Ray directive"),
+            Span::new(file, pos, pos + 1 + directive.len()),
+        )
+        .with_label("not ptsc")
+        .with_help(help);
     }
     let (expected, unexpected) = match &err.variant {
         ErrorVariant::ParsingError {
@@ -230,7 +255,33 @@ pub fn convert_error(
     } else {
         "not allowed here".to_string()
     };
-    let help = help_for(&expected, &found);
+    let (previous, adjacent) = words_before(text, pos, 2);
+    // `let ball = sphere { … }`: an object where a value goes.
+    if found == "`{`" && expected.contains(&"`;`") {
+        if let Some(kind) = previous.last().filter(|w| STATEMENT_STARTS.contains(w)) {
+            return Diagnostic::error(
+                "pts::syntax::object_as_value",
+                format!("a `{kind}` is not a value"),
+                span,
+            )
+            .with_label("an object's block")
+            .with_help("a constant holds a number, vector, colour or string; objects cannot be named yet (reusable objects are planned): write the object where it goes, in a `for` loop to repeat it");
+        }
+    }
+    let help = super::povray::hint(word)
+        .map(str::to_string)
+        .or_else(|| {
+            // `sphere { … glass }`: a name without a value.
+            let named = previous.last().filter(|_| adjacent)?;
+            expected.iter().any(|e| e.starts_with("a value")).then(|| {
+                format!("`{named}` needs a value (e.g. `{named} 1`); a material is given as `material {named}`")
+            })
+        })
+        .or_else(|| {
+            // `camera { orthographic location <…> }`: a POV-Ray word just before.
+            previous.iter().find_map(|w| super::povray::hint(w)).map(str::to_string)
+        })
+        .unwrap_or_else(|| help_for(&expected, &found));
     Diagnostic::error("pts::syntax::unexpected_token", message, span)
         .with_label(label)
         .with_help(help)
@@ -248,8 +299,9 @@ fn after_rgb(before: &str) -> bool {
     })
 }
 
-/// The byte offset of the last `{` without a matching `}`, skipping comments and strings.
-fn unclosed_brace(text: &str) -> Option<usize> {
+/// The byte offsets of the `{` without a matching `}` in `text`,
+/// outermost first, skipping comments and strings.
+fn open_braces(text: &str) -> Vec<usize> {
     let mut stack = Vec::new();
     super::for_each_code_mark(text, |i, b| {
         match b {
@@ -261,7 +313,83 @@ fn unclosed_brace(text: &str) -> Option<usize> {
         }
         true
     });
-    stack.pop()
+    stack
+}
+
+/// The error for the `{` at `open`, never closed.
+fn unclosed_block(file: FileId, open: usize) -> Diagnostic {
+    Diagnostic::error(
+        "pts::syntax::unclosed_block",
+        "this block is never closed",
+        Span::new(file, open, open + 1),
+    )
+    .with_label("this `{` has no matching `}`")
+    .with_help("add `}` at the end of the block")
+}
+
+/// Words that open a statement: four that open no block, then `material`
+/// and the block keywords (`block_brace` relies on the order).
+const STATEMENT_STARTS: &[&str] = &[
+    "let",
+    "include",
+    "for",
+    "background",
+    "material",
+    "render",
+    "camera",
+    "sphere",
+    "plane",
+    "quad",
+    "disk",
+    "triangle",
+    "box",
+    "mesh",
+    "point_light",
+    "spot_light",
+    "directional_light",
+];
+
+/// The statement keyword that opens the line holding byte `pos`, and where
+/// it stands: an error on such a line inside a block opened on an earlier
+/// line means that block was never closed.
+fn statement_on_line(text: &str, pos: usize) -> Option<(usize, &str)> {
+    let line_start = text[..pos].rfind('\n').map_or(0, |i| i + 1);
+    let line = &text[line_start..];
+    let indent = line.len() - line.trim_start().len();
+    let at = line_start + indent;
+    let word: &str = text[at..]
+        .split(|c: char| !(c.is_alphanumeric() || c == '_'))
+        .next()?;
+    STATEMENT_STARTS.contains(&word).then_some((at, word))
+}
+
+/// Whether the `{` at `open` opens a block statement or a material (where
+/// statements cannot stand), not the body of a `for` (where they can).
+fn block_brace(text: &str, open: usize) -> bool {
+    let mut words = text[..open]
+        .rsplit(|c: char| !(c.is_alphanumeric() || c == '_'))
+        .filter(|w| !w.is_empty());
+    let last = words.next().unwrap_or("");
+    let blocks = &STATEMENT_STARTS[4..];
+    blocks.contains(&last) || words.next() == Some("material")
+}
+
+/// The last `n` words before `pos` (letters, digits, `_`), nearest last,
+/// with whether the nearest one ends right before `pos` (blanks aside).
+fn words_before(text: &str, pos: usize, n: usize) -> (Vec<&str>, bool) {
+    let before = &text[..pos];
+    let adjacent = before
+        .trim_end()
+        .chars()
+        .next_back()
+        .is_some_and(|c| c.is_alphanumeric() || c == '_');
+    let mut words: Vec<&str> = before
+        .rsplit(|c: char| !(c.is_alphanumeric() || c == '_'))
+        .filter(|w| !w.is_empty())
+        .take(n)
+        .collect();
+    words.reverse();
+    (words, adjacent)
 }
 
 /// A hint that fits the usual causes of a parse error.

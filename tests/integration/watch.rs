@@ -143,6 +143,10 @@ fn edits_render_broken_edits_keep_the_image_and_fixes_render_again() {
     let (_dir, pts, png) = setup();
     let w = watching_first_scene(&pts);
     let first = std::fs::read(&png).unwrap();
+    // Nothing was saved yet: the first preview counts from the start, and
+    // each render's lines carry its number.
+    assert!(w.output().contains("ms after starting)"), "{}", w.output());
+    assert!(w.output().contains("render 1: done:"), "{}", w.output());
 
     w.save_and_wait(&pts, &scene(30, ""));
     let second = std::fs::read(&png).unwrap();

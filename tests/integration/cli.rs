@@ -1,0 +1,175 @@
+//! Command-line conventions: exit codes after signals with the image of
+//! every sample done, JSON for a client even on I/O errors, `--quiet` and
+//! `--verbose`, flags checked like the scene.
+
+use std::path::Path;
+use std::process::{Command, Stdio};
+use std::time::{Duration, Instant};
+
+fn ptsc(args: &[&str]) -> (i32, String, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_ptsc"))
+        .args(args)
+        .output()
+        .unwrap();
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+const SCENE: &str = "camera { position <0, 1, 4> look_at <0, 0.5, 0> }\n\
+    background rgb 0.6\n\
+    plane { normal <0, 1, 0> material { diffuse rgb 0.7 } }\n\
+    sphere { center <0, 0.5, 0> radius 0.5 material { reflection rgb 0.8 gloss 0.2 } }\n";
+
+/// Sends `signal` to a long render after `after`; returns its exit code and
+/// stderr.
+fn interrupt(scene: &Path, out: &Path, signal: &str, after: Duration) -> (i32, String) {
+    let child = Command::new(env!("CARGO_BIN_EXE_ptsc"))
+        .args([
+            "render",
+            scene.to_str().unwrap(),
+            "-o",
+            out.to_str().unwrap(),
+        ])
+        .args([
+            "--resolution",
+            "48x48",
+            "--spp",
+            "1000000",
+            "--threads",
+            "2",
+        ])
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    std::thread::sleep(after);
+    let status = Command::new("kill")
+        .args([signal, &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(status.success());
+    let t0 = Instant::now();
+    let out = child.wait_with_output().unwrap();
+    assert!(t0.elapsed() < Duration::from_secs(5), "slow to stop");
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+#[test]
+fn a_signal_writes_every_sample_done_and_sets_the_exit_code() {
+    let dir = crate::temp_dir_with(&[("s.pts", SCENE)]);
+    let scene = dir.path().join("s.pts");
+    let out = dir.path().join("interrupted.exr");
+    let (code, err) = interrupt(&scene, &out, "-INT", Duration::from_millis(2500));
+    assert_eq!(code, 130, "{err}");
+    // "interrupted: N spp in every pixel, up to M, …": the pass in flight
+    // was kept.
+    let line = err
+        .lines()
+        .find(|l| l.contains("interrupted:"))
+        .expect(&err);
+    let number_after = |word: &str| -> u32 {
+        let rest = &line[line.find(word).unwrap() + word.len()..];
+        rest.split(|c: char| !c.is_ascii_digit())
+            .find(|w| !w.is_empty())
+            .unwrap()
+            .parse()
+            .unwrap()
+    };
+    let (every, most) = (number_after("interrupted: "), number_after("up to "));
+    assert!(every >= 1 && most > every, "{line}");
+    // The image is not the image of the passes that finished: it holds more.
+    let finished = dir.path().join("finished.exr");
+    let (code, _, e) = ptsc(&[
+        "render",
+        scene.to_str().unwrap(),
+        "-o",
+        finished.to_str().unwrap(),
+        "--resolution",
+        "48x48",
+        "--spp",
+        &every.to_string(),
+    ]);
+    assert_eq!(code, 0, "{e}");
+    let (_, _, a) = ptsc::render::film::read_exr(&out).unwrap();
+    let (_, _, b) = ptsc::render::film::read_exr(&finished).unwrap();
+    assert!(a.iter().all(|p| p.is_finite()));
+    let differing = a.iter().zip(&b).filter(|(x, y)| x != y).count();
+    assert!(
+        differing > 0,
+        "the interrupted image holds only the finished passes"
+    );
+
+    let (code, err) = interrupt(&scene, &out, "-TERM", Duration::from_millis(1500));
+    assert_eq!(code, 143, "{err}");
+    assert!(err.contains("interrupted:"), "{err}");
+}
+
+#[test]
+fn json_clients_get_json_for_io_errors_too() {
+    let (code, out, err) = ptsc(&["check", "/no/such/scene.pts", "--format", "json"]);
+    assert_eq!(code, 2);
+    assert!(err.is_empty(), "{err}");
+    let json: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(json[0]["code"], "pts::io::read");
+    assert!(json[0]["message"]
+        .as_str()
+        .unwrap()
+        .contains("/no/such/scene.pts"));
+}
+
+#[test]
+fn quiet_prints_errors_only_and_verbose_the_stages() {
+    let dir = crate::temp_dir_with(&[(
+        "s.pts",
+        &format!("{SCENE}let unused = 1;\nrender {{ resolution <8, 8> samples 4 }}\n"),
+    )]);
+    let scene = dir.path().join("s.pts");
+    let img = dir.path().join("o.png");
+    let args = [
+        "render",
+        scene.to_str().unwrap(),
+        "-o",
+        img.to_str().unwrap(),
+    ];
+    let (code, _, err) = ptsc(&[&args[..], &["--quiet"]].concat());
+    assert_eq!(code, 0);
+    assert!(err.is_empty(), "quiet printed: {err}");
+    assert!(img.is_file());
+    let (code, _, err) = ptsc(&[&args[..], &["--verbose"]].concat());
+    assert_eq!(code, 0);
+    for want in ["never used", "loaded in", "pass to 4 spp", "4 spp in"] {
+        assert!(err.contains(want), "no `{want}` in: {err}");
+    }
+    let (code, _, err) = ptsc(&["check", scene.to_str().unwrap(), "--quiet"]);
+    assert_eq!((code, err.as_str()), (0, ""));
+    // Flags follow the scene's rules, with its wording.
+    let (code, _, err) = ptsc(&[&args[..], &["--spp", "0"]].concat());
+    assert_eq!(code, 2);
+    assert!(err.contains("a whole number from 1 to 1000000"), "{err}");
+}
+
+#[test]
+fn materials_may_be_used_before_their_declaration() {
+    let c = ptsc::check::check_str(
+        Path::new("m.pts"),
+        "camera { position <0, 0, 5> look_at <0, 0, 0> }\n\
+         sphere { center <0, 0, 0> radius 1 material gold }\n\
+         material gold { reflection rgb <1, 0.8, 0.3> emission rgb 1 }\n",
+    );
+    assert!(c.diagnostics.items.is_empty(), "{:?}", c.diagnostics.items);
+    let scene = c.scene.unwrap();
+    let m = &scene.materials[scene.objects[0].material];
+    assert_eq!(m.name.as_deref(), Some("gold"));
+    // Constants keep their order: a name is defined before it is used.
+    let c = ptsc::check::check_str(
+        Path::new("m.pts"),
+        "camera { position <0, 0, 5> look_at <0, 0, 0> }\n\
+         sphere { center <0, 0, 0> radius r }\nlet r = 1;\n",
+    );
+    assert!(c.diagnostics.has_errors());
+}

@@ -147,6 +147,21 @@ pub const MATERIAL: &[ParamSpec] = &[
     p("two_sided", Ty::Bool, "true"),
 ];
 
+/// Every parameter name of every block and of materials, sorted (editors
+/// highlight them; their grammars are tested against this list).
+pub fn all_parameter_names() -> Vec<&'static str> {
+    let mut names: Vec<&'static str> = crate::syntax::ast::BlockKind::ALL
+        .iter()
+        .flat_map(|&k| shape_schema(k).iter())
+        .chain(SHAPE_COMMON)
+        .chain(MATERIAL)
+        .map(|p| p.name)
+        .collect();
+    names.sort_unstable();
+    names.dedup();
+    names
+}
+
 /// The parameters of each shape, without [`SHAPE_COMMON`].
 pub fn shape_schema(kind: crate::syntax::ast::BlockKind) -> &'static [ParamSpec] {
     use crate::syntax::ast::BlockKind::*;
@@ -317,7 +332,18 @@ impl Params {
                         params.suggested.push(s);
                         format!("did you mean `{s}`?")
                     }
-                    None => format!("`{what}` accepts {}", all.join(", ")),
+                    None => match crate::syntax::povray::hint(&name.name) {
+                        Some(hint) if crate::syntax::povray::parameter(&name.name).is_some() => {
+                            let instead =
+                                crate::syntax::povray::parameter(&name.name).unwrap_or("");
+                            if let Some(&known) = all.iter().find(|&&n| n == instead) {
+                                params.suggested.push(known);
+                            }
+                            format!("{hint}; `{what}` accepts {}", all.join(", "))
+                        }
+                        Some(hint) => format!("{hint}; `{what}` accepts {}", all.join(", ")),
+                        None => format!("`{what}` accepts {}", all.join(", ")),
+                    },
                 };
                 diags.push(
                     Diagnostic::error(

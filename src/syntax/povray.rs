@@ -52,6 +52,21 @@ const WORDS: &[(&str, &str)] = &[
     ("checker", "patterns such as a checker are planned (textures); ptsc has none yet"),
 ];
 
+/// POV-Ray parameter names with the ptsc parameter that does their job.
+const PARAMETERS: &[(&str, &str)] = &[
+    ("location", "position"),
+    ("angle", "fov"),
+    ("sky", "up"),
+    ("focal_point", "focus_distance"),
+];
+
+/// The ptsc parameter that does the job of POV-Ray's parameter `word`
+/// (`location` → `position`): a block that lacks it should not also be
+/// told so.
+pub fn parameter(word: &str) -> Option<&'static str> {
+    PARAMETERS.iter().find(|(w, _)| *w == word).map(|(_, p)| *p)
+}
+
 /// What ptsc has instead of `word`, if it is a POV-Ray (or similar) word
 /// that ptsc does not have. `#declare` and `declare` are the same word.
 pub fn hint(word: &str) -> Option<&'static str> {

@@ -53,7 +53,8 @@ fn vim_syntax_knows_every_keyword() {
         if let Some(rest) = line.strip_prefix("syn keyword ") {
             let mut it = rest.split_whitespace();
             let group = it.next().unwrap();
-            if group != "ptsFunction" {
+            // Keywords only: not functions, parameters or integrator words.
+            if !matches!(group, "ptsFunction" | "ptsParam" | "ptsWord") {
                 words.extend(it.map(str::to_string));
             }
         }
@@ -72,4 +73,65 @@ fn editors_know_every_function() {
         assert!(vim_words.contains(*f), "vim lacks {f}");
         assert!(tm_words.contains(*f), "vscode lacks {f}");
     }
+}
+
+/// The parameter names the VS Code grammar highlights.
+fn vscode_parameters(json: &serde_json::Value) -> BTreeSet<String> {
+    let m = json["repository"]["parameters"]["match"].as_str().unwrap();
+    let inner = &m[m.find("\\b(").unwrap() + 3..m.find(")\\b").unwrap()];
+    inner.split('|').map(str::to_string).collect()
+}
+
+fn vscode_grammar() -> serde_json::Value {
+    let tm =
+        std::fs::read_to_string(crate::root().join("editors/vscode/syntaxes/pts.tmLanguage.json"))
+            .unwrap();
+    serde_json::from_str(&tm).unwrap()
+}
+
+#[test]
+fn editors_know_every_parameter_and_only_parameters() {
+    let names: BTreeSet<String> = ptsc::check::params::all_parameter_names()
+        .into_iter()
+        .map(str::to_string)
+        .collect();
+    assert_eq!(vscode_parameters(&vscode_grammar()), names);
+    let vim = std::fs::read_to_string(crate::root().join("editors/vim/syntax/pts.vim")).unwrap();
+    let vim_params: BTreeSet<String> = vim
+        .lines()
+        .filter_map(|l| l.strip_prefix("syn keyword ptsParam "))
+        .flat_map(|l| l.split_whitespace().map(str::to_string))
+        .collect();
+    // `min` and `max` (box corners) are highlighted as the functions they also are.
+    let functions: BTreeSet<String> = ptsc::check::eval::FUNCTIONS
+        .iter()
+        .map(|(f, _)| f.to_string())
+        .collect();
+    assert_eq!(vim_params, &names - &functions);
+}
+
+#[test]
+fn vscode_numbers_and_parameters_match_what_they_should() {
+    let json = vscode_grammar();
+    let matches = |pattern: &str, text: &str| -> Vec<String> {
+        let re = fancy_regex::Regex::new(pattern).unwrap();
+        re.find_iter(text)
+            .map(|m| m.unwrap().as_str().to_string())
+            .collect()
+    };
+    let number = json["repository"]["numbers"]["match"].as_str().unwrap();
+    assert_eq!(matches(number, "radius .5"), [".5"]);
+    assert_eq!(matches(number, "for i in 0..10 {"), ["0", "10"]);
+    assert_eq!(matches(number, "gloss 2.5e-3 * 1."), ["2.5e-3", "1."]);
+    assert!(matches(number, "edge1 v0 a2").is_empty());
+    let parameter = json["repository"]["parameters"]["match"].as_str().unwrap();
+    assert_eq!(
+        matches(parameter, "sphere { center c radius my_radius material m }"),
+        ["center", "radius"]
+    );
+    // A box's `min` is a parameter, `min(a, b)` a function.
+    assert_eq!(
+        matches(parameter, "box { min <0,0,0> max min(1, 2) }"),
+        ["min", "max"]
+    );
 }

@@ -1,5 +1,6 @@
 " Vim syntax file for ptsc .pts scenes. Keyword lists are tested against
-" grammar/pts.pest by tests/integration/editors.rs.
+" grammar/pts.pest, parameter names against the checker's schemas, by
+" tests/integration/editors.rs (`min` and `max` are functions here).
 if exists("b:current_syntax")
   finish
 endif
@@ -8,8 +9,11 @@ syn keyword ptsControl let include for in
 syn keyword ptsBlock render camera background material sphere plane quad disk triangle box mesh point_light spot_light directional_light
 syn keyword ptsColour rgb
 syn keyword ptsBoolean true false
+syn keyword ptsParam absorption ambient angle aperture center clamp corner diffuse direction edge1 edge2 emission exposure falloff file focus_distance fov gloss hybrid_weight integrator intensity ior irradiance light_samples light_sampling look_at matrix max_depth normal output point position radius reflection resolution rotate rr_depth samples scale seed shutter smooth translate transmission two_sided up v0 v1 v2 velocity
+syn keyword ptsWord path whitted hybrid normals albedo depth
 syn keyword ptsFunction sin cos tan sqrt pow abs min max radians degrees normalize length dot cross
-syn match ptsNumber "\<\d\+\(\.\(\.\)\@!\d*\)\=\([eE][+-]\=\d\+\)\=\>"
+" 1, 2.5, 1e-3 and .5, but not the .. of a range (0..10).
+syn match ptsNumber "\%(\<\d\+\%(\.\.\@!\d*\)\=\|\%([.0-9]\)\@<!\.\d\+\)\%([eE][+-]\=\d\+\)\=\>"
 syn region ptsString start=+"+ skip=+\\.+ end=+"\|$+
 syn match ptsComment "//.*$"
 syn region ptsComment start="/\*" end="\*/"
@@ -19,6 +23,8 @@ hi def link ptsBlock Type
 hi def link ptsColour Function
 hi def link ptsBoolean Boolean
 hi def link ptsFunction Function
+hi def link ptsParam Identifier
+hi def link ptsWord Constant
 hi def link ptsNumber Number
 hi def link ptsString String
 hi def link ptsComment Comment

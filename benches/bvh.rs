@@ -17,10 +17,11 @@
 
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use glam::Vec3;
+use ptsc::accel::bvh::Bvh;
 use ptsc::check::check_str;
-use ptsc::geometry::{bvh::Bvh, offset_origin, shape::Shape, Aabb, Ray};
-use ptsc::ir::lower::lower;
+use ptsc::geometry::{offset_origin, shape::Shape, Aabb, Ray};
 use ptsc::ir::Scene;
+use ptsc::lower::lower;
 use std::path::{Path, PathBuf};
 
 fn mesh_path() -> Option<PathBuf> {
@@ -125,7 +126,7 @@ fn bench(c: &mut Criterion) {
     };
     // The triangles' boxes, as lowering computes them (the scene keeps no
     // per-triangle record of a flat mesh).
-    let mesh = ptsc::ir::mesh::load(&mesh_path().expect("made above")).expect("the mesh loads");
+    let mesh = ptsc::lower::mesh::load(&mesh_path().expect("made above")).expect("the mesh loads");
     let bounds: Vec<Aabb> = mesh
         .triangles
         .iter()

@@ -2,7 +2,7 @@
 //! a shutter interval (motion blur).
 
 use crate::geometry::Ray;
-use crate::render::sampling::concentric_disk;
+use crate::sampling::warp::concentric_disk;
 use glam::{Vec2, Vec3};
 
 /// A camera ready to generate rays.
@@ -22,31 +22,27 @@ pub struct Camera {
 }
 
 impl Camera {
-    /// Builds the camera for an image of `width` × `height`.
-    pub fn new(c: &crate::check::Camera, width: u32, height: u32) -> Camera {
-        // The frame in f64, rounded once: `up` may be any non-zero vector
-        // (the checker's domain), which need not fit an f32.
-        let unit = crate::check::domain::unit;
-        let forward = unit(c.look_at - c.position).unwrap_or(glam::DVec3::NEG_Z);
-        let right =
-            unit(forward.cross(unit(c.up).unwrap_or(glam::DVec3::Y))).unwrap_or(glam::DVec3::X);
-        let up = right.cross(forward);
-        let (position, forward, right, up) = (
-            c.position.as_vec3(),
-            forward.as_vec3(),
-            right.as_vec3(),
-            up.as_vec3(),
-        );
+    /// Builds the camera for an image of `width` × `height`: its position
+    /// and orthonormal frame (`forward`, `right`, `up`), the vertical field
+    /// of view in radians, the lens (aperture radius, focus distance; a
+    /// radius of 0 is a pinhole) and the shutter interval.
+    pub fn new(
+        [position, forward, right, up]: [Vec3; 4],
+        fov_radians: f32,
+        (lens_radius, focus): (f32, f32),
+        shutter: (f32, f32),
+        (width, height): (u32, u32),
+    ) -> Camera {
         Camera {
             position,
             right,
             up,
             forward,
-            tan_half: (c.fov.to_radians() as f32 * 0.5).tan(),
+            tan_half: (fov_radians * 0.5).tan(),
             aspect: width as f32 / height as f32,
-            lens_radius: c.aperture as f32,
-            focus: c.focus_distance as f32,
-            shutter: (c.shutter.0 as f32, c.shutter.1 as f32),
+            lens_radius,
+            focus,
+            shutter,
             width: width as f32,
             height: height as f32,
         }

@@ -6,7 +6,7 @@
 //! bounded time.
 
 use crate::check::check_bytes_within;
-use crate::ir::mesh;
+use crate::lower::mesh;
 use std::path::Path;
 use std::sync::atomic::AtomicBool;
 
@@ -49,7 +49,7 @@ pub fn scene(bytes: &[u8]) -> bool {
     r.samples = r.samples.min(MAX_SAMPLES);
     r.max_depth = r.max_depth.min(MAX_DEPTH);
     r.light_samples = r.light_samples.min(MAX_LIGHT_SAMPLES);
-    let ir = match crate::ir::lower::lower(&scene) {
+    let ir = match crate::lower::lower(&scene) {
         Ok(ir) => ir,
         Err(d) => {
             diagnostics_stay_in_their_files(&d, &checked.sources);

@@ -9,7 +9,9 @@
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
 
+pub mod accel;
 pub mod bench_data;
+pub mod camera;
 pub mod check;
 pub mod cli;
 pub mod diag;
@@ -18,8 +20,11 @@ pub mod geometry;
 pub mod integrator;
 pub mod ir;
 pub mod light;
+pub mod lower;
 pub mod material;
+pub mod output;
 pub mod render;
+pub mod sampling;
 pub mod source;
 pub mod span;
 pub mod syntax;

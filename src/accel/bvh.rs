@@ -4,7 +4,7 @@
 //! `bvh4.rs` collapses it into the 4-wide tree the renderer uses.
 
 use super::bvh4::MAX_BLOCKS;
-use super::Aabb;
+use crate::geometry::Aabb;
 use glam::{Vec3, Vec3A};
 
 /// One node: bounds plus either two children (`count == 0`: left child at
@@ -628,7 +628,7 @@ pub(crate) mod tests {
         // sequence). Counted one by one the SAH cuts anywhere, leaving many
         // leaves of one to three; counted in blocks of four it prefers cuts
         // that leave full blocks.
-        let mut sampler = crate::render::sampler::Sampler::new(1, 2, 3, 4);
+        let mut sampler = crate::sampling::sampler::Sampler::new(1, 2, 3, 4);
         let mut next = || sampler.next_f32();
         let bounds: Vec<Aabb> = (0..4000)
             .map(|_| {

@@ -9,10 +9,10 @@
 //! hit children are visited nearest first.
 
 use super::bvh::Bvh;
-use super::shape::Shape;
-use super::shape::ShapeHit;
 use super::tri4::{PackedTriangle, Tri4, PLAIN, QUAD};
-use super::{Aabb, Ray};
+use crate::geometry::shape::Shape;
+use crate::geometry::shape::ShapeHit;
+use crate::geometry::{Aabb, Ray};
 use arrayvec::ArrayVec;
 use glam::{Vec2, Vec3};
 
@@ -527,7 +527,7 @@ impl Collapse<'_> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::geometry::bvh::tests::{brute, shape_strategy};
+    use crate::accel::bvh::tests::{brute, shape_strategy};
     use crate::geometry::shape::Shape;
     use glam::Vec3;
     use proptest::prelude::*;

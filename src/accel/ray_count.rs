@@ -4,8 +4,8 @@
 //! it traced (rays/s beside paths/s) without a shared counter in the hot
 //! path.
 //!
-//! [`Scene::intersect`]: super::Scene::intersect
-//! [`Scene::occluded`]: super::Scene::occluded
+//! [`Scene::intersect`]: crate::ir::Scene::intersect
+//! [`Scene::occluded`]: crate::ir::Scene::occluded
 
 use std::cell::Cell;
 use std::ops::{Add, Sub};
@@ -57,13 +57,13 @@ thread_local! {
 
 /// Counts one closest-hit query on this thread.
 #[inline(always)]
-pub(super) fn closest() {
+pub fn closest() {
     bump(|n| n.closest += 1);
 }
 
 /// Counts one shadow query on this thread.
 #[inline(always)]
-pub(super) fn shadow() {
+pub fn shadow() {
     bump(|n| n.shadow += 1);
 }
 

@@ -3,7 +3,7 @@
 //! al. 2014, "Embree: A Kernel Framework for Efficient CPU Ray Tracing").
 //!
 //! Each triangle is one lane of structure-of-arrays data, so Möller–Trumbore
-//! ([`super::triangle`]) runs on all four with the same few vector
+//! ([`crate::geometry::triangle`]) runs on all four with the same few vector
 //! instructions (`glam::Vec4`: SSE2 on x86-64, NEON on ARM, scalar
 //! elsewhere; written as loops over `[f32; 4]` lanes, the compiler left it
 //! mostly scalar), and the four triangles come from three adjacent cache
@@ -36,7 +36,7 @@ pub struct Tri4 {
 pub const PLAIN: u32 = 1 << 31;
 
 /// The bit of [`Tri4::prim`] that marks a parallelogram: the same
-/// Möller–Trumbore test ([`super::quad`] shares it with triangles), with
+/// Möller–Trumbore test ([`crate::geometry::quad`] shares it with triangles), with
 /// `v <= 1` in place of `u + v <= 1`. Walls and floors of rooms are quads.
 pub const QUAD: u32 = 1 << 30;
 

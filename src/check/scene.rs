@@ -8,50 +8,7 @@ use std::path::PathBuf;
 /// Linear RGB triple.
 pub type Rgb = [f64; 3];
 
-/// Which light-transport algorithm renders the scene.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum IntegratorKind {
-    /// Unbiased path tracing with next-event estimation and MIS.
-    Path,
-    /// Recursive ray tracing with shadow rays.
-    Whitted,
-    /// The paper's blend of Whitted and path tracing.
-    Hybrid,
-    /// Debug: shading normals as colours.
-    Normals,
-    /// Debug: the albedo of the first hit.
-    Albedo,
-    /// Debug: distance to the first hit.
-    Depth,
-}
-
-impl IntegratorKind {
-    /// Every integrator with its `.pts` name.
-    pub const NAMES: [(&'static str, IntegratorKind); 6] = [
-        ("path", IntegratorKind::Path),
-        ("whitted", IntegratorKind::Whitted),
-        ("hybrid", IntegratorKind::Hybrid),
-        ("normals", IntegratorKind::Normals),
-        ("albedo", IntegratorKind::Albedo),
-        ("depth", IntegratorKind::Depth),
-    ];
-
-    /// Looks an integrator up by name.
-    pub fn from_name(name: &str) -> Option<Self> {
-        Self::NAMES
-            .iter()
-            .find(|(n, _)| *n == name)
-            .map(|(_, k)| *k)
-    }
-
-    /// The integrator's `.pts` name.
-    pub fn name(self) -> &'static str {
-        Self::NAMES
-            .iter()
-            .find(|(_, k)| *k == self)
-            .map_or("path", |(n, _)| n)
-    }
-}
+pub use crate::ir::settings::IntegratorKind;
 
 /// The `render { }` block, defaults filled in.
 #[derive(Debug, Clone, PartialEq)]

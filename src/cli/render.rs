@@ -150,7 +150,7 @@ pub fn check_output(
             ));
         }
     }
-    crate::render::film::check_writable(output)
+    crate::output::check_writable(output)
 }
 
 /// Runs `render`; returns the exit code.
@@ -191,7 +191,7 @@ fn run_on_pool(args: &RenderArgs) -> u8 {
         eprintln!("error: cannot write {}: {why}", output.display());
         return EXIT_USAGE;
     }
-    let ir = match crate::ir::lower::lower(&scene) {
+    let ir = match crate::lower::lower(&scene) {
         Ok(ir) => ir,
         Err(d) => {
             eprint!(
@@ -221,7 +221,7 @@ fn run_on_pool(args: &RenderArgs) -> u8 {
     let bar = progress_bar(total, verbosity);
     let integrator = crate::integrator::make(s.integrator);
     let t1 = Instant::now();
-    let exposure = s.exposure as f32;
+    let exposure = s.exposure;
     let mut write_error = None;
     let mut last_write = Instant::now();
     let mut last_pass = Instant::now();

@@ -13,8 +13,8 @@
 
 use super::render::{apply_overrides, check_output, output_path, RenderArgs};
 use crate::check::check_file;
-use crate::ir::cache::LowerCache;
 use crate::ir::Scene;
+use crate::lower::cache::LowerCache;
 use crate::render::film::Film;
 use notify::{RecursiveMode, Watcher};
 use std::collections::BTreeSet;
@@ -182,7 +182,7 @@ impl State {
             return;
         }
         let (loads, builds) = (self.cache.mesh_loads, self.cache.bvh_builds);
-        let ir = match crate::ir::lower::lower_cached(&scene, &mut self.cache) {
+        let ir = match crate::lower::lower_cached(&scene, &mut self.cache) {
             Ok(ir) => ir,
             Err(d) => {
                 eprint!("{}", d.render_human(&checked.sources, colour));
@@ -267,7 +267,7 @@ fn render_progressively(
 ) {
     let status = |msg: &str| status(&format!("render {number}: {msg}"));
     let integrator = crate::integrator::make(ir.settings.integrator);
-    let exposure = ir.settings.exposure as f32;
+    let exposure = ir.settings.exposure;
     let (w, h) = (ir.settings.width, ir.settings.height);
     let t0 = Instant::now();
     if w >= 4 * PREVIEW_DIVISOR && h >= 4 * PREVIEW_DIVISOR && ir.settings.samples > 1 {

@@ -1,13 +1,10 @@
 //! Geometry: rays, bounds, the shapes (one file each) and the BVH over them.
 
-pub mod bvh;
-pub mod bvh4;
 pub mod disk;
 pub mod plane;
 pub mod quad;
 pub mod shape;
 pub mod sphere;
-pub mod tri4;
 pub mod triangle;
 
 use glam::Vec3;

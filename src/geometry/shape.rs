@@ -1,6 +1,6 @@
 //! The primitives the renderer intersects, after lowering: transforms are
-//! baked in, boxes are six quads (`ir::lower`), meshes are triangles
-//! (`ir::mesh`). One file per shape holds its intersection routine and tests:
+//! baked in, boxes are six quads (`lower`), meshes are triangles
+//! (`lower::mesh`). One file per shape holds its intersection routine and tests:
 //! `sphere.rs`, `quad.rs`, `disk.rs`, `triangle.rs`, `plane.rs`; this enum
 //! dispatches and holds what lights need (area, sampling).
 
@@ -177,12 +177,12 @@ impl Shape {
     pub fn sample_area(&self, u: Vec2) -> (Vec3, Vec3) {
         match *self {
             Shape::Sphere { center, radius } => {
-                let n = crate::render::sampling::uniform_sphere(u);
+                let n = crate::sampling::warp::uniform_sphere(u);
                 (center + radius * n, n)
             }
             Shape::Quad { p, e1, e2 } => (p + u.x * e1 + u.y * e2, e1.cross(e2).normalize()),
             Shape::Triangle { p0, e1, e2, .. } => {
-                let b = crate::render::sampling::uniform_triangle(u);
+                let b = crate::sampling::warp::uniform_triangle(u);
                 (p0 + b.x * e1 + b.y * e2, e1.cross(e2).normalize())
             }
             Shape::Disk {
@@ -190,7 +190,7 @@ impl Shape {
                 normal,
                 radius,
             } => {
-                let d = crate::render::sampling::concentric_disk(u);
+                let d = crate::sampling::warp::concentric_disk(u);
                 let (t, b) = super::orthonormal_basis(normal);
                 (center + radius * (d.x * t + d.y * b), normal)
             }

@@ -4,7 +4,7 @@
 use super::{Integrator, T_MIN};
 use crate::geometry::Ray;
 use crate::ir::Scene;
-use crate::render::sampler::Sampler;
+use crate::sampling::sampler::Sampler;
 use glam::Vec3;
 
 /// Which debug view.

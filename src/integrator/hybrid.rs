@@ -7,7 +7,7 @@
 use super::{path::path_li, whitted, Integrator};
 use crate::geometry::Ray;
 use crate::ir::Scene;
-use crate::render::sampler::Sampler;
+use crate::sampling::sampler::Sampler;
 use glam::Vec3;
 
 /// The hybrid integrator.
@@ -15,7 +15,7 @@ pub struct Hybrid;
 
 impl Integrator for Hybrid {
     fn li(&self, scene: &Scene, ray: Ray, sampler: &mut Sampler) -> Vec3 {
-        let w = scene.settings.hybrid_weight as f32;
+        let w = scene.settings.hybrid_weight;
         let a = whitted::trace(scene, ray, sampler, 1, 1.0);
         let b = path_li(scene, ray, sampler, scene.settings.light_sampling);
         w * a + (1.0 - w) * b

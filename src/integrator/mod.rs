@@ -7,12 +7,12 @@ pub mod hybrid;
 pub mod path;
 pub mod whitted;
 
-use crate::check::IntegratorKind;
 use crate::geometry::{offset_origin, Ray};
+use crate::ir::settings::IntegratorKind;
 use crate::ir::{Hit, Scene};
 use crate::material::Material;
-use crate::render::sampler::Sampler;
-use crate::render::sampling::power_heuristic;
+use crate::sampling::sampler::Sampler;
+use crate::sampling::warp::power_heuristic;
 use glam::Vec3;
 
 /// Radiance along a ray.
@@ -52,7 +52,7 @@ pub fn direct_light_mis(
     };
     let u = sampler.next_2d();
     let light = &scene.lights[li_idx as usize];
-    let Some(ls) = light.sample(scene, hit.p, time, u) else {
+    let Some(ls) = light.sample(|prim| scene.material_of(prim), hit.p, time, u) else {
         return Vec3::ZERO;
     };
     let (f, bsdf_pdf) = material.eval(wo, ls.wi, hit.n_shading);
@@ -93,9 +93,7 @@ pub fn light_pdf(scene: &Scene, light: u32, from: Vec3, hit: &Hit, dir: Vec3) ->
                 pick * d2 / (cos * area)
             }
         }
-        crate::light::Light::Environment { .. } => {
-            pick * crate::render::sampling::UNIFORM_SPHERE_PDF
-        }
+        crate::light::Light::Environment { .. } => pick * crate::sampling::warp::UNIFORM_SPHERE_PDF,
         _ => 0.0,
     }
 }

@@ -10,8 +10,8 @@ use super::{direct_light_mis, light_pdf, Integrator, T_MIN};
 use crate::geometry::{offset_origin, Ray};
 use crate::ir::Scene;
 use crate::light::luminance;
-use crate::render::sampler::Sampler;
-use crate::render::sampling::power_heuristic;
+use crate::sampling::sampler::Sampler;
+use crate::sampling::warp::power_heuristic;
 use glam::Vec3;
 
 /// The path integrator.
@@ -38,7 +38,7 @@ pub fn path_li(scene: &Scene, mut ray: Ray, sampler: &mut Sampler, nee: bool) ->
             if let Some(env) = scene.env_light {
                 let w = if nee && prev_pdf > 0.0 {
                     let lp =
-                        scene.light_pmf[env as usize] * crate::render::sampling::UNIFORM_SPHERE_PDF;
+                        scene.light_pmf[env as usize] * crate::sampling::warp::UNIFORM_SPHERE_PDF;
                     power_heuristic(prev_pdf, lp)
                 } else {
                     1.0
@@ -75,12 +75,8 @@ pub fn path_li(scene: &Scene, mut ray: Ray, sampler: &mut Sampler, nee: bool) ->
         if nee && material.has_smooth_lobe() {
             radiance += beta * direct_light_mis(scene, &hit, material, wo, ray.time, sampler);
         }
-        if s.ambient != [0.0; 3] && material.lobe_pdf[0] > 0.0 {
-            let a = Vec3::new(
-                s.ambient[0] as f32,
-                s.ambient[1] as f32,
-                s.ambient[2] as f32,
-            );
+        if s.ambient != Vec3::ZERO && material.lobe_pdf[0] > 0.0 {
+            let a = s.ambient;
             radiance += beta * material.diffuse * a;
         }
         // Continue the path by sampling the BSDF.
@@ -113,8 +109,8 @@ pub fn path_li(scene: &Scene, mut ray: Ray, sampler: &mut Sampler, nee: bool) ->
     }
     if let Some(c) = s.clamp {
         let l = luminance(radiance);
-        if l > c as f32 {
-            radiance *= c as f32 / l;
+        if l > c {
+            radiance *= c / l;
         }
     }
     radiance

@@ -12,7 +12,7 @@ use crate::geometry::{offset_origin, Ray};
 use crate::ir::{Hit, Scene};
 use crate::light::Light;
 use crate::material::{fresnel, reflect, refract, Material};
-use crate::render::sampler::Sampler;
+use crate::sampling::sampler::Sampler;
 use glam::Vec3;
 
 /// The Whitted integrator.
@@ -51,11 +51,7 @@ pub fn trace(scene: &Scene, ray: Ray, sampler: &mut Sampler, segment: u32, weigh
         l += direct(scene, &hit, m, wo, ray.time, sampler);
     }
     if m.lobe_pdf[0] > 0.0 {
-        let a = Vec3::new(
-            s.ambient[0] as f32,
-            s.ambient[1] as f32,
-            s.ambient[2] as f32,
-        );
+        let a = s.ambient;
         l += m.diffuse * a;
     }
     let outside = wo.dot(hit.n_geo) >= 0.0;
@@ -139,7 +135,12 @@ fn direct(
         }
         let mut acc = Vec3::ZERO;
         for _ in 0..count {
-            let Some(ls) = light.sample(scene, hit.p, time, sampler.next_2d()) else {
+            let Some(ls) = light.sample(
+                |prim| scene.material_of(prim),
+                hit.p,
+                time,
+                sampler.next_2d(),
+            ) else {
                 continue;
             };
             let (f, _) = m.eval(wo, ls.wi, hit.n_shading);

@@ -2,22 +2,18 @@
 //! a power-proportional selection table. Built from the checked scene by
 //! [`lower`](lower::lower); every primitive remembers the span it came from.
 
-pub mod cache;
-mod collect;
-pub mod lower;
-pub mod mesh;
-mod numbering;
-pub mod ray_count;
+pub mod settings;
 
-use crate::check::RenderSettings;
-use crate::geometry::bvh4::{Bvh4, TreeHit};
+use crate::accel::bvh4::{Bvh4, TreeHit};
+use crate::accel::ray_count;
+use crate::camera::Camera;
 use crate::geometry::shape::{Shape, ShapeHit};
 use crate::geometry::{Aabb, Ray};
 use crate::light::Light;
 use crate::material::Material;
-use crate::render::camera::Camera;
 use crate::span::Span;
 use glam::Vec3;
+use settings::Settings;
 use std::sync::Arc;
 
 /// One primitive: geometry only, so that `watch` shares it between compiles
@@ -52,13 +48,13 @@ pub struct Hit {
 #[derive(Debug, Clone)]
 pub struct Scene {
     /// Render settings (after command-line overrides).
-    pub settings: RenderSettings,
+    pub settings: Settings,
     /// The camera.
     pub camera: Camera,
     /// The records of the primitives that need one (shared with `watch`'s
     /// cache while the geometry is unchanged): all but the plain triangles
     /// of the BVH's blocks, which their blocks describe completely and
-    /// whose numbers come after these (see `ir::numbering`).
+    /// whose numbers come after these (see `lower::numbering`).
     pub prims: Arc<Vec<Prim>>,
     /// The object each primitive came from (index into `object_spans`), for
     /// every primitive, records or not.

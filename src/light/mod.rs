@@ -4,6 +4,7 @@
 
 use crate::geometry::shape::Shape;
 use crate::geometry::Aabb;
+use crate::material::Material;
 use glam::{Vec2, Vec3};
 
 /// One light.
@@ -87,13 +88,14 @@ impl Light {
     /// estimate unbiased). In f64: products of large accepted values (an
     /// emission of 1e12 over an area of 4e18) and their sum over many
     /// lights stay finite.
-    pub fn power(&self, scene: &crate::ir::Scene, bounds: Aabb) -> f64 {
+    /// `material_of` gives the material of an emissive primitive.
+    pub fn power<'m>(&self, material_of: impl Fn(u32) -> &'m Material, bounds: Aabb) -> f64 {
         let radius = 0.5 * ((bounds.max - bounds.min).length() as f64).min(1e6);
         let lum = |c: Vec3| luminance(c) as f64;
         let pi = std::f64::consts::PI;
         match self {
             Light::Area { prim, shape, .. } => {
-                let m = scene.material_of(*prim);
+                let m = material_of(*prim);
                 let sides = if m.two_sided { 2.0 } else { 1.0 };
                 lum(m.emission) * shape.area() as f64 * pi * sides
             }
@@ -111,12 +113,12 @@ impl Light {
         }
     }
 
-    /// Samples light arriving at `p`.
+    /// Samples light arriving at `p` (`material_of` as for [`Light::power`]).
     /// `time` is the ray's: a moving emitter is sampled where it is then.
     #[inline(always)]
-    pub fn sample(
+    pub fn sample<'m>(
         &self,
-        scene: &crate::ir::Scene,
+        material_of: impl Fn(u32) -> &'m Material,
         p: Vec3,
         time: f32,
         u: Vec2,
@@ -136,7 +138,7 @@ impl Light {
                 }
                 let dist = d2.sqrt();
                 let wi = to / dist;
-                let m = scene.material_of(*prim);
+                let m = material_of(*prim);
                 let cos_l = n.dot(-wi);
                 let li = m.emitted(-wi, n);
                 if li == Vec3::ZERO || cos_l.abs() < 1e-7 {
@@ -188,12 +190,12 @@ impl Light {
                 pdf: 0.0,
             }),
             Light::Environment { radiance } => {
-                let wi = crate::render::sampling::uniform_sphere(u);
+                let wi = crate::sampling::warp::uniform_sphere(u);
                 Some(LightSample {
                     wi,
                     dist: f32::INFINITY,
                     li: *radiance,
-                    pdf: crate::render::sampling::UNIFORM_SPHERE_PDF,
+                    pdf: crate::sampling::warp::UNIFORM_SPHERE_PDF,
                 })
             }
         }

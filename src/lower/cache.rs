@@ -2,8 +2,8 @@
 //! `watch`): loaded meshes, keyed by path and content, and the whole geometry
 //! (primitives and BVH), keyed by a hash of everything it depends on.
 
-use super::lower::Geometry;
 use super::mesh::{self, MeshData};
+use super::Geometry;
 use crate::check;
 use glam::DVec3;
 use std::collections::hash_map::DefaultHasher;
@@ -169,7 +169,7 @@ impl LowerCache {
 mod tests {
     use super::*;
     use crate::check::check_str;
-    use crate::ir::lower::lower_cached;
+    use crate::lower::lower_cached;
 
     fn lower_text(dir: &Path, text: &str, cache: &mut LowerCache) -> crate::ir::Scene {
         let c = check_str(&dir.join("s.pts"), text);

@@ -3,7 +3,7 @@
 //! Most shapes become 64-byte [`Prim`] records, but a plain mesh triangle
 //! (static, without vertex normals) is kept as its mesh's three vertex
 //! indices: 12 bytes instead of 64. Such triangles end in
-//! [`Tri4`](crate::geometry::tri4::Tri4) blocks of the wide BVH, which hold
+//! [`Tri4`](crate::accel::tri4::Tri4) blocks of the wide BVH, which hold
 //! all that rendering needs of them, so most of them never get a record at
 //! all (see [`super::lower`]): on the 1M-triangle benchmark mesh this is what
 //! keeps the peak memory near 100 bytes per triangle.
@@ -11,10 +11,10 @@
 //! Bounded primitives are numbered records first, then the meshes'
 //! triangles; planes are kept apart.
 
-use super::Prim;
+use crate::accel::tri4::PackedTriangle;
 use crate::geometry::shape::Shape;
-use crate::geometry::tri4::PackedTriangle;
 use crate::geometry::Aabb;
+use crate::ir::Prim;
 use glam::Vec3;
 
 /// The triangles of one mesh that need no record.
@@ -100,7 +100,7 @@ impl Collected {
             .is_none_or(|p| packed_record(p).is_some())
     }
 
-    /// Primitive `i` packed for a [`Tri4`](crate::geometry::tri4::Tri4)
+    /// Primitive `i` packed for a [`Tri4`](crate::accel::tri4::Tri4)
     /// block, if it is a static triangle or quad.
     pub fn packed(&self, i: u32) -> Option<PackedTriangle> {
         match self.records.get(i as usize) {

@@ -3,21 +3,27 @@
 //! collected and the BVH is built. Problems found here (an unreadable mesh, a
 //! sphere under a non-uniform scale) are diagnostics with the object's span.
 
-use super::cache::LowerCache;
-use super::collect::{Collected, PlainMesh};
-use super::numbering::Numbering;
-use super::{Prim, Scene};
+pub mod cache;
+mod collect;
+pub mod mesh;
+mod numbering;
+
+use crate::accel::bvh::Bvh;
+use crate::accel::bvh4::Bvh4;
+use crate::camera::Camera;
 use crate::check::domain::{self, unit_f32, MAX_MAGNITUDE, MIN_SIZE};
 use crate::check::{self, codes};
 use crate::diag::{Diagnostic, Diagnostics};
-use crate::geometry::bvh::Bvh;
-use crate::geometry::bvh4::Bvh4;
 use crate::geometry::shape::Shape;
 use crate::geometry::Aabb;
+use crate::ir::settings::Settings;
+use crate::ir::{Prim, Scene};
 use crate::light::Light;
-use crate::material::Material;
-use crate::render::camera::Camera;
+use crate::material::{self, Material};
+use cache::LowerCache;
+use collect::{Collected, PlainMesh};
 use glam::{DMat4, DVec3, Vec3};
+use numbering::Numbering;
 use std::sync::Arc;
 
 fn v3(v: DVec3) -> Vec3 {
@@ -103,7 +109,7 @@ pub fn lower(scene: &check::Scene) -> Result<Scene, Diagnostics> {
 /// motion or mesh changed: a camera, material or settings edit in `watch`
 /// neither reloads meshes nor rebuilds the BVH.
 pub fn lower_cached(scene: &check::Scene, cache: &mut LowerCache) -> Result<Scene, Diagnostics> {
-    let materials: Vec<Material> = scene.materials.iter().map(Material::from_checked).collect();
+    let materials: Vec<Material> = scene.materials.iter().map(lower_material).collect();
     if cache.is_one_off() {
         let geometry = build_geometry(scene, cache)?;
         return Ok(finish(scene, materials, geometry));
@@ -508,9 +514,9 @@ fn finish(scene: &check::Scene, materials: Vec<Material>, geometry: Geometry) ->
         lights.len() as u32 - 1
     });
 
-    let camera = Camera::new(&scene.camera, scene.render.width, scene.render.height);
+    let camera = lower_camera(&scene.camera, scene.render.width, scene.render.height);
     let mut ir = Scene {
-        settings: scene.render.clone(),
+        settings: lower_settings(&scene.render),
         camera,
         prims,
         prim_object,
@@ -539,7 +545,7 @@ fn finish(scene: &check::Scene, materials: Vec<Material>, geometry: Geometry) ->
     let powers: Vec<f64> = ir
         .lights
         .iter()
-        .map(|l| l.power(&ir, scene_bounds))
+        .map(|l| l.power(|prim| ir.material_of(prim), scene_bounds))
         .collect();
     match light_table(&powers) {
         Some((pmf, cdf)) => (ir.light_pmf, ir.light_cdf) = (pmf, cdf),
@@ -632,4 +638,54 @@ mod tests {
             Representable::TooSmall
         ));
     }
+}
+
+/// The camera of the checked scene: its frame computed in f64 and rounded
+/// once (`up` may be any non-zero vector of the checker's domain, which need
+/// not fit an f32).
+fn lower_camera(c: &check::Camera, width: u32, height: u32) -> Camera {
+    let unit = crate::check::domain::unit;
+    let forward = unit(c.look_at - c.position).unwrap_or(glam::DVec3::NEG_Z);
+    let right = unit(forward.cross(unit(c.up).unwrap_or(glam::DVec3::Y))).unwrap_or(glam::DVec3::X);
+    let up = right.cross(forward);
+    Camera::new(
+        [c.position, forward, right, up].map(|v| v.as_vec3()),
+        c.fov.to_radians() as f32,
+        (c.aperture as f32, c.focus_distance as f32),
+        (c.shutter.0 as f32, c.shutter.1 as f32),
+        (width, height),
+    )
+}
+
+/// The settings as the renderer reads them (f32 where it computes with them).
+fn lower_settings(r: &check::RenderSettings) -> Settings {
+    Settings {
+        width: r.width,
+        height: r.height,
+        samples: r.samples,
+        max_depth: r.max_depth,
+        integrator: r.integrator,
+        seed: r.seed,
+        ambient: DVec3::from_array(r.ambient).as_vec3(),
+        rr_depth: r.rr_depth,
+        hybrid_weight: r.hybrid_weight as f32,
+        clamp: r.clamp.map(|c| c as f32),
+        light_sampling: r.light_sampling,
+        light_samples: r.light_samples,
+        exposure: r.exposure as f32,
+    }
+}
+
+/// A checked material in the renderer's f32.
+fn lower_material(m: &check::Material) -> Material {
+    Material::new(&material::Params {
+        diffuse: v3(DVec3::from_array(m.diffuse)),
+        reflection: v3(DVec3::from_array(m.reflection)),
+        gloss: m.gloss as f32,
+        transmission: m.transmission as f32,
+        ior: m.ior as f32,
+        absorption: v3(DVec3::from_array(m.absorption)),
+        emission: v3(DVec3::from_array(m.emission)),
+        two_sided: m.two_sided,
+    })
 }

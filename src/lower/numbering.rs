@@ -1,14 +1,14 @@
 //! The final primitive numbers, chosen once the wide BVH is packed.
 //!
 //! The primitives that need a 64-byte record (all but the plain triangles of
-//! [`Tri4`](crate::geometry::tri4::Tri4) blocks) come first, in leaf order,
+//! [`Tri4`](crate::accel::tri4::Tri4) blocks) come first, in leaf order,
 //! so that a leaf's records are contiguous in memory and its primitives stay
 //! consecutive; then room for the planes; then the plain triangles in leaf
 //! order, numbers without records. A bit per place and a running count per
 //! 64 places answer "which number" (a rank query, as in succinct data
 //! structures) in 0.16 bytes per primitive instead of an array of 4.
 
-use crate::geometry::bvh4::Bvh4;
+use crate::accel::bvh4::Bvh4;
 
 /// Maps places in the binary BVH's order to final primitive numbers.
 #[derive(Debug)]
@@ -65,7 +65,7 @@ impl Numbering {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::geometry::tri4::{PackedTriangle, Tri4};
+    use crate::accel::tri4::{PackedTriangle, Tri4};
 
     #[test]
     fn records_first_then_planes_then_plain_triangles() {

@@ -7,7 +7,7 @@
 
 use super::tests::mat as material;
 use super::Material;
-use crate::render::sampler::Sampler;
+use crate::sampling::sampler::Sampler;
 use glam::Vec3;
 use std::f64::consts::PI;
 
@@ -238,8 +238,8 @@ fn every_material_is_reciprocal_and_reflects_at_most_what_it_receives() {
         material(0.3, 0.0, 0.0, 0.7),
     ] {
         for _ in 0..200 {
-            let a = crate::render::sampling::uniform_sphere(s.next_2d());
-            let b = crate::render::sampling::uniform_sphere(s.next_2d());
+            let a = crate::sampling::warp::uniform_sphere(s.next_2d());
+            let b = crate::sampling::warp::uniform_sphere(s.next_2d());
             let (fab, _) = m.eval(a, b, Vec3::Z);
             let (fba, _) = m.eval(b, a, Vec3::Z);
             assert!((fab - fba).abs().max_element() <= 1e-4 * fab.max_element().max(1.0));

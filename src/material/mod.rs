@@ -12,7 +12,7 @@ pub mod multiscatter;
 mod chi2;
 
 use crate::geometry::orthonormal_basis;
-use crate::render::sampling::{cosine_hemisphere, cosine_hemisphere_pdf};
+use crate::sampling::warp::{cosine_hemisphere, cosine_hemisphere_pdf};
 use glam::{Vec2, Vec3};
 use std::f32::consts::FRAC_1_PI;
 
@@ -37,6 +37,44 @@ pub struct Material {
     pub two_sided: bool,
     /// Probabilities of choosing the diffuse, reflection and transmission lobes.
     pub lobe_pdf: [f32; 3],
+}
+
+/// A material's parameters as written in a scene (`material { … }`), in
+/// the renderer's f32.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Params {
+    /// Lambertian albedo.
+    pub diffuse: Vec3,
+    /// Specular (mirror or glossy) reflectance.
+    pub reflection: Vec3,
+    /// Roughness of the reflection lobe, 0 = mirror.
+    pub gloss: f32,
+    /// Weight of the smooth dielectric lobe.
+    pub transmission: f32,
+    /// Index of refraction inside.
+    pub ior: f32,
+    /// Beer's-law absorption coefficient inside.
+    pub absorption: Vec3,
+    /// Emitted radiance.
+    pub emission: Vec3,
+    /// Emission from both sides.
+    pub two_sided: bool,
+}
+
+impl Default for Params {
+    /// Black, no lobes, the IOR of glass.
+    fn default() -> Params {
+        Params {
+            diffuse: Vec3::ZERO,
+            reflection: Vec3::ZERO,
+            gloss: 0.0,
+            transmission: 0.0,
+            ior: 1.5,
+            absorption: Vec3::ZERO,
+            emission: Vec3::ZERO,
+            two_sided: false,
+        }
+    }
 }
 
 /// A direction sampled from a material.
@@ -76,11 +114,11 @@ pub fn refract(w: Vec3, n: Vec3, eta: f32) -> Option<Vec3> {
 }
 
 impl Material {
-    /// Builds a material from the checked scene's values.
-    pub fn from_checked(m: &crate::check::Material) -> Material {
-        let v = |c: [f64; 3]| Vec3::new(c[0] as f32, c[1] as f32, c[2] as f32);
+    /// Builds a material from its parameters: the lobe weights are
+    /// normalised when they sum above 1 and become the lobe probabilities.
+    pub fn new(p: &Params) -> Material {
         let (mut diffuse, mut reflection, mut transmission) =
-            (v(m.diffuse), v(m.reflection), m.transmission as f32);
+            (p.diffuse, p.reflection, p.transmission);
         let w = [max3(diffuse), max3(reflection), transmission];
         let sum: f32 = w.iter().sum();
         if sum > 1.0 {
@@ -96,16 +134,16 @@ impl Material {
         Material {
             diffuse,
             reflection,
-            alpha: if m.gloss > 0.0 {
-                microfacet::gloss_to_alpha(m.gloss as f32)
+            alpha: if p.gloss > 0.0 {
+                microfacet::gloss_to_alpha(p.gloss)
             } else {
                 0.0
             },
             transmission,
-            ior: m.ior as f32,
-            absorption: v(m.absorption),
-            emission: v(m.emission),
-            two_sided: m.two_sided,
+            ior: p.ior,
+            absorption: p.absorption,
+            emission: p.emission,
+            two_sided: p.two_sided,
             lobe_pdf,
         }
     }
@@ -259,16 +297,17 @@ impl Material {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::render::sampler::Sampler;
+    use crate::sampling::sampler::Sampler;
 
     /// A material from the four lobe parameters (grey, default IOR).
-    pub(crate) fn mat(diffuse: f64, reflection: f64, gloss: f64, transmission: f64) -> Material {
-        let mut m = crate::check::Material::default_at(Default::default());
-        m.diffuse = [diffuse; 3];
-        m.reflection = [reflection; 3];
-        m.gloss = gloss;
-        m.transmission = transmission;
-        Material::from_checked(&m)
+    pub(crate) fn mat(diffuse: f32, reflection: f32, gloss: f32, transmission: f32) -> Material {
+        Material::new(&Params {
+            diffuse: Vec3::splat(diffuse),
+            reflection: Vec3::splat(reflection),
+            gloss,
+            transmission,
+            ..Params::default()
+        })
     }
 
     /// Directional albedo by sampling: the mean weight of sampled directions.

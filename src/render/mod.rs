@@ -3,18 +3,15 @@
 //! tiles, a progress callback. Every sample draws from its own random stream
 //! (seed, pixel, sample index), so the image is the same for any thread count.
 
-pub mod camera;
 pub mod film;
-pub mod sampler;
-pub mod sampling;
 
+use crate::accel::ray_count::{self, RayCounts};
 use crate::integrator::Integrator;
-use crate::ir::ray_count::{self, RayCounts};
 use crate::ir::Scene;
+use crate::sampling::sampler::Sampler;
 use film::Film;
 use glam::{Vec2, Vec3};
 use rayon::prelude::*;
-use sampler::Sampler;
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 
 /// Side of a square tile in pixels.

@@ -95,8 +95,8 @@ fn a_signal_writes_every_sample_done_and_sets_the_exit_code() {
         &every.to_string(),
     ]);
     assert_eq!(code, 0, "{e}");
-    let (_, _, a) = ptsc::render::film::read_exr(&out).unwrap();
-    let (_, _, b) = ptsc::render::film::read_exr(&finished).unwrap();
+    let (_, _, a) = ptsc::output::read_exr(&out).unwrap();
+    let (_, _, b) = ptsc::output::read_exr(&finished).unwrap();
     assert!(a.iter().all(|p| p.is_finite()));
     let differing = a.iter().zip(&b).filter(|(x, y)| x != y).count();
     assert!(

@@ -8,8 +8,9 @@
 use glam::Vec3;
 use ptsc::check::{check_file, IntegratorKind};
 use ptsc::integrator;
-use ptsc::ir::lower::lower;
-use ptsc::render::film::{read_exr, Film};
+use ptsc::lower::lower;
+use ptsc::output::read_exr;
+use ptsc::render::film::Film;
 use ptsc::render::render;
 use std::path::{Path, PathBuf};
 use std::sync::atomic::AtomicBool;

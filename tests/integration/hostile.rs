@@ -171,7 +171,7 @@ impl Case {
         }
         if let Some(image) = &self.finite {
             let path = PathBuf::from(fill(image));
-            match ptsc::render::film::read_exr(&path) {
+            match ptsc::output::read_exr(&path) {
                 Ok((_, _, px)) => {
                     if px.iter().any(|p| !p.is_finite()) {
                         failures.push(format!("{} has non-finite pixels", path.display()));

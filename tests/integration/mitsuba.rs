@@ -16,8 +16,8 @@
 use glam::Vec3;
 use ptsc::check::check_file;
 use ptsc::integrator;
-use ptsc::ir::lower::lower;
-use ptsc::render::film::read_exr;
+use ptsc::lower::lower;
+use ptsc::output::read_exr;
 use ptsc::render::render;
 use std::sync::atomic::AtomicBool;
 

@@ -1,10 +1,10 @@
 //! Rendering: determinism across thread counts, white furnace, a closed-form
 //! case, and the command line's exit codes.
 
+use ptsc::accel::ray_count::RayCounts;
 use ptsc::check::check_str;
 use ptsc::integrator;
-use ptsc::ir::lower::lower;
-use ptsc::ir::ray_count::RayCounts;
+use ptsc::lower::lower;
 use ptsc::render::{film::Film, render, Rendered};
 use std::path::Path;
 use std::sync::atomic::AtomicBool;

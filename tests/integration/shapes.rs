@@ -6,7 +6,8 @@
 use glam::Vec3;
 use ptsc::check::check_str;
 use ptsc::geometry::Ray;
-use ptsc::ir::{lower::lower, Scene};
+use ptsc::ir::Scene;
+use ptsc::lower::lower;
 use std::path::Path;
 
 const HEADER: &str = "render { resolution <8, 8> samples 1 }

@@ -1,0 +1,82 @@
+//! Render settings as the renderer reads them: the `render { }` block after
+//! command-line overrides, in f32 where the renderer computes with them.
+//! Built by lowering from the checked block; the integrator names are
+//! defined here once, for the checker, the CLI and the renderer.
+
+use glam::Vec3;
+
+/// Which light-transport algorithm renders the scene.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum IntegratorKind {
+    /// Unbiased path tracing with next-event estimation and MIS.
+    Path,
+    /// Recursive ray tracing with shadow rays.
+    Whitted,
+    /// The paper's blend of Whitted and path tracing.
+    Hybrid,
+    /// Debug: shading normals as colours.
+    Normals,
+    /// Debug: the albedo of the first hit.
+    Albedo,
+    /// Debug: distance to the first hit.
+    Depth,
+}
+
+impl IntegratorKind {
+    /// Every integrator with its `.pts` name.
+    pub const NAMES: [(&'static str, IntegratorKind); 6] = [
+        ("path", IntegratorKind::Path),
+        ("whitted", IntegratorKind::Whitted),
+        ("hybrid", IntegratorKind::Hybrid),
+        ("normals", IntegratorKind::Normals),
+        ("albedo", IntegratorKind::Albedo),
+        ("depth", IntegratorKind::Depth),
+    ];
+
+    /// Looks an integrator up by name.
+    pub fn from_name(name: &str) -> Option<Self> {
+        Self::NAMES
+            .iter()
+            .find(|(n, _)| *n == name)
+            .map(|(_, k)| *k)
+    }
+
+    /// The integrator's `.pts` name.
+    pub fn name(self) -> &'static str {
+        Self::NAMES
+            .iter()
+            .find(|(_, k)| *k == self)
+            .map_or("path", |(n, _)| n)
+    }
+}
+
+/// The settings a render reads.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Settings {
+    /// Image width in pixels.
+    pub width: u32,
+    /// Image height in pixels.
+    pub height: u32,
+    /// Samples (camera paths) per pixel.
+    pub samples: u32,
+    /// Path segments at most (Mitsuba convention).
+    pub max_depth: u32,
+    /// Light transport algorithm.
+    pub integrator: IntegratorKind,
+    /// Seed of every random stream.
+    pub seed: u64,
+    /// The paper's constant ambient term (biased), added at diffuse hits.
+    pub ambient: Vec3,
+    /// Path depth (in segments) from which Russian roulette may end a path.
+    pub rr_depth: u32,
+    /// Weight of the Whitted estimate in the hybrid blend.
+    pub hybrid_weight: f32,
+    /// Largest luminance a sample may contribute (biased; `None` = off).
+    pub clamp: Option<f32>,
+    /// Whether the path integrator samples lights directly (NEE + MIS); `false` is the paper's naive mode.
+    pub light_sampling: bool,
+    /// Shadow rays per area light and hit in the Whitted integrator.
+    pub light_samples: u32,
+    /// Exposure in stops applied when writing PNG.
+    pub exposure: f32,
+}

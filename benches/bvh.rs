@@ -18,10 +18,9 @@
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use glam::Vec3;
 use ptsc::accel::bvh::Bvh;
-use ptsc::check::check_str;
+use ptsc::compile::{compile_str, Options};
 use ptsc::geometry::{offset_origin, shape::Shape, Aabb, Ray};
 use ptsc::ir::Scene;
-use ptsc::lower::lower;
 use std::path::{Path, PathBuf};
 
 fn mesh_path() -> Option<PathBuf> {
@@ -43,9 +42,7 @@ fn load_scene() -> Option<Scene> {
          mesh {{ file {:?} }}\n",
         path.to_str()?
     );
-    let c = check_str(Path::new("bench.pts"), &text);
-    let scene = c.scene?;
-    lower(&scene).ok()
+    compile_str(Path::new("bench.pts"), &text, Options::default()).ir
 }
 
 /// xorshift32 in [0, 1): deterministic rays, no dependency on the renderer's sampler.

@@ -5,7 +5,7 @@
 //! and by the in-process fuzzer `fuzz/inprocess.rs` that CI runs for a
 //! bounded time.
 
-use crate::check::check_bytes_within;
+use crate::compile::{compile_bytes, Options};
 use crate::lower::mesh;
 use std::path::Path;
 use std::sync::atomic::AtomicBool;
@@ -31,31 +31,31 @@ const LOOP_STATEMENTS: u64 = 20_000;
 /// Returns whether the input got past the parser (a fuzzer's hint that it
 /// is worth mutating further).
 pub fn scene(bytes: &[u8]) -> bool {
-    let checked = check_bytes_within(Path::new("fuzz.pts"), bytes.to_vec(), LOOP_STATEMENTS);
-    diagnostics_stay_in_their_files(&checked.diagnostics, &checked.sources);
-    let _ = checked.diagnostics.render_human(&checked.sources, false);
-    let _ = checked.diagnostics.render_json(&checked.sources);
-    let parsed = !checked
+    let compiled = compile_bytes(
+        Path::new("fuzz.pts"),
+        bytes.to_vec(),
+        Options {
+            adjust: &|s| {
+                s.width = s.width.min(MAX_SIDE);
+                s.height = s.height.min(MAX_SIDE);
+                s.samples = s.samples.min(MAX_SAMPLES);
+                s.max_depth = s.max_depth.min(MAX_DEPTH);
+                s.light_samples = s.light_samples.min(MAX_LIGHT_SAMPLES);
+            },
+            loop_statements: LOOP_STATEMENTS,
+            ..Options::default()
+        },
+    );
+    diagnostics_stay_in_their_files(&compiled.diagnostics, &compiled.sources);
+    let _ = compiled.diagnostics.render_human(&compiled.sources, false);
+    let _ = compiled.diagnostics.render_json(&compiled.sources);
+    let parsed = !compiled
         .diagnostics
         .items
         .iter()
         .any(|d| d.code.starts_with("pts::syntax"));
-    let Some(mut scene) = checked.scene else {
+    let Some(ir) = compiled.ir else {
         return parsed;
-    };
-    let r = &mut scene.render;
-    r.width = r.width.min(MAX_SIDE);
-    r.height = r.height.min(MAX_SIDE);
-    r.samples = r.samples.min(MAX_SAMPLES);
-    r.max_depth = r.max_depth.min(MAX_DEPTH);
-    r.light_samples = r.light_samples.min(MAX_LIGHT_SAMPLES);
-    let ir = match crate::lower::lower(&scene) {
-        Ok(ir) => ir,
-        Err(d) => {
-            diagnostics_stay_in_their_files(&d, &checked.sources);
-            let _ = d.render_human(&checked.sources, false);
-            return true;
-        }
     };
     let integrator = crate::integrator::make(ir.settings.integrator);
     let cancel = AtomicBool::new(false);

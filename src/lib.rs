@@ -14,6 +14,7 @@ pub mod bench_data;
 pub mod camera;
 pub mod check;
 pub mod cli;
+pub mod compile;
 pub mod diag;
 pub mod fuzz;
 pub mod geometry;

@@ -58,7 +58,10 @@ fn png(
 }
 
 /// Linear float32 OpenEXR, ZIP-compressed.
-fn exr((width, height): (u32, u32), pixel: &(impl Fn(usize) -> Vec3 + Sync)) -> std::io::Result<Vec<u8>> {
+fn exr(
+    (width, height): (u32, u32),
+    pixel: &(impl Fn(usize) -> Vec3 + Sync),
+) -> std::io::Result<Vec<u8>> {
     use exr::prelude::*;
     let w = width as usize;
     // ZIP compression: lossless and deterministic, and small references.

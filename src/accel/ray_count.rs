@@ -1,11 +1,8 @@
-//! Rays traced, counted per thread: closest-hit queries ([`Scene::intersect`])
-//! and shadow queries ([`Scene::occluded`]). The pixel loop reads its
+//! Rays traced, counted per thread: closest-hit queries (the scene's
+//! `intersect`) and shadow queries (`occluded`). The pixel loop reads its
 //! thread's counts before and after each tile, so a render reports the rays
 //! it traced (rays/s beside paths/s) without a shared counter in the hot
 //! path.
-//!
-//! [`Scene::intersect`]: crate::ir::Scene::intersect
-//! [`Scene::occluded`]: crate::ir::Scene::occluded
 
 use std::cell::Cell;
 use std::ops::{Add, Sub};

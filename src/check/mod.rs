@@ -61,20 +61,23 @@ pub struct Checked {
 
 /// Reads, parses and checks the scene at `path` and everything it includes.
 /// An unreadable root file is an I/O error (exit code 2), not a diagnostic.
-/// The root file may be a pipe (`ptsc check <(generate)`); it is read up to
-/// [`MAX_SCENE_BYTES`] like every file of a scene.
 pub fn check_file(path: &Path) -> std::io::Result<Checked> {
+    Ok(check_bytes(path, read_scene_file(path)?))
+}
+
+/// The bytes of the scene file at `path`. It may be a pipe (`ptsc check
+/// <(generate)`); it is read up to [`MAX_SCENE_BYTES`] like every file of a
+/// scene.
+pub fn read_scene_file(path: &Path) -> std::io::Result<Vec<u8>> {
     let file = std::fs::File::open(path)?;
     let meta = file.metadata()?;
     if meta.is_dir() {
         return Err(std::io::Error::other("it is a folder, not a scene file"));
     }
-    let bytes =
-        crate::source::read_stream(file, meta.len(), MAX_SCENE_BYTES).map_err(|e| match e {
-            ReadError::Io(e) => e,
-            other => std::io::Error::other(other.to_string()),
-        })?;
-    Ok(check_bytes(path, bytes))
+    crate::source::read_stream(file, meta.len(), MAX_SCENE_BYTES).map_err(|e| match e {
+        ReadError::Io(e) => e,
+        other => std::io::Error::other(other.to_string()),
+    })
 }
 
 /// Checks a scene given as bytes, as if read from `path` (includes are

@@ -1,18 +1,23 @@
 //! `ptsc check FILE`: parse and check, print diagnostics, set the exit code.
 
 use super::{Format, Verbosity, EXIT_OK, EXIT_SCENE_ERROR, EXIT_USAGE};
-use crate::check::{check_file, Checked};
+use crate::compile::{compile_file, Options};
 use crate::diag::{Diagnostics, Severity};
+use crate::source::SourceMap;
 use std::path::Path;
 
 /// Prints the diagnostics of a compile on stderr (human) or stdout (JSON);
 /// `Quiet` leaves the warnings out.
-pub fn report(checked: &Checked, format: Format, verbosity: Verbosity) {
+pub fn report(
+    diagnostics: &Diagnostics,
+    sources: &SourceMap,
+    format: Format,
+    verbosity: Verbosity,
+) {
     let quiet;
     let d = if verbosity == Verbosity::Quiet {
         quiet = Diagnostics {
-            items: checked
-                .diagnostics
+            items: diagnostics
                 .items
                 .iter()
                 .filter(|d| d.severity == Severity::Error)
@@ -21,14 +26,11 @@ pub fn report(checked: &Checked, format: Format, verbosity: Verbosity) {
         };
         &quiet
     } else {
-        &checked.diagnostics
+        diagnostics
     };
     match format {
         Format::Human => {
-            eprint!(
-                "{}",
-                d.render_human(&checked.sources, super::stderr_is_terminal())
-            );
+            eprint!("{}", d.render_human(sources, super::stderr_is_terminal()));
             if !d.items.is_empty() {
                 eprintln!(
                     "{} error{}, {} warning{}",
@@ -39,13 +41,17 @@ pub fn report(checked: &Checked, format: Format, verbosity: Verbosity) {
                 );
             }
         }
-        Format::Json => println!("{}", d.render_json(&checked.sources)),
+        Format::Json => println!("{}", d.render_json(sources)),
     }
 }
 
 /// Runs `check`; returns the exit code.
 pub fn run(file: &Path, format: Format, verbosity: Verbosity) -> u8 {
-    let checked = match check_file(file) {
+    let options = Options {
+        lower: false,
+        ..Options::default()
+    };
+    let compiled = match compile_file(file, options) {
         Ok(c) => c,
         Err(e) => {
             let message = format!("cannot read {}: {e}", file.display());
@@ -68,8 +74,8 @@ pub fn run(file: &Path, format: Format, verbosity: Verbosity) -> u8 {
             return EXIT_USAGE;
         }
     };
-    report(&checked, format, verbosity);
-    if checked.diagnostics.has_errors() {
+    report(&compiled.diagnostics, &compiled.sources, format, verbosity);
+    if compiled.has_errors() {
         EXIT_SCENE_ERROR
     } else {
         if format == Format::Human && verbosity != Verbosity::Quiet {

@@ -2,7 +2,9 @@
 
 use super::signals::Signals;
 use super::{check::report, Format, Verbosity, EXIT_OK, EXIT_SCENE_ERROR, EXIT_USAGE};
-use crate::check::{check_file, IntegratorKind};
+use crate::compile::{compile_file, Compiled, Options};
+use crate::ir::settings::{IntegratorKind, Settings};
+use crate::lower::cache::LowerCache;
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
@@ -95,29 +97,40 @@ fn parse_integrator(s: &str) -> Result<IntegratorKind, String> {
         .ok_or_else(|| "expected path, whitted, hybrid, normals, albedo or depth".into())
 }
 
-/// Applies the command line's overrides to the scene's `render` block.
-pub fn apply_overrides(scene: &mut crate::check::Scene, args: &RenderArgs) {
-    let r = &mut scene.render;
+/// Applies the command line's overrides to the scene's settings.
+pub fn apply_overrides(settings: &mut Settings, args: &RenderArgs) {
     if let Some(n) = args.spp {
-        r.samples = n;
+        settings.samples = n;
     }
     if let Some(s) = args.seed {
-        r.seed = s;
+        settings.seed = s;
     }
     if let Some((w, h)) = args.resolution {
-        r.width = w;
-        r.height = h;
+        settings.width = w;
+        settings.height = h;
     }
     if let Some(k) = args.integrator {
-        r.integrator = k;
+        settings.integrator = k;
     }
 }
 
+/// Compiles the scene with the command line's overrides.
+pub fn compile(args: &RenderArgs, cache: Option<&mut LowerCache>) -> std::io::Result<Compiled> {
+    compile_file(
+        &args.file,
+        Options {
+            adjust: &|s| apply_overrides(s, args),
+            cache,
+            ..Options::default()
+        },
+    )
+}
+
 /// The output image: `-o`, else the scene's `output`, else FILE with `.png`.
-pub fn output_path(args: &RenderArgs, scene: &crate::check::Scene) -> PathBuf {
+pub fn output_path(args: &RenderArgs, scene_output: Option<&Path>) -> PathBuf {
     args.output
         .clone()
-        .or_else(|| scene.render.output.clone())
+        .or_else(|| scene_output.map(Path::to_path_buf))
         .unwrap_or_else(|| args.file.with_extension("png"))
 }
 
@@ -125,23 +138,12 @@ pub fn output_path(args: &RenderArgs, scene: &crate::check::Scene) -> PathBuf {
 /// unknown format, a folder, a missing or read-only folder, or a file the
 /// scene reads (the scene itself, an include, a mesh), which the image would
 /// replace.
-pub fn check_output(
-    output: &Path,
-    checked_sources: &crate::source::SourceMap,
-    scene: &crate::check::Scene,
-) -> Result<(), String> {
+pub fn check_output(output: &Path, dependencies: &[PathBuf]) -> Result<(), String> {
     let same = |a: &Path, b: &Path| match (std::fs::canonicalize(a), std::fs::canonicalize(b)) {
         (Ok(a), Ok(b)) => a == b,
         _ => false,
     };
-    let inputs = checked_sources
-        .files()
-        .iter()
-        .map(|f| f.path.as_path())
-        .chain(scene.objects.iter().filter_map(|o| match &o.shape {
-            crate::check::Shape::Mesh { path, .. } => Some(path.as_path()),
-            _ => None,
-        }));
+    let inputs = dependencies.iter();
     for input in inputs {
         if same(output, input) {
             return Err(format!(
@@ -173,42 +175,33 @@ pub fn run(args: &RenderArgs) -> u8 {
 fn run_on_pool(args: &RenderArgs) -> u8 {
     let verbosity = args.verbosity();
     let t0 = Instant::now();
-    let checked = match check_file(&args.file) {
+    let compiled = match compile(args, None) {
         Ok(c) => c,
         Err(e) => {
             eprintln!("error: cannot read {}: {e}", args.file.display());
             return EXIT_USAGE;
         }
     };
-    report(&checked, Format::Human, verbosity);
-    let Some(mut scene) = checked.scene else {
+    report(
+        &compiled.diagnostics,
+        &compiled.sources,
+        Format::Human,
+        verbosity,
+    );
+    let Some(ir) = compiled.ir else {
         return EXIT_SCENE_ERROR;
     };
-    let checked_s = t0.elapsed().as_secs_f64();
-    apply_overrides(&mut scene, args);
-    let output = output_path(args, &scene);
-    if let Err(why) = check_output(&output, &checked.sources, &scene) {
+    let output = output_path(args, compiled.output.as_deref());
+    if let Err(why) = check_output(&output, &compiled.dependencies) {
         eprintln!("error: cannot write {}: {why}", output.display());
         return EXIT_USAGE;
     }
-    let ir = match crate::lower::lower(&scene) {
-        Ok(ir) => ir,
-        Err(d) => {
-            eprint!(
-                "{}",
-                d.render_human(&checked.sources, super::stderr_is_terminal())
-            );
-            return EXIT_SCENE_ERROR;
-        }
-    };
-    // The IR holds everything the render needs; the checked scene (about
-    // 250 bytes an object) goes before the film and the threads come.
-    drop(scene);
     let load_s = t0.elapsed().as_secs_f64();
     if verbosity == Verbosity::Verbose {
         eprintln!(
-            "loaded in {load_s:.2} s (read and check {checked_s:.2} s, lower {:.2} s): {} primitives, {} lights",
-            load_s - checked_s,
+            "loaded in {load_s:.2} s (read and check {:.2} s, lower {:.2} s): {} primitives, {} lights",
+            compiled.check_seconds,
+            compiled.lower_seconds,
             ir.prim_object.len(),
             ir.lights.len()
         );

@@ -11,8 +11,7 @@
 //! editor's atomic save (write a temporary file, rename it over) counts as one
 //! change and the output file's own writes are ignored.
 
-use super::render::{apply_overrides, check_output, output_path, RenderArgs};
-use crate::check::check_file;
+use super::render::{check_output, compile, output_path, RenderArgs};
 use crate::ir::Scene;
 use crate::lower::cache::LowerCache;
 use crate::render::film::Film;
@@ -139,7 +138,8 @@ impl State {
         // Not on `self.pool`: the previous render keeps its threads busy
         // until this compile succeeds, and a job queued behind its tiles
         // would wait for them. Large files parse on rayon's global pool.
-        let checked = match check_file(&self.args.file) {
+        let (loads, builds) = (self.cache.mesh_loads, self.cache.bvh_builds);
+        let compiled = match compile(&self.args, Some(&mut self.cache)) {
             Ok(c) => c,
             Err(e) => {
                 status(&format!(
@@ -149,47 +149,31 @@ impl State {
                 return;
             }
         };
-        for f in checked.sources.files() {
-            self.files.insert(absolute(&f.path));
-        }
-        let colour = super::stderr_is_terminal();
-        let Some(mut scene) = checked.scene else {
+        // Exactly what the scene read or names (the scene itself always).
+        self.files = std::iter::once(&self.args.file)
+            .chain(&compiled.dependencies)
+            .map(|f| absolute(f))
+            .collect();
+        if !compiled.diagnostics.items.is_empty() {
             eprint!(
                 "{}",
-                checked.diagnostics.render_human(&checked.sources, colour)
+                compiled
+                    .diagnostics
+                    .render_human(&compiled.sources, super::stderr_is_terminal())
             );
+        }
+        let Some(ir) = compiled.ir else {
             status(&self.keeping());
             return;
         };
-        for o in &scene.objects {
-            if let crate::check::Shape::Mesh { path, .. } = &o.shape {
-                self.files.insert(absolute(path));
-            }
-        }
-        if !checked.diagnostics.items.is_empty() {
-            eprint!(
-                "{}",
-                checked.diagnostics.render_human(&checked.sources, colour)
-            );
-        }
-        apply_overrides(&mut scene, &self.args);
-        let output = output_path(&self.args, &scene);
-        if let Err(why) = check_output(&output, &checked.sources, &scene) {
+        let output = output_path(&self.args, compiled.output.as_deref());
+        if let Err(why) = check_output(&output, &compiled.dependencies) {
             status(&format!(
                 "cannot write {}: {why}; keeping the last image",
                 output.display()
             ));
             return;
         }
-        let (loads, builds) = (self.cache.mesh_loads, self.cache.bvh_builds);
-        let ir = match crate::lower::lower_cached(&scene, &mut self.cache) {
-            Ok(ir) => ir,
-            Err(d) => {
-                eprint!("{}", d.render_human(&checked.sources, colour));
-                status(&self.keeping());
-                return;
-            }
-        };
         status(&format!(
             "compiled in {} ms: {} mesh file(s) loaded, geometry {}",
             t0.elapsed().as_millis(),

@@ -169,11 +169,11 @@ impl LowerCache {
 mod tests {
     use super::*;
     use crate::check::check_str;
-    use crate::lower::lower_cached;
+    use crate::lower::lower;
 
     fn lower_text(dir: &Path, text: &str, cache: &mut LowerCache) -> crate::ir::Scene {
         let c = check_str(&dir.join("s.pts"), text);
-        lower_cached(c.scene.as_ref().unwrap(), cache).unwrap()
+        lower(c.scene.as_ref().unwrap(), &|_| {}, cache).unwrap()
     }
 
     #[test]

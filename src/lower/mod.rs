@@ -24,6 +24,7 @@ use cache::LowerCache;
 use collect::{Collected, PlainMesh};
 use glam::{DMat4, DVec3, Vec3};
 use numbering::Numbering;
+use std::path::PathBuf;
 use std::sync::Arc;
 
 fn v3(v: DVec3) -> Vec3 {
@@ -99,20 +100,24 @@ fn within_domain(b: Aabb, velocity: Vec3, (t0, t1): (f32, f32)) -> bool {
 }
 
 /// Builds the IR; mesh problems and unsupported transforms are diagnostics.
-pub fn lower(scene: &check::Scene) -> Result<Scene, Diagnostics> {
-    // A one-off compile keeps nothing: no copy of the geometry in a cache.
-    lower_cached(scene, &mut LowerCache::one_off())
-}
-
-/// Builds the IR, reusing from `cache` the meshes whose files did not change
+/// `adjust` edits the settings before anything depends on them (the command
+/// line's `--spp`, `--resolution`, …). With a cache kept between compiles
+/// (see [`LowerCache`]) the meshes whose files did not change are reused,
 /// and the whole geometry (primitives and BVH) when no shape, transform,
 /// motion or mesh changed: a camera, material or settings edit in `watch`
 /// neither reloads meshes nor rebuilds the BVH.
-pub fn lower_cached(scene: &check::Scene, cache: &mut LowerCache) -> Result<Scene, Diagnostics> {
+/// [`LowerCache::one_off`] keeps nothing.
+pub fn lower(
+    scene: &check::Scene,
+    adjust: &dyn Fn(&mut Settings),
+    cache: &mut LowerCache,
+) -> Result<Scene, Diagnostics> {
+    let mut settings = lower_settings(&scene.render);
+    adjust(&mut settings);
     let materials: Vec<Material> = scene.materials.iter().map(lower_material).collect();
     if cache.is_one_off() {
         let geometry = build_geometry(scene, cache)?;
-        return Ok(finish(scene, materials, geometry));
+        return Ok(finish(scene, settings, materials, geometry));
     }
     let key = cache.geometry_key(scene);
     // Shared, not copied: materials and lights live outside the geometry.
@@ -124,7 +129,21 @@ pub fn lower_cached(scene: &check::Scene, cache: &mut LowerCache) -> Result<Scen
             g
         }
     };
-    Ok(finish(scene, materials, geometry))
+    Ok(finish(scene, settings, materials, geometry))
+}
+
+/// The files a checked scene names besides its sources: the meshes it
+/// reads, and the image its `render { output … }` asks for.
+pub fn named_files(scene: &check::Scene) -> (Vec<PathBuf>, Option<PathBuf>) {
+    let meshes = scene
+        .objects
+        .iter()
+        .filter_map(|o| match &o.shape {
+            check::Shape::Mesh { path, .. } => Some(path.clone()),
+            _ => None,
+        })
+        .collect();
+    (meshes, scene.render.output.clone())
 }
 
 /// The part of the IR that depends only on shapes, transforms, motion and
@@ -419,7 +438,12 @@ fn build_geometry(scene: &check::Scene, cache: &mut LowerCache) -> Result<Geomet
 }
 
 /// Lights, light selection and the camera on top of the geometry.
-fn finish(scene: &check::Scene, materials: Vec<Material>, geometry: Geometry) -> Scene {
+fn finish(
+    scene: &check::Scene,
+    settings: Settings,
+    materials: Vec<Material>,
+    geometry: Geometry,
+) -> Scene {
     let object_spans = scene.objects.iter().map(|o| o.span).collect();
     let object_material: Vec<u32> = scene.objects.iter().map(|o| o.material as u32).collect();
     let Geometry {
@@ -514,9 +538,9 @@ fn finish(scene: &check::Scene, materials: Vec<Material>, geometry: Geometry) ->
         lights.len() as u32 - 1
     });
 
-    let camera = lower_camera(&scene.camera, scene.render.width, scene.render.height);
+    let camera = lower_camera(&scene.camera, settings.width, settings.height);
     let mut ir = Scene {
-        settings: lower_settings(&scene.render),
+        settings,
         camera,
         prims,
         prim_object,

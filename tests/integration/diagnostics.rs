@@ -1,7 +1,7 @@
 //! `tests/diagnostics/*.pts`: one mistake per file, snapshotted as the user
 //! sees it (miette's graphical report without colour).
 
-use ptsc::check::check_file;
+use ptsc::compile::{compile_file, Options};
 
 #[test]
 fn every_diagnostic_file_renders_as_snapshotted() {
@@ -9,7 +9,7 @@ fn every_diagnostic_file_renders_as_snapshotted() {
     std::env::set_current_dir(&root).unwrap();
     insta::glob!("..", "diagnostics/*.pts", |path| {
         let rel = crate::relative(path);
-        let checked = check_file(&rel).expect("readable test file");
+        let checked = compile_file(&rel, Options::default()).expect("readable test file");
         let name = rel.file_stem().unwrap().to_string_lossy().to_string();
         let d = &checked.diagnostics;
         assert!(
@@ -56,7 +56,7 @@ fn at_least_forty_diagnostic_files() {
 #[test]
 fn json_output_has_positions() {
     let path = crate::root().join("tests/diagnostics/unknown_param.pts");
-    let checked = check_file(&path).unwrap();
+    let checked = compile_file(&path, Options::default()).unwrap();
     let json: serde_json::Value =
         serde_json::from_str(&checked.diagnostics.render_json(&checked.sources)).unwrap();
     let first = &json[0];

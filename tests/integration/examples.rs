@@ -1,6 +1,6 @@
 //! Every scene in `examples/` checks without errors.
 
-use ptsc::check::check_file;
+use ptsc::compile::{compile_file, Options};
 use std::path::Path;
 
 fn scenes(dir: &Path, out: &mut Vec<std::path::PathBuf>) {
@@ -22,14 +22,14 @@ fn every_example_checks_clean() {
     scenes(&crate::root().join("examples"), &mut files);
     assert!(files.len() >= 10, "found only {} examples", files.len());
     for f in files {
-        let c = check_file(&f).unwrap();
+        let c = compile_file(&f, Options::default()).unwrap();
         assert!(
             !c.diagnostics.has_errors(),
             "{}:\n{}",
             f.display(),
             c.diagnostics.render_human(&c.sources, false)
         );
-        assert!(c.scene.is_some());
+        assert!(c.ir.is_some());
     }
 }
 

@@ -6,9 +6,9 @@
 //! (as EXR and PNG) to `target/tmp/golden/` and names them in the message.
 
 use glam::Vec3;
-use ptsc::check::{check_file, IntegratorKind};
+use ptsc::compile::{compile_file, Options};
 use ptsc::integrator;
-use ptsc::lower::lower;
+use ptsc::ir::settings::IntegratorKind;
 use ptsc::output::read_exr;
 use ptsc::render::film::Film;
 use ptsc::render::render;
@@ -18,16 +18,19 @@ use std::sync::atomic::AtomicBool;
 /// Renders a scene file with an integrator, optionally at another size and
 /// sample count.
 fn render_file(path: &Path, kind: IntegratorKind, size: Option<(u32, u32, u32)>) -> Film {
-    let c = check_file(path).unwrap();
-    let mut scene = c
-        .scene
-        .unwrap_or_else(|| panic!("{}", c.diagnostics.render_human(&c.sources, false)));
-    scene.render.integrator = kind;
-    if let Some((w, h, spp)) = size {
-        (scene.render.width, scene.render.height) = (w, h);
-        scene.render.samples = spp;
-    }
-    let ir = lower(&scene).unwrap_or_else(|d| panic!("{}", d.render_human(&c.sources, false)));
+    let adjust = |s: &mut ptsc::ir::settings::Settings| {
+        s.integrator = kind;
+        if let Some((w, h, spp)) = size {
+            (s.width, s.height, s.samples) = (w, h, spp);
+        }
+    };
+    let options = Options {
+        adjust: &adjust,
+        ..Options::default()
+    };
+    let c = compile_file(path, options).unwrap();
+    let ir =
+        c.ir.unwrap_or_else(|| panic!("{}", c.diagnostics.render_human(&c.sources, false)));
     let integ = integrator::make(kind);
     let cancel = AtomicBool::new(false);
     render(&ir, integ.as_ref(), &cancel, &|_| {}, &mut |_, _| {}).film

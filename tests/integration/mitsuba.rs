@@ -14,9 +14,8 @@
 //!   renderers: ptsc/Mitsuba = 0.997 cornell, 1.008 mesh, 0.991 spheres).
 
 use glam::Vec3;
-use ptsc::check::check_file;
+use ptsc::compile::{compile_file, Options};
 use ptsc::integrator;
-use ptsc::lower::lower;
 use ptsc::output::read_exr;
 use ptsc::render::render;
 use std::sync::atomic::AtomicBool;
@@ -40,13 +39,13 @@ fn check_scene(name: &str) {
 
     ptsc::bench_data::ensure_mesh_blob(&crate::root()).unwrap();
     let path = crate::root().join(format!("examples/bench/{name}.pts"));
-    let c = check_file(&path).unwrap();
-    let mut scene = c
-        .scene
-        .unwrap_or_else(|| panic!("{}", c.diagnostics.render_human(&c.sources, false)));
-    (scene.render.width, scene.render.height) = (res, res);
-    scene.render.samples = spp;
-    let mut ir = lower(&scene).unwrap_or_else(|d| panic!("{}", d.render_human(&c.sources, false)));
+    let options = Options {
+        adjust: &|s| (s.width, s.height, s.samples) = (res, res, spp),
+        ..Options::default()
+    };
+    let c = compile_file(&path, options).unwrap();
+    let mut ir =
+        c.ir.unwrap_or_else(|| panic!("{}", c.diagnostics.render_human(&c.sources, false)));
     let integ = integrator::make(ir.settings.integrator);
     let cancel = AtomicBool::new(false);
 

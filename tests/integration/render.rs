@@ -2,9 +2,8 @@
 //! case, and the command line's exit codes.
 
 use ptsc::accel::ray_count::RayCounts;
-use ptsc::check::check_str;
+use ptsc::compile::{compile_str, Options};
 use ptsc::integrator;
-use ptsc::lower::lower;
 use ptsc::render::{film::Film, render, Rendered};
 use std::path::Path;
 use std::sync::atomic::AtomicBool;
@@ -19,11 +18,9 @@ fn film_at(path: &Path, text: &str, threads: usize) -> Film {
 }
 
 fn rendered_at(path: &Path, text: &str, threads: usize) -> Rendered {
-    let c = check_str(path, text);
-    let scene = c
-        .scene
-        .unwrap_or_else(|| panic!("{}", c.diagnostics.render_human(&c.sources, false)));
-    let ir = lower(&scene).unwrap();
+    let c = compile_str(path, text, Options::default());
+    let ir =
+        c.ir.unwrap_or_else(|| panic!("{}", c.diagnostics.render_human(&c.sources, false)));
     let integ = integrator::make(ir.settings.integrator);
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(threads)

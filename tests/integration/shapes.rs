@@ -4,10 +4,9 @@
 //! live next to the intersection code in `src/geometry/shape.rs`.
 
 use glam::Vec3;
-use ptsc::check::check_str;
+use ptsc::compile::{compile_str, Options};
 use ptsc::geometry::Ray;
 use ptsc::ir::Scene;
-use ptsc::lower::lower;
 use std::path::Path;
 
 const HEADER: &str = "render { resolution <8, 8> samples 1 }
@@ -16,11 +15,8 @@ camera { position <0, 0, 10> look_at <0, 0, 0> shutter <0, 1> }
 
 fn scene_in(dir: &Path, objects: &str) -> Scene {
     let path = dir.join("shape.pts");
-    let c = check_str(&path, &format!("{HEADER}{objects}\n"));
-    let scene = c
-        .scene
-        .unwrap_or_else(|| panic!("{}", c.diagnostics.render_human(&c.sources, false)));
-    lower(&scene).unwrap_or_else(|d| panic!("{}", d.render_human(&c.sources, false)))
+    let c = compile_str(&path, &format!("{HEADER}{objects}\n"), Options::default());
+    c.ir.unwrap_or_else(|| panic!("{}", c.diagnostics.render_human(&c.sources, false)))
 }
 
 fn scene(objects: &str) -> Scene {
@@ -248,12 +244,12 @@ fn a_mesh_that_overflows_is_a_diagnostic() {
         r#"mesh { file "wide.obj" }"#,
     ] {
         let path = dir.path().join("shape.pts");
-        let c = check_str(&path, &format!("{HEADER}{mesh}\n"));
-        let scene = c.scene.expect("the text checks");
-        let codes: Vec<&str> = match lower(&scene) {
-            Ok(_) => panic!("{mesh} lowered"),
-            Err(d) => d.items.iter().map(|d| d.code).collect(),
-        };
+        let c = compile_str(&path, &format!("{HEADER}{mesh}\n"), Options::default());
+        assert!(c.ir.is_none(), "{mesh} lowered");
+        let codes: Vec<&str> = (c.diagnostics.items.iter())
+            .filter(|d| d.is_error())
+            .map(|d| d.code)
+            .collect();
         assert_eq!(codes, ["pts::check::out_of_range"], "{mesh}");
     }
 }

@@ -1,0 +1,131 @@
+//! The compile driver: read → check → lower, and the files the scene
+//! depends on. The one sequence every front door uses: `render`, `watch`,
+//! `check`, the tests, the benches, the fuzzers (and later the language
+//! server and the render farm).
+//!
+//! ```text
+//! path ──read──▶ bytes ──check──▶ check::Scene ──lower──▶ ir::Scene
+//!                  │ (syntax + check diagnostics)  │ (lowering diagnostics)
+//!                  ▼                               ▼
+//!        Compiled { sources, diagnostics (one list), ir, dependencies, output }
+//! ```
+
+use crate::check::{self, MAX_LOOP_STATEMENTS};
+use crate::diag::Diagnostics;
+use crate::ir::settings::Settings;
+use crate::lower::cache::LowerCache;
+use crate::source::SourceMap;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+/// How far to compile, and what to change on the way.
+pub struct Options<'a> {
+    /// Whether to lower the checked scene into the IR (`false`: check
+    /// only, as `ptsc check` and an editor do).
+    pub lower: bool,
+    /// Edits the settings before lowering uses them (the command line's
+    /// `--spp`, `--resolution`, `--seed`, `--integrator`).
+    pub adjust: &'a dyn Fn(&mut Settings),
+    /// Meshes and geometry kept between compiles (`watch`); `None` keeps
+    /// nothing.
+    pub cache: Option<&'a mut LowerCache>,
+    /// The statements loops may run in all (a fuzzer keeps its inputs fast
+    /// with a small budget; the rules are the same).
+    pub loop_statements: u64,
+}
+
+impl Default for Options<'_> {
+    /// Check and lower, nothing adjusted, nothing cached.
+    fn default() -> Self {
+        Options {
+            lower: true,
+            adjust: &|_| {},
+            cache: None,
+            loop_statements: MAX_LOOP_STATEMENTS,
+        }
+    }
+}
+
+/// What a compile gives.
+#[derive(Debug)]
+pub struct Compiled {
+    /// Every scene file read (the scene and its includes), for diagnostics.
+    pub sources: SourceMap,
+    /// Every diagnostic, syntax, check and lowering in one list.
+    pub diagnostics: Diagnostics,
+    /// The scene ready to render, when there were no errors and lowering
+    /// was asked for.
+    pub ir: Option<crate::ir::Scene>,
+    /// Every file the scene read or names as an input, in order: the scene,
+    /// its includes and its meshes (those of a scene with errors only as far
+    /// as it was read). `watch` watches exactly these.
+    pub dependencies: Vec<PathBuf>,
+    /// The image the scene's `render { output … }` names, if it does.
+    pub output: Option<PathBuf>,
+    /// Seconds spent reading and checking.
+    pub check_seconds: f64,
+    /// Seconds spent lowering (mesh reading, BVH build).
+    pub lower_seconds: f64,
+}
+
+impl Compiled {
+    /// Whether the scene has errors (no image can be made).
+    pub fn has_errors(&self) -> bool {
+        self.diagnostics.has_errors()
+    }
+}
+
+/// Compiles the scene at `path` and everything it includes. An unreadable
+/// root file is an I/O error (a usage problem), not a diagnostic.
+pub fn compile_file(path: &Path, options: Options) -> std::io::Result<Compiled> {
+    let start = Instant::now();
+    let bytes = check::read_scene_file(path)?;
+    Ok(compile_from(path, bytes, options, start))
+}
+
+/// Compiles a scene given as bytes, as if read from `path` (includes and
+/// meshes are found relative to it).
+pub fn compile_bytes(path: &Path, bytes: Vec<u8>, options: Options) -> Compiled {
+    compile_from(path, bytes, options, Instant::now())
+}
+
+/// Compiles a scene given as text (tests, benches).
+pub fn compile_str(path: &Path, text: &str, options: Options) -> Compiled {
+    compile_bytes(path, text.as_bytes().to_vec(), options)
+}
+
+fn compile_from(path: &Path, bytes: Vec<u8>, options: Options, start: Instant) -> Compiled {
+    let checked = check::check_bytes_within(path, bytes, options.loop_statements);
+    let check_seconds = start.elapsed().as_secs_f64();
+    let mut dependencies: Vec<PathBuf> = checked
+        .sources
+        .files()
+        .iter()
+        .map(|f| f.path.clone())
+        .collect();
+    let mut compiled = Compiled {
+        sources: checked.sources,
+        diagnostics: checked.diagnostics,
+        ir: None,
+        dependencies: Vec::new(),
+        output: None,
+        check_seconds,
+        lower_seconds: 0.0,
+    };
+    if let Some(scene) = checked.scene {
+        let (meshes, output) = crate::lower::named_files(&scene);
+        dependencies.extend(meshes);
+        compiled.output = output;
+        if options.lower {
+            let mut one_off = LowerCache::one_off();
+            let cache = options.cache.unwrap_or(&mut one_off);
+            match crate::lower::lower(&scene, options.adjust, cache) {
+                Ok(ir) => compiled.ir = Some(ir),
+                Err(d) => compiled.diagnostics.items.extend(d.items),
+            }
+            compiled.lower_seconds = start.elapsed().as_secs_f64() - check_seconds;
+        }
+    }
+    compiled.dependencies = dependencies;
+    compiled
+}

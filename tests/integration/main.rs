@@ -6,6 +6,7 @@ mod editors;
 mod examples;
 mod golden;
 mod hostile;
+mod layering;
 mod mitsuba;
 mod nasty;
 mod render;

@@ -1,9 +1,9 @@
 //! Each block kind, checked: values in range, defaults filled in, the result
 //! a piece of the checked [`Scene`](super::scene::Scene).
 
-use super::codes;
 use super::params::{Params, Val, MATERIAL};
 use super::scene::*;
+use crate::diag::codes;
 use crate::diag::{Diagnostic, Diagnostics};
 use crate::span::Span;
 use crate::syntax::ast::BlockKind;

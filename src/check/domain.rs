@@ -148,7 +148,7 @@ pub fn out_of_range(name: &str, what: &str, span: Span, needs: &str, help: Strin
     } else {
         format!("`{name}` of `{what}` must be {needs}")
     };
-    Diagnostic::error(super::codes::OUT_OF_RANGE, message, span)
+    Diagnostic::error(crate::diag::codes::OUT_OF_RANGE, message, span)
         .with_label(format!("must be {needs}"))
         .with_help(help)
 }

@@ -1,7 +1,7 @@
 //! Compile-time evaluation of expressions: numbers, vectors, colours,
 //! strings, booleans, names and a few functions.
 
-use super::codes;
+use crate::diag::codes;
 use crate::diag::{did_you_mean, Diagnostic, Diagnostics};
 use crate::span::Span;
 use crate::syntax::ast::{BinOp, Expr, ExprKind};

@@ -3,7 +3,6 @@
 //! first error.
 
 mod blocks;
-pub mod codes;
 pub mod domain;
 pub mod eval;
 mod finish;
@@ -14,7 +13,7 @@ pub mod scene;
 pub use blocks::{WholeSetting, MAX_PIXELS, MAX_SIDE, SAMPLES, SEED};
 pub use scene::*;
 
-use crate::diag::{did_you_mean, Diagnostic, Diagnostics};
+use crate::diag::{codes, did_you_mean, Diagnostic, Diagnostics};
 use crate::source::{FileId, ReadError, SourceMap, MAX_SCENE_BYTES};
 use crate::span::Span;
 use crate::syntax::ast::{BlockKind, Entry, MaterialRef, Statement};

@@ -2,9 +2,9 @@
 //! object-to-world transform and the linear motion.
 
 use super::blocks::{range_error, Reader};
-use super::codes;
 use super::params::{Params, Val, SHAPE_COMMON};
 use super::scene::*;
+use crate::diag::codes;
 use crate::diag::{Diagnostic, Diagnostics};
 use crate::syntax::ast::BlockKind;
 use glam::{DMat4, DVec3};

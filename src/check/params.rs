@@ -1,9 +1,9 @@
 //! Per-block parameter schemas and the collector that checks a block's
 //! entries against one: unknown, duplicate and ill-typed parameters.
 
-use super::codes;
 use super::domain::Quantity;
 use super::eval::{eval, Env, Value};
+use crate::diag::codes;
 use crate::diag::{did_you_mean, Diagnostic, Diagnostics};
 use crate::span::Span;
 use crate::syntax::ast::{Block, Entry, ExprKind};

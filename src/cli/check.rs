@@ -62,7 +62,7 @@ pub fn run(file: &Path, format: Format, verbosity: Verbosity) -> u8 {
                     "{}",
                     serde_json::to_string_pretty(&serde_json::json!([{
                         "severity": "error",
-                        "code": "pts::io::read",
+                        "code": crate::diag::codes::IO_READ,
                         "message": message,
                         "label": "",
                         "help": "check the path and that the file is readable",

@@ -74,6 +74,15 @@ pub enum Command {
     Render(render::RenderArgs),
     /// Re-render a scene every time it (or an included file or mesh) is saved.
     Watch(render::RenderArgs),
+    /// Explain a diagnostic code: what it means, an example (as `rustc --explain`).
+    Explain {
+        /// The code, in full (`pts::check::unknown_param`) or its last part (`unknown_param`).
+        #[arg(required_unless_present = "all")]
+        code: Option<String>,
+        /// Every code, as the Markdown of docs/diagnostics.md.
+        #[arg(long, conflicts_with = "code")]
+        all: bool,
+    },
 }
 
 /// Runs the command line and returns the process exit code.
@@ -93,8 +102,38 @@ pub fn run() -> ExitCode {
         } => check::run(&file, format, Verbosity::from_flags(quiet, false)),
         Command::Render(args) => render::run(&args),
         Command::Watch(args) => watch::run(&args),
+        Command::Explain { code, all } => explain(code.as_deref(), all),
     };
     ExitCode::from(code)
+}
+
+/// Runs `explain`; returns the exit code.
+fn explain(code: Option<&str>, all: bool) -> u8 {
+    use crate::diag::codes::{lookup, markdown, CATALOGUE};
+    if all {
+        print!("{}", markdown());
+        return EXIT_OK;
+    }
+    let code = code.unwrap_or_default();
+    match lookup(code) {
+        Some(e) => {
+            println!("{}: {}\n\n{}\n\nExample:\n", e.code, e.title, e.explanation);
+            for line in e.example.lines() {
+                println!("    {line}");
+            }
+            EXIT_OK
+        }
+        None => {
+            let names = CATALOGUE
+                .iter()
+                .flat_map(|e| [e.code, e.code.rsplit("::").next().unwrap_or(e.code)]);
+            let hint = crate::diag::did_you_mean(code, names)
+                .map(|n| format!(" (did you mean `{n}`?)"))
+                .unwrap_or_default();
+            eprintln!("error: no diagnostic code `{code}`{hint}; `ptsc explain --all` lists them");
+            EXIT_USAGE
+        }
+    }
 }
 
 /// Whether stderr is a terminal (colours, progress bars).

@@ -2,6 +2,7 @@
 //! a message, a labelled span, a help line), collected for the whole run and
 //! rendered at the end by miette (human) or as JSON (editors, CI).
 
+pub mod codes;
 mod excerpt;
 mod human;
 

@@ -11,8 +11,9 @@ mod numbering;
 use crate::accel::bvh::Bvh;
 use crate::accel::bvh4::Bvh4;
 use crate::camera::Camera;
+use crate::check;
 use crate::check::domain::{self, unit_f32, MAX_MAGNITUDE, MIN_SIZE};
-use crate::check::{self, codes};
+use crate::diag::codes;
 use crate::diag::{Diagnostic, Diagnostics};
 use crate::geometry::shape::Shape;
 use crate::geometry::Aabb;
@@ -607,7 +608,7 @@ fn rgb(c: &[f64; 3]) -> Vec3 {
 
 fn non_uniform(span: crate::span::Span, what: &str) -> Diagnostic {
     Diagnostic::error(
-        codes::SINGULAR_TRANSFORM,
+        codes::NON_UNIFORM_SCALE,
         format!("a {what} takes only uniform scaling"),
         span,
     )

@@ -49,7 +49,7 @@ impl Builder {
             if slot.is_none() {
                 *slot = Some(
                     crate::diag::Diagnostic::error(
-                        "pts::syntax::reserved_word",
+                        crate::diag::codes::RESERVED_WORD,
                         format!("`{}` is a reserved word", id.name),
                         id.span,
                     )

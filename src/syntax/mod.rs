@@ -5,7 +5,7 @@ mod build;
 pub mod parser;
 pub mod povray;
 
-use crate::diag::Diagnostic;
+use crate::diag::{codes, Diagnostic};
 use crate::source::FileId;
 use crate::span::Span;
 use parser::{PtsParser, Rule};
@@ -121,7 +121,7 @@ impl PieceError {
                 // The two paths accept the same files (tested); were they
                 // ever to disagree, say so rather than panic.
                 Ok(_) => Diagnostic::error(
-                    "pts::syntax::internal",
+                    codes::INTERNAL,
                     "the parser disagreed with itself on this file",
                     Span::new(file, 0, 0),
                 )
@@ -322,7 +322,7 @@ pub(crate) fn for_each_code_mark(text: &str, mut f: impl FnMut(usize, u8) -> boo
 /// The error for a bracket at `i` nested deeper than [`MAX_NESTING`].
 fn too_deep(file: FileId, i: usize) -> Diagnostic {
     Diagnostic::error(
-        "pts::syntax::too_deep",
+        codes::TOO_DEEP,
         format!("nesting deeper than {MAX_NESTING} levels"),
         Span::new(file, i, i + 1),
     )

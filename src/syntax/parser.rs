@@ -1,7 +1,7 @@
 //! The pest parser and the translation of pest errors into ptsc diagnostics
 //! with human words (never `Rule::expr`).
 
-use crate::diag::Diagnostic;
+use crate::diag::{codes, Diagnostic};
 use crate::source::FileId;
 use crate::span::Span;
 use pest::error::{ErrorVariant, InputLocation};
@@ -145,7 +145,7 @@ pub fn convert_error(
 
     if rest.starts_with("/*") {
         return Diagnostic::error(
-            "pts::syntax::unterminated_comment",
+            codes::UNTERMINATED_COMMENT,
             "unterminated block comment",
             Span::new(file, pos, pos + 2),
         )
@@ -154,7 +154,7 @@ pub fn convert_error(
     }
     if rest.starts_with('"') {
         return Diagnostic::error(
-            "pts::syntax::unterminated_string",
+            codes::UNTERMINATED_STRING,
             "unterminated string",
             Span::new(file, pos, pos + 1),
         )
@@ -165,7 +165,7 @@ pub fn convert_error(
     let found = describe_found(text, pos);
     if found == "`rgb`" && after_rgb(text.get(..pos).unwrap_or("")) {
         return Diagnostic::error(
-            "pts::syntax::rgb_of_rgb",
+            codes::RGB_OF_RGB,
             "`rgb` of `rgb`",
             span,
         )
@@ -201,7 +201,7 @@ pub fn convert_error(
             str::to_string,
         );
         return Diagnostic::error(
-            "pts::syntax::directive",
+            codes::DIRECTIVE,
             format!("`#{directive}` is a POV-Ray directive"),
             Span::new(file, pos, pos + 1 + directive.len()),
         )
@@ -260,7 +260,7 @@ pub fn convert_error(
     if found == "`{`" && expected.contains(&"`;`") {
         if let Some(kind) = previous.last().filter(|w| STATEMENT_STARTS.contains(w)) {
             return Diagnostic::error(
-                "pts::syntax::object_as_value",
+                codes::OBJECT_AS_VALUE,
                 format!("a `{kind}` is not a value"),
                 span,
             )
@@ -282,7 +282,7 @@ pub fn convert_error(
             previous.iter().find_map(|w| super::povray::hint(w)).map(str::to_string)
         })
         .unwrap_or_else(|| help_for(&expected, &found));
-    Diagnostic::error("pts::syntax::unexpected_token", message, span)
+    Diagnostic::error(codes::UNEXPECTED_TOKEN, message, span)
         .with_label(label)
         .with_help(help)
 }
@@ -319,7 +319,7 @@ fn open_braces(text: &str) -> Vec<usize> {
 /// The error for the `{` at `open`, never closed.
 fn unclosed_block(file: FileId, open: usize) -> Diagnostic {
     Diagnostic::error(
-        "pts::syntax::unclosed_block",
+        codes::UNCLOSED_BLOCK,
         "this block is never closed",
         Span::new(file, open, open + 1),
     )

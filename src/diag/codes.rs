@@ -1,0 +1,412 @@
+//! The catalogue of diagnostic codes: every code ptsc reports, with a
+//! title, a paragraph that explains it and an example that shows it.
+//! `ptsc explain CODE` prints an entry; `docs/diagnostics.md` lists them all
+//! (generated from this table, checked by a test, as is that every code used
+//! in the source is here and every code here is used). Editors and CI
+//! scripts match on the codes: never rename one.
+
+/// One entry of the catalogue.
+#[derive(Debug, Clone, Copy)]
+pub struct Entry {
+    /// The code, e.g. `pts::check::unknown_param`.
+    pub code: &'static str,
+    /// What the problem is, in a few words.
+    pub title: &'static str,
+    /// Why it is a problem and what to do.
+    pub explanation: &'static str,
+    /// A scene (or command) that shows it.
+    pub example: &'static str,
+}
+
+/// A token the grammar does not allow here.
+pub const UNEXPECTED_TOKEN: &str = "pts::syntax::unexpected_token";
+/// A block without its closing `}`.
+pub const UNCLOSED_BLOCK: &str = "pts::syntax::unclosed_block";
+/// A string without its closing quote.
+pub const UNTERMINATED_STRING: &str = "pts::syntax::unterminated_string";
+/// A block comment without `*/`.
+pub const UNTERMINATED_COMMENT: &str = "pts::syntax::unterminated_comment";
+/// A keyword used as a name.
+pub const RESERVED_WORD: &str = "pts::syntax::reserved_word";
+/// Brackets nested too deeply.
+pub const TOO_DEEP: &str = "pts::syntax::too_deep";
+/// `rgb` applied to an `rgb` without brackets.
+pub const RGB_OF_RGB: &str = "pts::syntax::rgb_of_rgb";
+/// A POV-Ray `#` directive.
+pub const DIRECTIVE: &str = "pts::syntax::directive";
+/// An object used as a value.
+pub const OBJECT_AS_VALUE: &str = "pts::syntax::object_as_value";
+/// The parser disagreed with itself.
+pub const INTERNAL: &str = "pts::syntax::internal";
+/// A name that is not defined.
+pub const UNKNOWN_NAME: &str = "pts::check::unknown_name";
+/// A function that does not exist.
+pub const UNKNOWN_FUNCTION: &str = "pts::check::unknown_function";
+/// A call with the wrong number of arguments.
+pub const WRONG_ARGUMENT_COUNT: &str = "pts::check::argument_count";
+/// A value of the wrong type.
+pub const TYPE_MISMATCH: &str = "pts::check::type_mismatch";
+/// A word outside the accepted set.
+pub const UNKNOWN_WORD: &str = "pts::check::unknown_word";
+/// Division by zero.
+pub const DIVISION_BY_ZERO: &str = "pts::check::division_by_zero";
+/// A function argument outside its domain.
+pub const DOMAIN: &str = "pts::check::domain";
+/// An infinite or NaN value.
+pub const NOT_FINITE: &str = "pts::check::not_finite";
+/// A parameter the block does not have.
+pub const UNKNOWN_PARAM: &str = "pts::check::unknown_param";
+/// A parameter given twice.
+pub const DUPLICATE_PARAM: &str = "pts::check::duplicate_param";
+/// A required parameter not given.
+pub const MISSING_PARAM: &str = "pts::check::missing_param";
+/// A value outside its allowed range.
+pub const OUT_OF_RANGE: &str = "pts::check::out_of_range";
+/// Geometry without area or volume.
+pub const DEGENERATE: &str = "pts::check::degenerate";
+/// A name declared twice.
+pub const DUPLICATE_NAME: &str = "pts::check::duplicate_name";
+/// A second `render`, `camera` or `background`.
+pub const DUPLICATE_BLOCK: &str = "pts::check::duplicate_block";
+/// A material that does not exist.
+pub const UNKNOWN_MATERIAL: &str = "pts::check::unknown_material";
+/// An included file that cannot be read.
+pub const INCLUDE_NOT_FOUND: &str = "pts::check::include_not_found";
+/// A file that includes itself.
+pub const INCLUDE_CYCLE: &str = "pts::check::include_cycle";
+/// A file that is not valid UTF-8.
+pub const INVALID_UTF8: &str = "pts::check::invalid_utf8";
+/// A scene without a camera.
+pub const MISSING_CAMERA: &str = "pts::check::missing_camera";
+/// Loops that run too many statements.
+pub const LOOP_TOO_LONG: &str = "pts::check::loop_too_long";
+/// A mesh file that is missing, unreadable or of an unknown format.
+pub const MESH_FILE: &str = "pts::check::mesh_file";
+/// A transform that cannot be inverted.
+pub const SINGULAR_TRANSFORM: &str = "pts::check::singular_transform";
+/// A sphere or disk under a non-uniform scale.
+pub const NON_UNIFORM_SCALE: &str = "pts::lower::non_uniform_scale";
+/// Warning: a material never used.
+pub const UNUSED_MATERIAL: &str = "pts::check::unused_material";
+/// Warning: a constant never used.
+pub const UNUSED_CONSTANT: &str = "pts::check::unused_constant";
+/// Warning: nothing emits light.
+pub const NO_LIGHT: &str = "pts::check::no_light";
+/// Warning: a material that would reflect more than it receives.
+pub const ENERGY_GAIN: &str = "pts::check::energy_gain";
+/// Warning: a setting that biases the image or has no effect with this integrator.
+pub const INTEGRATOR_SETTING: &str = "pts::check::integrator_setting";
+/// Warning: a parameter that has no effect.
+pub const NO_EFFECT: &str = "pts::check::no_effect";
+/// The scene file cannot be read.
+pub const IO_READ: &str = "pts::io::read";
+
+/// Every code with its explanation, syntax first, then check, lowering, I/O.
+pub const CATALOGUE: &[Entry] = &[
+    Entry {
+        code: UNEXPECTED_TOKEN,
+        title: "A token the grammar does not allow here",
+        explanation: "The parser met a word or symbol where the grammar expects something else: a missing `;` after a `let`, a missing comma in a vector, a value missing after a parameter name, a block ptsc does not have. The message lists what would have been accepted at that point; when a statement word is misspelled or comes from POV-Ray, the help names the ptsc word.",
+        example: "let r = 1\nsphere { center <0, 0, 0> radius r }   // `;` missing after `let r = 1`",
+    },
+    Entry {
+        code: UNCLOSED_BLOCK,
+        title: "A block without its closing `}`",
+        explanation: "A `{` was opened and the file (or the next statement) came before its `}`. The error points at the `{` that was never closed, not at the place where the parser gave up, which may be many lines later.",
+        example: "sphere { center <0, 0, 0> radius 1\ncamera { position <0, 0, 5> look_at <0, 0, 0> }",
+    },
+    Entry {
+        code: UNTERMINATED_STRING,
+        title: "A string without its closing quote",
+        explanation: "A `\"` opened a string (a file name) that no `\"` closes on the same line. Strings cannot span lines.",
+        example: "mesh { file \"bunny.obj }",
+    },
+    Entry {
+        code: UNTERMINATED_COMMENT,
+        title: "A block comment without `*/`",
+        explanation: "A `/*` comment runs to the end of the file. Block comments do not nest.",
+        example: "/* a note\nsphere { center <0, 0, 0> radius 1 }",
+    },
+    Entry {
+        code: RESERVED_WORD,
+        title: "A keyword used as a name",
+        explanation: "Words of the language (`let`, `for`, `in`, `material`, block names, `rgb`, `true`, …) cannot name constants or materials.",
+        example: "let sphere = 2;",
+    },
+    Entry {
+        code: TOO_DEEP,
+        title: "Brackets nested too deeply",
+        explanation: "Brackets, braces and angle brackets nest at most 128 deep. The limit keeps parsing and evaluation bounded (no input can exhaust the stack); no hand-written scene comes close.",
+        example: "let x = ((((((((((…1…))))))))));   // 129 levels",
+    },
+    Entry {
+        code: RGB_OF_RGB,
+        title: "`rgb` applied to an `rgb` without brackets",
+        explanation: "`rgb` takes one value (a number or a 3-vector); `rgb rgb 1` is almost always a typing slip. Write the colour once, or bracket the inner expression.",
+        example: "diffuse rgb rgb 0.5",
+    },
+    Entry {
+        code: DIRECTIVE,
+        title: "A POV-Ray `#` directive",
+        explanation: "ptsc has no `#` directives. `#declare` and `#local` are `let`, `#include` is `include`, `#for`/`#while` are `for i in a..b { … }`; the help names the ptsc form when there is one.",
+        example: "#declare R = 1;",
+    },
+    Entry {
+        code: OBJECT_AS_VALUE,
+        title: "An object used as a value",
+        explanation: "Constants hold numbers, vectors, colours and booleans, not objects: `let ball = sphere { … };` is not a value. Write the object where it goes (a `for` loop places many).",
+        example: "let ball = sphere { center <0, 0, 0> radius 1 };",
+    },
+    Entry {
+        code: INTERNAL,
+        title: "The parser disagreed with itself",
+        explanation: "Large files are parsed in pieces; a file that parses whole must parse in pieces too. This error means the two disagreed: it is a ptsc bug, and the file that shows it is worth reporting.",
+        example: "(no scene should produce it)",
+    },
+    Entry {
+        code: UNKNOWN_NAME,
+        title: "A name that is not defined",
+        explanation: "An expression uses a constant that no `let` (or `for` variable) defines before this point. Constants are defined in order: a `let` after its use does not count. The help suggests a similar name when there is one.",
+        example: "sphere { center <0, 0, 0> radius raduis }\nlet radius = 1;",
+    },
+    Entry {
+        code: UNKNOWN_FUNCTION,
+        title: "A function that does not exist",
+        explanation: "The name before `(` is not one of the built-in functions: `sin`, `cos`, `tan`, `sqrt`, `pow`, `abs`, `min`, `max`, `radians`, `degrees`, `normalize`, `length`, `dot`, `cross` (see docs/language.md).",
+        example: "let x = sine(1);",
+    },
+    Entry {
+        code: WRONG_ARGUMENT_COUNT,
+        title: "A call with the wrong number of arguments",
+        explanation: "A built-in function was called with more or fewer arguments than it takes.",
+        example: "let m = max(1);",
+    },
+    Entry {
+        code: TYPE_MISMATCH,
+        title: "A value of the wrong type",
+        explanation: "A number was given where a vector or colour is expected (or the reverse), two values of kinds an operator cannot combine were combined, or a parameter received the wrong kind of value. The labels show each operand's type; `rgb` applies to the one value after it, so `rgb 0.5 + 0.1` is a colour plus a number: write `rgb (0.5 + 0.1)`.",
+        example: "sphere { center 1 radius 1 }",
+    },
+    Entry {
+        code: UNKNOWN_WORD,
+        title: "A word outside the accepted set",
+        explanation: "A parameter that takes a word (such as `integrator path`) got one it does not know. The message lists the words it accepts.",
+        example: "render { integrator pathtracer }",
+    },
+    Entry {
+        code: DIVISION_BY_ZERO,
+        title: "Division by zero",
+        explanation: "An expression divides (or takes a remainder) by zero. Expressions are evaluated when the scene is checked, so the error points at the exact operation.",
+        example: "let x = 1 / 0;",
+    },
+    Entry {
+        code: DOMAIN,
+        title: "A function argument outside its domain",
+        explanation: "A built-in function got an argument it has no value for: the square root of a negative number, `normalize` of a zero vector.",
+        example: "let x = sqrt(-1);",
+    },
+    Entry {
+        code: NOT_FINITE,
+        title: "An infinite or NaN value",
+        explanation: "An expression overflowed to infinity or produced NaN. Every value of a scene must be a finite number.",
+        example: "let x = 1e300 * 1e300;",
+    },
+    Entry {
+        code: UNKNOWN_PARAM,
+        title: "A parameter the block does not have",
+        explanation: "The block has no parameter of that name. The help suggests the closest one, or the ptsc word for a POV-Ray word (`location` → `position`, `angle` → `fov`, `pigment` → `diffuse`).",
+        example: "sphere { center <0, 0, 0> radus 1 }",
+    },
+    Entry {
+        code: DUPLICATE_PARAM,
+        title: "A parameter given twice",
+        explanation: "The same parameter appears twice in one block; the second would silently win, so it is an error. The first one is marked too.",
+        example: "sphere { center <0, 0, 0> radius 1 radius 2 }",
+    },
+    Entry {
+        code: MISSING_PARAM,
+        title: "A required parameter not given",
+        explanation: "The block needs this parameter and has no default for it (a sphere's `radius`, a camera's `position`).",
+        example: "sphere { center <0, 0, 0> }",
+    },
+    Entry {
+        code: OUT_OF_RANGE,
+        title: "A value outside its allowed range",
+        explanation: "A number is outside what its parameter accepts: a negative radius, a gloss above 1, a resolution too large, an index of refraction below 1, or geometry that reaches beyond ±1e9 after its transforms and motion (the renderer computes in 32-bit floats). The label gives the range.",
+        example: "sphere { center <0, 0, 0> radius -1 }",
+    },
+    Entry {
+        code: DEGENERATE,
+        title: "Geometry without area or volume",
+        explanation: "Something has no extent or no direction: a quad with parallel edges, a triangle with three points on a line, a box whose `min` is not below its `max`, a mesh whose every triangle has zero area, an object too small for 32-bit floats after its transforms, a camera looking at its own position or with `up` along its view, a spot light pointing at its own position, an emissive infinite plane.",
+        example: "triangle { v0 <0, 0, 0> v1 <1, 0, 0> v2 <2, 0, 0> }",
+    },
+    Entry {
+        code: DUPLICATE_NAME,
+        title: "A name declared twice",
+        explanation: "Two `let`s or two named materials share a name. Names are declared once; the first declaration is marked.",
+        example: "let r = 1;\nlet r = 2;",
+    },
+    Entry {
+        code: DUPLICATE_BLOCK,
+        title: "A second `render`, `camera` or `background`",
+        explanation: "A scene has at most one of each of these blocks; the second would silently replace the first.",
+        example: "camera { position <0, 0, 5> look_at <0, 0, 0> }\ncamera { position <0, 0, 9> look_at <0, 0, 0> }",
+    },
+    Entry {
+        code: UNKNOWN_MATERIAL,
+        title: "A material that does not exist",
+        explanation: "`material NAME` names no declared material. Named materials may be declared anywhere in the scene (before or after their use); the help suggests a similar name.",
+        example: "sphere { center <0, 0, 0> radius 1 material coper }\nmaterial copper { reflection rgb <0.95, 0.64, 0.54> }",
+    },
+    Entry {
+        code: INCLUDE_NOT_FOUND,
+        title: "An included file that cannot be read",
+        explanation: "The file named by `include` does not exist or cannot be read. The path is relative to the file that includes it.",
+        example: "include \"materials.ptsi\"",
+    },
+    Entry {
+        code: INCLUDE_CYCLE,
+        title: "A file that includes itself",
+        explanation: "A chain of includes leads back to a file already being read; it would never end. The notes show the chain.",
+        example: "// a.pts\ninclude \"a.pts\"",
+    },
+    Entry {
+        code: INVALID_UTF8,
+        title: "A file that is not valid UTF-8",
+        explanation: "Scene files are UTF-8 text. Each invalid byte is read as `?` so that every other diagnostic still points at the right place; re-save the file as UTF-8.",
+        example: "(a file saved as Latin-1 with an accented letter in a comment)",
+    },
+    Entry {
+        code: MISSING_CAMERA,
+        title: "A scene without a camera",
+        explanation: "A scene needs one `camera { position … look_at … }` block.",
+        example: "sphere { center <0, 0, 0> radius 1 }",
+    },
+    Entry {
+        code: LOOP_TOO_LONG,
+        title: "Loops that run too many statements",
+        explanation: "Loops and repeated includes run at most 4,000,000 statements in all, counted by their text, so that every scene checks in bounded time and memory. Use fewer iterations, or a mesh for very many triangles.",
+        example: "for i in 0..100000000 { sphere { center <i, 0, 0> radius 0.5 } }",
+    },
+    Entry {
+        code: MESH_FILE,
+        title: "A mesh file that is missing, unreadable or of an unknown format",
+        explanation: "`mesh { file … }` reads OBJ and PLY (ASCII, binary little and big endian) files with at least one triangle. The label says what went wrong: the file is missing, has another extension, or its contents are broken (the line or element is named).",
+        example: "mesh { file \"bunny.stl\" }",
+    },
+    Entry {
+        code: SINGULAR_TRANSFORM,
+        title: "A transform that cannot be inverted",
+        explanation: "A scale by zero or a matrix with a zero determinant flattens the object into nothing; the renderer needs the inverse of every transform.",
+        example: "sphere { center <0, 0, 0> radius 1 scale <1, 0, 1> }",
+    },
+    Entry {
+        code: NON_UNIFORM_SCALE,
+        title: "A sphere or disk under a non-uniform scale",
+        explanation: "Spheres and disks are stored exactly (centre and radius), so they take translations, rotations and uniform scales only. A non-uniform scale or a shear would make an ellipsoid or an ellipse: use a mesh for those.",
+        example: "sphere { center <0, 0, 0> radius 1 scale <2, 1, 1> }",
+    },
+    Entry {
+        code: UNUSED_MATERIAL,
+        title: "Warning: a material never used",
+        explanation: "A named material is declared and no object uses it: often a typo in a `material NAME` elsewhere.",
+        example: "material gold { reflection rgb <1, 0.8, 0.3> }",
+    },
+    Entry {
+        code: UNUSED_CONSTANT,
+        title: "Warning: a constant never used",
+        explanation: "A `let` defines a constant that nothing reads. Prefix its name with `_` to keep it on purpose.",
+        example: "let unused = 3;",
+    },
+    Entry {
+        code: NO_LIGHT,
+        title: "Warning: nothing emits light",
+        explanation: "The scene has no light, no emissive object and a black background: every integrator but the debug ones renders black.",
+        example: "camera { position <0, 0, 5> look_at <0, 0, 0> }\nsphere { center <0, 0, 0> radius 1 }",
+    },
+    Entry {
+        code: ENERGY_GAIN,
+        title: "Warning: a material that would reflect more than it receives",
+        explanation: "A diffuse albedo above 1, or lobes (diffuse, reflection, transmission) that add up to more than 1. Physically impossible: the renderer scales the lobes down so that the material conserves energy, which is probably not what was meant.",
+        example: "material { diffuse rgb 0.8 reflection rgb 0.5 }",
+    },
+    Entry {
+        code: INTEGRATOR_SETTING,
+        title: "Warning: a setting that biases the image or has no effect with this integrator",
+        explanation: "Some settings do not suit the integrator chosen: `ambient` adds light that no source emits, which biases the `path` integrator (it is the paper's term for Whitted shading); `whitted` with `light_samples 0` sends no shadow ray to area lights, so a scene lit only by them renders without direct light.",
+        example: "render { integrator path ambient rgb 0.1 }",
+    },
+    Entry {
+        code: NO_EFFECT,
+        title: "Warning: a parameter that has no effect",
+        explanation: "A parameter whose lobe is absent does nothing: `gloss` without `reflection`, `absorption` without `transmission`.",
+        example: "material { diffuse rgb 0.5 gloss 0.3 }",
+    },
+    Entry {
+        code: IO_READ,
+        title: "The scene file cannot be read",
+        explanation: "The file given on the command line does not exist, is a folder, or cannot be read. With `--format json` this is the one diagnostic printed; the exit code is 2 (a usage problem), not 1.",
+        example: "ptsc check missing.pts",
+    },
+];
+
+/// The catalogue entry of `code`: its full name (`pts::check::unknown_param`)
+/// or its last part (`unknown_param`).
+pub fn lookup(code: &str) -> Option<&'static Entry> {
+    CATALOGUE
+        .iter()
+        .find(|e| e.code == code || e.code.rsplit("::").next() == Some(code))
+}
+
+/// The catalogue as Markdown: the text of `docs/diagnostics.md`.
+pub fn markdown() -> String {
+    let mut out = String::from(
+        "# Diagnostic codes\n\n\
+         Every code ptsc reports, generated from `src/diag/codes.rs` (a test \
+         keeps this file in step: `cargo run -- explain --all > docs/diagnostics.md`). \
+         `ptsc explain CODE` prints one entry; the code may be given in full or by its \
+         last part (`ptsc explain unknown_param`). Codes are stable: editors and \
+         scripts may match on them.\n\n\
+         | Code | Problem |\n| --- | --- |\n",
+    );
+    for e in CATALOGUE {
+        out += &format!("| [`{}`](#{}) | {} |\n", e.code, anchor(e.code), e.title);
+    }
+    for e in CATALOGUE {
+        out += &format!("\n## {}\n\n{}.\n\n{}\n\n", e.code, e.title, e.explanation);
+        out += &format!("```pts\n{}\n```\n", e.example);
+    }
+    out
+}
+
+/// The Markdown anchor of a heading that is a code (GitHub's rule: lower
+/// case, punctuation but `-` and `_` dropped).
+fn anchor(code: &str) -> String {
+    code.chars()
+        .filter(|c| c.is_alphanumeric() || *c == '_' || *c == '-')
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn codes_are_unique_and_found_by_either_name() {
+        let mut seen = std::collections::BTreeSet::new();
+        for e in CATALOGUE {
+            assert!(seen.insert(e.code), "{} twice", e.code);
+            assert!(e.code.starts_with("pts::"));
+            assert!(!e.explanation.is_empty() && !e.example.is_empty());
+        }
+        assert_eq!(lookup("unknown_param").unwrap().code, UNKNOWN_PARAM);
+        assert_eq!(lookup(UNKNOWN_PARAM).unwrap().code, UNKNOWN_PARAM);
+        assert!(lookup("no_such_code").is_none());
+        let mut last_parts = std::collections::BTreeSet::new();
+        for e in CATALOGUE {
+            let last = e.code.rsplit("::").next().unwrap();
+            assert!(last_parts.insert(last), "`{last}` ends two codes");
+        }
+    }
+}

@@ -37,24 +37,16 @@ const MAX_LEAF: usize = 4;
 
 /// Nodes of up to this many static triangles or quads stay leaves of up to
 /// [`MAX_BLOCKS`] blocks, whatever the SAH says (if small, see
-/// [`SHARED_LEAF_AREA`]). On the 1M-triangle mesh (A/B 16 spp against
-/// leaves of at most four): up to 8 1.63 → 1.57 s, up to 12 1.63 → 1.55,
-/// up to 16 1.56; with 12, wide nodes 138,949 → 52,704 and blocks 269,524
-/// → 260,100, peak memory 87.5 → 74.5 MB and load 0.62 → 0.54 s (five
-/// alternating runs). The SAH asked instead (a leaf when its blocks cost no
-/// more than a node and the best split) gained only 1.69 → 1.66, not more
-/// with a higher node cost. Traversal dominates there: a node visit costs
-/// more than its share of a triangle test.
+/// [`SHARED_LEAF_AREA`]): on dense meshes traversal dominates, and a node
+/// visit costs more than its share of a triangle test; fewer, fuller leaves
+/// also mean fewer nodes and less memory. Measurements: docs/performance.md, "Why the BVH and traversal are as they are".
 const SHARED_LEAF: usize = 4 * MAX_BLOCKS as usize;
 
 /// Only nodes whose surface area is at most this fraction of the scene's
 /// (about a hundredth of its size) become shared leaves: the SAH's premise,
 /// rays from outside the box, holds for small boxes, and fails for a room
-/// of a few big triangles with the camera inside. (The Cornell box's walls
-/// as twelve triangles, A/B 16 spp, 7 rounds: leaves of four 2.01 s, one
-/// shared leaf 2.03, with this rule 2.02; within noise. Its seven quads in
-/// one leaf of two blocks: 2–3 % slower, and with this rule as fast as
-/// before.) The mesh's leaves are about 10⁻⁵ of its scene.
+/// of a few big triangles with the camera inside. The mesh's leaves are
+/// about 10⁻⁵ of its scene. Measurements: docs/performance.md, "Why the BVH and traversal are as they are".
 const SHARED_LEAF_AREA: f32 = 1e-4;
 
 const PARALLEL_THRESHOLD: usize = 16 * 1024;
@@ -189,8 +181,7 @@ impl Input<'_> {
     }
 
     /// The centroid of primitive `i`'s box, computed where needed: an array
-    /// of them cost 12 bytes per primitive at the load's peak (mesh: peak
-    /// RSS 168 -> 159 MB, build 0.32 -> 0.345 s).
+    /// of them would cost 12 bytes per primitive at the load's peak.
     #[inline]
     fn centroid(&self, i: u32) -> Vec3 {
         self.bounds[i as usize].center()
@@ -246,9 +237,9 @@ fn build_node(
         // Each half gets the most room it can need (2·len − 2 slots). The
         // room the left half leaves unused stays a gap of zeroed slots that
         // no node points to: never written, its pages are never mapped.
-        // Moving the right half down to close it (as this did until session
-        // 6) wrote each moved node to a fresh page while its old page stayed
-        // mapped, at every parallel level: +33 MB at the mesh's peak.
+        // Moving the right half down to close it would write each moved node
+        // to a fresh page while its old page stays mapped, at every parallel
+        // level (33 MB more at the mesh's peak).
         let room_lo = 2 * lo.len() - 2;
         let (rest_lo, rest_hi) = rest.split_at_mut(room_lo);
         let hi_base = base + 2 + room_lo;
@@ -281,14 +272,11 @@ fn widest_axis(cb: &Aabb) -> usize {
 
 /// Where a node of more than [`MAX_LEAF`] primitives splits: always, as with
 /// the 4-wide traversal (bvh4.rs) a node test is cheaper than testing more
-/// primitives (single 16-spp renders on a noisy machine: the SAH leaf rule
-/// cost about 7 % on cornell and 9 % on mesh). Binned SAH over all three
-/// axes (Wald 2007 bins only the widest; pbrt-v4 and Embree try all three),
-/// except in nodes of up to [`SMALL_NODE`] primitives; `cb` bounds the
-/// centroids. `order` is partitioned, the left side is `order[..mid]`.
-/// A/B, 16 spp (all three axes and blocks of four, see
-/// [`AxisBins::cheapest_split`]): mesh 2.02 -> 1.86 s, spheres 1.33 ->
-/// 1.26, cornell 2.18 -> 2.11; build 0.25 -> 0.35 s (2 threads).
+/// primitives. Binned SAH over all three axes (Wald 2007 bins only the
+/// widest; pbrt-v4 and Embree try all three: better trees for a slower
+/// build), except in nodes of up to [`SMALL_NODE`] primitives; `cb` bounds
+/// the centroids. `order` is partitioned, the left side is `order[..mid]`.
+/// Measurements: docs/performance.md, "Why the BVH and traversal are as they are".
 fn large_split(input: &Input, order: &mut [u32], cb: &Aabb) -> usize {
     let widest = widest_axis(cb);
     let bins = if order.len() >= PARALLEL_THRESHOLD {
@@ -331,9 +319,8 @@ fn large_split(input: &Input, order: &mut [u32], cb: &Aabb) -> usize {
 
 /// Nodes of up to this many primitives split along their widest centroid
 /// axis only. A room of a few big walls is where the SAH's assumptions
-/// (rays from far outside) fail most: with all three axes tried at the
-/// Cornell box's root (8 primitives) its renders took 10 % longer. 8, 16
-/// or 64 here: the same renders (within 1 %, A/B on all three scenes).
+/// (rays from far outside) fail most, and trying all three axes there makes
+/// worse trees. Measurements: docs/performance.md, "Why the BVH and traversal are as they are".
 const SMALL_NODE: usize = 16;
 
 /// Primitives binned by centroid along each axis: bounds and counts.
@@ -452,28 +439,20 @@ impl AxisBins {
 
 /// The traversal cost of an inner node relative to one primitive test, in
 /// the surface area heuristic that decides small leaves. pbrt-v4 uses 0.5;
-/// below 0.89 the walls of a Cornell box part. (Measured in session 4,
-/// when mesh triangles still came here: the higher it is, the more of them
-/// stayed in pairs; of the mesh's nodes of two, 7 % split at 1.0, 14 % at
-/// 0.9, 59 % at 0.7, 99 % at 0.5.)
+/// below 0.89 the walls of a Cornell box part, which costs its renders.
 const NODE_COST: f32 = 0.85;
 
 /// Whether a node of at most [`MAX_LEAF`] primitives is better split (by the
 /// surface area heuristic, every split along the widest centroid axis
 /// tried): `mid`, with `order` sorted along that axis. Up to four packable
-/// primitives (static triangles and, since session 6, quads: the walls of a
-/// room share a block) always stay together; scattered spheres end in
-/// leaves of one, small overlapping primitives that cannot be packed
-/// (moving triangles) in shared leaves.
-/// Measured in session 4 (before triangle blocks), 16-spp renders A/B
-/// against leaves of up to four: cornell 2.50 -> 2.15 s, mesh 2.37 -> 2.28,
-/// spheres 1.44 -> 1.32. Leaves of exactly one: cornell 2.03, spheres 1.36.
+/// primitives (static triangles and quads: the walls of a room share a
+/// block) always stay together; scattered spheres end in leaves of one,
+/// small overlapping primitives that cannot be packed (moving triangles) in
+/// shared leaves. Measurements: docs/performance.md, "Why the BVH and traversal are as they are".
 fn small_split(input: &Input, order: &mut [u32], node: &Aabb, cb: &Aabb) -> Option<usize> {
     let n = order.len();
     // Four packable primitives cost one test: always cheaper than a node
-    // and a test on each side (single 16-spp mesh renders, A/B: leaves of
-    // up to four in blocks 1.97 s, mostly pairs in blocks 2.33 s, pairs
-    // tested one by one 2.25 s).
+    // and a test on each side.
     if n < 2 || order.iter().all(|&i| input.packable(i)) {
         return None;
     }

@@ -136,8 +136,7 @@ impl Bvh4 {
 
     /// Packs the leaves under `node`, depth first with lanes in order: the
     /// blocks lie in the order the collapse met them, as when the collapse
-    /// made them. (Packed node after node instead: primary rays 5 % slower
-    /// in one noisy bench comparison, renders the same in an A/B.)
+    /// made them.
     fn pack_below(&mut self, node: usize, triangle: &impl Fn(u32) -> Option<PackedTriangle>) {
         let unused = PackedTriangle {
             vertices: [Vec3::ZERO; 3],
@@ -245,9 +244,8 @@ impl Bvh4 {
         // The block and lane of the best hit, if it is in a block.
         let mut best_lane = None;
         // Children of every kind wait on the stack, nearest on top: a leaf
-        // is tested only when nothing nearer is left. (Leaves tested as soon
-        // as their parent was, before nearer inner children: A/B 16 spp,
-        // mesh 1.90 -> 1.85 s, spheres 1.20 -> 1.17, cornell 1.97 -> 2.00.)
+        // is tested only when nothing nearer is left (measurements:
+        // docs/performance.md, "Why the BVH and traversal are as they are").
         // An entry is `(child, count, t_enter)` as in a node's lane.
         let mut stack = Stack::new((0u32, 0u32, 0.0f32));
         // The nearest child of the node just tested skips the stack.

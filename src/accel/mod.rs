@@ -4,5 +4,6 @@
 
 pub mod bvh;
 pub mod bvh4;
+pub mod numbering;
 pub mod ray_count;
 pub mod tri4;

@@ -54,7 +54,7 @@ pub struct Scene {
     /// The records of the primitives that need one (shared with `watch`'s
     /// cache while the geometry is unchanged): all but the plain triangles
     /// of the BVH's blocks, which their blocks describe completely and
-    /// whose numbers come after these (see `lower::numbering`).
+    /// whose numbers come after these (see `accel::numbering`).
     pub prims: Arc<Vec<Prim>>,
     /// The object each primitive came from (index into `object_spans`), for
     /// every primitive, records or not.
@@ -119,12 +119,12 @@ impl Scene {
 
     /// The closest hit along `ray` beyond `t_min`.
     // Inlined into the integrators, as are the BSDF's and the lights' `sample`
-    // and `eval`: called out of line, perf put 12-17 % of `path_li` on the
-    // first loads of the `Hit` and `BsdfSample` they returned through memory.
-    // A/B 16 spp: cornell 2.09 -> 1.87 s, spheres 1.25 -> 1.16, mesh 1.78 -> 1.72.
+    // and `eval`: called out of line, the `Hit` and `BsdfSample` they return
+    // go through memory and their first loads stall the integrator.
     // `always` (here, in `Bvh4::closest`, `Light::sample` and
-    // `Material::sample`): a plain `#[inline]` was dropped by LLVM's
-    // heuristics after unrelated changes (session 6: cornell 1.90 -> 2.09 s).
+    // `Material::sample`): a plain `#[inline]` is dropped by LLVM's
+    // heuristics after unrelated changes. Measurements: docs/performance.md,
+    // "Why the BVH and traversal are as they are".
     #[inline(always)]
     pub fn intersect(&self, ray: &Ray, t_min: f32, t_max: f32) -> Option<Hit> {
         ray_count::closest();

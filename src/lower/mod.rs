@@ -4,13 +4,16 @@
 //! sphere under a non-uniform scale) are diagnostics with the object's span.
 
 pub mod cache;
+mod camera;
 mod collect;
+mod lights;
+mod material;
 pub mod mesh;
-mod numbering;
+mod settings;
 
 use crate::accel::bvh::Bvh;
 use crate::accel::bvh4::Bvh4;
-use crate::camera::Camera;
+use crate::accel::numbering::Numbering;
 use crate::check;
 use crate::check::domain::{self, unit_f32, MAX_MAGNITUDE, MIN_SIZE};
 use crate::diag::codes;
@@ -20,11 +23,14 @@ use crate::geometry::Aabb;
 use crate::ir::settings::Settings;
 use crate::ir::{Prim, Scene};
 use crate::light::Light;
-use crate::material::{self, Material};
+use crate::material::Material;
 use cache::LowerCache;
+use camera::lower_camera;
 use collect::{Collected, PlainMesh};
 use glam::{DMat4, DVec3, Vec3};
-use numbering::Numbering;
+use lights::{light_table, lower_light};
+use material::lower_material;
+use settings::lower_settings;
 use std::path::PathBuf;
 use std::sync::Arc;
 
@@ -500,37 +506,7 @@ fn finish(
             }
         })
         .collect();
-    for (l, _) in &scene.lights {
-        lights.push(match l {
-            check::Light::Point {
-                position,
-                intensity,
-            } => Light::Point {
-                position: v3(*position),
-                intensity: rgb(intensity),
-            },
-            check::Light::Spot {
-                position,
-                direction,
-                intensity,
-                angle,
-                falloff,
-            } => Light::Spot {
-                position: v3(*position),
-                direction: v3(*direction),
-                intensity: rgb(intensity),
-                cos_total: angle.to_radians().cos() as f32,
-                cos_falloff: falloff.to_radians().cos() as f32,
-            },
-            check::Light::Directional {
-                direction,
-                irradiance,
-            } => Light::Directional {
-                direction: v3(*direction),
-                irradiance: rgb(irradiance),
-            },
-        });
-    }
+    lights.extend(scene.lights.iter().map(|(l, _)| lower_light(l)));
     let background = rgb(&scene.background);
     let env_light = (background != Vec3::ZERO).then(|| {
         lights.push(Light::Environment {
@@ -579,29 +555,6 @@ fn finish(
     ir
 }
 
-/// The probability of choosing each light (its share of the total power)
-/// and the running sums, the last exactly 1; `None` when nothing emits.
-/// Summed in f64, so that no light's power, however large, overflows the
-/// table and turns every light off.
-pub fn light_table(powers: &[f64]) -> Option<(Vec<f32>, Vec<f32>)> {
-    let clean = |p: f64| if p.is_finite() && p > 0.0 { p } else { 0.0 };
-    let total: f64 = powers.iter().map(|&p| clean(p)).sum();
-    if !(total > 0.0 && total.is_finite()) {
-        return None;
-    }
-    let pmf: Vec<f32> = powers.iter().map(|&p| (clean(p) / total) as f32).collect();
-    let mut acc = 0.0f64;
-    let mut cdf: Vec<f32> = powers
-        .iter()
-        .map(|&p| {
-            acc += clean(p) / total;
-            acc as f32
-        })
-        .collect();
-    *cdf.last_mut().expect("at least one light") = 1.0;
-    Some((pmf, cdf))
-}
-
 fn rgb(c: &[f64; 3]) -> Vec3 {
     Vec3::new(c[0] as f32, c[1] as f32, c[2] as f32)
 }
@@ -621,21 +574,6 @@ fn non_uniform(span: crate::span::Span, what: &str) -> Diagnostic {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn every_light_keeps_its_share_however_large_the_others() {
-        // The largest powers the numeric domain allows beside a dim light:
-        // in f32 their sum overflowed and the table turned every light off.
-        let huge = 2.0 * std::f64::consts::PI * 1e12 * 4e18;
-        let (pmf, cdf) = light_table(&[huge, huge, 1.0]).expect("lights");
-        assert!(pmf.iter().all(|p| *p > 0.0 && p.is_finite()), "{pmf:?}");
-        assert_eq!(*cdf.last().unwrap(), 1.0);
-        assert!(cdf.windows(2).all(|w| w[0] <= w[1]));
-        // A light that cannot emit gets no share; none at all, no table.
-        let (pmf, _) = light_table(&[0.0, f64::NAN, 2.0]).expect("one light");
-        assert_eq!(pmf, vec![0.0, 0.0, 1.0]);
-        assert!(light_table(&[0.0, 0.0]).is_none());
-    }
 
     #[test]
     fn geometry_is_checked_in_f32_over_the_shutter() {
@@ -663,54 +601,4 @@ mod tests {
             Representable::TooSmall
         ));
     }
-}
-
-/// The camera of the checked scene: its frame computed in f64 and rounded
-/// once (`up` may be any non-zero vector of the checker's domain, which need
-/// not fit an f32).
-fn lower_camera(c: &check::Camera, width: u32, height: u32) -> Camera {
-    let unit = crate::check::domain::unit;
-    let forward = unit(c.look_at - c.position).unwrap_or(glam::DVec3::NEG_Z);
-    let right = unit(forward.cross(unit(c.up).unwrap_or(glam::DVec3::Y))).unwrap_or(glam::DVec3::X);
-    let up = right.cross(forward);
-    Camera::new(
-        [c.position, forward, right, up].map(|v| v.as_vec3()),
-        c.fov.to_radians() as f32,
-        (c.aperture as f32, c.focus_distance as f32),
-        (c.shutter.0 as f32, c.shutter.1 as f32),
-        (width, height),
-    )
-}
-
-/// The settings as the renderer reads them (f32 where it computes with them).
-fn lower_settings(r: &check::RenderSettings) -> Settings {
-    Settings {
-        width: r.width,
-        height: r.height,
-        samples: r.samples,
-        max_depth: r.max_depth,
-        integrator: r.integrator,
-        seed: r.seed,
-        ambient: DVec3::from_array(r.ambient).as_vec3(),
-        rr_depth: r.rr_depth,
-        hybrid_weight: r.hybrid_weight as f32,
-        clamp: r.clamp.map(|c| c as f32),
-        light_sampling: r.light_sampling,
-        light_samples: r.light_samples,
-        exposure: r.exposure as f32,
-    }
-}
-
-/// A checked material in the renderer's f32.
-fn lower_material(m: &check::Material) -> Material {
-    Material::new(&material::Params {
-        diffuse: v3(DVec3::from_array(m.diffuse)),
-        reflection: v3(DVec3::from_array(m.reflection)),
-        gloss: m.gloss as f32,
-        transmission: m.transmission as f32,
-        ior: m.ior as f32,
-        absorption: v3(DVec3::from_array(m.absorption)),
-        emission: v3(DVec3::from_array(m.emission)),
-        two_sided: m.two_sided,
-    })
 }

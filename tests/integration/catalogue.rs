@@ -5,18 +5,6 @@
 
 use ptsc::diag::codes::{markdown, CATALOGUE};
 use std::collections::BTreeSet;
-use std::path::{Path, PathBuf};
-
-fn rust_files(dir: &Path, out: &mut Vec<PathBuf>) {
-    for entry in std::fs::read_dir(dir).unwrap() {
-        let path = entry.unwrap().path();
-        if path.is_dir() {
-            rust_files(&path, out);
-        } else if path.extension().is_some_and(|e| e == "rs") {
-            out.push(path);
-        }
-    }
-}
 
 /// The `"pts::a::b"` string literals of a text.
 fn code_literals(text: &str) -> Vec<String> {
@@ -93,8 +81,7 @@ fn mismatches(catalogue: &[&str], codes_rs: &str, sources: &[(String, String)]) 
 
 fn sources() -> (String, Vec<(String, String)>) {
     let src = crate::root().join("src");
-    let mut files = Vec::new();
-    rust_files(&src, &mut files);
+    let files = crate::files_below(&src, "rs");
     let codes_rs = src.join("diag/codes.rs");
     let others = files
         .into_iter()

@@ -1,25 +1,12 @@
 //! Every scene in `examples/` checks without errors.
 
 use ptsc::compile::{compile_file, Options};
-use std::path::Path;
-
-fn scenes(dir: &Path, out: &mut Vec<std::path::PathBuf>) {
-    for e in std::fs::read_dir(dir).unwrap() {
-        let p = e.unwrap().path();
-        if p.is_dir() {
-            scenes(&p, out);
-        } else if p.extension().is_some_and(|x| x == "pts") {
-            out.push(p);
-        }
-    }
-}
 
 #[test]
 fn every_example_checks_clean() {
     // The bench mesh is generated, not kept in the repository.
     ptsc::bench_data::ensure_mesh_blob(&crate::root()).unwrap();
-    let mut files = Vec::new();
-    scenes(&crate::root().join("examples"), &mut files);
+    let files = crate::files_below(&crate::root().join("examples"), "pts");
     assert!(files.len() >= 10, "found only {} examples", files.len());
     for f in files {
         let c = compile_file(&f, Options::default()).unwrap();

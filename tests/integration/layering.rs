@@ -53,17 +53,6 @@ const RENDER_SIDE: &[&str] = &[
 /// The front end and the stages above the renderer.
 const FRONT: &[&str] = &["syntax", "check", "lower", "compile", "fuzz", "cli"];
 
-fn rust_files(dir: &Path, out: &mut Vec<PathBuf>) {
-    for entry in std::fs::read_dir(dir).unwrap() {
-        let path = entry.unwrap().path();
-        if path.is_dir() {
-            rust_files(&path, out);
-        } else if path.extension().is_some_and(|e| e == "rs") {
-            out.push(path);
-        }
-    }
-}
-
 /// The top-level module a file of `src/` belongs to (`None`: lib.rs, main.rs).
 fn module_of(src: &Path, file: &Path) -> Option<String> {
     let rel = file.strip_prefix(src).unwrap();
@@ -99,8 +88,7 @@ fn crate_paths(text: &str) -> Vec<String> {
 /// Every (importing module, imported path, file) of `src/`.
 fn imports() -> Vec<(String, String, PathBuf)> {
     let src = crate::root().join("src");
-    let mut files = Vec::new();
-    rust_files(&src, &mut files);
+    let files = crate::files_below(&src, "rs");
     let mut found = Vec::new();
     for file in files {
         let Some(module) = module_of(&src, &file) else {
@@ -160,8 +148,7 @@ fn imports_only_go_down_and_the_renderer_never_reads_the_front_end() {
     assert!(broken.is_empty(), "{}", broken.join("\n"));
     // Every module of src/ has a floor.
     let src = crate::root().join("src");
-    let mut files = Vec::new();
-    rust_files(&src, &mut files);
+    let files = crate::files_below(&src, "rs");
     let floor: BTreeMap<&str, u32> = FLOORS.iter().copied().collect();
     for file in files {
         if let Some(m) = module_of(&src, &file) {
@@ -190,8 +177,7 @@ fn the_rules_catch_an_upward_import_and_a_front_end_import() {
 #[test]
 fn only_cli_prints() {
     let src = crate::root().join("src");
-    let mut files = Vec::new();
-    rust_files(&src, &mut files);
+    let files = crate::files_below(&src, "rs");
     for file in files {
         if module_of(&src, &file).as_deref() == Some("cli") {
             continue;

@@ -31,6 +31,24 @@ pub fn temp_dir_with(files: &[(&str, &str)]) -> tempfile::TempDir {
     dir
 }
 
+/// Every file below `dir` whose name ends in `.{extension}`, in no
+/// particular order.
+pub fn files_below(dir: &Path, extension: &str) -> Vec<PathBuf> {
+    let mut out = Vec::new();
+    let mut pending = vec![dir.to_path_buf()];
+    while let Some(dir) = pending.pop() {
+        for entry in std::fs::read_dir(&dir).unwrap() {
+            let path = entry.unwrap().path();
+            if path.is_dir() {
+                pending.push(path);
+            } else if path.extension().is_some_and(|e| e == extension) {
+                out.push(path);
+            }
+        }
+    }
+    out
+}
+
 /// `path` relative to the package root, with `/` separators (stable in snapshots).
 pub fn relative(path: &Path) -> PathBuf {
     path.strip_prefix(root()).unwrap_or(path).to_path_buf()

@@ -229,7 +229,7 @@ impl Reader<'_> {
 /// `render { }` → settings.
 pub fn render_settings(p: &Params, base_dir: &Path, diags: &mut Diagnostics) -> RenderSettings {
     let mut r = Reader { p, diags };
-    let d = RenderSettings::default();
+    let d = Settings::default();
     let (mut width, mut height) = (d.width, d.height);
     if let Some((Val::Vector(v), s)) = p.get("resolution") {
         let ok_side = |x: f64| x.fract() == 0.0 && (1.0..=MAX_SIDE).contains(&x);
@@ -267,25 +267,27 @@ pub fn render_settings(p: &Params, base_dir: &Path, diags: &mut Diagnostics) -> 
     let clamp = r
         .num("clamp")
         .map(|_| r.num_in("clamp", 0.0, f64::INFINITY, true, f64::INFINITY));
-    RenderSettings {
+    // Each value within its range, rounded once to the renderer's f32.
+    let settings = Settings {
         width,
         height,
         samples: r.whole(SAMPLES, d.samples as u64) as u32,
         max_depth: r.num_in("max_depth", 1.0, 1024.0, false, d.max_depth as f64) as u32,
         integrator,
         seed: r.whole(SEED, 0),
-        ambient: r.color("ambient", d.ambient),
+        ambient: glam::DVec3::from_array(r.color("ambient", [0.0; 3])).as_vec3(),
         rr_depth: r.num_in("rr_depth", 1.0, 1024.0, false, d.rr_depth as f64) as u32,
-        output: match p.get("output") {
-            Some((Val::Str(s), _)) => Some(base_dir.join(s)),
-            _ => None,
-        },
-        hybrid_weight: r.num_in("hybrid_weight", 0.0, 1.0, false, d.hybrid_weight),
-        clamp: clamp.filter(|c| c.is_finite()),
+        hybrid_weight: r.num_in("hybrid_weight", 0.0, 1.0, false, d.hybrid_weight as f64) as f32,
+        clamp: clamp.filter(|c| c.is_finite()).map(|c| c as f32),
         light_sampling: r.boolean("light_sampling", true),
         light_samples: r.num_in("light_samples", 0.0, 1024.0, false, d.light_samples as f64) as u32,
-        exposure: r.num_in("exposure", -32.0, 32.0, false, 0.0),
-    }
+        exposure: r.num_in("exposure", -32.0, 32.0, false, 0.0) as f32,
+    };
+    let output = match p.get("output") {
+        Some((Val::Str(s), _)) => Some(base_dir.join(s)),
+        _ => None,
+    };
+    RenderSettings { settings, output }
 }
 
 /// `camera { }` → camera.

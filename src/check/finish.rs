@@ -67,10 +67,10 @@ impl Checker {
                 Light::Directional { irradiance, .. } => irradiance.iter().any(|c| *c > 0.0),
             })
             || background.iter().any(|c| *c > 0.0)
-            || render.ambient.iter().any(|c| *c > 0.0);
+            || render.settings.ambient.max_element() > 0.0;
         if !has_light
             && !matches!(
-                render.integrator,
+                render.settings.integrator,
                 IntegratorKind::Normals | IntegratorKind::Albedo | IntegratorKind::Depth
             )
         {
@@ -81,7 +81,7 @@ impl Checker {
                     .with_help("add a `point_light { … }`, a `background rgb …`, or an object with `emission` in its material"),
             );
         }
-        if render.integrator == IntegratorKind::Path {
+        if render.settings.integrator == IntegratorKind::Path {
             if let Some(s) = self.ambient_span {
                 self.diags.push(
                     Diagnostic::warning(codes::INTEGRATOR_SETTING, "the ambient term biases the path integrator", s)
@@ -91,9 +91,9 @@ impl Checker {
             }
         }
         if matches!(
-            render.integrator,
+            render.settings.integrator,
             IntegratorKind::Whitted | IntegratorKind::Hybrid
-        ) && render.light_samples == 0
+        ) && render.settings.light_samples == 0
             && has_emitter
             && self.lights.is_empty()
         {

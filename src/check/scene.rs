@@ -8,60 +8,17 @@ use std::path::PathBuf;
 /// Linear RGB triple.
 pub type Rgb = [f64; 3];
 
-pub use crate::ir::settings::IntegratorKind;
+pub use crate::ir::settings::{IntegratorKind, Settings};
 
-/// The `render { }` block, defaults filled in.
-#[derive(Debug, Clone, PartialEq)]
+/// The `render { }` block, defaults filled in: the settings as the
+/// renderer reads them (the checker has kept each value in its range, so
+/// they are safe in f32) and the image the scene asks for.
+#[derive(Debug, Clone, PartialEq, Default)]
 pub struct RenderSettings {
-    /// Image width and height in pixels.
-    pub width: u32,
-    /// Image height in pixels.
-    pub height: u32,
-    /// Samples (camera paths) per pixel.
-    pub samples: u32,
-    /// Path segments at most (Mitsuba convention).
-    pub max_depth: u32,
-    /// Light transport algorithm.
-    pub integrator: IntegratorKind,
-    /// Seed of every random stream.
-    pub seed: u64,
-    /// The paper's constant ambient term (biased), added at diffuse hits.
-    pub ambient: Rgb,
-    /// Path depth (in segments) from which Russian roulette may end a path.
-    pub rr_depth: u32,
+    /// Everything the render reads.
+    pub settings: Settings,
     /// Output file named in the scene, relative to the scene file.
     pub output: Option<PathBuf>,
-    /// Weight of the Whitted estimate in the hybrid blend.
-    pub hybrid_weight: f64,
-    /// Largest luminance a sample may contribute (biased; `None` = off).
-    pub clamp: Option<f64>,
-    /// Whether the path integrator samples lights directly (NEE + MIS); `false` is the paper's naive mode.
-    pub light_sampling: bool,
-    /// Shadow rays per area light and hit in the Whitted integrator.
-    pub light_samples: u32,
-    /// Exposure in stops applied when writing PNG.
-    pub exposure: f64,
-}
-
-impl Default for RenderSettings {
-    fn default() -> Self {
-        RenderSettings {
-            width: 512,
-            height: 512,
-            samples: 16,
-            max_depth: 8,
-            integrator: IntegratorKind::Path,
-            seed: 0,
-            ambient: [0.0; 3],
-            rr_depth: 5,
-            output: None,
-            hybrid_weight: 0.5,
-            clamp: None,
-            light_sampling: true,
-            light_samples: 4,
-            exposure: 0.0,
-        }
-    }
 }
 
 /// The `camera { }` block.

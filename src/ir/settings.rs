@@ -80,3 +80,24 @@ pub struct Settings {
     /// Exposure in stops applied when writing PNG.
     pub exposure: f32,
 }
+
+impl Default for Settings {
+    /// The defaults of a `render { }` block.
+    fn default() -> Self {
+        Settings {
+            width: 512,
+            height: 512,
+            samples: 16,
+            max_depth: 8,
+            integrator: IntegratorKind::Path,
+            seed: 0,
+            ambient: Vec3::ZERO,
+            rr_depth: 5,
+            hybrid_weight: 0.5,
+            clamp: None,
+            light_sampling: true,
+            light_samples: 4,
+            exposure: 0.0,
+        }
+    }
+}

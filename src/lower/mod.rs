@@ -9,7 +9,6 @@ mod collect;
 mod lights;
 mod material;
 pub mod mesh;
-mod settings;
 
 use crate::accel::bvh::Bvh;
 use crate::accel::bvh4::Bvh4;
@@ -30,7 +29,6 @@ use collect::{Collected, PlainMesh};
 use glam::{DMat4, DVec3, Vec3};
 use lights::{light_table, lower_light};
 use material::lower_material;
-use settings::lower_settings;
 use std::path::PathBuf;
 use std::sync::Arc;
 
@@ -119,7 +117,7 @@ pub fn lower(
     adjust: &dyn Fn(&mut Settings),
     cache: &mut LowerCache,
 ) -> Result<Scene, Diagnostics> {
-    let mut settings = lower_settings(&scene.render);
+    let mut settings = scene.render.settings.clone();
     adjust(&mut settings);
     let materials: Vec<Material> = scene.materials.iter().map(lower_material).collect();
     if cache.is_one_off() {

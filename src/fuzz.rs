@@ -86,6 +86,8 @@ fn mesh_invariants(parsed: Result<mesh::MeshData, String>) -> bool {
     assert!(m.triangles.iter().flatten().all(|&i| (i as usize) < n));
     assert!(m.positions.iter().all(|p| p.is_finite()));
     assert!(m.normals.is_empty() || m.normals.len() == n);
+    assert!(m.uvs.is_empty() || m.uvs.len() == n);
+    assert!(m.uvs.iter().all(|uv| uv.is_finite()));
     true
 }
 

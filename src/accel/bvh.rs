@@ -507,7 +507,7 @@ pub(crate) mod tests {
                 p0,
                 e1,
                 e2,
-                normals: u32::MAX
+                attributes: u32::MAX
             }),
             (v(), e(), e()).prop_map(|(p, e1, e2)| Shape::Quad { p, e1, e2 }),
         ]

@@ -674,7 +674,7 @@ mod tests {
             p0: Vec3::new(x, 0.0, 0.0),
             e1: Vec3::X,
             e2: Vec3::Y,
-            normals: u32::MAX,
+            attributes: u32::MAX,
         };
         let mut shapes = vec![tri(0.0), tri(5.0)];
         let w = wide(&mut shapes);

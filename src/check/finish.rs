@@ -68,12 +68,7 @@ impl Checker {
             })
             || background.iter().any(|c| *c > 0.0)
             || render.settings.ambient.max_element() > 0.0;
-        if !has_light
-            && !matches!(
-                render.settings.integrator,
-                IntegratorKind::Normals | IntegratorKind::Albedo | IntegratorKind::Depth
-            )
-        {
+        if !has_light && !render.settings.integrator.is_debug_view() {
             let at = self.camera_span.unwrap_or(Span::new(root, 0, 0));
             self.diags.push(
                 Diagnostic::warning(codes::NO_LIGHT, "the scene has no light: the image will be black", at)

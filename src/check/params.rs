@@ -105,7 +105,7 @@ pub const SHAPE_COMMON: &[ParamSpec] = &[
 ];
 
 /// Integrator names accepted by `render { integrator … }`.
-pub const INTEGRATORS: &[&str] = &["path", "whitted", "hybrid", "normals", "albedo", "depth"];
+pub const INTEGRATORS: &[&str] = &crate::ir::settings::IntegratorKind::WORDS;
 
 /// `render { }`
 pub const RENDER: &[ParamSpec] = &[

@@ -31,7 +31,7 @@ pub struct RenderArgs {
     /// Image size as WxH, e.g. 640x480.
     #[arg(long, value_parser = parse_resolution)]
     pub resolution: Option<(u32, u32)>,
-    /// Integrator: path, whitted, hybrid, normals, albedo or depth.
+    /// Integrator: path, whitted, hybrid, normals, albedo, depth or uv.
     #[arg(long, value_parser = parse_integrator)]
     pub integrator: Option<IntegratorKind>,
     /// Only errors: no warnings, progress or figures.
@@ -93,8 +93,11 @@ fn parse_resolution(s: &str) -> Result<(u32, u32), String> {
 }
 
 fn parse_integrator(s: &str) -> Result<IntegratorKind, String> {
-    IntegratorKind::from_name(s)
-        .ok_or_else(|| "expected path, whitted, hybrid, normals, albedo or depth".into())
+    IntegratorKind::from_name(s).ok_or_else(|| {
+        let words = IntegratorKind::WORDS;
+        let (last, rest) = words.split_last().expect("integrators");
+        format!("expected {} or {last}", rest.join(", "))
+    })
 }
 
 /// Applies the command line's overrides to the scene's settings.

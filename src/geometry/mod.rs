@@ -5,6 +5,7 @@ pub mod plane;
 pub mod quad;
 pub mod shape;
 pub mod sphere;
+pub mod texcoord;
 pub mod triangle;
 
 use glam::Vec3;

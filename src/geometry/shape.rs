@@ -43,8 +43,9 @@ pub enum Shape {
         e1: Vec3,
         /// Edge to the third vertex.
         e2: Vec3,
-        /// Index into the vertex-normal table (`u32::MAX` = flat).
-        normals: u32,
+        /// Index into the scene's vertex-attribute tables (vertex normals,
+        /// texture coordinates); `u32::MAX`: none (flat, barycentric UVs).
+        attributes: u32,
     },
     /// Infinite plane.
     Plane {
@@ -72,7 +73,7 @@ impl Shape {
             p0,
             e1,
             e2,
-            normals: u32::MAX,
+            attributes: u32::MAX,
         }
     }
 
@@ -224,7 +225,7 @@ mod tests {
                 p0: Vec3::ZERO,
                 e1: Vec3::X,
                 e2: Vec3::Y,
-                normals: u32::MAX,
+                attributes: u32::MAX,
             },
         ];
         for s in shapes {

@@ -1,5 +1,6 @@
 //! Debug integrators that show geometry before light transport: shading
-//! normals, the albedo of the first hit, and its distance.
+//! normals, the albedo of the first hit, its distance and its texture
+//! coordinates.
 
 use super::{Integrator, T_MIN};
 use crate::geometry::Ray;
@@ -15,6 +16,8 @@ pub enum Debug {
     Albedo,
     /// Distance d mapped to d / (1 + d).
     Depth,
+    /// Texture coordinates as red (u) and green (v), wrapped to [0, 1).
+    Uv,
 }
 
 impl Integrator for Debug {
@@ -26,6 +29,11 @@ impl Integrator for Debug {
             Debug::Normals => hit.n_shading * 0.5 + Vec3::splat(0.5),
             Debug::Albedo => scene.material_of(hit.prim).albedo(),
             Debug::Depth => Vec3::splat(hit.t / (1.0 + hit.t)),
+            Debug::Uv => {
+                let uv = scene.texcoords(&hit, ray.time);
+                let wrap = |x: f32| x - x.floor();
+                Vec3::new(wrap(uv.x), wrap(uv.y), 0.0)
+            }
         }
     }
 }

@@ -30,6 +30,7 @@ pub fn make(kind: IntegratorKind) -> Box<dyn Integrator> {
         IntegratorKind::Normals => Box::new(debug::Debug::Normals),
         IntegratorKind::Albedo => Box::new(debug::Debug::Albedo),
         IntegratorKind::Depth => Box::new(debug::Debug::Depth),
+        IntegratorKind::Uv => Box::new(debug::Debug::Uv),
     }
 }
 

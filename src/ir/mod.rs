@@ -12,7 +12,7 @@ use crate::geometry::{Aabb, Ray};
 use crate::light::Light;
 use crate::material::Material;
 use crate::span::Span;
-use glam::Vec3;
+use glam::{Affine3A, Vec2, Vec3};
 use settings::Settings;
 use std::sync::Arc;
 
@@ -42,6 +42,19 @@ pub struct Hit {
     pub n_shading: Vec3,
     /// Primitive index.
     pub prim: u32,
+    /// The shape's surface parameters at the hit: (s, t) along a quad's
+    /// edges, a triangle's barycentrics (b1, b2); zero for the others
+    /// (see [`Scene::texcoords`]).
+    pub uv: Vec2,
+}
+
+/// `d` in the frame of a plane with normal `n` (any length): x and z from
+/// [`crate::geometry::orthonormal_basis`] of the unit normal (for +y, x
+/// along +x and z along −z), y along the normal; and the length of `n`.
+fn in_plane(d: Vec3, n: Vec3) -> (Vec3, f32) {
+    let scale = n.length();
+    let (x, z) = crate::geometry::orthonormal_basis(n / scale);
+    (Vec3::new(d.dot(x), d.dot(n) / scale, d.dot(z)), scale)
 }
 
 /// The scene, ready to render.
@@ -69,8 +82,12 @@ pub struct Scene {
     pub unbounded: Arc<Vec<u32>>,
     /// Materials.
     pub materials: Vec<Material>,
-    /// Vertex normals of smooth mesh triangles.
+    /// Vertex normals of mesh triangles with vertex attributes (zero:
+    /// flat), indexed by the triangle's `attributes`.
     pub normals: Arc<Vec<[Vec3; 3]>>,
+    /// Vertex texture coordinates of mesh triangles with attributes, by the
+    /// same index; shorter than `normals` when the last ones have none.
+    pub uvs: Arc<Vec<[Vec2; 3]>>,
     /// The emissive primitives, ascending; the i-th is light i (area lights
     /// come first in `lights`).
     pub area_lights: Vec<u32>,
@@ -86,6 +103,10 @@ pub struct Scene {
     pub env_light: Option<u32>,
     /// Bounds of the bounded geometry.
     pub bounds: Aabb,
+    /// The world → object transforms of the objects that have one, sorted
+    /// by object (the others are at the identity): texture coordinates and
+    /// patterns live in an object's own frame.
+    pub object_from_world: Vec<(u32, Affine3A)>,
 }
 
 const _: () = assert!(std::mem::size_of::<Prim>() == 64);
@@ -167,9 +188,9 @@ impl Scene {
         let p_local = prim.shape.surface_point(&local, &hit);
         let n_geo = prim.shape.normal_at(p_local);
         let mut n_shading = n_geo;
-        if let Shape::Triangle { normals, .. } = prim.shape {
-            if normals != u32::MAX {
-                let ns = self.normals[normals as usize];
+        if let Shape::Triangle { attributes, .. } = prim.shape {
+            if attributes != u32::MAX {
+                let ns = self.normals[attributes as usize];
                 let n =
                     ((1.0 - uv.x - uv.y) * ns[0] + uv.x * ns[1] + uv.y * ns[2]).normalize_or_zero();
                 if n != Vec3::ZERO {
@@ -183,7 +204,58 @@ impl Scene {
             n_geo,
             n_shading,
             prim: i,
+            uv,
         })
+    }
+
+    /// The world → object transform of primitive `prim`'s object (`None`:
+    /// the identity).
+    pub fn from_world(&self, prim: u32) -> Option<&Affine3A> {
+        let object = self.prim_object[prim as usize];
+        let i = self
+            .object_from_world
+            .binary_search_by_key(&object, |&(o, _)| o)
+            .ok()?;
+        Some(&self.object_from_world[i].1)
+    }
+
+    /// The texture coordinates of a hit at `time` (see
+    /// [`crate::geometry::texcoord`] for each shape's convention).
+    pub fn texcoords(&self, hit: &Hit, time: f32) -> Vec2 {
+        use crate::geometry::texcoord;
+        let Some(record) = self.prims.get(hit.prim as usize) else {
+            // A plain triangle: static, no vertex attributes.
+            return hit.uv;
+        };
+        // The point where the primitive is at time 0, then in its object's frame.
+        let p = hit.p - record.velocity * time;
+        let from_world = self.from_world(hit.prim);
+        let direction = |v: Vec3| from_world.map_or(v, |m| m.transform_vector3(v));
+        match record.shape {
+            Shape::Triangle { attributes, .. } => match self.uvs.get(attributes as usize) {
+                Some(&vertex_uvs) => texcoord::triangle(hit.uv, vertex_uvs),
+                None => hit.uv,
+            },
+            Shape::Quad { .. } => hit.uv,
+            Shape::Sphere { center, .. } => {
+                texcoord::sphere(direction(p - center).normalize_or(Vec3::Y))
+            }
+            Shape::Disk {
+                center,
+                normal,
+                radius,
+            } => {
+                // In the object's frame (a similarity: lengths scale by
+                // |direction(normal)|, the same along every axis).
+                let n = direction(normal);
+                let (local, scale) = in_plane(direction(p - center), n);
+                texcoord::disk(local, radius * scale)
+            }
+            Shape::Plane { point, normal } => {
+                let (local, _) = in_plane(direction(p - point), direction(normal));
+                texcoord::plane(local, 1.0)
+            }
+        }
     }
 
     /// Whether anything blocks the segment from `ray.o` to `ray.at(t_max)`.

@@ -20,18 +20,33 @@ pub enum IntegratorKind {
     Albedo,
     /// Debug: distance to the first hit.
     Depth,
+    /// Debug: the texture coordinates of the first hit as red and green.
+    Uv,
 }
 
 impl IntegratorKind {
-    /// Every integrator with its `.pts` name.
-    pub const NAMES: [(&'static str, IntegratorKind); 6] = [
+    /// Every integrator with its `.pts` name: the one list the checker,
+    /// the command line, the docs' tables and the editors' grammars follow.
+    pub const NAMES: [(&'static str, IntegratorKind); 7] = [
         ("path", IntegratorKind::Path),
         ("whitted", IntegratorKind::Whitted),
         ("hybrid", IntegratorKind::Hybrid),
         ("normals", IntegratorKind::Normals),
         ("albedo", IntegratorKind::Albedo),
         ("depth", IntegratorKind::Depth),
+        ("uv", IntegratorKind::Uv),
     ];
+
+    /// The names alone, in the order of [`IntegratorKind::NAMES`].
+    pub const WORDS: [&'static str; 7] = {
+        let mut words = [""; 7];
+        let mut i = 0;
+        while i < words.len() {
+            words[i] = Self::NAMES[i].0;
+            i += 1;
+        }
+        words
+    };
 
     /// Looks an integrator up by name.
     pub fn from_name(name: &str) -> Option<Self> {
@@ -47,6 +62,17 @@ impl IntegratorKind {
             .iter()
             .find(|(_, k)| *k == self)
             .map_or("path", |(n, _)| n)
+    }
+
+    /// Whether it is a debug view (no light transport).
+    pub fn is_debug_view(self) -> bool {
+        matches!(
+            self,
+            IntegratorKind::Normals
+                | IntegratorKind::Albedo
+                | IntegratorKind::Depth
+                | IntegratorKind::Uv
+        )
     }
 }
 

@@ -174,10 +174,10 @@ fn packed_record(p: &Prim) -> Option<PackedTriangle> {
             p0,
             e1,
             e2,
-            normals,
+            attributes,
         } => Some(PackedTriangle {
             vertices: [p0, e1, e2],
-            plain: normals == u32::MAX,
+            plain: attributes == u32::MAX,
             quad: false,
         }),
         Shape::Quad { p, e1, e2 } => Some(PackedTriangle {
@@ -239,8 +239,8 @@ mod tests {
         assert_eq!(t.vertices, [p, Vec3::new(1.0, 1.0, 7.0) - p, Vec3::Y]);
         assert_eq!(c.bounds(5, (0.0, 1.0)).max, Vec3::new(1.0, 1.0, 7.0));
         match c.record(3).shape {
-            Shape::Triangle { p0, normals, .. } => {
-                assert_eq!((p0, normals), (Vec3::new(0.0, 0.0, 5.0), u32::MAX))
+            Shape::Triangle { p0, attributes, .. } => {
+                assert_eq!((p0, attributes), (Vec3::new(0.0, 0.0, 5.0), u32::MAX))
             }
             s => panic!("{s:?}"),
         }

@@ -3,16 +3,19 @@
 //! exact control over errors and memory).
 
 use crate::source::MAX_MESH_BYTES;
-use glam::Vec3;
+use glam::{Vec2, Vec3};
 use std::path::Path;
 
-/// Triangles with optional per-vertex normals.
+/// Triangles with optional per-vertex normals and texture coordinates.
 #[derive(Debug, Clone, Default)]
 pub struct MeshData {
     /// Vertex positions.
     pub positions: Vec<Vec3>,
     /// Vertex normals (empty when the file has none).
     pub normals: Vec<Vec3>,
+    /// Vertex texture coordinates, (0, 0) at an image's bottom-left (empty
+    /// when the file has none).
+    pub uvs: Vec<Vec2>,
     /// Triangles as vertex indices.
     pub triangles: Vec<[u32; 3]>,
 }
@@ -50,6 +53,16 @@ pub fn parse(path: &Path, bytes: &[u8]) -> Result<MeshData, String> {
     }
     if mesh.positions.iter().any(|p| !p.is_finite()) {
         return Err("a vertex position is not a finite number".into());
+    }
+    if mesh.uvs.iter().any(|uv| !uv.is_finite()) {
+        return Err("a texture coordinate is not a finite number".into());
+    }
+    if !mesh.uvs.is_empty() && mesh.uvs.len() != mesh.positions.len() {
+        return Err(format!(
+            "the file has {} texture coordinates for {} vertices",
+            mesh.uvs.len(),
+            mesh.positions.len()
+        ));
     }
     // Normals go with positions one to one (the renderer indexes both by
     // vertex), or there are none.
@@ -90,14 +103,26 @@ fn parse_obj(bytes: &[u8]) -> Result<MeshData, String> {
                     .map(|c| Vec3::new(c[0], c[1], c[2])),
             );
         }
+        // `vt` has (0, 0) at the image's bottom-left, as ptsc.
+        if 3 * mesh.texcoords.len() == 2 * mesh.positions.len() {
+            out.uvs.extend(
+                mesh.texcoords
+                    .chunks_exact(2)
+                    .map(|c| Vec2::new(c[0], c[1])),
+            );
+        }
         out.triangles.extend(
             mesh.indices
                 .chunks_exact(3)
                 .map(|c| [base + c[0], base + c[1], base + c[2]]),
         );
     }
+    // Attributes only when every object of the file has them.
     if out.normals.len() != out.positions.len() {
         out.normals.clear();
+    }
+    if out.uvs.len() != out.positions.len() {
+        out.uvs.clear();
     }
     Ok(out)
 }
@@ -324,6 +349,15 @@ pub fn parse_ply(bytes: &[u8]) -> Result<MeshData, String> {
         };
         let (ix, iy, iz) = (idx("x"), idx("y"), idx("z"));
         let (inx, iny, inz) = (idx("nx"), idx("ny"), idx("nz"));
+        // Texture coordinates go by several names in the wild.
+        let iuv = [
+            ("u", "v"),
+            ("s", "t"),
+            ("texture_u", "texture_v"),
+            ("texture_s", "texture_t"),
+        ]
+        .iter()
+        .find_map(|(u, v)| Some((idx(u)?, idx(v)?)));
         let is_vertex = el.name == "vertex";
         let is_face = el.name == "face";
         if is_vertex {
@@ -333,6 +367,9 @@ pub fn parse_ply(bytes: &[u8]) -> Result<MeshData, String> {
             out.positions.reserve(el.count);
         }
         let has_normals = is_vertex && inx.is_some() && iny.is_some() && inz.is_some();
+        if is_vertex && iuv.is_some() {
+            out.uvs.reserve(el.count);
+        }
         if is_face {
             out.triangles.reserve(el.count);
         }
@@ -377,6 +414,9 @@ pub fn parse_ply(bytes: &[u8]) -> Result<MeshData, String> {
                         vals[iny.unwrap()] as f32,
                         vals[inz.unwrap()] as f32,
                     ));
+                }
+                if let Some((iu, iv)) = iuv {
+                    out.uvs.push(Vec2::new(vals[iu] as f32, vals[iv] as f32));
                 }
             }
         }
@@ -428,6 +468,44 @@ mod tests {
             .contains("more than the file holds"));
         let empty_elements = "ply\nformat ascii 1.0\nelement nothing 4000000000\nend_header\n";
         assert!(parse_ply(empty_elements.as_bytes()).is_ok());
+    }
+
+    #[test]
+    fn texture_coordinates_from_obj_and_every_ply_naming() {
+        let obj = b"v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0.1 0.2\nvt 0.9 0.2\nvt 0.1 0.8\nf 1/1 2/2 3/3\n";
+        let m = parse(Path::new("t.obj"), obj).unwrap();
+        assert_eq!(
+            m.uvs,
+            [
+                Vec2::new(0.1, 0.2),
+                Vec2::new(0.9, 0.2),
+                Vec2::new(0.1, 0.8)
+            ]
+        );
+        let m = parse(Path::new("t.obj"), b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n").unwrap();
+        assert!(m.uvs.is_empty());
+        for (u, v) in [
+            ("u", "v"),
+            ("s", "t"),
+            ("texture_u", "texture_v"),
+            ("texture_s", "texture_t"),
+        ] {
+            let ply = format!(
+                "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n\
+                 property float z\nproperty float {u}\nproperty float {v}\nelement face 1\n\
+                 property list uchar int vertex_indices\nend_header\n\
+                 0 0 0 0.1 0.2\n1 0 0 0.9 0.2\n0 1 0 0.1 0.8\n3 0 1 2\n"
+            );
+            let m = parse(Path::new("t.ply"), ply.as_bytes()).unwrap();
+            assert_eq!(m.uvs[1], Vec2::new(0.9, 0.2), "{u} {v}");
+        }
+        // Not finite, or not one per vertex: an error, not a panic later.
+        let nan = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nproperty float u\nproperty float v\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0 nan 0\n1 0 0 0 0\n0 1 0 0 0\n3 0 1 2\n";
+        assert!(parse(Path::new("t.ply"), nan.as_bytes())
+            .unwrap_err()
+            .contains("texture coordinate"));
+        let twice = "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nproperty float z\nproperty float u\nproperty float v\nelement vertex 2\nproperty float x\nproperty float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+        assert!(parse(Path::new("t.ply"), twice.as_bytes()).is_err());
     }
 
     #[test]

@@ -18,6 +18,7 @@ use crate::check::domain::{self, unit_f32, MAX_MAGNITUDE, MIN_SIZE};
 use crate::diag::codes;
 use crate::diag::{Diagnostic, Diagnostics};
 use crate::geometry::shape::Shape;
+use crate::geometry::texcoord;
 use crate::geometry::Aabb;
 use crate::ir::settings::Settings;
 use crate::ir::{Prim, Scene};
@@ -26,7 +27,7 @@ use crate::material::Material;
 use cache::LowerCache;
 use camera::lower_camera;
 use collect::{Collected, PlainMesh};
-use glam::{DMat4, DVec3, Vec3};
+use glam::{Affine3A, DMat4, DVec3, Vec2, Vec3};
 use lights::{light_table, lower_light};
 use material::lower_material;
 use std::path::PathBuf;
@@ -157,6 +158,7 @@ pub fn named_files(scene: &check::Scene) -> (Vec<PathBuf>, Option<PathBuf>) {
 pub struct Geometry {
     prims: Arc<Vec<Prim>>,
     normals: Arc<Vec<[Vec3; 3]>>,
+    uvs: Arc<Vec<[Vec2; 3]>>,
     bounds: Aabb,
     wide: Arc<Bvh4>,
     /// Unbounded primitives (planes).
@@ -169,6 +171,7 @@ fn build_geometry(scene: &check::Scene, cache: &mut LowerCache) -> Result<Geomet
     let mut diags = Diagnostics::new();
     let mut prims = Collected::default();
     let mut normals: Vec<[Vec3; 3]> = Vec::new();
+    let mut uvs: Vec<[Vec2; 3]> = Vec::new();
     // The first object whose geometry leaves the numeric domain after its
     // transforms and motion, and the first too small for f32.
     let mut out_of_range: Option<usize> = None;
@@ -233,7 +236,7 @@ fn build_geometry(scene: &check::Scene, cache: &mut LowerCache) -> Result<Geomet
                     p0,
                     e1: pt(v[1]) - p0,
                     e2: pt(v[2]) - p0,
-                    normals: u32::MAX,
+                    attributes: u32::MAX,
                 })
             }
             check::Shape::Box { min, max } => {
@@ -244,14 +247,17 @@ fn build_geometry(scene: &check::Scene, cache: &mut LowerCache) -> Result<Geomet
                     DVec3::new(0.0, d.y, 0.0),
                     DVec3::new(0.0, 0.0, d.z),
                 );
-                // Six faces with outward normals (e1 × e2 points out).
+                // Six faces with outward normals (e1 × e2 points out), each
+                // seen upright from outside: e1 to the right, e2 up (the
+                // top's up is −z, the bottom's +z), so that a texture's
+                // (u, v) runs along them (see geometry::texcoord).
                 let faces = [
-                    (lo, ez, ey),
-                    (lo + ex, ey, ez),
-                    (lo, ex, ez),
-                    (lo + ey, ez, ex),
-                    (lo, ey, ex),
-                    (lo + ez, ex, ey),
+                    (lo, ez, ey),            // −x
+                    (lo + ex + ez, -ez, ey), // +x
+                    (lo, ex, ez),            // −y
+                    (lo + ey + ez, ex, -ez), // +y
+                    (lo + ex, -ex, ey),      // −z
+                    (lo + ez, ex, ey),       // +z
                 ];
                 // A mirroring transform flips the winding; keep normals outward.
                 let flip = m.determinant() < 0.0;
@@ -301,9 +307,10 @@ fn build_geometry(scene: &check::Scene, cache: &mut LowerCache) -> Result<Geomet
                 } else {
                     Vec::new()
                 };
-                // A static mesh without vertex normals keeps its triangles as
-                // vertex indices: most of them will never need a record.
-                let plain = !use_normals && velocity == Vec3::ZERO;
+                let use_uvs = !data.uvs.is_empty();
+                // A static mesh without vertex attributes keeps its triangles
+                // as vertex indices: most of them will never need a record.
+                let plain = !use_normals && !use_uvs && velocity == Vec3::ZERO;
                 let mut kept: Vec<[u32; 3]> = Vec::new();
                 if plain {
                     kept.reserve_exact(data.triangles.len());
@@ -324,12 +331,18 @@ fn build_geometry(scene: &check::Scene, cache: &mut LowerCache) -> Result<Geomet
                         kept.push([a, b, c]);
                         continue;
                     }
-                    let nidx = if use_normals {
-                        normals.push([
-                            vnormals[a as usize],
-                            vnormals[b as usize],
-                            vnormals[c as usize],
-                        ]);
+                    let nidx = if use_normals || use_uvs {
+                        // A zero normal is flat shading.
+                        normals.push(if use_normals {
+                            [a, b, c].map(|i| vnormals[i as usize])
+                        } else {
+                            [Vec3::ZERO; 3]
+                        });
+                        if use_uvs {
+                            // Earlier triangles without UVs keep their barycentrics.
+                            uvs.resize(normals.len() - 1, texcoord::TRIANGLE_DEFAULT);
+                            uvs.push([a, b, c].map(|i| data.uvs[i as usize]));
+                        }
                         normals.len() as u32 - 1
                     } else {
                         u32::MAX
@@ -338,7 +351,7 @@ fn build_geometry(scene: &check::Scene, cache: &mut LowerCache) -> Result<Geomet
                         p0,
                         e1,
                         e2,
-                        normals: nidx,
+                        attributes: nidx,
                     };
                     prims.push(Prim { shape, velocity }, o as u32);
                 }
@@ -435,6 +448,7 @@ fn build_geometry(scene: &check::Scene, cache: &mut LowerCache) -> Result<Geomet
     Ok(Geometry {
         prims: Arc::new(records),
         normals: Arc::new(normals),
+        uvs: Arc::new(uvs),
         bounds,
         wide: Arc::new(wide),
         unbounded: Arc::new(unbounded),
@@ -451,10 +465,12 @@ fn finish(
 ) -> Scene {
     let object_spans = scene.objects.iter().map(|o| o.span).collect();
     let object_material: Vec<u32> = scene.objects.iter().map(|o| o.material as u32).collect();
+    let object_from_world = object_frames(scene);
     let Geometry {
         prims,
         prim_object,
         normals,
+        uvs,
         bounds,
         wide,
         unbounded,
@@ -521,10 +537,12 @@ fn finish(
         prim_object,
         object_spans,
         object_material,
+        object_from_world,
         wide,
         unbounded,
         materials,
         normals,
+        uvs,
         area_lights,
         lights,
         light_pmf: Vec::new(),
@@ -555,6 +573,21 @@ fn finish(
 
 fn rgb(c: &[f64; 3]) -> Vec3 {
     Vec3::new(c[0] as f32, c[1] as f32, c[2] as f32)
+}
+
+/// The world → object transforms of the objects that are not at the
+/// identity, by object number (for texture coordinates and patterns).
+fn object_frames(scene: &check::Scene) -> Vec<(u32, Affine3A)> {
+    scene
+        .objects
+        .iter()
+        .enumerate()
+        .filter(|(_, o)| o.transform != DMat4::IDENTITY)
+        .map(|(i, o)| {
+            let inverse = o.transform.inverse();
+            (i as u32, Affine3A::from_mat4(inverse.as_mat4()))
+        })
+        .collect()
 }
 
 fn non_uniform(span: crate::span::Span, what: &str) -> Diagnostic {

@@ -253,3 +253,104 @@ fn a_mesh_that_overflows_is_a_diagnostic() {
         assert_eq!(codes, ["pts::check::out_of_range"], "{mesh}");
     }
 }
+
+/// Texture coordinates of the closest hit of the ray `o + t·d` at `time`.
+fn uv_at(s: &Scene, o: [f32; 3], d: [f32; 3], time: f32) -> glam::Vec2 {
+    let ray = Ray::new(Vec3::from(o), Vec3::from(d).normalize(), time);
+    let h = s.intersect(&ray, 0.0, f32::INFINITY).expect("a hit");
+    s.texcoords(&h, time)
+}
+
+fn near_uv(a: glam::Vec2, b: [f32; 2]) -> bool {
+    (a - glam::Vec2::from(b)).abs().max_element() < 1e-4
+}
+
+#[test]
+fn texture_coordinates_follow_each_shape_and_its_transforms() {
+    // A sphere: the point facing +z is the middle of the image.
+    let s = scene("sphere { center <0, 0, 0> radius 1 }");
+    let uv = uv_at(&s, [0.0, 0.0, 10.0], [0.0, 0.0, -1.0], 0.0);
+    assert!(near_uv(uv, [0.5, 0.5]), "{uv}");
+    let uv = uv_at(&s, [10.0, 0.0, 0.0], [-1.0, 0.0, 0.0], 0.0);
+    assert!(near_uv(uv, [0.75, 0.5]), "{uv}");
+    // Turned a quarter about y (+z goes to +x), scaled and moved: the
+    // middle of the image now faces +x, and the coordinates ride along.
+    let s = scene(
+        "sphere { center <0, 0, 0> radius 1 rotate <0, 90, 0> scale 2 translate <1, 0, 0> \
+         velocity <0, 3, 0> }",
+    );
+    let uv = uv_at(&s, [10.0, 0.0, 0.0], [-1.0, 0.0, 0.0], 0.0);
+    assert!(near_uv(uv, [0.5, 0.5]), "{uv}");
+    let uv = uv_at(&s, [10.0, 3.0, 0.0], [-1.0, 0.0, 0.0], 1.0);
+    assert!(near_uv(uv, [0.5, 0.5]), "moving: {uv}");
+    // North pole.
+    let uv = uv_at(&s, [1.0, 10.0, 0.0], [0.0, -1.0, 0.0], 0.0);
+    assert!((uv.y - 1.0).abs() < 1e-4, "{uv}");
+
+    // A quad: (s, t) along its edges.
+    let s = scene("quad { corner <-1, -1, 0> edge1 <2, 0, 0> edge2 <0, 2, 0> }");
+    let uv = uv_at(&s, [-0.5, 0.5, 5.0], [0.0, 0.0, -1.0], 0.0);
+    assert!(near_uv(uv, [0.25, 0.75]), "{uv}");
+
+    // A box: every face upright from outside.
+    let s = scene("box { min <-1, -1, -1> max <1, 1, 1> }");
+    let face = |o: [f32; 3], d: [f32; 3], expect: [f32; 2]| {
+        let uv = uv_at(&s, o, d, 0.0);
+        assert!(near_uv(uv, expect), "{o:?}: {uv}");
+    };
+    // Front (+z): right is +x, up is +y.
+    face([0.5, -0.5, 5.0], [0.0, 0.0, -1.0], [0.75, 0.25]);
+    // Back (−z), seen from behind: right is −x.
+    face([0.5, -0.5, -5.0], [0.0, 0.0, 1.0], [0.25, 0.25]);
+    // Right (+x): right is −z.
+    face([5.0, 0.5, 0.5], [-1.0, 0.0, 0.0], [0.25, 0.75]);
+    // Left (−x): right is +z.
+    face([-5.0, 0.5, 0.5], [1.0, 0.0, 0.0], [0.75, 0.75]);
+    // Top (+y): right is +x, up is −z.
+    face([0.5, 5.0, -0.5], [0.0, -1.0, 0.0], [0.75, 0.75]);
+    // Bottom (−y): right is +x, up is +z.
+    face([0.5, -5.0, -0.5], [0.0, 1.0, 0.0], [0.75, 0.25]);
+
+    // A disk facing +y: planar, its centre at (0.5, 0.5), u along +x, v along −z.
+    let s = scene("disk { center <0, 0, 0> normal <0, 1, 0> radius 2 }");
+    let uv = uv_at(&s, [1.0, 5.0, -1.0], [0.0, -1.0, 0.0], 0.0);
+    assert!(near_uv(uv, [0.75, 0.75]), "{uv}");
+    // A plane: one unit of (u, v) per unit of length from its point.
+    let s = scene("plane { point <1, 0, 0> normal <0, 1, 0> }");
+    let uv = uv_at(&s, [4.0, 5.0, -2.0], [0.0, -1.0, 0.0], 0.0);
+    assert!(near_uv(uv, [3.0, 2.0]), "{uv}");
+
+    // A triangle: the barycentrics of v1 and v2.
+    let s = scene("triangle { v0 <0, 0, 0> v1 <2, 0, 0> v2 <0, 2, 0> }");
+    let uv = uv_at(&s, [0.5, 1.0, 5.0], [0.0, 0.0, -1.0], 0.0);
+    assert!(near_uv(uv, [0.25, 0.5]), "{uv}");
+}
+
+#[test]
+fn mesh_texture_coordinates_are_interpolated_from_the_file() {
+    let dir = crate::temp_dir_with(&[
+        (
+            "uv.obj",
+            "v -1 -1 0\nv 1 -1 0\nv -1 1 0\nvt 0.2 0.2\nvt 0.6 0.2\nvt 0.2 1.0\nf 1/1 2/2 3/3\n",
+        ),
+        ("plain.obj", "v -1 -1 0\nv 1 -1 0\nv -1 1 0\nf 1 2 3\n"),
+    ]);
+    for (file, expect) in [("uv.obj", [0.3, 0.6]), ("plain.obj", [0.25, 0.5])] {
+        // Moving and mirrored (a winding flip) too: the UVs stay with their vertices.
+        for extra in ["", "velocity <0, 0, 0.5>", "scale <-1, 1, 1>"] {
+            let s = scene_in(dir.path(), &format!("mesh {{ file \"{file}\" {extra} }}"));
+            let mirrored = extra.starts_with("scale");
+            let x = if mirrored { 0.5 } else { -0.5 };
+            let uv = uv_at(&s, [x, 0.0, 5.0], [0.0, 0.0, -1.0], 0.0);
+            // Without UVs in the file, the barycentrics of the triangle as
+            // rendered: a mirroring transform reverses its winding and so
+            // swaps u and v (documented in docs/language.md).
+            let expect = if mirrored && file == "plain.obj" {
+                [expect[1], expect[0]]
+            } else {
+                expect
+            };
+            assert!(near_uv(uv, expect), "{file} {extra}: {uv}");
+        }
+    }
+}

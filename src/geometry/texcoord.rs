@@ -1,0 +1,130 @@
+//! Texture coordinates (u, v) of a point on each shape, in the shape's own
+//! frame (y up, as ptsc's world). Images are addressed with (0, 0) at their
+//! bottom-left corner and (1, 1) at the top-right, as in OpenGL, pbrt and
+//! Mitsuba's `bitmap` (which flips rows on load the same way).
+//!
+//! | shape | u | v | differs from Mitsuba 3 |
+//! |---|---|---|---|
+//! | sphere | longitude / 2π: 0 at −z, ¼ at −x, ½ at +z, ¾ at +x (POV-Ray's `map_type spherical` turned to face +z) | latitude, 0 at −y (south pole), 1 at +y | Mitsuba's pole is its local +z, u from +x: the test rotates its sphere |
+//! | quad, box face | along `edge1`, 0 to 1 | along `edge2`, 0 to 1 | Mitsuba's `rectangle` has (0, 0) at its (−1, −1) corner: the same with edges along its x and y |
+//! | disk | planar: 0.5 + x / 2r | 0.5 + z / 2r | Mitsuba's `disk` is polar (r, φ / 2π) |
+//! | triangle | the mesh's vertex UVs interpolated; without any, the barycentrics (b1, b2) | | the same |
+//! | plane | planar: x / scale | z / scale | Mitsuba has no infinite plane |
+//!
+//! A disk's and a plane's frame has their normal as y and x, z from
+//! [`super::orthonormal_basis`] of it, in the object's own frame: for a
+//! normal +y (a floor), u runs along +x and v along −z, away from a camera
+//! on +z, so an image on the floor is seen upright.
+//!
+//! Sphere, disk and plane take a point already moved into their frame;
+//! quads and triangles are parametric, so their intersection's (s, t) or
+//! barycentrics are their texture coordinates.
+
+use glam::{Vec2, Vec3};
+use std::f32::consts::{FRAC_1_PI, TAU};
+
+/// Texture coordinates of the point of a sphere in direction `dir` (unit)
+/// from its centre, in the sphere's frame: u is the longitude, 0 (the seam)
+/// at −z, then −x (¼), +z (½), +x (¾), so that an equirectangular image
+/// seen from +z has its centre column facing the camera and is not
+/// mirrored; v is the latitude from the south pole (−y, 0) to the north
+/// pole (+y, 1).
+pub fn sphere(dir: Vec3) -> Vec2 {
+    // The angle from −z towards −x (the left of a camera on +z), in [0, 2π).
+    let phi = (-dir.x).atan2(-dir.z);
+    let u = if phi < 0.0 { phi + TAU } else { phi } / TAU;
+    let v = 1.0 - dir.y.clamp(-1.0, 1.0).acos() * FRAC_1_PI;
+    Vec2::new(u.clamp(0.0, 1.0), v)
+}
+
+/// Texture coordinates of the point `local` of a disk of `radius`, given
+/// in the disk's frame (its centre at the origin, its normal along +y):
+/// planar, the disk inscribed in the unit square.
+pub fn disk(local: Vec3, radius: f32) -> Vec2 {
+    let scale = 0.5 / radius;
+    Vec2::new(0.5 + local.x * scale, 0.5 + local.z * scale)
+}
+
+/// Texture coordinates of the point `local` of an infinite plane, given in
+/// the plane's frame (normal along +y): one unit square of texture every
+/// `scale` units of the plane.
+pub fn plane(local: Vec3, scale: f32) -> Vec2 {
+    Vec2::new(local.x, local.z) / scale
+}
+
+/// Texture coordinates of a triangle's point with barycentrics (b1, b2)
+/// (weights of the second and third vertex) from its vertices' `uvs`.
+pub fn triangle(barycentrics: Vec2, uvs: [Vec2; 3]) -> Vec2 {
+    let b0 = 1.0 - barycentrics.x - barycentrics.y;
+    b0 * uvs[0] + barycentrics.x * uvs[1] + barycentrics.y * uvs[2]
+}
+
+/// The texture coordinates a triangle without vertex UVs gives its
+/// vertices: its barycentrics are its texture coordinates.
+pub const TRIANGLE_DEFAULT: [Vec2; 3] = [Vec2::ZERO, Vec2::X, Vec2::Y];
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn close(a: Vec2, b: Vec2) -> bool {
+        (a - b).abs().max_element() < 1e-5
+    }
+
+    #[test]
+    fn sphere_coordinates_at_known_points() {
+        // Facing a camera on +z: the middle of the image, on the equator.
+        assert!(close(sphere(Vec3::Z), Vec2::new(0.5, 0.5)));
+        // Poles: v is 0 at the bottom, 1 at the top.
+        assert!((sphere(Vec3::Y).y - 1.0).abs() < 1e-6);
+        assert!(sphere(-Vec3::Y).y.abs() < 1e-6);
+        // A quarter turn towards +x is a quarter further in u.
+        assert!(close(sphere(Vec3::X), Vec2::new(0.75, 0.5)));
+        assert!(close(sphere(-Vec3::X), Vec2::new(0.25, 0.5)));
+        // The seam is at −z: both sides of it, u near 0 and near 1.
+        let just_past = sphere(Vec3::new(1e-3, 0.0, -1.0).normalize());
+        let just_before = sphere(Vec3::new(-1e-3, 0.0, -1.0).normalize());
+        assert!(just_past.x > 0.999 && just_before.x < 0.001);
+        // 45° north.
+        let north = sphere(Vec3::new(0.0, 1.0, 1.0).normalize());
+        assert!(close(north, Vec2::new(0.5, 0.75)));
+        // Always in the unit square.
+        for i in 0..1000 {
+            let t = i as f32 * 0.137;
+            let d = Vec3::new(t.sin() * (3.0 * t).cos(), (2.0 * t).cos(), t.cos()).normalize();
+            let uv = sphere(d);
+            assert!((0.0..=1.0).contains(&uv.x) && (0.0..=1.0).contains(&uv.y));
+        }
+    }
+
+    #[test]
+    fn disk_plane_and_triangle_coordinates_at_known_points() {
+        assert!(close(disk(Vec3::ZERO, 2.0), Vec2::splat(0.5)));
+        assert!(close(
+            disk(Vec3::new(2.0, 0.0, 0.0), 2.0),
+            Vec2::new(1.0, 0.5)
+        ));
+        assert!(close(
+            disk(Vec3::new(0.0, 0.0, -2.0), 2.0),
+            Vec2::new(0.5, 0.0)
+        ));
+        assert!(close(
+            plane(Vec3::new(3.0, 0.0, -1.5), 1.5),
+            Vec2::new(2.0, -1.0)
+        ));
+        let uvs = [
+            Vec2::new(0.1, 0.2),
+            Vec2::new(0.9, 0.2),
+            Vec2::new(0.1, 0.8),
+        ];
+        assert!(close(triangle(Vec2::ZERO, uvs), uvs[0]));
+        assert!(close(triangle(Vec2::X, uvs), uvs[1]));
+        assert!(close(triangle(Vec2::Y, uvs), uvs[2]));
+        assert!(close(
+            triangle(Vec2::splat(1.0 / 3.0), uvs),
+            (uvs[0] + uvs[1] + uvs[2]) / 3.0
+        ));
+        let b = Vec2::new(0.3, 0.6);
+        assert!(close(triangle(b, TRIANGLE_DEFAULT), b));
+    }
+}

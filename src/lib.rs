@@ -29,3 +29,4 @@ pub mod sampling;
 pub mod source;
 pub mod span;
 pub mod syntax;
+pub mod texture;

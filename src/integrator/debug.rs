@@ -27,7 +27,7 @@ impl Integrator for Debug {
         };
         match self {
             Debug::Normals => hit.n_shading * 0.5 + Vec3::splat(0.5),
-            Debug::Albedo => scene.material_of(hit.prim).albedo(),
+            Debug::Albedo => scene.material_at(&hit, ray.time, &mut None).albedo(),
             Debug::Depth => Vec3::splat(hit.t / (1.0 + hit.t)),
             Debug::Uv => {
                 let uv = scene.texcoords(&hit, ray.time);

@@ -47,7 +47,8 @@ pub fn path_li(scene: &Scene, mut ray: Ray, sampler: &mut Sampler, nee: bool) ->
             }
             break;
         };
-        let material = scene.material_of(hit.prim);
+        let mut textured = None;
+        let material = scene.material_at(&hit, ray.time, &mut textured);
         let wo = -ray.d;
         // Beer's law: leaving a dielectric means we travelled inside it.
         if material.transmission > 0.0

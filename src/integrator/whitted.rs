@@ -41,7 +41,8 @@ pub fn trace(scene: &Scene, ray: Ray, sampler: &mut Sampler, segment: u32, weigh
     let Some(hit) = scene.intersect(&ray, T_MIN, f32::INFINITY) else {
         return scene.background;
     };
-    let m = scene.material_of(hit.prim);
+    let mut textured = None;
+    let m = scene.material_at(&hit, ray.time, &mut textured);
     let wo = -ray.d;
     let mut l = m.emitted(wo, hit.n_geo);
     if segment >= s.max_depth {

@@ -541,6 +541,7 @@ fn finish(
         wide,
         unbounded,
         materials,
+        textures: Vec::new(),
         normals,
         uvs,
         area_lights,

@@ -37,6 +37,21 @@ pub struct Material {
     pub two_sided: bool,
     /// Probabilities of choosing the diffuse, reflection and transmission lobes.
     pub lobe_pdf: [f32; 3],
+    /// The colours that come from textures, evaluated at each hit (`None`:
+    /// a constant material, used as it is).
+    pub textured: Option<Box<Textured>>,
+}
+
+/// The textured colours of a material: indices into the scene's textures,
+/// with the material's parameters to complete at each hit.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Textured {
+    /// The parameters (the textured ones are replaced at each hit).
+    pub params: Params,
+    /// The texture of the diffuse albedo.
+    pub diffuse: Option<u32>,
+    /// The texture of the specular reflectance.
+    pub reflection: Option<u32>,
 }
 
 /// A material's parameters as written in a scene (`material { … }`), in
@@ -145,6 +160,7 @@ impl Material {
             emission: p.emission,
             two_sided: p.two_sided,
             lobe_pdf,
+            textured: None,
         }
     }
 

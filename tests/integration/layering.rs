@@ -20,6 +20,7 @@ const FLOORS: &[(&str, u32)] = &[
     ("bench_data", 0),
     // The renderer's concepts and the IR that holds them.
     ("material", 3),
+    ("texture", 3),
     ("camera", 3),
     ("light", 4),
     ("ir", 5),
@@ -43,6 +44,7 @@ const RENDER_SIDE: &[&str] = &[
     "accel",
     "output",
     "material",
+    "texture",
     "camera",
     "light",
     "ir",

@@ -12,6 +12,7 @@ mod mitsuba;
 mod nasty;
 mod render;
 mod shapes;
+mod textures;
 mod watch;
 
 use std::path::{Path, PathBuf};

@@ -226,6 +226,14 @@ impl Reader<'_> {
     }
 }
 
+/// The texture given to `name`, if one was.
+fn texture(p: &Params, name: &str) -> Option<Texture> {
+    match p.get(name) {
+        Some((Val::Texture(t), _)) => Some((**t).clone()),
+        _ => None,
+    }
+}
+
 /// `render { }` → settings.
 pub fn render_settings(p: &Params, base_dir: &Path, diags: &mut Diagnostics) -> RenderSettings {
     let mut r = Reader { p, diags };
@@ -367,6 +375,8 @@ pub fn material(p: &Params, name: Option<String>, span: Span, diags: &mut Diagno
         name,
         diffuse: r.color("diffuse", if diffuse_given { [0.5; 3] } else { [0.0; 3] }),
         reflection: r.color("reflection", [0.0; 3]),
+        diffuse_texture: texture(p, "diffuse"),
+        reflection_texture: texture(p, "reflection"),
         gloss: r.num_in("gloss", 0.0, 1.0, false, 0.0),
         transmission: r.num_in("transmission", 0.0, 1.0, false, 0.0),
         ior: r.num_in("ior", 1.0, 10.0, false, 1.5),
@@ -375,6 +385,22 @@ pub fn material(p: &Params, name: Option<String>, span: Span, diags: &mut Diagno
         two_sided: r.boolean("two_sided", false),
         span,
     };
+    // A textured colour stands for its brightest value in the checks below
+    // and in the lobes' weights.
+    let brightest = |t: &Texture| {
+        let max = |c: Rgb| c.iter().cloned().fold(0.0, f64::max);
+        if max(t.colors[0]) >= max(t.colors[1]) {
+            t.colors[0]
+        } else {
+            t.colors[1]
+        }
+    };
+    if let Some(t) = &m.diffuse_texture {
+        m.diffuse = brightest(t);
+    }
+    if let Some(t) = &m.reflection_texture {
+        m.reflection = brightest(t);
+    }
     // A material with no lobe at all is the default grey diffuse (unless it only emits).
     let any_lobe = ["diffuse", "reflection", "transmission", "emission"]
         .iter()

@@ -9,6 +9,7 @@ mod finish;
 mod objects;
 pub mod params;
 pub mod scene;
+mod texture;
 
 pub use blocks::{WholeSetting, MAX_PIXELS, MAX_SIDE, SAMPLES, SEED};
 pub use scene::*;

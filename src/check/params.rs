@@ -66,12 +66,22 @@ pub struct ParamSpec {
     pub repeat: bool,
     /// What its numbers stand for, which fixes their range.
     pub quantity: Quantity,
+    /// Whether it may be given a texture instead of a value.
+    pub texture: bool,
 }
 
 impl ParamSpec {
     /// The same parameter, its numbers standing for `quantity`.
     const fn of(self, quantity: Quantity) -> ParamSpec {
         ParamSpec { quantity, ..self }
+    }
+
+    /// The same parameter, which may be given a texture.
+    const fn textured(self) -> ParamSpec {
+        ParamSpec {
+            texture: true,
+            ..self
+        }
     }
 }
 
@@ -82,6 +92,7 @@ const fn p(name: &'static str, ty: Ty, example: &'static str) -> ParamSpec {
         example,
         repeat: false,
         quantity: Quantity::Plain,
+        texture: false,
     }
 }
 
@@ -92,6 +103,7 @@ const fn t(name: &'static str, ty: Ty, example: &'static str) -> ParamSpec {
         example,
         repeat: true,
         quantity: Quantity::Plain,
+        texture: false,
     }
 }
 
@@ -137,14 +149,37 @@ pub const CAMERA: &[ParamSpec] = &[
 
 /// `material { }`
 pub const MATERIAL: &[ParamSpec] = &[
-    p("diffuse", Ty::Color, "rgb <0.8, 0.8, 0.8>").of(Magnitude),
-    p("reflection", Ty::Color, "rgb 1").of(Magnitude),
+    p("diffuse", Ty::Color, "rgb <0.8, 0.8, 0.8>")
+        .of(Magnitude)
+        .textured(),
+    p("reflection", Ty::Color, "rgb 1").of(Magnitude).textured(),
     p("gloss", Ty::Num, "0.3"),
     p("transmission", Ty::Num, "1"),
     p("ior", Ty::Num, "1.5"),
     p("absorption", Ty::Color, "rgb <0.5, 0.1, 0.1>").of(Magnitude),
     p("emission", Ty::Color, "rgb 10").of(Radiance),
     p("two_sided", Ty::Bool, "true"),
+];
+
+/// The kinds of texture a parameter may be given.
+pub const TEXTURE_KINDS: &[&str] = &["checker"];
+
+/// The spaces a texture's pattern can live in.
+pub const TEXTURE_SPACES: &[&str] = &["uv", "object", "world"];
+
+/// `checker { }`, besides the transforms of [`SHAPE_COMMON`] (velocity
+/// excepted).
+pub const CHECKER: &[ParamSpec] = &[
+    p("even", Ty::Color, "rgb 0.9").of(Magnitude),
+    p("odd", Ty::Color, "rgb 0.1").of(Magnitude),
+    p("space", Ty::Word(TEXTURE_SPACES), "object"),
+];
+
+/// The transforms a texture takes (its pattern moves, turns and scales).
+pub const TEXTURE_TRANSFORMS: &[ParamSpec] = &[
+    t("translate", Ty::Vec3, "<0.5, 0, 0>").of(Magnitude),
+    t("rotate", Ty::Vec3, "<0, 0, 45>"),
+    t("scale", Ty::NumOrVec3, "0.25").of(Quantity::Scale),
 ];
 
 /// Every parameter name of every block and of materials, sorted (editors
@@ -155,6 +190,7 @@ pub fn all_parameter_names() -> Vec<&'static str> {
         .flat_map(|&k| shape_schema(k).iter())
         .chain(SHAPE_COMMON)
         .chain(MATERIAL)
+        .chain(CHECKER)
         .map(|p| p.name)
         .collect();
     names.sort_unstable();
@@ -262,6 +298,25 @@ pub enum Val {
     Bool(bool),
     /// A word from a fixed set.
     Word(String),
+    /// A texture (for the parameters that take one).
+    Texture(Box<super::scene::Texture>),
+}
+
+/// What an entry gives a parameter: a value, or a texture (its kind, its
+/// block, the whole entry's span).
+enum Source<'a> {
+    Value(&'a crate::syntax::ast::Expr),
+    Texture(&'a crate::syntax::ast::Ident, &'a Block, Span),
+}
+
+impl Source<'_> {
+    /// Where the value is written.
+    fn span(&self) -> Span {
+        match self {
+            Source::Value(e) => e.span,
+            Source::Texture(_, _, span) => *span,
+        }
+    }
 }
 
 /// The checked parameters of one block.
@@ -303,15 +358,22 @@ impl Params {
         };
         let mut first_seen: Vec<(&'static str, Span)> = Vec::new();
         for entry in &block.entries {
-            let Entry::Param { name, value, .. } = entry else {
-                continue;
+            let (name, value) = match entry {
+                Entry::Param { name, value, .. } => (name, Source::Value(value)),
+                Entry::Texture {
+                    name,
+                    kind,
+                    block,
+                    span,
+                } => (name, Source::Texture(kind, block, *span)),
+                Entry::Material { .. } => continue,
             };
             if name.name == "material" {
                 diags.push(
                     Diagnostic::error(
                         codes::TYPE_MISMATCH,
                         "`material` takes a material name or an inline material block",
-                        value.span,
+                        value.span(),
                     )
                     .with_label("not a material")
                     .with_help("write `material white` (a declared name) or `material { diffuse rgb 0.8 }`"),
@@ -373,9 +435,33 @@ impl Params {
                 first_seen.push((spec.name, name.span));
             }
             params.given.push(spec.name);
-            let Some(val) = typed_value(spec, value, env, diags) else {
+            let val = match value {
+                Source::Value(value) => typed_value(spec, value, env, diags),
+                Source::Texture(kind, block, span) if spec.texture => {
+                    super::texture::check_texture(kind, block, span, env, diags)
+                        .map(|t| Val::Texture(Box::new(t)))
+                }
+                Source::Texture(kind, _, span) => {
+                    diags.push(
+                        Diagnostic::error(
+                            codes::TEXTURE_NOT_ALLOWED,
+                            format!("`{}` cannot be given a texture", spec.name),
+                            span,
+                        )
+                        .with_label(format!("a `{}` texture", kind.name))
+                        .with_help(format!(
+                            "`{}` takes {}; textures go on a material's `diffuse` and `reflection`",
+                            spec.name,
+                            spec.ty.describe()
+                        )),
+                    );
+                    None
+                }
+            };
+            let Some(val) = val else {
                 continue;
             };
+            let value_span = value.span();
             let numbers: &[f64] = match &val {
                 Val::Num(x) => std::slice::from_ref(x),
                 Val::Vector(v) => v,
@@ -384,15 +470,15 @@ impl Params {
             };
             if let Err(d) = spec
                 .quantity
-                .check_all(numbers, spec.name, &what, value.span)
+                .check_all(numbers, spec.name, &what, value_span)
             {
                 diags.push(d);
                 continue;
             }
             if spec.repeat {
-                params.ordered.push((spec.name, val, value.span));
+                params.ordered.push((spec.name, val, value_span));
             } else {
-                params.values.push((spec.name, (val, value.span)));
+                params.values.push((spec.name, (val, value_span)));
             }
         }
         params

@@ -21,6 +21,32 @@ pub struct RenderSettings {
     pub output: Option<PathBuf>,
 }
 
+/// A texture, checked: its pattern's colours, the space it reads and its
+/// transforms (pattern space → the space it reads).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Texture {
+    /// The colours of the pattern's two kinds of cell (a checker's even and
+    /// odd cells).
+    pub colors: [Rgb; 2],
+    /// `uv`, `object` or `world`.
+    pub space: TextureSpace,
+    /// The texture's transforms, in the order written.
+    pub transform: DMat4,
+    /// Where the texture is written.
+    pub span: Span,
+}
+
+/// The coordinates a texture reads.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum TextureSpace {
+    /// The surface's texture coordinates.
+    Uv,
+    /// The object's own frame.
+    Object,
+    /// The world.
+    World,
+}
+
 /// The `camera { }` block.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Camera {
@@ -51,6 +77,10 @@ pub struct Material {
     pub diffuse: Rgb,
     /// Specular (mirror or glossy) reflectance.
     pub reflection: Rgb,
+    /// A texture for `diffuse` (which then holds its brightest colour).
+    pub diffuse_texture: Option<Texture>,
+    /// A texture for `reflection` (likewise).
+    pub reflection_texture: Option<Texture>,
     /// Roughness of the reflection lobe, 0 = mirror.
     pub gloss: f64,
     /// Weight of the smooth dielectric lobe.
@@ -74,6 +104,8 @@ impl Material {
             name: None,
             diffuse: [0.5; 3],
             reflection: [0.0; 3],
+            diffuse_texture: None,
+            reflection_texture: None,
             gloss: 0.0,
             transmission: 0.0,
             ior: 1.5,

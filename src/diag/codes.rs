@@ -68,6 +68,10 @@ pub const DEGENERATE: &str = "pts::check::degenerate";
 pub const DUPLICATE_NAME: &str = "pts::check::duplicate_name";
 /// A second `render`, `camera` or `background`.
 pub const DUPLICATE_BLOCK: &str = "pts::check::duplicate_block";
+/// A texture kind that does not exist.
+pub const UNKNOWN_TEXTURE: &str = "pts::check::unknown_texture";
+/// A texture given to a parameter that takes a plain value.
+pub const TEXTURE_NOT_ALLOWED: &str = "pts::check::texture_not_allowed";
 /// A material that does not exist.
 pub const UNKNOWN_MATERIAL: &str = "pts::check::unknown_material";
 /// An included file that cannot be read.
@@ -258,6 +262,18 @@ pub const CATALOGUE: &[Entry] = &[
         title: "A material that does not exist",
         explanation: "`material NAME` names no declared material. Named materials may be declared anywhere in the scene (before or after their use); the help suggests a similar name.",
         example: "sphere { center <0, 0, 0> radius 1 material coper }\nmaterial copper { reflection rgb <0.95, 0.64, 0.54> }",
+    },
+    Entry {
+        code: UNKNOWN_TEXTURE,
+        title: "A texture kind that does not exist",
+        explanation: "A parameter was given `NAME { … }` and NAME is not a kind of texture. The kinds are listed in docs/language.md (\"Textures\"); the help suggests the closest one.",
+        example: "material { diffuse checkers { even rgb 1 odd rgb 0 } }",
+    },
+    Entry {
+        code: TEXTURE_NOT_ALLOWED,
+        title: "A texture given to a parameter that takes a plain value",
+        explanation: "Only some parameters vary over a surface: a material's `diffuse` and `reflection`. The others (an index of refraction, a radius, a light's intensity) take one value.",
+        example: "material { diffuse rgb 0.5 ior checker { } }",
     },
     Entry {
         code: INCLUDE_NOT_FOUND,

@@ -1,12 +1,15 @@
-//! A checked material → the renderer's material.
+//! A checked material → the renderer's material, its textures added to the
+//! scene's.
 
 use crate::check;
-use crate::material::{self, Material};
-use glam::DVec3;
+use crate::material::{self, Material, Textured};
+use crate::texture::{Pattern, Space, Texture};
+use glam::{Affine3A, DVec3};
 
-/// A checked material in the renderer's f32.
-pub fn lower_material(m: &check::Material) -> Material {
-    Material::new(&material::Params {
+/// A checked material in the renderer's f32; its textures are pushed onto
+/// `textures` and named by index.
+pub fn lower_material(m: &check::Material, textures: &mut Vec<Texture>) -> Material {
+    let params = material::Params {
         diffuse: DVec3::from_array(m.diffuse).as_vec3(),
         reflection: DVec3::from_array(m.reflection).as_vec3(),
         gloss: m.gloss as f32,
@@ -15,5 +18,36 @@ pub fn lower_material(m: &check::Material) -> Material {
         absorption: DVec3::from_array(m.absorption).as_vec3(),
         emission: DVec3::from_array(m.emission).as_vec3(),
         two_sided: m.two_sided,
-    })
+    };
+    let mut material = Material::new(&params);
+    if m.diffuse_texture.is_some() || m.reflection_texture.is_some() {
+        let mut add = |t: &Option<check::Texture>| {
+            t.as_ref().map(|t| {
+                textures.push(lower_texture(t));
+                textures.len() as u32 - 1
+            })
+        };
+        material.textured = Some(Box::new(Textured {
+            params,
+            diffuse: add(&m.diffuse_texture),
+            reflection: add(&m.reflection_texture),
+        }));
+    }
+    material
+}
+
+/// A checked texture in the renderer's f32: its transforms inverted, to
+/// take the coordinates it reads into its pattern's.
+fn lower_texture(t: &check::Texture) -> Texture {
+    let rgb = |c: [f64; 3]| DVec3::from_array(c).as_vec3();
+    Texture {
+        pattern: Pattern::Checker,
+        space: match t.space {
+            check::TextureSpace::Uv => Space::Uv,
+            check::TextureSpace::Object => Space::Object,
+            check::TextureSpace::World => Space::World,
+        },
+        to_pattern: Affine3A::from_mat4(t.transform.inverse().as_mat4()),
+        colors: [rgb(t.colors[0]), rgb(t.colors[1])],
+    }
 }

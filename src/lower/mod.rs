@@ -24,6 +24,7 @@ use crate::ir::settings::Settings;
 use crate::ir::{Prim, Scene};
 use crate::light::Light;
 use crate::material::Material;
+use crate::texture::Texture;
 use cache::LowerCache;
 use camera::lower_camera;
 use collect::{Collected, PlainMesh};
@@ -120,7 +121,11 @@ pub fn lower(
 ) -> Result<Scene, Diagnostics> {
     let mut settings = scene.render.settings.clone();
     adjust(&mut settings);
-    let materials: Vec<Material> = scene.materials.iter().map(lower_material).collect();
+    let mut textures = Vec::new();
+    let materials: Vec<Material> = (scene.materials.iter())
+        .map(|m| lower_material(m, &mut textures))
+        .collect();
+    let materials = (materials, textures);
     if cache.is_one_off() {
         let geometry = build_geometry(scene, cache)?;
         return Ok(finish(scene, settings, materials, geometry));
@@ -460,7 +465,7 @@ fn build_geometry(scene: &check::Scene, cache: &mut LowerCache) -> Result<Geomet
 fn finish(
     scene: &check::Scene,
     settings: Settings,
-    materials: Vec<Material>,
+    (materials, textures): (Vec<Material>, Vec<Texture>),
     geometry: Geometry,
 ) -> Scene {
     let object_spans = scene.objects.iter().map(|o| o.span).collect();
@@ -541,7 +546,7 @@ fn finish(
         wide,
         unbounded,
         materials,
-        textures: Vec::new(),
+        textures,
         normals,
         uvs,
         area_lights,

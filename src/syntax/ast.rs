@@ -194,6 +194,17 @@ pub enum Entry {
         /// The whole entry.
         span: Span,
     },
+    /// `name kind { ... }`: a parameter given a texture.
+    Texture {
+        /// Parameter name.
+        name: Ident,
+        /// The texture's kind (`checker`).
+        kind: Ident,
+        /// Its parameters.
+        block: Block,
+        /// The whole entry.
+        span: Span,
+    },
     /// `material name` or `material { ... }`
     Material {
         /// The referenced or inline material.

@@ -166,6 +166,17 @@ impl Builder {
                 let value = self.build_expr(inner.next().unwrap());
                 Entry::Param { name, value, span }
             }
+            Rule::texture_param => {
+                let name = self.build_ident(inner.next().unwrap());
+                let kind = self.build_ident(inner.next().unwrap());
+                let block = self.build_block(inner.next().unwrap());
+                Entry::Texture {
+                    name,
+                    kind,
+                    block,
+                    span,
+                }
+            }
             Rule::material_entry => {
                 inner.next(); // kw_material
                 let m = inner.next().unwrap();

@@ -35,6 +35,7 @@ pub fn rule_name(rule: Rule) -> &'static str {
         Rule::block_stmt | Rule::block_kind => "a block such as `sphere { … }`",
         Rule::block => "a block `{ … }`",
         Rule::entry | Rule::param => "a parameter name",
+        Rule::texture_param => "a parameter given a texture",
         Rule::expr | Rule::operand | Rule::primary => {
             "a value (number, vector, colour, string or name)"
         }

@@ -49,7 +49,7 @@ const WORDS: &[(&str, &str)] = &[
     ("area_light", "an area light is an object with `material { emission rgb … }`, e.g. a `quad` or `disk`"),
     ("fade_distance", "ptsc's lights fall off with the square of the distance, as real ones do"),
     ("image_map", "image maps are planned (textures); ptsc has none yet"),
-    ("checker", "patterns such as a checker are planned (textures); ptsc has none yet"),
+    ("checker", "in a material, `diffuse checker { even rgb 1 odd rgb 0 }` (see \"Textures\" in docs/language.md)"),
 ];
 
 /// POV-Ray parameter names with the ptsc parameter that does their job.

@@ -1,14 +1,12 @@
-//! Textures evaluated at hits: a material's textured colours reach every
-//! integrator through `Scene::material_at`. (The scene language's texture
-//! blocks come later; these tests attach a texture to a lowered scene.)
+//! Textures from the scene language to the pixels: checked, lowered,
+//! evaluated at each hit (`Scene::material_at`) in their space, seen by every
+//! integrator.
 
-use glam::{Affine3A, Vec2, Vec3};
+use glam::{Vec2, Vec3};
 use ptsc::compile::{compile_str, Options};
 use ptsc::geometry::Ray;
 use ptsc::integrator;
 use ptsc::ir::Scene;
-use ptsc::material::{Params, Textured};
-use ptsc::texture::{Pattern, Space, Texture};
 use std::path::Path;
 use std::sync::atomic::AtomicBool;
 
@@ -16,33 +14,76 @@ const EVEN: f32 = 0.9;
 const ODD: f32 = 0.1;
 
 /// A unit quad facing the camera under a white sky, its diffuse colour a
-/// checker in (u, v) scaled to 2 × 2 cells per unit (Mitsuba's default).
+/// checker in (u, v): four cells, as Mitsuba's `checkerboard`.
 fn checkered_quad(integrator: &str) -> Scene {
     let text = format!(
         "render {{ resolution <16, 16> samples 64 integrator {integrator} max_depth 2 }}\n\
          camera {{ position <0.5, 0.5, 2> look_at <0.5, 0.5, 0> fov 28.07 }}\n\
          background rgb 1\n\
-         quad {{ corner <0, 0, 0> edge1 <1, 0, 0> edge2 <0, 1, 0> material {{ diffuse rgb 0.5 }} }}\n"
+         quad {{ corner <0, 0, 0> edge1 <1, 0, 0> edge2 <0, 1, 0>\n\
+                material {{ diffuse checker {{ even rgb {EVEN} odd rgb {ODD} }} }} }}\n"
     );
     let c = compile_str(Path::new("t.pts"), &text, Options::default());
-    let mut ir =
+    assert!(c.diagnostics.items.is_empty(), "{:?}", c.diagnostics.items);
+    c.ir.expect("the scene compiles")
+}
+
+/// The texture's colour at the world point `p` of a one-object scene
+/// whose material's diffuse is `texture`.
+fn colour_at(object: &str, texture: &str, p: [f32; 3]) -> f32 {
+    let text = format!(
+        "camera {{ position <0, 0, 9> look_at <0, 0, 0> }}\nbackground rgb 1\n\
+         {object} material {{ diffuse {texture} }} }}\n"
+    );
+    let c = compile_str(Path::new("t.pts"), &text, Options::default());
+    let ir =
         c.ir.unwrap_or_else(|| panic!("{}", c.diagnostics.render_human(&c.sources, false)));
-    ir.textures.push(Texture {
-        pattern: Pattern::Checker,
-        space: Space::Uv,
-        to_pattern: Affine3A::IDENTITY,
-        colors: [Vec3::splat(EVEN), Vec3::splat(ODD)],
-    });
-    let quad_material = ir.object_material[0] as usize;
-    ir.materials[quad_material].textured = Some(Box::new(Textured {
-        params: Params {
-            diffuse: Vec3::splat(0.5),
-            ..Params::default()
-        },
-        diffuse: Some(0),
-        reflection: None,
-    }));
-    ir
+    // A ray straight down the z axis through (p.x, p.y).
+    let ray = Ray::new(Vec3::new(p[0], p[1], 9.0), -Vec3::Z, 0.0);
+    let hit = ir.intersect(&ray, 0.0, f32::INFINITY).expect("a hit");
+    assert!((hit.p.z - p[2]).abs() < 1e-4, "hit at {}", hit.p);
+    ir.material_at(&hit, 0.0, &mut None).diffuse.x
+}
+
+#[test]
+fn spaces_and_transforms_of_a_checker() {
+    let checker = |extra: &str| format!("checker {{ even rgb 1 odd rgb 0 {extra} }}");
+    let wall = "quad { corner <-4, -4, 0> edge1 <8, 0, 0> edge2 <0, 8, 0> translate <0.25, 0, 0>";
+    // World space: unit cubes of the world, whatever the object does.
+    assert_eq!(
+        colour_at(wall, &checker("space world"), [0.5, 0.5, 0.0]),
+        1.0
+    );
+    assert_eq!(
+        colour_at(wall, &checker("space world"), [1.5, 0.5, 0.0]),
+        0.0
+    );
+    // Object space: the cubes move with the object (translated by 0.25).
+    assert_eq!(
+        colour_at(wall, &checker("space object"), [0.2, 0.5, 0.0]),
+        0.0
+    );
+    assert_eq!(
+        colour_at(wall, &checker("space object"), [0.3, 0.5, 0.0]),
+        1.0
+    );
+    // Scaled by 2: cells twice as large.
+    assert_eq!(
+        colour_at(wall, &checker("space world scale 2"), [1.5, 0.5, 0.0]),
+        1.0
+    );
+    assert_eq!(
+        colour_at(wall, &checker("space world scale 2"), [2.5, 0.5, 0.0]),
+        0.0
+    );
+    // (u, v): the 8 × 8 wall's unit square holds 2 × 2 cells of 4 units.
+    assert_eq!(colour_at(wall, &checker(""), [-2.0, -2.0, 0.0]), 1.0);
+    assert_eq!(colour_at(wall, &checker(""), [2.0, -2.0, 0.0]), 0.0);
+    // Translated by a quarter of (u, v): the cell boundary moves by 2 units.
+    assert_eq!(
+        colour_at(wall, &checker("translate <0.25, 0, 0>"), [2.0, -2.0, 0.0]),
+        1.0
+    );
 }
 
 #[test]

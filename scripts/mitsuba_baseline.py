@@ -37,7 +37,10 @@ def main():
     ap.add_argument("--out", type=Path, default=ROOT / "tests" / "mitsuba")
     a = ap.parse_args()
     mi.set_variant("scalar_rgb")
-    out = {"mitsuba": mi.__version__, "variant": "scalar_rgb", "res": a.res, "spp": a.spp, "scenes": {}}
+    # Other scenes' entries (textures: scripts/mitsuba_textures.py) are kept.
+    old = a.out / "baseline.json"
+    kept = json.loads(old.read_text())["scenes"] if old.exists() else {}
+    out = {"mitsuba": mi.__version__, "variant": "scalar_rgb", "res": a.res, "spp": a.spp, "scenes": kept}
     for name in ("cornell", "mesh", "spheres"):
         ref_path = sorted(glob.glob(str(a.out / f"{name}_ref_{a.res}_*spp.exr")))[-1]
         ref = np.array(mi.Bitmap(ref_path), dtype=np.float64)[..., :3]

@@ -2,7 +2,9 @@
 //! `../shared/bench` (their data made by `ptsc::bench_data`, so that no
 //! `../shared` is needed) rendered by ptsc at 64×64 are compared with Mitsuba 3
 //! references at 65,536 spp (`tests/mitsuba/*_ref_64_65536spp.exr`, made by
-//! `bash ../shared/bench/mitsuba.sh ref SCENE 64 65536`).
+//! `bash ../shared/bench/mitsuba.sh ref SCENE 64 65536`), and so is
+//! `tests/mitsuba/textures.pts` (reference and baseline by
+//! `scripts/mitsuba_textures.py`, 16,384 spp).
 //!
 //! - Bias: the per-channel mean over all seeds' images is within 1 % of the
 //!   reference's.
@@ -38,7 +40,13 @@ fn check_scene(name: &str) {
     assert_eq!((w, h), (res, res));
 
     ptsc::bench_data::ensure_mesh_blob(&crate::root()).unwrap();
-    let path = crate::root().join(format!("examples/bench/{name}.pts"));
+    // The benchmark scenes are examples; the others live beside their references.
+    let own = dir.join(format!("{name}.pts"));
+    let path = if own.exists() {
+        own
+    } else {
+        crate::root().join(format!("examples/bench/{name}.pts"))
+    };
     let options = Options {
         adjust: &|s| (s.width, s.height, s.samples) = (res, res, spp),
         ..Options::default()
@@ -104,4 +112,11 @@ fn mitsuba_reference_mesh() {
 #[test]
 fn mitsuba_reference_spheres() {
     check_scene("spheres");
+}
+
+/// Checker textures on quads and a sphere (Mitsuba's `checkerboard`, its
+/// sphere's (u, v) mapped onto ptsc's in `scripts/mitsuba_textures.py`).
+#[test]
+fn mitsuba_reference_textures() {
+    check_scene("textures");
 }

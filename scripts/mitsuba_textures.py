@@ -1,0 +1,107 @@
+#!/usr/bin/env python3
+"""Mitsuba 3 reference and noise baseline for tests/mitsuba/textures.pts.
+
+  python3 scripts/mitsuba_textures.py [--res 64] [--ref-spp 16384] [--spp 64] [--seeds 8]
+
+Writes tests/mitsuba/textures_ref_<res>_<ref-spp>spp.exr (Mitsuba's `path`,
+scalar_rgb) and the "textures" entry of tests/mitsuba/baseline.json (Mitsuba's
+own MAE/mean at --spp over --seeds seeds), which the Rust test
+`mitsuba_reference_textures` compares ptsc with.
+
+The scene is written here by hand, the same as textures.pts, with the
+conventions of scripts/../shared/bench/mitsuba_scenes.py (perspective camera
+with a vertical fov, box filter, independent sampler, constant sky). How ptsc's
+texture coordinates map onto Mitsuba's (geometry/texcoord.rs):
+  quad   -> `rectangle` with to_world columns (e1/2, e2/2, n, centre): its
+            (u, v) is ptsc's (s, t) exactly;
+  sphere -> Mitsuba's local frame L = (-d.z, d.x, -d.y) of ptsc's direction d
+            (a rotation) gives u' = 1 - u and v' = v; a checker's cells then
+            swap, so Mitsuba's color0 is ptsc's `odd`;
+  checker `scale s` -> `to_uv` scale 1/s (ptsc's even = Mitsuba's color0).
+"""
+import argparse
+import json
+import statistics
+from pathlib import Path
+
+import numpy as np
+import mitsuba as mi
+
+ROOT = Path(__file__).resolve().parent.parent
+OUT = ROOT / "tests" / "mitsuba"
+
+
+def rgb(v):
+    return {"type": "rgb", "value": [float(x) for x in v]}
+
+
+def checker(color0, color1, scale):
+    return {"type": "diffuse", "reflectance": {
+        "type": "checkerboard", "color0": rgb(color0), "color1": rgb(color1),
+        "to_uv": mi.ScalarTransform4f().scale([1.0 / scale, 1.0 / scale, 1.0])}}
+
+
+def rectangle(p0, e1, e2, bsdf):
+    p0, e1, e2 = (np.asarray(x, dtype=np.float64) for x in (p0, e1, e2))
+    n = np.cross(e1, e2)
+    n /= np.linalg.norm(n)
+    m = np.eye(4)
+    m[:3, 0], m[:3, 1], m[:3, 2], m[:3, 3] = 0.5 * e1, 0.5 * e2, n, p0 + 0.5 * (e1 + e2)
+    return {"type": "rectangle", "to_world": mi.ScalarTransform4f(m.tolist()), "bsdf": bsdf}
+
+
+def scene(res, spp):
+    # ptsc's sphere direction d = R L, R's rows (0,1,0), (0,0,-1), (-1,0,0).
+    centre, radius = [0.5, -0.35, 0.3], 0.6
+    m = np.eye(4)
+    m[:3, :3] = radius * np.array([[0, 1, 0], [0, 0, -1], [-1, 0, 0]], dtype=np.float64)
+    m[:3, 3] = centre
+    return {
+        "type": "scene",
+        "integrator": {"type": "path", "max_depth": 4},
+        "sensor": {
+            "type": "perspective", "fov": 40.0, "fov_axis": "y", "near_clip": 1e-3, "far_clip": 1e4,
+            "to_world": mi.ScalarTransform4f().look_at(origin=[0, 0.3, 4], target=[0, -0.1, 0], up=[0, 1, 0]),
+            "film": {"type": "hdrfilm", "width": res, "height": res, "pixel_format": "rgb",
+                     "component_format": "float32", "rfilter": {"type": "box"}},
+            "sampler": {"type": "independent", "sample_count": spp},
+        },
+        "sky": {"type": "constant", "radiance": rgb([1, 1, 1])},
+        "wall": rectangle([-1.8, -1, -1], [3.6, 0, 0], [0, 2.2, 0],
+                          checker([0.8, 0.7, 0.2], [0.1, 0.2, 0.6], 0.25)),
+        "floor": rectangle([-3, -1, 3], [6, 0, 0], [0, 0, -4], checker([0.8] * 3, [0.2] * 3, 0.1)),
+        "ball": {"type": "sphere", "to_world": mi.ScalarTransform4f(m.tolist()),
+                 "bsdf": checker([0.7, 0.1, 0.1], [0.9] * 3, 0.125)},
+    }
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--res", type=int, default=64)
+    ap.add_argument("--ref-spp", type=int, default=16384)
+    ap.add_argument("--spp", type=int, default=64)
+    ap.add_argument("--seeds", type=int, default=8)
+    a = ap.parse_args()
+    mi.set_variant("scalar_rgb")
+    ref_scene = mi.load_dict(scene(a.res, a.ref_spp))
+    # The reference: passes of 1024 spp with distinct seeds, averaged.
+    passes = max(1, a.ref_spp // 1024)
+    ref = sum(np.array(mi.render(ref_scene, spp=a.ref_spp // passes, seed=10_000 + k), dtype=np.float64)
+              for k in range(passes)) / passes
+    name = f"textures_ref_{a.res}_{a.ref_spp}spp.exr"
+    mi.Bitmap(ref.astype(np.float32)).write(str(OUT / name))
+    s = mi.load_dict(scene(a.res, a.spp))
+    maes = []
+    for seed in range(a.seeds):
+        img = np.array(mi.render(s, spp=a.spp, seed=seed), dtype=np.float64)[..., :3]
+        maes.append(float(np.abs(img - ref[..., :3]).mean() / ref[..., :3].mean()))
+    base_path = OUT / "baseline.json"
+    base = json.loads(base_path.read_text())
+    base["scenes"]["textures"] = {"reference": name, "mae_over_mean": maes,
+                                  "median_mae_over_mean": statistics.median(maes)}
+    base_path.write_text(json.dumps(base, indent=1) + "\n")
+    print("textures", f"median MAE/mean {statistics.median(maes):.5f}", [round(x, 5) for x in maes])
+
+
+if __name__ == "__main__":
+    main()

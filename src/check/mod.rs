@@ -469,7 +469,8 @@ impl Checker {
                         );
                     }
                 }
-                let m = blocks::material(&p, Some(name.name.clone()), *span, &mut self.diags);
+                let mut m = blocks::material(&p, Some(name.name.clone()), *span, &mut self.diags);
+                m.resolve_paths(folder_of(&self.sources, span.file));
                 if let Some(prev) = self.material_names.get(&name.name) {
                     // Loops may redeclare the same declaration; only distinct declarations clash.
                     if prev.span != name.span {
@@ -738,7 +739,8 @@ impl Checker {
                     &mut self.env,
                     &mut self.diags,
                 );
-                let m = blocks::material(&p, None, *s, &mut self.diags);
+                let mut m = blocks::material(&p, None, *s, &mut self.diags);
+                m.resolve_paths(folder_of(&self.sources, s.file));
                 self.materials.push(m);
                 let i = self.materials.len() - 1;
                 self.used_materials.insert(i);

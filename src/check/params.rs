@@ -162,7 +162,17 @@ pub const MATERIAL: &[ParamSpec] = &[
 ];
 
 /// The kinds of texture a parameter may be given.
-pub const TEXTURE_KINDS: &[&str] = &["checker"];
+pub const TEXTURE_KINDS: &[&str] = &["checker", "image"];
+
+/// The wrap modes of an image texture.
+pub const WRAPS: &[&str] = &["repeat", "clamp", "mirror"];
+
+/// `image { }`, besides [`TEXTURE_TRANSFORMS`].
+pub const IMAGE: &[ParamSpec] = &[
+    p("file", Ty::Str, "\"wood.png\""),
+    p("wrap", Ty::Word(WRAPS), "clamp"),
+    p("space", Ty::Word(TEXTURE_SPACES), "object"),
+];
 
 /// The spaces a texture's pattern can live in.
 pub const TEXTURE_SPACES: &[&str] = &["uv", "object", "world"];
@@ -191,6 +201,7 @@ pub fn all_parameter_names() -> Vec<&'static str> {
         .chain(SHAPE_COMMON)
         .chain(MATERIAL)
         .chain(CHECKER)
+        .chain(IMAGE)
         .map(|p| p.name)
         .collect();
     names.sort_unstable();

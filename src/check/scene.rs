@@ -3,7 +3,7 @@
 
 use crate::span::Span;
 use glam::{DMat4, DVec3};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 /// Linear RGB triple.
 pub type Rgb = [f64; 3];
@@ -25,6 +25,8 @@ pub struct RenderSettings {
 /// transforms (pattern space → the space it reads).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Texture {
+    /// What it computes.
+    pub kind: TextureKind,
     /// The colours of the pattern's two kinds of cell (a checker's even and
     /// odd cells).
     pub colors: [Rgb; 2],
@@ -34,6 +36,22 @@ pub struct Texture {
     pub transform: DMat4,
     /// Where the texture is written.
     pub span: Span,
+}
+
+/// The kinds of texture.
+#[derive(Debug, Clone, PartialEq)]
+pub enum TextureKind {
+    /// `checker { }`
+    Checker,
+    /// `image { file … }`
+    Image {
+        /// The image file (relative to the scene file once resolved).
+        path: PathBuf,
+        /// Where its name is written.
+        path_span: Span,
+        /// `repeat`, `clamp` or `mirror`.
+        wrap: String,
+    },
 }
 
 /// The coordinates a texture reads.
@@ -113,6 +131,18 @@ impl Material {
             emission: [0.0; 3],
             two_sided: false,
             span,
+        }
+    }
+
+    /// Resolves the files its textures read against the scene file's folder.
+    pub fn resolve_paths(&mut self, folder: &Path) {
+        for t in [&mut self.diffuse_texture, &mut self.reflection_texture]
+            .into_iter()
+            .flatten()
+        {
+            if let TextureKind::Image { path, .. } = &mut t.kind {
+                *path = folder.join(&*path);
+            }
         }
     }
 

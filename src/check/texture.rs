@@ -4,8 +4,8 @@
 
 use super::blocks::Reader;
 use super::eval::Env;
-use super::params::{Params, Val, CHECKER, TEXTURE_KINDS, TEXTURE_TRANSFORMS};
-use super::scene::{Texture, TextureSpace};
+use super::params::{Params, Val, CHECKER, IMAGE, TEXTURE_KINDS, TEXTURE_TRANSFORMS};
+use super::scene::{Texture, TextureKind, TextureSpace};
 use crate::diag::{codes, did_you_mean, Diagnostic, Diagnostics};
 use crate::span::Span;
 use crate::syntax::ast::{Block, Ident};
@@ -19,40 +19,62 @@ pub fn check_texture(
     env: &mut Env,
     diags: &mut Diagnostics,
 ) -> Option<Texture> {
-    if kind.name != "checker" {
-        let help = match did_you_mean(&kind.name, TEXTURE_KINDS.iter().copied()) {
-            Some(s) => format!("did you mean `{s}`?"),
-            None => format!("the textures are: {}", TEXTURE_KINDS.join(", ")),
-        };
-        diags.push(
-            Diagnostic::error(
-                codes::UNKNOWN_TEXTURE,
-                format!("unknown texture `{}`", kind.name),
-                kind.span,
-            )
-            .with_label("not a texture")
-            .with_help(help),
-        );
-        return None;
-    }
+    let schema: &'static [super::params::ParamSpec] = match kind.name.as_str() {
+        "checker" => CHECKER,
+        "image" => IMAGE,
+        _ => {
+            let help = match did_you_mean(&kind.name, TEXTURE_KINDS.iter().copied()) {
+                Some(s) => format!("did you mean `{s}`?"),
+                None => format!("the textures are: {}", TEXTURE_KINDS.join(", ")),
+            };
+            diags.push(
+                Diagnostic::error(
+                    codes::UNKNOWN_TEXTURE,
+                    format!("unknown texture `{}`", kind.name),
+                    kind.span,
+                )
+                .with_label("not a texture")
+                .with_help(help),
+            );
+            return None;
+        }
+    };
     let p = Params::collect(
-        "checker",
+        kind.name.clone(),
         kind.span,
         block,
-        &[CHECKER, TEXTURE_TRANSFORMS],
+        &[schema, TEXTURE_TRANSFORMS],
         env,
         diags,
     );
     let transform = super::objects::transform(&p, diags);
+    let word = |name: &str| match p.get(name) {
+        Some((Val::Word(w), _)) => Some(w.clone()),
+        _ => None,
+    };
+    let space = match word("space").as_deref() {
+        Some("object") => TextureSpace::Object,
+        Some("world") => TextureSpace::World,
+        _ => TextureSpace::Uv,
+    };
+    let texture_kind = if kind.name == "image" {
+        let (file, path_span) = match p.require("file", IMAGE, diags)? {
+            (Val::Str(f), s) => (f.clone(), *s),
+            _ => return None,
+        };
+        TextureKind::Image {
+            path: file.into(),
+            path_span,
+            wrap: word("wrap").unwrap_or_else(|| "repeat".into()),
+        }
+    } else {
+        TextureKind::Checker
+    };
     let mut r = Reader { p: &p, diags };
     let even = r.color("even", [1.0; 3]);
     let odd = r.color("odd", [0.0; 3]);
-    let space = match p.get("space") {
-        Some((Val::Word(w), _)) if w == "object" => TextureSpace::Object,
-        Some((Val::Word(w), _)) if w == "world" => TextureSpace::World,
-        _ => TextureSpace::Uv,
-    };
     Some(Texture {
+        kind: texture_kind,
         colors: [even, odd],
         space,
         transform,

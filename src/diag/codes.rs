@@ -72,6 +72,8 @@ pub const DUPLICATE_BLOCK: &str = "pts::check::duplicate_block";
 pub const UNKNOWN_TEXTURE: &str = "pts::check::unknown_texture";
 /// A texture given to a parameter that takes a plain value.
 pub const TEXTURE_NOT_ALLOWED: &str = "pts::check::texture_not_allowed";
+/// An image file that is missing, unreadable or of an unknown format.
+pub const IMAGE_FILE: &str = "pts::lower::image_file";
 /// A material that does not exist.
 pub const UNKNOWN_MATERIAL: &str = "pts::check::unknown_material";
 /// An included file that cannot be read.
@@ -274,6 +276,12 @@ pub const CATALOGUE: &[Entry] = &[
         title: "A texture given to a parameter that takes a plain value",
         explanation: "Only some parameters vary over a surface: a material's `diffuse` and `reflection`. The others (an index of refraction, a radius, a light's intensity) take one value.",
         example: "material { diffuse rgb 0.5 ior checker { } }",
+    },
+    Entry {
+        code: IMAGE_FILE,
+        title: "An image file that is missing, unreadable or of an unknown format",
+        explanation: "`image { file … }` reads PNG and JPEG (8-bit colour, decoded from sRGB), Radiance HDR and OpenEXR (linear) files, relative to the scene file. The label says what went wrong: the file is missing, has another extension, cannot be decoded, is larger than ptsc reads (1 GiB, 16,384² texels), or holds texels that are not finite, non-negative numbers.",
+        example: "material { diffuse image { file \"wood.gif\" } }",
     },
     Entry {
         code: INCLUDE_NOT_FOUND,

@@ -6,6 +6,7 @@
 pub mod cache;
 mod camera;
 mod collect;
+pub mod image;
 mod lights;
 mod material;
 pub mod mesh;
@@ -29,6 +30,7 @@ use cache::LowerCache;
 use camera::lower_camera;
 use collect::{Collected, PlainMesh};
 use glam::{Affine3A, DMat4, DVec3, Vec2, Vec3};
+use image::Images;
 use lights::{light_table, lower_light};
 use material::lower_material;
 use std::path::PathBuf;
@@ -121,10 +123,13 @@ pub fn lower(
 ) -> Result<Scene, Diagnostics> {
     let mut settings = scene.render.settings.clone();
     adjust(&mut settings);
-    let mut textures = Vec::new();
+    let (mut textures, mut images, mut diags) = (Vec::new(), Images::default(), Diagnostics::new());
     let materials: Vec<Material> = (scene.materials.iter())
-        .map(|m| lower_material(m, &mut textures))
+        .map(|m| lower_material(m, &mut textures, &mut images, &mut diags))
         .collect();
+    if diags.has_errors() {
+        return Err(diags);
+    }
     let materials = (materials, textures);
     if cache.is_one_off() {
         let geometry = build_geometry(scene, cache)?;
@@ -143,8 +148,9 @@ pub fn lower(
     Ok(finish(scene, settings, materials, geometry))
 }
 
-/// The files a checked scene names besides its sources: the meshes it
-/// reads, and the image its `render { output … }` asks for.
+/// The files a checked scene names besides its sources: the meshes and
+/// texture images it reads, and the image its `render { output … }` asks
+/// for.
 pub fn named_files(scene: &check::Scene) -> (Vec<PathBuf>, Option<PathBuf>) {
     let meshes = scene
         .objects
@@ -153,6 +159,15 @@ pub fn named_files(scene: &check::Scene) -> (Vec<PathBuf>, Option<PathBuf>) {
             check::Shape::Mesh { path, .. } => Some(path.clone()),
             _ => None,
         })
+        .chain(scene.materials.iter().flat_map(|m| {
+            [&m.diffuse_texture, &m.reflection_texture]
+                .into_iter()
+                .flatten()
+                .filter_map(|t| match &t.kind {
+                    check::TextureKind::Image { path, .. } => Some(path.clone()),
+                    check::TextureKind::Checker => None,
+                })
+        }))
         .collect();
     (meshes, scene.render.output.clone())
 }

@@ -6,8 +6,10 @@
 //! so an untextured material costs nothing.
 
 pub mod checker;
+pub mod image;
 
 use glam::{Affine3A, Vec2, Vec3};
+use std::sync::Arc;
 
 /// Where a texture is evaluated: the three spaces a pattern can live in.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -33,10 +35,18 @@ pub enum Space {
 }
 
 /// What a texture computes from its coordinates.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub enum Pattern {
     /// Two colours in alternating cells (see [`checker`]).
     Checker,
+    /// An image, read at (x, y) of the coordinates (in (u, v): the image
+    /// over the unit square; in object or world space: projected along z).
+    Image {
+        /// The texels (shared by every texture that reads the same file).
+        image: Arc<image::Image>,
+        /// What coordinates outside [0, 1] read.
+        wrap: image::Wrap,
+    },
 }
 
 /// A texture ready to evaluate.
@@ -50,7 +60,8 @@ pub struct Texture {
     /// transforms written on the texture: scaling a texture by 2 makes its
     /// cells twice as large).
     pub to_pattern: Affine3A,
-    /// The pattern's colours (for a checker: the even and the odd cells).
+    /// The pattern's colours (for a checker: the even and the odd cells;
+    /// unused by an image).
     pub colors: [Vec3; 2],
 }
 
@@ -58,7 +69,7 @@ impl Texture {
     /// The texture's colour at `at`.
     pub fn eval(&self, at: &ShadingPoint) -> Vec3 {
         let p = self.to_pattern.transform_point3(self.coordinates(at));
-        match self.pattern {
+        match &self.pattern {
             Pattern::Checker => {
                 let odd = match self.space {
                     Space::Uv => checker::odd_uv(Vec2::new(p.x, p.y)),
@@ -66,6 +77,7 @@ impl Texture {
                 };
                 self.colors[odd as usize]
             }
+            Pattern::Image { image, wrap } => image.lookup(Vec2::new(p.x, p.y), *wrap),
         }
     }
 

@@ -148,3 +148,60 @@ fn every_integrator_sees_the_texture() {
         }
     }
 }
+
+/// A PNG of 2 × 2 texels: top row red, green; bottom row blue, white.
+fn write_png(path: &Path) {
+    use image::ImageEncoder;
+    let rgb = [255u8, 0, 0, 0, 255, 0, 0, 0, 255, 255, 255, 255];
+    let mut out = Vec::new();
+    image::codecs::png::PngEncoder::new(&mut out)
+        .write_image(&rgb, 2, 2, image::ExtendedColorType::Rgb8)
+        .unwrap();
+    std::fs::write(path, out).unwrap();
+}
+
+#[test]
+fn an_image_texture_is_read_once_bilinear_and_a_dependency() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::create_dir(dir.path().join("maps")).unwrap();
+    write_png(&dir.path().join("maps/rgbw.png"));
+    let scene = dir.path().join("s.pts");
+    let text = "camera { position <0.5, 0.5, 2> look_at <0.5, 0.5, 0> }\nbackground rgb 1\n\
+        material m { diffuse image { file \"maps/rgbw.png\" wrap clamp } }\n\
+        quad { corner <0, 0, 0> edge1 <1, 0, 0> edge2 <0, 1, 0> material m }\n\
+        quad { corner <2, 0, 0> edge1 <1, 0, 0> edge2 <0, 1, 0> material m }\n";
+    let c = compile_str(&scene, text, Options::default());
+    let ir =
+        c.ir.unwrap_or_else(|| panic!("{}", c.diagnostics.render_human(&c.sources, false)));
+    assert!(c.dependencies.iter().any(|d| d.ends_with("maps/rgbw.png")));
+    // One material, one texture, one image read once.
+    let at = |u: f32, v: f32| {
+        let ray = Ray::new(Vec3::new(u, v, 1.0), -Vec3::Z, 0.0);
+        let hit = ir.intersect(&ray, 0.0, f32::INFINITY).expect("the quad");
+        ir.material_at(&hit, 0.0, &mut None).diffuse
+    };
+    // Texel centres; the bottom-left texel is blue. Diffuse colours are
+    // the image's, scaled only if the lobes exceed 1 (they do not).
+    assert!((at(0.25, 0.25) - Vec3::Z).abs().max_element() < 1e-5);
+    assert!((at(0.25, 0.75) - Vec3::X).abs().max_element() < 1e-5);
+    assert!((at(0.75, 0.75) - Vec3::Y).abs().max_element() < 1e-5);
+    // Bilinear between the bottom texels.
+    assert!(
+        (at(0.5, 0.25) - Vec3::new(0.5, 0.5, 1.0))
+            .abs()
+            .max_element()
+            < 1e-5
+    );
+
+    // A missing image: a diagnostic on the file name, the scene not rendered.
+    let text = text.replace("maps/rgbw.png", "maps/none.png");
+    let c = compile_str(&scene, &text, Options::default());
+    assert!(c.ir.is_none());
+    let d = c.diagnostics.items.iter().find(|d| d.is_error()).unwrap();
+    assert_eq!(d.code, "pts::lower::image_file");
+    let span = d.span.unwrap();
+    assert_eq!(
+        &text[span.start as usize..span.end as usize],
+        "\"maps/none.png\""
+    );
+}

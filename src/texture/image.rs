@@ -1,0 +1,180 @@
+//! Image textures: linear RGB texels looked up at (u, v) with bilinear
+//! filtering and a wrap mode. (0, 0) is the image's bottom-left corner and
+//! (1, 1) its top-right (rows are stored top to bottom, as files have them);
+//! texel centres sit at half-integers, as in pbrt and Mitsuba.
+
+use glam::{Vec2, Vec3};
+
+/// What (u, v) outside [0, 1] reads.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Wrap {
+    /// The image tiles the plane.
+    Repeat,
+    /// The edge texels extend outwards.
+    Clamp,
+    /// The image tiles the plane, every other copy mirrored.
+    Mirror,
+}
+
+impl Wrap {
+    /// The names of the wrap modes in the scene language.
+    pub const NAMES: [(&'static str, Wrap); 3] = [
+        ("repeat", Wrap::Repeat),
+        ("clamp", Wrap::Clamp),
+        ("mirror", Wrap::Mirror),
+    ];
+
+    /// The texel a column or row index `i` (any integer) reads in a side of
+    /// `n` texels.
+    pub fn texel(self, i: i64, n: usize) -> usize {
+        let n = n as i64;
+        let wrapped = match self {
+            Wrap::Repeat => i.rem_euclid(n),
+            Wrap::Clamp => i.clamp(0, n - 1),
+            Wrap::Mirror => {
+                let period = i.rem_euclid(2 * n);
+                if period < n {
+                    period
+                } else {
+                    2 * n - 1 - period
+                }
+            }
+        };
+        wrapped as usize
+    }
+}
+
+/// An image in linear RGB.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Image {
+    /// Width in texels.
+    pub width: usize,
+    /// Height in texels.
+    pub height: usize,
+    /// Texels, row by row from the top.
+    pub texels: Vec<Vec3>,
+}
+
+impl Image {
+    /// The bilinearly filtered colour at (u, v).
+    pub fn lookup(&self, uv: Vec2, wrap: Wrap) -> Vec3 {
+        // Continuous texel coordinates, x right and y down, centres at +0.5.
+        let x = uv.x * self.width as f32 - 0.5;
+        let y = (1.0 - uv.y) * self.height as f32 - 0.5;
+        if !(x.is_finite() && y.is_finite()) {
+            return Vec3::ZERO;
+        }
+        // Far outside, f32 → i64 saturates; the wrap then keeps the index in range.
+        let (x0, y0) = (x.floor(), y.floor());
+        let (fx, fy) = (x - x0, y - y0);
+        let (x0, y0) = (x0 as i64, y0 as i64);
+        let texel = |i: i64, j: i64| {
+            let (c, r) = (wrap.texel(i, self.width), wrap.texel(j, self.height));
+            self.texels[r * self.width + c]
+        };
+        let top = texel(x0, y0).lerp(texel(x0.saturating_add(1), y0), fx);
+        let bottom = texel(x0, y0.saturating_add(1))
+            .lerp(texel(x0.saturating_add(1), y0.saturating_add(1)), fx);
+        top.lerp(bottom, fy)
+    }
+}
+
+/// sRGB-encoded value (0..1) → linear (the IEC 61966-2-1 curve).
+pub fn srgb_to_linear(c: f32) -> f32 {
+    if c <= 0.040_45 {
+        c / 12.92
+    } else {
+        ((c + 0.055) / 1.055).powf(2.4)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// 2 × 2: top row red, green; bottom row blue, white.
+    fn image() -> Image {
+        Image {
+            width: 2,
+            height: 2,
+            texels: vec![Vec3::X, Vec3::Y, Vec3::Z, Vec3::ONE],
+        }
+    }
+
+    fn close(a: Vec3, b: Vec3) -> bool {
+        (a - b).abs().max_element() < 1e-5
+    }
+
+    #[test]
+    fn texel_centres_are_exact_and_between_them_is_bilinear() {
+        let im = image();
+        // (0, 0) is the bottom-left corner: the bottom-left texel's centre
+        // is at (0.25, 0.25).
+        assert!(close(
+            im.lookup(Vec2::new(0.25, 0.25), Wrap::Clamp),
+            Vec3::Z
+        ));
+        assert!(close(
+            im.lookup(Vec2::new(0.75, 0.25), Wrap::Clamp),
+            Vec3::ONE
+        ));
+        assert!(close(
+            im.lookup(Vec2::new(0.25, 0.75), Wrap::Clamp),
+            Vec3::X
+        ));
+        assert!(close(
+            im.lookup(Vec2::new(0.75, 0.75), Wrap::Clamp),
+            Vec3::Y
+        ));
+        // The centre of the image is the mean of the four.
+        let mean = (Vec3::X + Vec3::Y + Vec3::Z + Vec3::ONE) / 4.0;
+        assert!(close(im.lookup(Vec2::splat(0.5), Wrap::Clamp), mean));
+        // Halfway between two texels of the bottom row.
+        assert!(close(
+            im.lookup(Vec2::new(0.5, 0.25), Wrap::Clamp),
+            (Vec3::Z + Vec3::ONE) / 2.0
+        ));
+    }
+
+    #[test]
+    fn wrap_modes() {
+        assert_eq!(Wrap::Repeat.texel(-1, 4), 3);
+        assert_eq!(Wrap::Repeat.texel(9, 4), 1);
+        assert_eq!(Wrap::Clamp.texel(-5, 4), 0);
+        assert_eq!(Wrap::Clamp.texel(9, 4), 3);
+        assert_eq!(Wrap::Mirror.texel(-1, 4), 0);
+        assert_eq!(Wrap::Mirror.texel(4, 4), 3);
+        assert_eq!(Wrap::Mirror.texel(8, 4), 0);
+        let im = image();
+        // Repeat: a whole period away reads the same.
+        let uv = Vec2::new(0.3, 0.6);
+        assert!(close(
+            im.lookup(uv, Wrap::Repeat),
+            im.lookup(uv + Vec2::new(3.0, -2.0), Wrap::Repeat)
+        ));
+        // Clamp: far outside reads the edge.
+        assert!(close(
+            im.lookup(Vec2::new(-7.0, 0.25), Wrap::Clamp),
+            Vec3::Z
+        ));
+        // Mirror: just past the right edge reads the right edge.
+        assert!(close(
+            im.lookup(Vec2::new(1.25, 0.25), Wrap::Mirror),
+            Vec3::ONE
+        ));
+        // Extreme and non-finite coordinates stay in range.
+        for w in [Wrap::Repeat, Wrap::Clamp, Wrap::Mirror] {
+            assert!(im.lookup(Vec2::new(1e30, -1e30), w).is_finite());
+            assert_eq!(im.lookup(Vec2::new(f32::NAN, 0.0), w), Vec3::ZERO);
+        }
+    }
+
+    #[test]
+    fn srgb_curve() {
+        assert_eq!(srgb_to_linear(0.0), 0.0);
+        assert!((srgb_to_linear(1.0) - 1.0).abs() < 1e-6);
+        assert!((srgb_to_linear(0.5) - 0.214_04).abs() < 1e-4);
+        // Continuous at the join.
+        assert!((srgb_to_linear(0.040_45) - srgb_to_linear(0.040_451)).abs() < 1e-6);
+    }
+}

@@ -17,7 +17,11 @@ texture coordinates map onto Mitsuba's (geometry/texcoord.rs):
   sphere -> Mitsuba's local frame L = (-d.z, d.x, -d.y) of ptsc's direction d
             (a rotation) gives u' = 1 - u and v' = v; a checker's cells then
             swap, so Mitsuba's color0 is ptsc's `odd`;
-  checker `scale s` -> `to_uv` scale 1/s (ptsc's even = Mitsuba's color0).
+  checker `scale s` -> `to_uv` scale 1/s (ptsc's even = Mitsuba's color0);
+  bitmap -> Mitsuba reads v = 0 at an image's top row, ptsc at its bottom
+            (as pbrt and OBJ's vt; Mitsuba's OBJ loader flips v instead):
+            `to_uv` maps (u, v) to (u, 1 - v) on the rectangle, and to
+            (1 - u, 1 - v) on the turned sphere.
 """
 import argparse
 import json
@@ -41,6 +45,25 @@ def checker(color0, color1, scale):
         "to_uv": mi.ScalarTransform4f().scale([1.0 / scale, 1.0 / scale, 1.0])}}
 
 
+def bitmap(to_uv, wrap):
+    return {"type": "diffuse", "reflectance": {
+        "type": "bitmap", "filename": str(OUT / "cornell_128.png"), "wrap_mode": wrap,
+        "filter_type": "bilinear", "to_uv": to_uv}}
+
+
+def flip(su, sv):
+    """(u, v) -> (u, 1 - v) for su = 1, sv = -1; (1 - u, 1 - v) for -1, -1."""
+    return mi.ScalarTransform4f().translate([0.0 if su > 0 else 1.0, 1.0, 0.0]).scale([su, sv, 1.0])
+
+
+def turned_sphere(centre, radius):
+    """ptsc's sphere direction d = R L, R's rows (0,1,0), (0,0,-1), (-1,0,0)."""
+    m = np.eye(4)
+    m[:3, :3] = radius * np.array([[0, 1, 0], [0, 0, -1], [-1, 0, 0]], dtype=np.float64)
+    m[:3, 3] = centre
+    return mi.ScalarTransform4f(m.tolist())
+
+
 def rectangle(p0, e1, e2, bsdf):
     p0, e1, e2 = (np.asarray(x, dtype=np.float64) for x in (p0, e1, e2))
     n = np.cross(e1, e2)
@@ -51,11 +74,6 @@ def rectangle(p0, e1, e2, bsdf):
 
 
 def scene(res, spp):
-    # ptsc's sphere direction d = R L, R's rows (0,1,0), (0,0,-1), (-1,0,0).
-    centre, radius = [0.5, -0.35, 0.3], 0.6
-    m = np.eye(4)
-    m[:3, :3] = radius * np.array([[0, 1, 0], [0, 0, -1], [-1, 0, 0]], dtype=np.float64)
-    m[:3, 3] = centre
     return {
         "type": "scene",
         "integrator": {"type": "path", "max_depth": 4},
@@ -70,8 +88,11 @@ def scene(res, spp):
         "wall": rectangle([-1.8, -1, -1], [3.6, 0, 0], [0, 2.2, 0],
                           checker([0.8, 0.7, 0.2], [0.1, 0.2, 0.6], 0.25)),
         "floor": rectangle([-3, -1, 3], [6, 0, 0], [0, 0, -4], checker([0.8] * 3, [0.2] * 3, 0.1)),
-        "ball": {"type": "sphere", "to_world": mi.ScalarTransform4f(m.tolist()),
+        "ball": {"type": "sphere", "to_world": turned_sphere([0.5, -0.35, 0.3], 0.6),
                  "bsdf": checker([0.7, 0.1, 0.1], [0.9] * 3, 0.125)},
+        "poster": rectangle([-1.6, -0.2, -0.9], [1.2, 0, 0], [0, 1.2, 0], bitmap(flip(1, -1), "clamp")),
+        "globe": {"type": "sphere", "to_world": turned_sphere([-0.9, -0.6, 0.8], 0.4),
+                  "bsdf": bitmap(flip(-1, -1), "repeat")},
     }
 
 

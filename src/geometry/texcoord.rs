@@ -1,7 +1,8 @@
 //! Texture coordinates (u, v) of a point on each shape, in the shape's own
 //! frame (y up, as ptsc's world). Images are addressed with (0, 0) at their
 //! bottom-left corner and (1, 1) at the top-right, as in OpenGL, pbrt and
-//! Mitsuba's `bitmap` (which flips rows on load the same way).
+//! OBJ's `vt`; Mitsuba's `bitmap` reads v = 0 at an image's top row (its OBJ
+//! loader flips v to match), so its test flips v.
 //!
 //! | shape | u | v | differs from Mitsuba 3 |
 //! |---|---|---|---|

@@ -162,7 +162,16 @@ pub const MATERIAL: &[ParamSpec] = &[
 ];
 
 /// The kinds of texture a parameter may be given.
-pub const TEXTURE_KINDS: &[&str] = &["checker", "image"];
+pub const TEXTURE_KINDS: &[&str] = &["checker", "image", "noise", "turbulence", "marble", "wood"];
+
+/// `noise`, `turbulence`, `marble` and `wood { }`, besides
+/// [`TEXTURE_TRANSFORMS`].
+pub const NOISE: &[ParamSpec] = &[
+    p("low", Ty::Color, "rgb 0.2").of(Magnitude),
+    p("high", Ty::Color, "rgb 0.9").of(Magnitude),
+    p("octaves", Ty::Int, "4"),
+    p("space", Ty::Word(TEXTURE_SPACES), "world"),
+];
 
 /// The wrap modes of an image texture.
 pub const WRAPS: &[&str] = &["repeat", "clamp", "mirror"];
@@ -202,6 +211,7 @@ pub fn all_parameter_names() -> Vec<&'static str> {
         .chain(MATERIAL)
         .chain(CHECKER)
         .chain(IMAGE)
+        .chain(NOISE)
         .map(|p| p.name)
         .collect();
     names.sort_unstable();

@@ -43,6 +43,13 @@ pub struct Texture {
 pub enum TextureKind {
     /// `checker { }`
     Checker,
+    /// `noise`, `turbulence`, `marble` or `wood { … }`.
+    Noise {
+        /// The pattern's name.
+        pattern: String,
+        /// Octaves of its fractal sum.
+        octaves: u32,
+    },
     /// `image { file … }`
     Image {
         /// The image file (relative to the scene file once resolved).

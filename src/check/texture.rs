@@ -4,7 +4,7 @@
 
 use super::blocks::Reader;
 use super::eval::Env;
-use super::params::{Params, Val, CHECKER, IMAGE, TEXTURE_KINDS, TEXTURE_TRANSFORMS};
+use super::params::{Params, Val, CHECKER, IMAGE, NOISE, TEXTURE_KINDS, TEXTURE_TRANSFORMS};
 use super::scene::{Texture, TextureKind, TextureSpace};
 use crate::diag::{codes, did_you_mean, Diagnostic, Diagnostics};
 use crate::span::Span;
@@ -22,6 +22,7 @@ pub fn check_texture(
     let schema: &'static [super::params::ParamSpec] = match kind.name.as_str() {
         "checker" => CHECKER,
         "image" => IMAGE,
+        "noise" | "turbulence" | "marble" | "wood" => NOISE,
         _ => {
             let help = match did_you_mean(&kind.name, TEXTURE_KINDS.iter().copied()) {
                 Some(s) => format!("did you mean `{s}`?"),
@@ -52,10 +53,14 @@ pub fn check_texture(
         Some((Val::Word(w), _)) => Some(w.clone()),
         _ => None,
     };
+    let solid = schema.as_ptr() == NOISE.as_ptr();
     let space = match word("space").as_deref() {
         Some("object") => TextureSpace::Object,
         Some("world") => TextureSpace::World,
-        _ => TextureSpace::Uv,
+        Some(_) => TextureSpace::Uv,
+        // Solid patterns live in the object by default, the others on the surface.
+        None if solid => TextureSpace::Object,
+        None => TextureSpace::Uv,
     };
     let texture_kind = if kind.name == "image" {
         let (file, path_span) = match p.require("file", IMAGE, diags)? {
@@ -67,12 +72,22 @@ pub fn check_texture(
             path_span,
             wrap: word("wrap").unwrap_or_else(|| "repeat".into()),
         }
+    } else if solid {
+        let mut r = Reader { p: &p, diags };
+        let octaves = r.num_in("octaves", 1.0, 16.0, false, 6.0) as u32;
+        TextureKind::Noise {
+            pattern: kind.name.clone(),
+            octaves,
+        }
     } else {
         TextureKind::Checker
     };
     let mut r = Reader { p: &p, diags };
-    let even = r.color("even", [1.0; 3]);
-    let odd = r.color("odd", [0.0; 3]);
+    let (even, odd) = if solid {
+        (r.color("low", [0.0; 3]), r.color("high", [1.0; 3]))
+    } else {
+        (r.color("even", [1.0; 3]), r.color("odd", [0.0; 3]))
+    };
     Some(Texture {
         kind: texture_kind,
         colors: [even, odd],

@@ -6,6 +6,7 @@ use crate::diag::{codes, Diagnostic, Diagnostics};
 use crate::lower::image::Images;
 use crate::material::{self, Material, Textured};
 use crate::texture::image::Wrap;
+use crate::texture::noise::NoiseKind;
 use crate::texture::{Pattern, Space, Texture};
 use glam::{Affine3A, DVec3};
 
@@ -54,6 +55,12 @@ fn lower_texture(
     let rgb = |c: [f64; 3]| DVec3::from_array(c).as_vec3();
     let pattern = match &t.kind {
         check::TextureKind::Checker => Pattern::Checker,
+        check::TextureKind::Noise { pattern, octaves } => Pattern::Noise {
+            kind: (NoiseKind::NAMES.iter())
+                .find(|(n, _)| n == pattern)
+                .map_or(NoiseKind::Noise, |&(_, k)| k),
+            octaves: *octaves,
+        },
         check::TextureKind::Image {
             path,
             path_span,

@@ -165,7 +165,7 @@ pub fn named_files(scene: &check::Scene) -> (Vec<PathBuf>, Option<PathBuf>) {
                 .flatten()
                 .filter_map(|t| match &t.kind {
                     check::TextureKind::Image { path, .. } => Some(path.clone()),
-                    check::TextureKind::Checker => None,
+                    check::TextureKind::Checker | check::TextureKind::Noise { .. } => None,
                 })
         }))
         .collect();

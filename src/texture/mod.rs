@@ -7,6 +7,7 @@
 
 pub mod checker;
 pub mod image;
+pub mod noise;
 
 use glam::{Affine3A, Vec2, Vec3};
 use std::sync::Arc;
@@ -39,6 +40,13 @@ pub enum Space {
 pub enum Pattern {
     /// Two colours in alternating cells (see [`checker`]).
     Checker,
+    /// A solid noise pattern blending the two colours (see [`noise`]).
+    Noise {
+        /// Which pattern.
+        kind: noise::NoiseKind,
+        /// Octaves of its fractal sum.
+        octaves: u32,
+    },
     /// An image, read at (x, y) of the coordinates (in (u, v): the image
     /// over the unit square; in object or world space: projected along z).
     Image {
@@ -61,7 +69,7 @@ pub struct Texture {
     /// cells twice as large).
     pub to_pattern: Affine3A,
     /// The pattern's colours (for a checker: the even and the odd cells;
-    /// unused by an image).
+    /// for noise: the colours at 0 and 1; unused by an image).
     pub colors: [Vec3; 2],
 }
 
@@ -78,6 +86,9 @@ impl Texture {
                 self.colors[odd as usize]
             }
             Pattern::Image { image, wrap } => image.lookup(Vec2::new(p.x, p.y), *wrap),
+            Pattern::Noise { kind, octaves } => {
+                self.colors[0].lerp(self.colors[1], kind.value(p, *octaves))
+            }
         }
     }
 

@@ -205,3 +205,30 @@ fn an_image_texture_is_read_once_bilinear_and_a_dependency() {
         "\"maps/none.png\""
     );
 }
+
+#[test]
+fn noise_patterns_blend_their_colours_by_the_pattern_in_its_space() {
+    use ptsc::texture::noise::NoiseKind;
+    let wall = "quad { corner <-4, -4, 0> edge1 <8, 0, 0> edge2 <0, 8, 0> translate <0, 0, 0.5>";
+    for (name, kind) in NoiseKind::NAMES {
+        for p in [[0.3, 0.7, 0.5], [-2.2, 1.4, 0.5], [3.9, -3.1, 0.5]] {
+            // World space, scaled by 2: the pattern reads half the coordinates.
+            let texture =
+                format!("{name} {{ low rgb 0 high rgb 1 space world scale 2 octaves 3 }}");
+            let expect = kind.value(Vec3::from(p) / 2.0, 3);
+            let got = colour_at(wall, &texture, p);
+            assert!(
+                (got - expect).abs() < 1e-5,
+                "{name} at {p:?}: {got} vs {expect}"
+            );
+            // Object space by default: the wall's translate takes z back to 0.
+            let texture = format!("{name} {{ low rgb 0 high rgb 1 }}");
+            let expect = kind.value(Vec3::new(p[0], p[1], 0.0), 6);
+            let got = colour_at(wall, &texture, p);
+            assert!(
+                (got - expect).abs() < 1e-5,
+                "{name} (object) at {p:?}: {got} vs {expect}"
+            );
+        }
+    }
+}

@@ -278,12 +278,6 @@ pub const CATALOGUE: &[Entry] = &[
         example: "material { diffuse rgb 0.5 ior checker { } }",
     },
     Entry {
-        code: IMAGE_FILE,
-        title: "An image file that is missing, unreadable or of an unknown format",
-        explanation: "`image { file … }` reads PNG and JPEG (8-bit colour, decoded from sRGB), Radiance HDR and OpenEXR (linear) files, relative to the scene file. The label says what went wrong: the file is missing, has another extension, cannot be decoded, is larger than ptsc reads (1 GiB, 16,384² texels), or holds texels that are not finite, non-negative numbers.",
-        example: "material { diffuse image { file \"wood.gif\" } }",
-    },
-    Entry {
         code: INCLUDE_NOT_FOUND,
         title: "An included file that cannot be read",
         explanation: "The file named by `include` does not exist or cannot be read. The path is relative to the file that includes it.",
@@ -330,6 +324,12 @@ pub const CATALOGUE: &[Entry] = &[
         title: "A sphere or disk under a non-uniform scale",
         explanation: "Spheres and disks are stored exactly (centre and radius), so they take translations, rotations and uniform scales only. A non-uniform scale or a shear would make an ellipsoid or an ellipse: use a mesh for those.",
         example: "sphere { center <0, 0, 0> radius 1 scale <2, 1, 1> }",
+    },
+    Entry {
+        code: IMAGE_FILE,
+        title: "An image file that is missing, unreadable or of an unknown format",
+        explanation: "`image { file … }` reads PNG and JPEG (8-bit colour, decoded from sRGB), Radiance HDR and OpenEXR (linear) files, relative to the scene file. The label says what went wrong: the file is missing, has another extension, cannot be decoded, is larger than ptsc reads (1 GiB, 16,384² texels), or holds texels that are not finite, non-negative numbers.",
+        example: "material { diffuse image { file \"wood.gif\" } }",
     },
     Entry {
         code: UNUSED_MATERIAL,

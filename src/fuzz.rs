@@ -79,6 +79,35 @@ pub fn obj(bytes: &[u8]) -> bool {
     mesh_invariants(mesh::parse(Path::new("fuzz.obj"), bytes))
 }
 
+/// An image file given as bytes, decoded as PNG, JPEG and Radiance HDR in
+/// turn (the texture reader): when one decodes, an image of at least one
+/// texel, as many texels as its size says, every one finite and
+/// non-negative, and a lookup anywhere finite. Returns whether any decoded.
+pub fn image(bytes: &[u8]) -> bool {
+    use crate::texture::image::Wrap;
+    let mut any = false;
+    for format in [
+        ::image::ImageFormat::Png,
+        ::image::ImageFormat::Jpeg,
+        ::image::ImageFormat::Hdr,
+    ] {
+        let Ok(im) = crate::lower::image::decode(bytes, format) else {
+            continue;
+        };
+        any = true;
+        assert!(im.width > 0 && im.height > 0);
+        assert_eq!(im.texels.len(), im.width * im.height);
+        assert!(im
+            .texels
+            .iter()
+            .all(|t| t.is_finite() && t.min_element() >= 0.0));
+        for wrap in [Wrap::Repeat, Wrap::Clamp, Wrap::Mirror] {
+            assert!(im.lookup(glam::Vec2::new(-3.7, 1.2), wrap).is_finite());
+        }
+    }
+    any
+}
+
 fn mesh_invariants(parsed: Result<mesh::MeshData, String>) -> bool {
     let Ok(m) = parsed else { return false };
     let n = m.positions.len();

@@ -119,10 +119,12 @@ fn compile_from(path: &Path, bytes: Vec<u8>, options: Options, start: Instant) -
         if options.lower {
             let mut one_off = LowerCache::one_off();
             let cache = options.cache.unwrap_or(&mut one_off);
-            match crate::lower::lower(&scene, options.adjust, cache) {
+            let mut warnings = crate::diag::Diagnostics::new();
+            match crate::lower::lower(&scene, options.adjust, cache, &mut warnings) {
                 Ok(ir) => compiled.ir = Some(ir),
                 Err(d) => compiled.diagnostics.items.extend(d.items),
             }
+            compiled.diagnostics.items.extend(warnings.items);
             compiled.lower_seconds = start.elapsed().as_secs_f64() - check_seconds;
         }
     }

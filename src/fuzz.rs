@@ -79,19 +79,22 @@ pub fn obj(bytes: &[u8]) -> bool {
     mesh_invariants(mesh::parse(Path::new("fuzz.obj"), bytes))
 }
 
-/// An image file given as bytes, decoded as PNG, JPEG and Radiance HDR in
-/// turn (the texture reader): when one decodes, an image of at least one
+/// An image file given as bytes, decoded as PNG, JPEG, Radiance HDR and
+/// OpenEXR in turn (the texture reader; 8-bit ones as colours and as
+/// data): when one decodes, an image of at least one
 /// texel, as many texels as its size says, every one finite and
 /// non-negative, and a lookup anywhere finite. Returns whether any decoded.
 pub fn image(bytes: &[u8]) -> bool {
+    use crate::lower::image::{decode, decode_exr};
     use crate::texture::image::Wrap;
+    use ::image::ImageFormat::{Hdr, Jpeg, Png};
     let mut any = false;
-    for format in [
-        ::image::ImageFormat::Png,
-        ::image::ImageFormat::Jpeg,
-        ::image::ImageFormat::Hdr,
-    ] {
-        let Ok(im) = crate::lower::image::decode(bytes, format) else {
+    let decoded = [(Png, false), (Png, true), (Jpeg, false), (Hdr, false)]
+        .into_iter()
+        .map(|(format, data)| decode(bytes, format, data))
+        .chain(std::iter::once(decode_exr(bytes)));
+    for im in decoded {
+        let Ok(im) = im else {
             continue;
         };
         any = true;

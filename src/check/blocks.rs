@@ -226,12 +226,14 @@ impl Reader<'_> {
     }
 }
 
-/// The texture given to `name`, if one was.
-fn texture(p: &Params, name: &str) -> Option<Texture> {
-    match p.get(name) {
-        Some((Val::Texture(t), _)) => Some((**t).clone()),
-        _ => None,
-    }
+/// The textures given to a material's parameters.
+fn textures(p: &Params) -> Vec<(TextureInput, Texture)> {
+    (TextureInput::ALL.iter())
+        .filter_map(|&(name, input)| match p.get(name) {
+            Some((Val::Texture(t), _)) => Some((input, (**t).clone())),
+            _ => None,
+        })
+        .collect()
 }
 
 /// `render { }` → settings.
@@ -375,8 +377,8 @@ pub fn material(p: &Params, name: Option<String>, span: Span, diags: &mut Diagno
         name,
         diffuse: r.color("diffuse", if diffuse_given { [0.5; 3] } else { [0.0; 3] }),
         reflection: r.color("reflection", [0.0; 3]),
-        diffuse_texture: texture(p, "diffuse"),
-        reflection_texture: texture(p, "reflection"),
+        textures: textures(p),
+        bump_height: r.num_in("bump_height", -1e6, 1e6, false, 0.01),
         gloss: r.num_in("gloss", 0.0, 1.0, false, 0.0),
         transmission: r.num_in("transmission", 0.0, 1.0, false, 0.0),
         ior: r.num_in("ior", 1.0, 10.0, false, 1.5),
@@ -385,21 +387,37 @@ pub fn material(p: &Params, name: Option<String>, span: Span, diags: &mut Diagno
         two_sided: r.boolean("two_sided", false),
         span,
     };
-    // A textured colour stands for its brightest value in the checks below
-    // and in the lobes' weights.
-    let brightest = |t: &Texture| {
-        let max = |c: Rgb| c.iter().cloned().fold(0.0, f64::max);
-        if max(t.colors[0]) >= max(t.colors[1]) {
-            t.colors[0]
-        } else {
-            t.colors[1]
+    // A textured parameter stands for its brightest value in the checks
+    // below, in the lobes' weights and in a light's power (an image's
+    // brightest texel is known only once it is read: 1 until then).
+    for (input, t) in &m.textures {
+        let bright = match t.kind {
+            TextureKind::Image { .. } => [1.0; 3],
+            _ => t.brightest(),
+        };
+        let number = bright.iter().cloned().fold(0.0, f64::max).min(1.0);
+        match input {
+            TextureInput::Diffuse => m.diffuse = bright,
+            TextureInput::Reflection => m.reflection = bright,
+            TextureInput::Absorption => m.absorption = bright,
+            TextureInput::Emission => m.emission = bright,
+            TextureInput::Gloss => m.gloss = number,
+            TextureInput::Transmission => m.transmission = number,
+            TextureInput::NormalMap | TextureInput::Bump => {}
         }
-    };
-    if let Some(t) = &m.diffuse_texture {
-        m.diffuse = brightest(t);
     }
-    if let Some(t) = &m.reflection_texture {
-        m.reflection = brightest(t);
+    if let Some((_, s)) = p.get("bump_height") {
+        if !p.given("bump") {
+            diags.push(
+                Diagnostic::warning(
+                    codes::NO_EFFECT,
+                    "`bump_height` has no effect without `bump`",
+                    *s,
+                )
+                .with_label("ignored")
+                .with_help("give `bump` a texture, e.g. `bump noise { scale 0.05 }`"),
+            );
+        }
     }
     // A material with no lobe at all is the default grey diffuse (unless it only emits).
     let any_lobe = ["diffuse", "reflection", "transmission", "emission"]

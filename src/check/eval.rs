@@ -50,6 +50,9 @@ pub struct Env {
     frames: Vec<HashMap<String, Binding>>,
     /// Declarations that were read at least once.
     pub used: std::collections::HashSet<Span>,
+    /// Declared textures (`texture name kind { … }`), with the span of
+    /// each one's name.
+    pub textures: HashMap<String, (super::scene::Texture, Span)>,
 }
 
 impl Env {
@@ -58,6 +61,7 @@ impl Env {
         Env {
             frames: vec![HashMap::new()],
             used: Default::default(),
+            textures: HashMap::new(),
         }
     }
 
@@ -84,6 +88,11 @@ impl Env {
             .insert(name.to_string(), b);
     }
 
+    /// Whether a constant or loop variable has this name.
+    pub fn is_bound(&self, name: &str) -> bool {
+        self.frames.iter().any(|f| f.contains_key(name))
+    }
+
     /// Looks a name up, innermost first, marking it used.
     pub fn lookup(&mut self, name: &str) -> Option<Option<Value>> {
         for f in self.frames.iter().rev() {
@@ -97,7 +106,10 @@ impl Env {
 
     /// Every name in scope (for "did you mean").
     pub fn names(&self) -> Vec<String> {
-        self.frames.iter().flat_map(|f| f.keys().cloned()).collect()
+        (self.frames.iter().flat_map(|f| f.keys()))
+            .chain(self.textures.keys())
+            .cloned()
+            .collect()
     }
 }
 

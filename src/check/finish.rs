@@ -27,7 +27,12 @@ impl Checker {
                 self.diags.push(
                     Diagnostic::warning(
                         codes::UNUSED_CONSTANT,
-                        format!("constant `{name}` is never used"),
+                        match self.env.textures.get(name) {
+                            Some((_, decl)) if decl == span => {
+                                format!("texture `{name}` is never used")
+                            }
+                            _ => format!("constant `{name}` is never used"),
+                        },
                         *span,
                     )
                     .with_label("defined here")

@@ -309,6 +309,39 @@ impl Checker {
                     self.lets.push((name.name.clone(), name.span));
                 }
             }
+            Statement::Texture {
+                name,
+                kind,
+                block,
+                span,
+            } => {
+                let clash = (self.env.textures.get(&name.name).map(|t| t.1))
+                    .or_else(|| self.env.in_current_frame(&name.name).map(|b| b.decl));
+                if let Some(first) = clash.filter(|&first| first != name.span) {
+                    self.diags.push(
+                        Diagnostic::error(
+                            codes::DUPLICATE_NAME,
+                            format!("`{}` is already defined", name.name),
+                            name.span,
+                        )
+                        .with_label("defined again here")
+                        .with_secondary(first, "first defined here")
+                        .with_help("give each texture and constant its own name"),
+                    );
+                    return;
+                }
+                let texture =
+                    texture::check_texture(kind, block, *span, &mut self.env, &mut self.diags);
+                if let Some(mut texture) = texture {
+                    texture.resolve_path(folder_of(&self.sources, span.file));
+                    self.env
+                        .textures
+                        .insert(name.name.clone(), (texture, name.span));
+                    if self.let_spans.insert(name.span) {
+                        self.lets.push((name.name.clone(), name.span));
+                    }
+                }
+            }
             Statement::Include {
                 path, path_span, ..
             } => self.include(path, *path_span, file),

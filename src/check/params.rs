@@ -33,6 +33,8 @@ pub enum Ty {
     NumOrVec3,
     /// 12 or 16 numbers, row-major.
     Matrix,
+    /// Only a texture (`kind { … }` or a texture's name).
+    Texture,
 }
 
 impl Ty {
@@ -49,6 +51,7 @@ impl Ty {
             Ty::Word(ws) => format!("one of {}", ws.join(", ")),
             Ty::NumOrVec3 => "a number or a vector of 3".into(),
             Ty::Matrix => "a vector of 12 or 16 numbers".into(),
+            Ty::Texture => "a texture such as `image { file \"normal.png\" }`".into(),
         }
     }
 }
@@ -153,16 +156,47 @@ pub const MATERIAL: &[ParamSpec] = &[
         .of(Magnitude)
         .textured(),
     p("reflection", Ty::Color, "rgb 1").of(Magnitude).textured(),
-    p("gloss", Ty::Num, "0.3"),
-    p("transmission", Ty::Num, "1"),
+    p("gloss", Ty::Num, "0.3").textured(),
+    p("transmission", Ty::Num, "1").textured(),
     p("ior", Ty::Num, "1.5"),
-    p("absorption", Ty::Color, "rgb <0.5, 0.1, 0.1>").of(Magnitude),
-    p("emission", Ty::Color, "rgb 10").of(Radiance),
+    p("absorption", Ty::Color, "rgb <0.5, 0.1, 0.1>")
+        .of(Magnitude)
+        .textured(),
+    p("emission", Ty::Color, "rgb 10").of(Radiance).textured(),
     p("two_sided", Ty::Bool, "true"),
+    p(
+        "normal_map",
+        Ty::Texture,
+        "image { file \"bricks_normal.png\" }",
+    )
+    .textured(),
+    p("bump", Ty::Texture, "noise { scale 0.05 }").textured(),
+    p("bump_height", Ty::Num, "0.01").of(Magnitude),
 ];
 
 /// The kinds of texture a parameter may be given.
-pub const TEXTURE_KINDS: &[&str] = &["checker", "image", "noise", "turbulence", "marble", "wood"];
+pub const TEXTURE_KINDS: &[&str] = &[
+    "checker",
+    "image",
+    "noise",
+    "turbulence",
+    "marble",
+    "wood",
+    "gradient",
+    "stripes",
+];
+
+/// A texture's colour map: its stops, in order, replacing its two colours
+/// (`low`/`high`, `even`/`odd`).
+pub const COLOR_MAP: &[ParamSpec] = &[t("stop", Ty::Num, "0.5 rgb <0.8, 0.2, 0.1>")];
+
+/// `gradient { }` and `stripes { }`, besides [`COLOR_MAP`] and
+/// [`TEXTURE_TRANSFORMS`].
+pub const GRADIENT: &[ParamSpec] = &[
+    p("low", Ty::Color, "rgb 0.2").of(Magnitude),
+    p("high", Ty::Color, "rgb 0.9").of(Magnitude),
+    p("space", Ty::Word(TEXTURE_SPACES), "world"),
+];
 
 /// `noise`, `turbulence`, `marble` and `wood { }`, besides
 /// [`TEXTURE_TRANSFORMS`].
@@ -212,6 +246,8 @@ pub fn all_parameter_names() -> Vec<&'static str> {
         .chain(CHECKER)
         .chain(IMAGE)
         .chain(NOISE)
+        .chain(GRADIENT)
+        .chain(COLOR_MAP)
         .map(|p| p.name)
         .collect();
     names.sort_unstable();
@@ -323,11 +359,13 @@ pub enum Val {
     Texture(Box<super::scene::Texture>),
 }
 
-/// What an entry gives a parameter: a value, or a texture (its kind, its
-/// block, the whole entry's span).
+/// What an entry gives a parameter: a value, a texture (its kind, its
+/// block, the whole entry's span) or a colour stop (read by the texture's
+/// own check).
 enum Source<'a> {
     Value(&'a crate::syntax::ast::Expr),
     Texture(&'a crate::syntax::ast::Ident, &'a Block, Span),
+    Stop(Span),
 }
 
 impl Source<'_> {
@@ -335,9 +373,23 @@ impl Source<'_> {
     fn span(&self) -> Span {
         match self {
             Source::Value(e) => e.span,
-            Source::Texture(_, _, span) => *span,
+            Source::Texture(_, _, span) | Source::Stop(span) => *span,
         }
     }
+}
+
+/// The texture `value` names, if it is a bare name that is not a constant
+/// but a declared texture (`texture oak wood { … }`).
+fn named_texture(value: &crate::syntax::ast::Expr, env: &mut Env) -> Option<super::scene::Texture> {
+    let ExprKind::Name(name) = &value.kind else {
+        return None;
+    };
+    if env.is_bound(name) {
+        return None;
+    }
+    let (texture, decl) = env.textures.get(name)?.clone();
+    env.used.insert(decl);
+    Some(texture)
 }
 
 /// The checked parameters of one block.
@@ -387,6 +439,7 @@ impl Params {
                     block,
                     span,
                 } => (name, Source::Texture(kind, block, *span)),
+                Entry::Stop { word, span, .. } => (word, Source::Stop(*span)),
                 Entry::Material { .. } => continue,
             };
             if name.name == "material" {
@@ -457,6 +510,12 @@ impl Params {
             }
             params.given.push(spec.name);
             let val = match value {
+                // Stops are read with their texture (`check::texture`).
+                Source::Stop(_) => continue,
+                Source::Value(value) if spec.texture => match named_texture(value, env) {
+                    Some(t) => Some(Val::Texture(Box::new(t))),
+                    None => typed_value(spec, value, env, diags),
+                },
                 Source::Value(value) => typed_value(spec, value, env, diags),
                 Source::Texture(kind, block, span) if spec.texture => {
                     super::texture::check_texture(kind, block, span, env, diags)
@@ -471,7 +530,7 @@ impl Params {
                         )
                         .with_label(format!("a `{}` texture", kind.name))
                         .with_help(format!(
-                            "`{}` takes {}; textures go on a material's `diffuse` and `reflection`",
+                            "`{}` takes {}; textures go on a material's colours and numbers (`diffuse`, `gloss`, `emission`, …) and its `normal_map` and `bump`",
                             spec.name,
                             spec.ty.describe()
                         )),

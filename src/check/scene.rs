@@ -27,9 +27,9 @@ pub struct RenderSettings {
 pub struct Texture {
     /// What it computes.
     pub kind: TextureKind,
-    /// The colours of the pattern's two kinds of cell (a checker's even and
-    /// odd cells).
-    pub colors: [Rgb; 2],
+    /// Its colour map: stops (position in [0, 1], colour) in order; a
+    /// checker's even cells read it at 0, odd ones at 1.
+    pub colors: Vec<(f64, Rgb)>,
     /// `uv`, `object` or `world`.
     pub space: TextureSpace,
     /// The texture's transforms, in the order written.
@@ -43,6 +43,10 @@ pub struct Texture {
 pub enum TextureKind {
     /// `checker { }`
     Checker,
+    /// `gradient { }`: a ramp along x.
+    Gradient,
+    /// `stripes { }`: bands across x.
+    Stripes,
     /// `noise`, `turbulence`, `marble` or `wood { … }`.
     Noise {
         /// The pattern's name.
@@ -58,7 +62,78 @@ pub enum TextureKind {
         path_span: Span,
         /// `repeat`, `clamp` or `mirror`.
         wrap: String,
+        /// Whether `path` is relative to the scene file's folder yet.
+        resolved: bool,
     },
+}
+
+impl Texture {
+    /// Resolves the file an image texture reads against the folder of the
+    /// scene file that names it (once: a resolved path is absolute or
+    /// already joined, and joining again would double a relative folder).
+    pub fn resolve_path(&mut self, folder: &Path) {
+        if let TextureKind::Image { path, resolved, .. } = &mut self.kind {
+            if !*resolved {
+                *path = folder.join(&*path);
+                *resolved = true;
+            }
+        }
+    }
+
+    /// The brightest colour of its map (by largest component): what the
+    /// parameter it gives stands for in checks and weights.
+    pub fn brightest(&self) -> Rgb {
+        let max = |c: &Rgb| c.iter().cloned().fold(0.0, f64::max);
+        (self.colors.iter().map(|s| s.1))
+            .fold([0.0; 3], |a, c| if max(&c) > max(&a) { c } else { a })
+    }
+}
+
+/// A material parameter a texture can give.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum TextureInput {
+    /// `diffuse`
+    Diffuse,
+    /// `reflection`
+    Reflection,
+    /// `gloss`
+    Gloss,
+    /// `transmission`
+    Transmission,
+    /// `absorption`
+    Absorption,
+    /// `emission`
+    Emission,
+    /// `normal_map`: a tangent-space normal map.
+    NormalMap,
+    /// `bump`: a height field.
+    Bump,
+}
+
+impl TextureInput {
+    /// Every input with its parameter's name.
+    pub const ALL: [(&'static str, TextureInput); 8] = [
+        ("diffuse", TextureInput::Diffuse),
+        ("reflection", TextureInput::Reflection),
+        ("gloss", TextureInput::Gloss),
+        ("transmission", TextureInput::Transmission),
+        ("absorption", TextureInput::Absorption),
+        ("emission", TextureInput::Emission),
+        ("normal_map", TextureInput::NormalMap),
+        ("bump", TextureInput::Bump),
+    ];
+
+    /// Whether its texture holds data rather than colours: an 8-bit image
+    /// given to it is read as it is, not decoded from sRGB.
+    pub fn is_data(self) -> bool {
+        !matches!(
+            self,
+            TextureInput::Diffuse
+                | TextureInput::Reflection
+                | TextureInput::Absorption
+                | TextureInput::Emission
+        )
+    }
 }
 
 /// The coordinates a texture reads.
@@ -102,10 +177,11 @@ pub struct Material {
     pub diffuse: Rgb,
     /// Specular (mirror or glossy) reflectance.
     pub reflection: Rgb,
-    /// A texture for `diffuse` (which then holds its brightest colour).
-    pub diffuse_texture: Option<Texture>,
-    /// A texture for `reflection` (likewise).
-    pub reflection_texture: Option<Texture>,
+    /// The parameters given textures (a textured colour or number above
+    /// holds the texture's brightest value).
+    pub textures: Vec<(TextureInput, Texture)>,
+    /// World units of displacement per unit of the `bump` texture.
+    pub bump_height: f64,
     /// Roughness of the reflection lobe, 0 = mirror.
     pub gloss: f64,
     /// Weight of the smooth dielectric lobe.
@@ -129,8 +205,8 @@ impl Material {
             name: None,
             diffuse: [0.5; 3],
             reflection: [0.0; 3],
-            diffuse_texture: None,
-            reflection_texture: None,
+            textures: Vec::new(),
+            bump_height: 0.0,
             gloss: 0.0,
             transmission: 0.0,
             ior: 1.5,
@@ -143,13 +219,8 @@ impl Material {
 
     /// Resolves the files its textures read against the scene file's folder.
     pub fn resolve_paths(&mut self, folder: &Path) {
-        for t in [&mut self.diffuse_texture, &mut self.reflection_texture]
-            .into_iter()
-            .flatten()
-        {
-            if let TextureKind::Image { path, .. } = &mut t.kind {
-                *path = folder.join(&*path);
-            }
+        for (_, t) in &mut self.textures {
+            t.resolve_path(folder);
         }
     }
 

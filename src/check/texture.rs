@@ -1,14 +1,16 @@
-//! Textures given to parameters (`diffuse checker { … }`): the kind is
-//! looked up, the block checked against the kind's schema and the
-//! texture's transforms.
+//! Textures given to parameters (`diffuse checker { … }`) or declared by
+//! name (`texture oak wood { … }`): the kind is looked up, the block
+//! checked against the kind's schema, its colour map and its transforms.
 
 use super::blocks::Reader;
-use super::eval::Env;
-use super::params::{Params, Val, CHECKER, IMAGE, NOISE, TEXTURE_KINDS, TEXTURE_TRANSFORMS};
-use super::scene::{Texture, TextureKind, TextureSpace};
+use super::eval::{eval, Env, Value};
+use super::params::{
+    Params, Val, CHECKER, COLOR_MAP, GRADIENT, IMAGE, NOISE, TEXTURE_KINDS, TEXTURE_TRANSFORMS,
+};
+use super::scene::{Rgb, Texture, TextureKind, TextureSpace};
 use crate::diag::{codes, did_you_mean, Diagnostic, Diagnostics};
 use crate::span::Span;
-use crate::syntax::ast::{Block, Ident};
+use crate::syntax::ast::{Block, Entry, Ident};
 
 /// The texture `kind { block }` written at `span`; `None` after reporting
 /// why not.
@@ -23,6 +25,7 @@ pub fn check_texture(
         "checker" => CHECKER,
         "image" => IMAGE,
         "noise" | "turbulence" | "marble" | "wood" => NOISE,
+        "gradient" | "stripes" => GRADIENT,
         _ => {
             let help = match did_you_mean(&kind.name, TEXTURE_KINDS.iter().copied()) {
                 Some(s) => format!("did you mean `{s}`?"),
@@ -40,20 +43,19 @@ pub fn check_texture(
             return None;
         }
     };
-    let p = Params::collect(
-        kind.name.clone(),
-        kind.span,
-        block,
-        &[schema, TEXTURE_TRANSFORMS],
-        env,
-        diags,
-    );
+    let is_image = kind.name == "image";
+    let schemas: &[&'static [super::params::ParamSpec]] = if is_image {
+        &[schema, TEXTURE_TRANSFORMS]
+    } else {
+        &[schema, COLOR_MAP, TEXTURE_TRANSFORMS]
+    };
+    let p = Params::collect(kind.name.clone(), kind.span, block, schemas, env, diags);
     let transform = super::objects::transform(&p, diags);
     let word = |name: &str| match p.get(name) {
         Some((Val::Word(w), _)) => Some(w.clone()),
         _ => None,
     };
-    let solid = schema.as_ptr() == NOISE.as_ptr();
+    let solid = schema.as_ptr() != CHECKER.as_ptr() && !is_image;
     let space = match word("space").as_deref() {
         Some("object") => TextureSpace::Object,
         Some("world") => TextureSpace::World,
@@ -62,37 +64,178 @@ pub fn check_texture(
         None if solid => TextureSpace::Object,
         None => TextureSpace::Uv,
     };
-    let texture_kind = if kind.name == "image" {
-        let (file, path_span) = match p.require("file", IMAGE, diags)? {
-            (Val::Str(f), s) => (f.clone(), *s),
-            _ => return None,
-        };
-        TextureKind::Image {
-            path: file.into(),
-            path_span,
-            wrap: word("wrap").unwrap_or_else(|| "repeat".into()),
+    let texture_kind = match kind.name.as_str() {
+        "image" => {
+            let (file, path_span) = match p.require("file", IMAGE, diags)? {
+                (Val::Str(f), s) => (f.clone(), *s),
+                _ => return None,
+            };
+            TextureKind::Image {
+                path: file.into(),
+                path_span,
+                wrap: word("wrap").unwrap_or_else(|| "repeat".into()),
+                resolved: false,
+            }
         }
-    } else if solid {
-        let mut r = Reader { p: &p, diags };
-        let octaves = r.num_in("octaves", 1.0, 16.0, false, 6.0) as u32;
-        TextureKind::Noise {
-            pattern: kind.name.clone(),
-            octaves,
+        "checker" => TextureKind::Checker,
+        "gradient" => TextureKind::Gradient,
+        "stripes" => TextureKind::Stripes,
+        _ => {
+            let mut r = Reader { p: &p, diags };
+            let octaves = r.num_in("octaves", 1.0, 16.0, false, 6.0) as u32;
+            TextureKind::Noise {
+                pattern: kind.name.clone(),
+                octaves,
+            }
         }
-    } else {
-        TextureKind::Checker
     };
-    let mut r = Reader { p: &p, diags };
-    let (even, odd) = if solid {
-        (r.color("low", [0.0; 3]), r.color("high", [1.0; 3]))
+    let (low, high) = if schema.as_ptr() == CHECKER.as_ptr() {
+        ("even", "odd")
     } else {
-        (r.color("even", [1.0; 3]), r.color("odd", [0.0; 3]))
+        ("low", "high")
+    };
+    let stops = color_stops(block, env, diags);
+    let colors = match stops {
+        Some((stops, first)) => {
+            for name in [low, high] {
+                if let Some((_, s)) = p.get(name) {
+                    diags.push(
+                        Diagnostic::error(
+                            codes::DUPLICATE_PARAM,
+                            format!("`{name}` and `stop` together in `{}`", kind.name),
+                            *s,
+                        )
+                        .with_label("the colour stops give the colours")
+                        .with_secondary(first, "first stop here")
+                        .with_help(format!(
+                            "remove `{name}`, or the stops; `{low}` and `{high}` are the stops at 0 and 1"
+                        )),
+                    );
+                }
+            }
+            stops
+        }
+        None => {
+            let mut r = Reader { p: &p, diags };
+            let (d0, d1) = if is_image || low == "even" {
+                ([1.0; 3], [0.0; 3])
+            } else {
+                ([0.0; 3], [1.0; 3])
+            };
+            vec![(0.0, r.color(low, d0)), (1.0, r.color(high, d1))]
+        }
     };
     Some(Texture {
         kind: texture_kind,
-        colors: [even, odd],
+        colors,
         space,
         transform,
         span,
     })
+}
+
+/// The colour stops of a texture's block, with the first one's span;
+/// `None` when it has none. Each position must lie in [0, 1] and follow
+/// the one before; each colour be a colour ≥ 0.
+fn color_stops(
+    block: &Block,
+    env: &mut Env,
+    diags: &mut Diagnostics,
+) -> Option<(Vec<(f64, Rgb)>, Span)> {
+    let mut stops = Vec::new();
+    let mut first = None;
+    let mut previous: Option<(f64, Span)> = None;
+    for entry in &block.entries {
+        let Entry::Stop {
+            position,
+            color,
+            span,
+            ..
+        } = entry
+        else {
+            continue;
+        };
+        first.get_or_insert(*span);
+        let at = eval(position, env, diags);
+        let c = eval(color, env, diags);
+        let at = match at {
+            Some(Value::Num(x)) if (0.0..=1.0).contains(&x) => x,
+            Some(Value::Num(x)) => {
+                diags.push(
+                    Diagnostic::error(
+                        codes::OUT_OF_RANGE,
+                        format!("a colour stop at {x}, outside [0, 1]"),
+                        position.span,
+                    )
+                    .with_label("must be from 0 to 1")
+                    .with_help("stops place colours along the pattern's values, 0 to 1"),
+                );
+                continue;
+            }
+            Some(other) => {
+                diags.push(
+                    Diagnostic::error(
+                        codes::TYPE_MISMATCH,
+                        format!("a stop's position is a number, found {}", other.type_name()),
+                        position.span,
+                    )
+                    .with_label("not a number")
+                    .with_help("write `stop 0.5 rgb <1, 0, 0>`"),
+                );
+                continue;
+            }
+            None => continue,
+        };
+        let c = match c {
+            Some(Value::Color(c)) if c.iter().all(|&x| (0.0..=1e9).contains(&x)) => c,
+            Some(Value::Color(_)) => {
+                diags.push(
+                    Diagnostic::error(
+                        codes::OUT_OF_RANGE,
+                        "a colour stop's colour must have components from 0 to 1e9",
+                        color.span,
+                    )
+                    .with_label("out of range")
+                    .with_help("colour components are ≥ 0"),
+                );
+                continue;
+            }
+            Some(other) => {
+                diags.push(
+                    Diagnostic::error(
+                        codes::TYPE_MISMATCH,
+                        format!("a stop's colour is a colour, found {}", other.type_name()),
+                        color.span,
+                    )
+                    .with_label("not a colour")
+                    .with_help("write `stop 0.5 rgb <1, 0, 0>`"),
+                );
+                continue;
+            }
+            None => continue,
+        };
+        if let Some((before, before_span)) = previous {
+            if at < before {
+                diags.push(
+                    Diagnostic::error(
+                        codes::UNORDERED_STOPS,
+                        format!("a colour stop at {at} after one at {before}"),
+                        position.span,
+                    )
+                    .with_label("comes before the previous stop")
+                    .with_secondary(before_span, "the previous stop")
+                    .with_help("write the stops in order of position, from 0 to 1"),
+                );
+                continue;
+            }
+        }
+        previous = Some((at, position.span));
+        stops.push((at, c));
+    }
+    let first = first?;
+    if stops.is_empty() {
+        // Every stop had an error (reported): the texture keeps one colour.
+        stops.push((0.0, [0.0; 3]));
+    }
+    Some((stops, first))
 }

@@ -72,8 +72,12 @@ pub const DUPLICATE_BLOCK: &str = "pts::check::duplicate_block";
 pub const UNKNOWN_TEXTURE: &str = "pts::check::unknown_texture";
 /// A texture given to a parameter that takes a plain value.
 pub const TEXTURE_NOT_ALLOWED: &str = "pts::check::texture_not_allowed";
+/// Colour stops of a texture out of order.
+pub const UNORDERED_STOPS: &str = "pts::check::unordered_stops";
 /// An image file that is missing, unreadable or of an unknown format.
 pub const IMAGE_FILE: &str = "pts::lower::image_file";
+/// Warning: a texture that reads texture coordinates on a mesh that has none.
+pub const NO_TEXCOORDS: &str = "pts::lower::no_texcoords";
 /// A material that does not exist.
 pub const UNKNOWN_MATERIAL: &str = "pts::check::unknown_material";
 /// An included file that cannot be read.
@@ -274,8 +278,14 @@ pub const CATALOGUE: &[Entry] = &[
     Entry {
         code: TEXTURE_NOT_ALLOWED,
         title: "A texture given to a parameter that takes a plain value",
-        explanation: "Only some parameters vary over a surface: a material's `diffuse` and `reflection`. The others (an index of refraction, a radius, a light's intensity) take one value.",
+        explanation: "Only a material's parameters vary over a surface: its colours (`diffuse`, `reflection`, `absorption`, `emission`), its numbers `gloss` and `transmission`, and its `normal_map` and `bump`. The others (an index of refraction, a radius, a light's intensity) take one value.",
         example: "material { diffuse rgb 0.5 ior checker { } }",
+    },
+    Entry {
+        code: UNORDERED_STOPS,
+        title: "Colour stops out of order",
+        explanation: "A texture's colour map lists its stops by position, from 0 to 1; a stop placed before the one written above it is refused (two stops at the same position make a sharp edge).",
+        example: "material { diffuse marble { stop 0.6 rgb 1 stop 0.2 rgb 0 } }",
     },
     Entry {
         code: INCLUDE_NOT_FOUND,
@@ -328,8 +338,14 @@ pub const CATALOGUE: &[Entry] = &[
     Entry {
         code: IMAGE_FILE,
         title: "An image file that is missing, unreadable or of an unknown format",
-        explanation: "`image { file … }` reads PNG and JPEG (8-bit colour, decoded from sRGB), Radiance HDR and OpenEXR (linear) files, relative to the scene file. The label says what went wrong: the file is missing, has another extension, cannot be decoded, is larger than ptsc reads (1 GiB, 16,384² texels), or holds texels that are not finite, non-negative numbers.",
+        explanation: "`image { file … }` reads PNG and JPEG (8-bit: colours decoded from sRGB, data such as normal maps as they are), Radiance HDR and OpenEXR (linear) files, relative to the scene file. The label says what went wrong: the file is missing, has another extension, cannot be decoded, is larger than ptsc reads (1 GiB, 16,384² texels), or holds texels that are not finite, non-negative numbers.",
         example: "material { diffuse image { file \"wood.gif\" } }",
+    },
+    Entry {
+        code: NO_TEXCOORDS,
+        title: "A texture in (u, v) on a mesh without texture coordinates",
+        explanation: "A texture that reads the surface's (u, v) (an image, a `checker`, or any texture with `space uv`) was given to a mesh whose file has no texture coordinates (OBJ `vt`, PLY `u v`). Each triangle then reads its own barycentrics, so the texture repeats once per triangle, which is rarely meant. Export the mesh with UVs, or use a solid texture (`space object`).",
+        example: "mesh { file \"bunny.ply\" material { diffuse image { file \"fur.png\" } } }",
     },
     Entry {
         code: UNUSED_MATERIAL,

@@ -174,17 +174,19 @@ impl Shape {
         }
     }
 
-    /// A point sampled uniformly by area from `u` in [0,1)², with its normal.
-    pub fn sample_area(&self, u: Vec2) -> (Vec3, Vec3) {
+    /// A point sampled uniformly by area from `u` in [0,1)², with its normal
+    /// and its surface parameters (as a hit there has them: a quad's (s, t),
+    /// a triangle's barycentrics, zero for the others).
+    pub fn sample_area(&self, u: Vec2) -> (Vec3, Vec3, Vec2) {
         match *self {
             Shape::Sphere { center, radius } => {
                 let n = crate::sampling::warp::uniform_sphere(u);
-                (center + radius * n, n)
+                (center + radius * n, n, Vec2::ZERO)
             }
-            Shape::Quad { p, e1, e2 } => (p + u.x * e1 + u.y * e2, e1.cross(e2).normalize()),
+            Shape::Quad { p, e1, e2 } => (p + u.x * e1 + u.y * e2, e1.cross(e2).normalize(), u),
             Shape::Triangle { p0, e1, e2, .. } => {
                 let b = crate::sampling::warp::uniform_triangle(u);
-                (p0 + b.x * e1 + b.y * e2, e1.cross(e2).normalize())
+                (p0 + b.x * e1 + b.y * e2, e1.cross(e2).normalize(), b)
             }
             Shape::Disk {
                 center,
@@ -193,9 +195,9 @@ impl Shape {
             } => {
                 let d = crate::sampling::warp::concentric_disk(u);
                 let (t, b) = super::orthonormal_basis(normal);
-                (center + radius * (d.x * t + d.y * b), normal)
+                (center + radius * (d.x * t + d.y * b), normal, Vec2::ZERO)
             }
-            Shape::Plane { point, normal } => (point, normal),
+            Shape::Plane { point, normal } => (point, normal, Vec2::ZERO),
         }
     }
 }
@@ -231,7 +233,7 @@ mod tests {
         for s in shapes {
             for i in 0..16 {
                 let u = Vec2::new((i % 4) as f32 / 4.0 + 0.1, (i / 4) as f32 / 4.0 + 0.1);
-                let (p, n) = s.sample_area(u);
+                let (p, n, _) = s.sample_area(u);
                 let r = Ray::new(p + n, -n, 0.0);
                 let h = s.intersect(&r, 1e-4, 2.0).expect("sample on the surface");
                 assert!((h.t - 1.0).abs() < 1e-3);

@@ -64,6 +64,40 @@ pub fn triangle(barycentrics: Vec2, uvs: [Vec2; 3]) -> Vec2 {
 /// vertices: its barycentrics are its texture coordinates.
 pub const TRIANGLE_DEFAULT: [Vec2; 3] = [Vec2::ZERO, Vec2::X, Vec2::Y];
 
+/// How a sphere's point moves with its texture coordinates: (∂p/∂u,
+/// ∂p/∂v) at the point `local` (relative to the centre, in the sphere's
+/// frame) of [`sphere`]'s mapping. u is the longitude φ / 2π, so ∂p/∂u is
+/// 2π times the tangent of the parallel, (z, 0, −x); v is 1 − θ / π, so
+/// ∂p/∂v is π times the tangent of the meridian towards the north pole.
+/// Both vanish at the poles.
+pub fn sphere_derivatives(local: Vec3) -> (Vec3, Vec3) {
+    let rho = (local.x * local.x + local.z * local.z).sqrt();
+    let dpdu = TAU * Vec3::new(local.z, 0.0, -local.x);
+    if rho == 0.0 {
+        return (dpdu, Vec3::ZERO);
+    }
+    let k = -local.y / rho;
+    let dpdv = std::f32::consts::PI * Vec3::new(k * local.x, rho, k * local.z);
+    (dpdu, dpdv)
+}
+
+/// (∂p/∂u, ∂p/∂v) of a triangle with edges `e1` = p1 − p0 and `e2` =
+/// p2 − p0 whose vertices have texture coordinates `uvs` (pbrt-v4's
+/// `Triangle::InteractionFromIntersection`: the 2 × 2 system of the edges
+/// in (u, v)); `None` when the UVs are degenerate (the triangle is a line
+/// or a point in (u, v)).
+pub fn triangle_derivatives(e1: Vec3, e2: Vec3, uvs: [Vec2; 3]) -> Option<(Vec3, Vec3)> {
+    let (duv1, duv2) = (uvs[1] - uvs[0], uvs[2] - uvs[0]);
+    let det = duv1.x * duv2.y - duv1.y * duv2.x;
+    if det.abs() < 1e-12 {
+        return None;
+    }
+    let inv = 1.0 / det;
+    let dpdu = (duv2.y * e1 - duv1.y * e2) * inv;
+    let dpdv = (duv1.x * e2 - duv2.x * e1) * inv;
+    (dpdu.is_finite() && dpdv.is_finite()).then_some((dpdu, dpdv))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -127,5 +161,51 @@ mod tests {
         ));
         let b = Vec2::new(0.3, 0.6);
         assert!(close(triangle(b, TRIANGLE_DEFAULT), b));
+    }
+
+    /// A derivative checked against a finite difference of the mapping.
+    fn near(a: Vec3, b: Vec3, tolerance: f32) -> bool {
+        (a - b).length() <= tolerance * (1.0 + b.length())
+    }
+
+    #[test]
+    fn sphere_derivatives_match_finite_differences() {
+        // Points p(u, v) on a sphere of radius 2 from the inverse mapping.
+        let point = |u: f32, v: f32| {
+            let (theta, phi) = ((1.0 - v) * std::f32::consts::PI, u * TAU);
+            2.0 * Vec3::new(
+                -theta.sin() * phi.sin(),
+                theta.cos(),
+                -theta.sin() * phi.cos(),
+            )
+        };
+        for &(u, v) in &[(0.5, 0.5), (0.1, 0.3), (0.8, 0.9), (0.3, 0.05)] {
+            let p = point(u, v);
+            assert!(close(sphere(p / 2.0), Vec2::new(u, v)));
+            let h = 1e-3;
+            let du = (point(u + h, v) - point(u - h, v)) / (2.0 * h);
+            let dv = (point(u, v + h) - point(u, v - h)) / (2.0 * h);
+            let (dpdu, dpdv) = sphere_derivatives(p);
+            assert!(near(dpdu, du, 1e-2), "{dpdu} vs {du}");
+            assert!(near(dpdv, dv, 1e-2), "{dpdv} vs {dv}");
+        }
+        // Facing +z: u runs towards +x, v up.
+        let (dpdu, dpdv) = sphere_derivatives(Vec3::Z);
+        assert!(dpdu.x > 0.0 && dpdv.y > 0.0);
+        assert_eq!(sphere_derivatives(Vec3::Y).1, Vec3::ZERO);
+    }
+
+    #[test]
+    fn triangle_derivatives_invert_the_uv_mapping() {
+        let (e1, e2) = (Vec3::new(2.0, 0.0, 0.0), Vec3::new(0.0, 0.0, -3.0));
+        // Default UVs are the barycentrics: the edges themselves.
+        let (dpdu, dpdv) = triangle_derivatives(e1, e2, TRIANGLE_DEFAULT).unwrap();
+        assert!(near(dpdu, e1, 1e-6) && near(dpdv, e2, 1e-6));
+        // Swapped and scaled UVs.
+        let uvs = [Vec2::ZERO, Vec2::new(0.0, 0.5), Vec2::new(0.25, 0.0)];
+        let (dpdu, dpdv) = triangle_derivatives(e1, e2, uvs).unwrap();
+        assert!(near(dpdu, e2 * 4.0, 1e-6) && near(dpdv, e1 * 2.0, 1e-6));
+        let line = [Vec2::ZERO, Vec2::X, Vec2::X * 2.0];
+        assert!(triangle_derivatives(e1, e2, line).is_none());
     }
 }

@@ -22,12 +22,16 @@ pub enum Debug {
 
 impl Integrator for Debug {
     fn li(&self, scene: &Scene, ray: Ray, _sampler: &mut Sampler) -> Vec3 {
-        let Some(hit) = scene.intersect(&ray, T_MIN, f32::INFINITY) else {
+        let Some(mut hit) = scene.intersect(&ray, T_MIN, f32::INFINITY) else {
             return Vec3::ZERO;
         };
         match self {
-            Debug::Normals => hit.n_shading * 0.5 + Vec3::splat(0.5),
-            Debug::Albedo => scene.material_at(&hit, ray.time, &mut None).albedo(),
+            Debug::Normals => {
+                // The normal textures bend, too.
+                scene.material_at(&mut hit, -ray.d, ray.time, &mut None);
+                hit.n_shading * 0.5 + Vec3::splat(0.5)
+            }
+            Debug::Albedo => (scene.material_at(&mut hit, -ray.d, ray.time, &mut None)).albedo(),
             Debug::Depth => Vec3::splat(hit.t / (1.0 + hit.t)),
             Debug::Uv => {
                 let uv = scene.texcoords(&hit, ray.time);

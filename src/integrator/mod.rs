@@ -53,9 +53,13 @@ pub fn direct_light_mis(
     };
     let u = sampler.next_2d();
     let light = &scene.lights[li_idx as usize];
-    let Some(ls) = light.sample(|prim| scene.material_of(prim), hit.p, time, u) else {
+    let emitted = |prim, q, uv, n, w| scene.emitted_at(prim, q, uv, n, w, time);
+    let Some(ls) = light.sample(emitted, hit.p, time, u) else {
         return Vec3::ZERO;
     };
+    if crosses_surface(scene, hit, wo, ls.wi) {
+        return Vec3::ZERO;
+    }
     let (f, bsdf_pdf) = material.eval(wo, ls.wi, hit.n_shading);
     if f == Vec3::ZERO {
         return Vec3::ZERO;
@@ -77,6 +81,17 @@ pub fn direct_light_mis(
     let light_pdf = ls.pdf * pick_pdf;
     let w = power_heuristic(light_pdf, bsdf_pdf);
     f * ls.li * cos * w / light_pdf
+}
+
+/// Whether `wi` leaves a hit whose shading normal a texture bent on the
+/// other side of the surface than `wo`: such a reflection would leak light
+/// through it (Veach 1997, §5.3: the geometric normal decides). Smooth
+/// meshes keep their shading normals' answer, as in pbrt and Mitsuba.
+#[inline]
+pub fn crosses_surface(scene: &Scene, hit: &Hit, wo: Vec3, wi: Vec3) -> bool {
+    hit.n_shading != hit.n_geo
+        && scene.bends_normal(hit.prim)
+        && (wi.dot(hit.n_geo) > 0.0) != (wo.dot(hit.n_geo) > 0.0)
 }
 
 /// Pdf with which [`direct_light_mis`] would have produced a ray from `from`

@@ -34,7 +34,7 @@ pub fn path_li(scene: &Scene, mut ray: Ray, sampler: &mut Sampler, nee: bool) ->
     let mut segments = 0u32;
     loop {
         segments += 1;
-        let Some(hit) = scene.intersect(&ray, T_MIN, f32::INFINITY) else {
+        let Some(mut hit) = scene.intersect(&ray, T_MIN, f32::INFINITY) else {
             if let Some(env) = scene.env_light {
                 let w = if nee && prev_pdf > 0.0 {
                     let lp =
@@ -47,9 +47,9 @@ pub fn path_li(scene: &Scene, mut ray: Ray, sampler: &mut Sampler, nee: bool) ->
             }
             break;
         };
-        let mut textured = None;
-        let material = scene.material_at(&hit, ray.time, &mut textured);
         let wo = -ray.d;
+        let mut textured = None;
+        let material = scene.material_at(&mut hit, wo, ray.time, &mut textured);
         // Beer's law: leaving a dielectric means we travelled inside it.
         if material.transmission > 0.0
             && ray.d.dot(hit.n_geo) > 0.0
@@ -85,7 +85,10 @@ pub fn path_li(scene: &Scene, mut ray: Ray, sampler: &mut Sampler, nee: bool) ->
         else {
             break;
         };
-        if !bs.weight.is_finite() || bs.weight == Vec3::ZERO {
+        if !bs.weight.is_finite()
+            || bs.weight == Vec3::ZERO
+            || (!bs.transmitted && super::crosses_surface(scene, &hit, wo, bs.wi))
+        {
             break;
         }
         beta *= bs.weight;

@@ -38,12 +38,12 @@ impl Integrator for Whitted {
 /// with `weight` (largest channel of the product of factors so far) in the pixel.
 pub fn trace(scene: &Scene, ray: Ray, sampler: &mut Sampler, segment: u32, weight: f32) -> Vec3 {
     let s = &scene.settings;
-    let Some(hit) = scene.intersect(&ray, T_MIN, f32::INFINITY) else {
+    let Some(mut hit) = scene.intersect(&ray, T_MIN, f32::INFINITY) else {
         return scene.background;
     };
-    let mut textured = None;
-    let m = scene.material_at(&hit, ray.time, &mut textured);
     let wo = -ray.d;
+    let mut textured = None;
+    let m = scene.material_at(&mut hit, wo, ray.time, &mut textured);
     let mut l = m.emitted(wo, hit.n_geo);
     if segment >= s.max_depth {
         return l;
@@ -137,13 +137,16 @@ fn direct(
         let mut acc = Vec3::ZERO;
         for _ in 0..count {
             let Some(ls) = light.sample(
-                |prim| scene.material_of(prim),
+                |prim, q, uv, n, w| scene.emitted_at(prim, q, uv, n, w, time),
                 hit.p,
                 time,
                 sampler.next_2d(),
             ) else {
                 continue;
             };
+            if super::crosses_surface(scene, hit, wo, ls.wi) {
+                continue;
+            }
             let (f, _) = m.eval(wo, ls.wi, hit.n_shading);
             if f == Vec3::ZERO {
                 continue;

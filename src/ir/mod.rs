@@ -3,6 +3,7 @@
 //! [`lower`](lower::lower); every primitive remembers the span it came from.
 
 pub mod settings;
+mod surface;
 
 use crate::accel::bvh4::{Bvh4, TreeHit};
 use crate::accel::ray_count;
@@ -10,9 +11,9 @@ use crate::camera::Camera;
 use crate::geometry::shape::{Shape, ShapeHit};
 use crate::geometry::{Aabb, Ray};
 use crate::light::Light;
-use crate::material::{Material, Textured};
+use crate::material::Material;
 use crate::span::Span;
-use crate::texture::{ShadingPoint, Texture};
+use crate::texture::Texture;
 use glam::{Affine3A, Vec2, Vec3};
 use settings::Settings;
 use std::sync::Arc;
@@ -47,15 +48,6 @@ pub struct Hit {
     /// edges, a triangle's barycentrics (b1, b2); zero for the others
     /// (see [`Scene::texcoords`]).
     pub uv: Vec2,
-}
-
-/// `d` in the frame of a plane with normal `n` (any length): x and z from
-/// [`crate::geometry::orthonormal_basis`] of the unit normal (for +y, x
-/// along +x and z along −z), y along the normal; and the length of `n`.
-fn in_plane(d: Vec3, n: Vec3) -> (Vec3, f32) {
-    let scale = n.length();
-    let (x, z) = crate::geometry::orthonormal_basis(n / scale);
-    (Vec3::new(d.dot(x), d.dot(n) / scale, d.dot(z)), scale)
 }
 
 /// The scene, ready to render.
@@ -126,54 +118,30 @@ impl Scene {
         &self.materials[self.object_material[object] as usize]
     }
 
-    /// The material at a hit at `time`: the material of the primitive, or,
-    /// when it has textured colours, the material they make there, kept in
-    /// `slot`. (A plain reference, not a `Cow`: the integrators then read
+    /// The material at a hit at `time` seen from `wo`: the material of the
+    /// primitive, or, when it has textured parameters, the material they
+    /// make there, kept in `slot` (a texture that bends normals sets the
+    /// hit's shading normal). (A plain reference, not a `Cow`: the integrators then read
     /// a constant material as before; a `Cow` cost 2 % of a render.)
     #[inline(always)]
     pub fn material_at<'a>(
         &'a self,
-        hit: &Hit,
+        hit: &mut Hit,
+        wo: Vec3,
         time: f32,
         slot: &'a mut Option<Material>,
     ) -> &'a Material {
         let m = self.material_of(hit.prim);
         match &m.textured {
             None => m,
-            Some(t) => slot.insert(self.textured_material(t, hit, time)),
+            Some(t) => slot.insert(self.textured_material(t, hit, wo, time)),
         }
     }
 
-    /// A textured material's parameters evaluated at a hit.
-    #[inline(never)]
-    fn textured_material(&self, t: &Textured, hit: &Hit, time: f32) -> Material {
-        let at = self.shading_point(hit, time);
-        let mut params = t.params.clone();
-        if let Some(i) = t.diffuse {
-            params.diffuse = self.textures[i as usize].eval(&at);
-        }
-        if let Some(i) = t.reflection {
-            params.reflection = self.textures[i as usize].eval(&at);
-        }
-        Material::new(&params)
-    }
-
-    /// Where textures are evaluated at a hit at `time`: its texture
-    /// coordinates, the point in its object's frame (at time 0) and in the
-    /// world.
-    pub fn shading_point(&self, hit: &Hit, time: f32) -> ShadingPoint {
-        let velocity = self
-            .prims
-            .get(hit.prim as usize)
-            .map_or(Vec3::ZERO, |p| p.velocity);
-        let at_rest = hit.p - velocity * time;
-        ShadingPoint {
-            uv: self.texcoords(hit, time),
-            object: self
-                .from_world(hit.prim)
-                .map_or(at_rest, |m| m.transform_point3(at_rest)),
-            world: hit.p,
-        }
+    /// Whether primitive `prim`'s material bends its shading normal (a
+    /// normal or bump map).
+    pub fn bends_normal(&self, prim: u32) -> bool {
+        (self.material_of(prim).textured.as_ref()).is_some_and(|t| t.normal.is_some())
     }
 
     /// The light that primitive `prim` is, if it is emissive.
@@ -259,56 +227,6 @@ impl Scene {
             prim: i,
             uv,
         })
-    }
-
-    /// The world → object transform of primitive `prim`'s object (`None`:
-    /// the identity).
-    pub fn from_world(&self, prim: u32) -> Option<&Affine3A> {
-        let object = self.prim_object[prim as usize];
-        let i = self
-            .object_from_world
-            .binary_search_by_key(&object, |&(o, _)| o)
-            .ok()?;
-        Some(&self.object_from_world[i].1)
-    }
-
-    /// The texture coordinates of a hit at `time` (see
-    /// [`crate::geometry::texcoord`] for each shape's convention).
-    pub fn texcoords(&self, hit: &Hit, time: f32) -> Vec2 {
-        use crate::geometry::texcoord;
-        let Some(record) = self.prims.get(hit.prim as usize) else {
-            // A plain triangle: static, no vertex attributes.
-            return hit.uv;
-        };
-        // The point where the primitive is at time 0, then in its object's frame.
-        let p = hit.p - record.velocity * time;
-        let from_world = self.from_world(hit.prim);
-        let direction = |v: Vec3| from_world.map_or(v, |m| m.transform_vector3(v));
-        match record.shape {
-            Shape::Triangle { attributes, .. } => match self.uvs.get(attributes as usize) {
-                Some(&vertex_uvs) => texcoord::triangle(hit.uv, vertex_uvs),
-                None => hit.uv,
-            },
-            Shape::Quad { .. } => hit.uv,
-            Shape::Sphere { center, .. } => {
-                texcoord::sphere(direction(p - center).normalize_or(Vec3::Y))
-            }
-            Shape::Disk {
-                center,
-                normal,
-                radius,
-            } => {
-                // In the object's frame (a similarity: lengths scale by
-                // |direction(normal)|, the same along every axis).
-                let n = direction(normal);
-                let (local, scale) = in_plane(direction(p - center), n);
-                texcoord::disk(local, radius * scale)
-            }
-            Shape::Plane { point, normal } => {
-                let (local, _) = in_plane(direction(p - point), direction(normal));
-                texcoord::plane(local, 1.0)
-            }
-        }
     }
 
     /// Whether anything blocks the segment from `ray.o` to `ray.at(t_max)`.

@@ -113,12 +113,14 @@ impl Light {
         }
     }
 
-    /// Samples light arriving at `p` (`material_of` as for [`Light::power`]).
-    /// `time` is the ray's: a moving emitter is sampled where it is then.
+    /// Samples light arriving at `p`. `time` is the ray's: a moving emitter
+    /// is sampled where it is then. `emitted(prim, q, uv, n, wo)` is the
+    /// radiance an emissive primitive sends towards `wo` from its point `q`
+    /// with surface parameters `uv` and normal `n` (its texture read there).
     #[inline(always)]
-    pub fn sample<'m>(
+    pub fn sample(
         &self,
-        material_of: impl Fn(u32) -> &'m Material,
+        emitted: impl Fn(u32, Vec3, Vec2, Vec3, Vec3) -> Vec3,
         p: Vec3,
         time: f32,
         u: Vec2,
@@ -129,7 +131,7 @@ impl Light {
                 shape,
                 velocity,
             } => {
-                let (q, n) = shape.sample_area(u);
+                let (q, n, uv) = shape.sample_area(u);
                 let q = q + *velocity * time;
                 let to = q - p;
                 let d2 = to.length_squared();
@@ -138,9 +140,8 @@ impl Light {
                 }
                 let dist = d2.sqrt();
                 let wi = to / dist;
-                let m = material_of(*prim);
                 let cos_l = n.dot(-wi);
-                let li = m.emitted(-wi, n);
+                let li = emitted(*prim, q, uv, n, -wi);
                 if li == Vec3::ZERO || cos_l.abs() < 1e-7 {
                     return None;
                 }

@@ -1,5 +1,6 @@
 //! What lowering may keep between two compiles of the same scene (for
-//! `watch`): loaded meshes, keyed by path and content, and the whole geometry
+//! `watch`): loaded meshes and texture images, keyed by path and content,
+//! and the whole geometry
 //! (primitives and BVH), keyed by a hash of everything it depends on.
 
 use super::mesh::{self, MeshData};
@@ -23,6 +24,8 @@ pub struct LowerCache {
     geometry: Option<(u64, Geometry)>,
     /// Mesh files read and parsed so far (a cache hit does not count).
     pub mesh_loads: usize,
+    /// Texture images, kept while their files are unchanged.
+    pub images: super::image::Images,
     /// BVHs built so far.
     pub bvh_builds: usize,
 }
@@ -173,7 +176,13 @@ mod tests {
 
     fn lower_text(dir: &Path, text: &str, cache: &mut LowerCache) -> crate::ir::Scene {
         let c = check_str(&dir.join("s.pts"), text);
-        lower(c.scene.as_ref().unwrap(), &|_| {}, cache).unwrap()
+        lower(
+            c.scene.as_ref().unwrap(),
+            &|_| {},
+            cache,
+            &mut Default::default(),
+        )
+        .unwrap()
     }
 
     #[test]

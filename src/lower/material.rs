@@ -2,13 +2,14 @@
 //! scene's.
 
 use crate::check;
+use crate::check::scene::TextureInput;
 use crate::diag::{codes, Diagnostic, Diagnostics};
 use crate::lower::image::Images;
-use crate::material::{self, Material, Textured};
+use crate::material::{self, Input, Material, NormalInput, Textured};
 use crate::texture::image::Wrap;
 use crate::texture::noise::NoiseKind;
-use crate::texture::{Pattern, Space, Texture};
-use glam::{Affine3A, DVec3};
+use crate::texture::{ColorMap, Pattern, Space, Texture};
+use glam::{Affine3A, DVec3, Vec3};
 
 /// A checked material in the renderer's f32; its textures are pushed onto
 /// `textures` and named by index, their images read through `images`; an
@@ -19,7 +20,7 @@ pub fn lower_material(
     images: &mut Images,
     diags: &mut Diagnostics,
 ) -> Material {
-    let params = material::Params {
+    let mut params = material::Params {
         diffuse: DVec3::from_array(m.diffuse).as_vec3(),
         reflection: DVec3::from_array(m.reflection).as_vec3(),
         gloss: m.gloss as f32,
@@ -29,32 +30,71 @@ pub fn lower_material(
         emission: DVec3::from_array(m.emission).as_vec3(),
         two_sided: m.two_sided,
     };
-    let mut material = Material::new(&params);
-    if m.diffuse_texture.is_some() || m.reflection_texture.is_some() {
-        let mut add = |t: &Option<check::Texture>| {
-            let texture = lower_texture(t.as_ref()?, images, diags)?;
-            textures.push(texture);
-            Some(textures.len() as u32 - 1)
-        };
-        material.textured = Some(Box::new(Textured {
-            params,
-            diffuse: add(&m.diffuse_texture),
-            reflection: add(&m.reflection_texture),
-        }));
+    if m.textures.is_empty() {
+        return Material::new(&params);
     }
+    let mut textured = Textured {
+        params: params.clone(),
+        inputs: Vec::new(),
+        normal: None,
+    };
+    for (input, t) in &m.textures {
+        let Some(texture) = lower_texture(t, input.is_data(), images, diags) else {
+            continue;
+        };
+        // What the parameter stands for in the lobes' weights and in a
+        // light's power: the brightest colour the texture gives.
+        let bright = texture.brightest();
+        textures.push(texture);
+        let index = textures.len() as u32 - 1;
+        let input = match input {
+            TextureInput::Diffuse => {
+                params.diffuse = bright;
+                Input::Diffuse
+            }
+            TextureInput::Reflection => {
+                params.reflection = bright;
+                Input::Reflection
+            }
+            TextureInput::Absorption => Input::Absorption,
+            TextureInput::Emission => {
+                params.emission = bright;
+                Input::Emission
+            }
+            TextureInput::Gloss => Input::Gloss,
+            TextureInput::Transmission => Input::Transmission,
+            TextureInput::NormalMap => {
+                textured.normal = Some(NormalInput::Map(index));
+                continue;
+            }
+            TextureInput::Bump => {
+                textured.normal = Some(NormalInput::Bump {
+                    texture: index,
+                    height: m.bump_height as f32,
+                });
+                continue;
+            }
+        };
+        textured.inputs.push((input, index));
+    }
+    let mut material = Material::new(&params);
+    material.textured = Some(Box::new(textured));
     material
 }
 
 /// A checked texture in the renderer's f32: its transforms inverted, to
-/// take the coordinates it reads into its pattern's.
+/// take the coordinates it reads into its pattern's; an image's 8-bit
+/// values read linearly when it holds `data`.
 fn lower_texture(
     t: &check::Texture,
+    data: bool,
     images: &mut Images,
     diags: &mut Diagnostics,
 ) -> Option<Texture> {
-    let rgb = |c: [f64; 3]| DVec3::from_array(c).as_vec3();
     let pattern = match &t.kind {
         check::TextureKind::Checker => Pattern::Checker,
+        check::TextureKind::Gradient => Pattern::Gradient,
+        check::TextureKind::Stripes => Pattern::Stripes,
         check::TextureKind::Noise { pattern, octaves } => Pattern::Noise {
             kind: (NoiseKind::NAMES.iter())
                 .find(|(n, _)| n == pattern)
@@ -65,7 +105,8 @@ fn lower_texture(
             path,
             path_span,
             wrap,
-        } => match images.get(path) {
+            ..
+        } => match images.get(path, data) {
             Ok(image) => Pattern::Image {
                 image,
                 wrap: (Wrap::NAMES.iter())
@@ -88,6 +129,9 @@ fn lower_texture(
             }
         },
     };
+    let stops = (t.colors.iter())
+        .map(|&(at, c)| (at as f32, DVec3::from_array(c).as_vec3()))
+        .collect();
     Some(Texture {
         pattern,
         space: match t.space {
@@ -96,6 +140,7 @@ fn lower_texture(
             check::TextureSpace::World => Space::World,
         },
         to_pattern: Affine3A::from_mat4(t.transform.inverse().as_mat4()),
-        colors: [rgb(t.colors[0]), rgb(t.colors[1])],
+        // The checker keeps stops in order; a lone colour is a flat map.
+        colors: ColorMap::new(stops).unwrap_or_else(|| ColorMap::two(Vec3::ZERO, Vec3::ZERO)),
     })
 }

@@ -116,23 +116,34 @@ fn within_domain(b: Aabb, velocity: Vec3, (t0, t1): (f32, f32)) -> bool {
 /// motion or mesh changed: a camera, material or settings edit in `watch`
 /// neither reloads meshes nor rebuilds the BVH.
 /// [`LowerCache::one_off`] keeps nothing.
+/// Warnings (a texture in (u, v) on a mesh without UVs) are pushed onto
+/// `warnings`.
 pub fn lower(
     scene: &check::Scene,
     adjust: &dyn Fn(&mut Settings),
     cache: &mut LowerCache,
+    warnings: &mut Diagnostics,
 ) -> Result<Scene, Diagnostics> {
     let mut settings = scene.render.settings.clone();
     adjust(&mut settings);
-    let (mut textures, mut images, mut diags) = (Vec::new(), Images::default(), Diagnostics::new());
+    let (mut textures, mut diags) = (Vec::new(), Diagnostics::new());
+    let mut one_off_images = Images::default();
+    let images = if cache.is_one_off() {
+        &mut one_off_images
+    } else {
+        &mut cache.images
+    };
     let materials: Vec<Material> = (scene.materials.iter())
-        .map(|m| lower_material(m, &mut textures, &mut images, &mut diags))
+        .map(|m| lower_material(m, &mut textures, images, &mut diags))
         .collect();
+    images.keep_only_used();
     if diags.has_errors() {
         return Err(diags);
     }
     let materials = (materials, textures);
     if cache.is_one_off() {
         let geometry = build_geometry(scene, cache)?;
+        warn_missing_texcoords(scene, &geometry, warnings);
         return Ok(finish(scene, settings, materials, geometry));
     }
     let key = cache.geometry_key(scene);
@@ -145,7 +156,37 @@ pub fn lower(
             g
         }
     };
+    warn_missing_texcoords(scene, &geometry, warnings);
     Ok(finish(scene, settings, materials, geometry))
+}
+
+/// Warns about each mesh without texture coordinates whose material has
+/// a texture that reads them.
+fn warn_missing_texcoords(scene: &check::Scene, geometry: &Geometry, warnings: &mut Diagnostics) {
+    for &o in geometry.meshes_without_uvs.iter() {
+        let object = &scene.objects[o as usize];
+        let material = &scene.materials[object.material];
+        let Some((_, texture)) =
+            (material.textures.iter()).find(|(_, t)| t.space == check::TextureSpace::Uv)
+        else {
+            continue;
+        };
+        let check::Shape::Mesh { path_span, .. } = &object.shape else {
+            continue;
+        };
+        warnings.push(
+            Diagnostic::warning(
+                codes::NO_TEXCOORDS,
+                "this mesh has no texture coordinates for its texture to read",
+                *path_span,
+            )
+            .with_label("no `vt` (OBJ) or `u v` (PLY) in this file")
+            .with_secondary(texture.span, "this texture reads (u, v)")
+            .with_help(
+                "each triangle reads its own barycentrics instead; export the mesh with UVs, or give the texture `space object`",
+            ),
+        );
+    }
 }
 
 /// The files a checked scene names besides its sources: the meshes and
@@ -160,13 +201,10 @@ pub fn named_files(scene: &check::Scene) -> (Vec<PathBuf>, Option<PathBuf>) {
             _ => None,
         })
         .chain(scene.materials.iter().flat_map(|m| {
-            [&m.diffuse_texture, &m.reflection_texture]
-                .into_iter()
-                .flatten()
-                .filter_map(|t| match &t.kind {
-                    check::TextureKind::Image { path, .. } => Some(path.clone()),
-                    check::TextureKind::Checker | check::TextureKind::Noise { .. } => None,
-                })
+            m.textures.iter().filter_map(|(_, t)| match &t.kind {
+                check::TextureKind::Image { path, .. } => Some(path.clone()),
+                _ => None,
+            })
         }))
         .collect();
     (meshes, scene.render.output.clone())
@@ -185,6 +223,8 @@ pub struct Geometry {
     unbounded: Arc<Vec<u32>>,
     /// The object each primitive came from.
     prim_object: Arc<Vec<u32>>,
+    /// The mesh objects whose files have no texture coordinates.
+    meshes_without_uvs: Arc<Vec<u32>>,
 }
 
 fn build_geometry(scene: &check::Scene, cache: &mut LowerCache) -> Result<Geometry, Diagnostics> {
@@ -196,6 +236,7 @@ fn build_geometry(scene: &check::Scene, cache: &mut LowerCache) -> Result<Geomet
     // transforms and motion, and the first too small for f32.
     let mut out_of_range: Option<usize> = None;
     let mut too_small: Option<usize> = None;
+    let mut meshes_without_uvs = Vec::new();
     let shutter = (scene.camera.shutter.0 as f32, scene.camera.shutter.1 as f32);
     for (o, obj) in scene.objects.iter().enumerate() {
         let m = obj.transform;
@@ -328,6 +369,9 @@ fn build_geometry(scene: &check::Scene, cache: &mut LowerCache) -> Result<Geomet
                     Vec::new()
                 };
                 let use_uvs = !data.uvs.is_empty();
+                if !use_uvs {
+                    meshes_without_uvs.push(o as u32);
+                }
                 // A static mesh without vertex attributes keeps its triangles
                 // as vertex indices: most of them will never need a record.
                 let plain = !use_normals && !use_uvs && velocity == Vec3::ZERO;
@@ -473,6 +517,7 @@ fn build_geometry(scene: &check::Scene, cache: &mut LowerCache) -> Result<Geomet
         wide: Arc::new(wide),
         unbounded: Arc::new(unbounded),
         prim_object: Arc::new(prim_object),
+        meshes_without_uvs: Arc::new(meshes_without_uvs),
     })
 }
 
@@ -494,6 +539,7 @@ fn finish(
         bounds,
         wide,
         unbounded,
+        ..
     } = geometry;
 
     // Lights: emissive primitives (in order), explicit lights, the background.

@@ -42,16 +42,50 @@ pub struct Material {
     pub textured: Option<Box<Textured>>,
 }
 
-/// The textured colours of a material: indices into the scene's textures,
-/// with the material's parameters to complete at each hit.
+/// The textured parameters of a material: indices into the scene's
+/// textures, with the material's parameters to complete at each hit.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Textured {
     /// The parameters (the textured ones are replaced at each hit).
     pub params: Params,
-    /// The texture of the diffuse albedo.
-    pub diffuse: Option<u32>,
-    /// The texture of the specular reflectance.
-    pub reflection: Option<u32>,
+    /// Which parameters textures give, and the texture of each.
+    pub inputs: Vec<(Input, u32)>,
+    /// How a texture bends the shading normal, if one does.
+    pub normal: Option<NormalInput>,
+}
+
+/// A material parameter a texture can give.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Input {
+    /// The Lambertian albedo (a colour).
+    Diffuse,
+    /// The specular reflectance (a colour).
+    Reflection,
+    /// The roughness (the texture's luminance, within [0, 1]).
+    Gloss,
+    /// The dielectric lobe's weight (likewise).
+    Transmission,
+    /// The absorption coefficient inside (a colour, read where a path
+    /// leaves the object).
+    Absorption,
+    /// The emitted radiance (a colour; light sampling reads it at the
+    /// sampled point).
+    Emission,
+}
+
+/// A texture that bends the shading normal.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum NormalInput {
+    /// A tangent-space normal map (see `texture::shading_normal`).
+    Map(u32),
+    /// A bump map: the texture's luminance times `height` displaces the
+    /// surface along its normal.
+    Bump {
+        /// The texture.
+        texture: u32,
+        /// World units of displacement per unit of the texture.
+        height: f32,
+    },
 }
 
 /// A material's parameters as written in a scene (`material { … }`), in

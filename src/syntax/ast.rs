@@ -69,6 +69,17 @@ pub enum Statement {
         /// The whole declaration.
         span: Span,
     },
+    /// `texture name kind { ... }`
+    Texture {
+        /// The texture's name.
+        name: Ident,
+        /// Its kind (`wood`).
+        kind: Ident,
+        /// Its parameters.
+        block: Block,
+        /// The whole declaration.
+        span: Span,
+    },
     /// `render { }`, `camera { }`, a light or an object.
     Block {
         /// What the block declares.
@@ -91,6 +102,7 @@ impl Statement {
             | Statement::For { span, .. }
             | Statement::Background { span, .. }
             | Statement::Material { span, .. }
+            | Statement::Texture { span, .. }
             | Statement::Block { span, .. } => *span,
         }
     }
@@ -202,6 +214,17 @@ pub enum Entry {
         kind: Ident,
         /// Its parameters.
         block: Block,
+        /// The whole entry.
+        span: Span,
+    },
+    /// `stop position colour`: a stop of a texture's colour map.
+    Stop {
+        /// The word `stop`.
+        word: Ident,
+        /// Where the stop is, in [0, 1].
+        position: Expr,
+        /// Its colour.
+        color: Expr,
         /// The whole entry.
         span: Span,
     },

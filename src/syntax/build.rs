@@ -115,6 +115,18 @@ impl Builder {
                 let block = self.build_block(inner.next().unwrap());
                 Statement::Material { name, block, span }
             }
+            Rule::texture_decl => {
+                inner.next(); // kw_texture
+                let name = self.build_decl_name(inner.next().unwrap());
+                let kind = self.build_ident(inner.next().unwrap());
+                let block = self.build_block(inner.next().unwrap());
+                Statement::Texture {
+                    name,
+                    kind,
+                    block,
+                    span,
+                }
+            }
             Rule::block_stmt => {
                 let kind_pair = inner.next().unwrap();
                 let kind_span = self.span(&kind_pair);
@@ -174,6 +186,17 @@ impl Builder {
                     name,
                     kind,
                     block,
+                    span,
+                }
+            }
+            Rule::color_stop => {
+                let word = self.build_ident(inner.next().unwrap());
+                let position = self.build_expr(inner.next().unwrap());
+                let color = self.build_expr(inner.next().unwrap());
+                Entry::Stop {
+                    word,
+                    position,
+                    color,
                     span,
                 }
             }

@@ -36,6 +36,8 @@ pub fn rule_name(rule: Rule) -> &'static str {
         Rule::block => "a block `{ … }`",
         Rule::entry | Rule::param => "a parameter name",
         Rule::texture_param => "a parameter given a texture",
+        Rule::texture_decl | Rule::kw_texture => "`texture`",
+        Rule::color_stop | Rule::stop_word => "a colour stop `stop 0.5 rgb …`",
         Rule::expr | Rule::operand | Rule::primary => {
             "a value (number, vector, colour, string or name)"
         }
@@ -234,6 +236,8 @@ pub fn convert_error(
                 .iter()
                 .copied()
                 .filter(|n| *n != rule_name(Rule::bin_op))
+                // A colour stop is one more name where names are expected.
+                .filter(|n| *n != rule_name(Rule::color_stop))
                 .collect();
             (if useful.is_empty() { names } else { useful }, neg)
         }
@@ -433,6 +437,7 @@ pub const KEYWORDS: &[&str] = &[
     "in",
     "background",
     "material",
+    "texture",
     "rgb",
     "true",
     "false",

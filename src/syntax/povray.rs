@@ -28,10 +28,9 @@ const WORDS: &[(&str, &str)] = &[
     ("ifdef", "ptsc has no `#ifdef`: a name must be defined before it is used"),
     ("while", "ptsc loops are `for i in a..b { … }` (always bounded)"),
     ("switch", "ptsc has no `switch` yet"),
-    ("texture", "ptsc's `material { … }` holds what POV-Ray's `texture` does: `diffuse`, `reflection`, `gloss`, `transmission`, `emission`"),
     ("pigment", "POV-Ray's `pigment { color rgb … }` is `diffuse rgb …` inside ptsc's `material { … }`"),
     ("finish", "POV-Ray's `finish` settings are `material` parameters in ptsc: `reflection rgb …`, `gloss …`, `emission rgb …`"),
-    ("normal", "a `normal { … }` pattern (bumps) does not exist in ptsc yet"),
+    ("normal", "POV-Ray's `normal { bumps … }` is a material's `bump` (any pattern, e.g. `bump noise { scale 0.1 }`) or `normal_map image { file … }`"),
     ("interior", "POV-Ray's `interior { ior … }` is `ior` and `absorption` inside ptsc's `material { transmission 1 … }`"),
     ("color", "colours are written `rgb <r, g, b>` (or `rgb 0.5` for grey)"),
     ("colour", "colours are written `rgb <r, g, b>` (or `rgb 0.5` for grey)"),
@@ -48,7 +47,9 @@ const WORDS: &[(&str, &str)] = &[
     ("blur_samples", "ptsc takes depth of field samples from `render { samples … }`"),
     ("area_light", "an area light is an object with `material { emission rgb … }`, e.g. a `quad` or `disk`"),
     ("fade_distance", "ptsc's lights fall off with the square of the distance, as real ones do"),
-    ("image_map", "image maps are planned (textures); ptsc has none yet"),
+    ("image_map", "an image map is `diffuse image { file \"wood.png\" }` in a ptsc material"),
+    ("color_map", "a colour map is a texture's `stop` entries: `marble { stop 0 rgb 1 stop 0.7 rgb 0.2 }`"),
+    ("gradient", "in a material, `diffuse gradient { low rgb 0 high rgb 1 rotate <0, 0, 90> }` (a ramp along x)"),
     ("checker", "in a material, `diffuse checker { even rgb 1 odd rgb 0 }` (see \"Textures\" in docs/language.md)"),
 ];
 

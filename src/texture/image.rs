@@ -56,6 +56,17 @@ pub struct Image {
 }
 
 impl Image {
+    /// The brightest texel (by largest component).
+    pub fn brightest(&self) -> Vec3 {
+        (self.texels.iter().copied()).fold(Vec3::ZERO, |a, t| {
+            if t.max_element() > a.max_element() {
+                t
+            } else {
+                a
+            }
+        })
+    }
+
     /// The bilinearly filtered colour at (u, v).
     pub fn lookup(&self, uv: Vec2, wrap: Wrap) -> Vec3 {
         // Continuous texel coordinates, x right and y down, centres at +0.5.

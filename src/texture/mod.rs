@@ -6,8 +6,13 @@
 //! so an untextured material costs nothing.
 
 pub mod checker;
+pub mod color_map;
+pub mod gradient;
 pub mod image;
 pub mod noise;
+pub mod shading_normal;
+
+pub use color_map::ColorMap;
 
 use glam::{Affine3A, Vec2, Vec3};
 use std::sync::Arc;
@@ -40,6 +45,10 @@ pub enum Space {
 pub enum Pattern {
     /// Two colours in alternating cells (see [`checker`]).
     Checker,
+    /// A ramp along x repeating every unit (see [`gradient`]).
+    Gradient,
+    /// Stripes across x, one unit wide (see [`gradient`]).
+    Stripes,
     /// A solid noise pattern blending the two colours (see [`noise`]).
     Noise {
         /// Which pattern.
@@ -68,9 +77,9 @@ pub struct Texture {
     /// transforms written on the texture: scaling a texture by 2 makes its
     /// cells twice as large).
     pub to_pattern: Affine3A,
-    /// The pattern's colours (for a checker: the even and the odd cells;
-    /// for noise: the colours at 0 and 1; unused by an image).
-    pub colors: [Vec3; 2],
+    /// The pattern's value → colour (a checker's and stripes' even cells
+    /// read it at 0, odd ones at 1; unused by an image).
+    pub colors: ColorMap,
 }
 
 impl Texture {
@@ -83,13 +92,21 @@ impl Texture {
                     Space::Uv => checker::odd_uv(Vec2::new(p.x, p.y)),
                     Space::Object | Space::World => checker::odd_solid(p),
                 };
-                self.colors[odd as usize]
+                self.colors.at(odd as u32 as f32)
             }
+            Pattern::Gradient => self.colors.at(gradient::ramp(p)),
+            Pattern::Stripes => self.colors.at(gradient::stripe(p)),
             Pattern::Image { image, wrap } => image.lookup(Vec2::new(p.x, p.y), *wrap),
-            Pattern::Noise { kind, octaves } => {
-                self.colors[0].lerp(self.colors[1], kind.value(p, *octaves))
-            }
+            Pattern::Noise { kind, octaves } => self.colors.at(kind.value(p, *octaves)),
         }
+    }
+
+    /// The texture's value at `at` as one number (for a roughness, a
+    /// weight or a height): the luminance of its colour, which is the
+    /// colour itself for a grey one.
+    pub fn eval_scalar(&self, at: &ShadingPoint) -> f32 {
+        let c = self.eval(at);
+        0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z
     }
 
     /// The coordinates the texture reads at `at`.
@@ -98,6 +115,14 @@ impl Texture {
             Space::Uv => at.uv.extend(0.0),
             Space::Object => at.object,
             Space::World => at.world,
+        }
+    }
+
+    /// The brightest colour the texture gives (by largest component).
+    pub fn brightest(&self) -> Vec3 {
+        match &self.pattern {
+            Pattern::Image { image, .. } => image.brightest(),
+            _ => self.colors.brightest(),
         }
     }
 
@@ -127,7 +152,7 @@ mod tests {
             pattern: Pattern::Checker,
             space: Space::Uv,
             to_pattern: Affine3A::IDENTITY,
-            colors: [even, odd],
+            colors: ColorMap::two(even, odd),
         };
         // Mitsuba's checkerboard: four cells in the unit square.
         assert_eq!(t.eval(&at([0.25, 0.25], [0.0; 3], [0.0; 3])), even);

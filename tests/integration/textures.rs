@@ -40,9 +40,9 @@ fn colour_at(object: &str, texture: &str, p: [f32; 3]) -> f32 {
         c.ir.unwrap_or_else(|| panic!("{}", c.diagnostics.render_human(&c.sources, false)));
     // A ray straight down the z axis through (p.x, p.y).
     let ray = Ray::new(Vec3::new(p[0], p[1], 9.0), -Vec3::Z, 0.0);
-    let hit = ir.intersect(&ray, 0.0, f32::INFINITY).expect("a hit");
+    let mut hit = ir.intersect(&ray, 0.0, f32::INFINITY).expect("a hit");
     assert!((hit.p.z - p[2]).abs() < 1e-4, "hit at {}", hit.p);
-    ir.material_at(&hit, 0.0, &mut None).diffuse.x
+    ir.material_at(&mut hit, -ray.d, 0.0, &mut None).diffuse.x
 }
 
 #[test]
@@ -91,14 +91,14 @@ fn a_textured_colour_is_evaluated_at_each_hit() {
     let ir = checkered_quad("path");
     let at = |u: f32, v: f32| {
         let ray = Ray::new(Vec3::new(u, v, 1.0), -Vec3::Z, 0.0);
-        let hit = ir.intersect(&ray, 0.0, f32::INFINITY).expect("the quad");
+        let mut hit = ir.intersect(&ray, 0.0, f32::INFINITY).expect("the quad");
         assert!(
             (ir.texcoords(&hit, 0.0) - Vec2::new(u, v))
                 .abs()
                 .max_element()
                 < 1e-5
         );
-        ir.material_at(&hit, 0.0, &mut None).diffuse.x
+        ir.material_at(&mut hit, -ray.d, 0.0, &mut None).diffuse.x
     };
     assert!((at(0.25, 0.25) - EVEN).abs() < 1e-6);
     assert!((at(0.75, 0.25) - ODD).abs() < 1e-6);
@@ -177,8 +177,8 @@ fn an_image_texture_is_read_once_bilinear_and_a_dependency() {
     // One material, one texture, one image read once.
     let at = |u: f32, v: f32| {
         let ray = Ray::new(Vec3::new(u, v, 1.0), -Vec3::Z, 0.0);
-        let hit = ir.intersect(&ray, 0.0, f32::INFINITY).expect("the quad");
-        ir.material_at(&hit, 0.0, &mut None).diffuse
+        let mut hit = ir.intersect(&ray, 0.0, f32::INFINITY).expect("the quad");
+        ir.material_at(&mut hit, -ray.d, 0.0, &mut None).diffuse
     };
     // Texel centres; the bottom-left texel is blue. Diffuse colours are
     // the image's, scaled only if the lobes exceed 1 (they do not).

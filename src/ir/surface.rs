@@ -1,0 +1,232 @@
+//! What the scene knows about a point of a surface beyond its hit: texture
+//! coordinates and their derivatives, the point in its object's frame, and
+//! the material its textures make there (colours, numbers and the bent
+//! shading normal).
+
+use super::{Hit, Scene};
+use crate::geometry::shape::Shape;
+use crate::geometry::texcoord;
+use crate::material::{Input, Material, NormalInput, Textured};
+use crate::texture::shading_normal;
+use crate::texture::ShadingPoint;
+use glam::{Affine3A, Vec2, Vec3};
+
+/// `d` in the frame of a plane with normal `n` (any length): x and z from
+/// [`crate::geometry::orthonormal_basis`] of the unit normal (for +y, x
+/// along +x and z along −z), y along the normal; and the length of `n`.
+fn in_plane(d: Vec3, n: Vec3) -> (Vec3, f32) {
+    let scale = n.length();
+    let (x, z) = crate::geometry::orthonormal_basis(n / scale);
+    (Vec3::new(d.dot(x), d.dot(n) / scale, d.dot(z)), scale)
+}
+
+/// The world length of the step along a surface over which a bump map's
+/// slope is measured, at a point `p`: small against patterns' features,
+/// large against f32's spacing of coordinates there.
+fn bump_step(p: Vec3) -> f32 {
+    1e-3 * (p.abs().max_element() * 1e-3).max(1.0)
+}
+
+impl Scene {
+    /// A textured material's parameters evaluated at a hit seen from `wo`;
+    /// a normal or bump map sets the hit's shading normal.
+    #[inline(never)]
+    pub(super) fn textured_material(
+        &self,
+        t: &Textured,
+        hit: &mut Hit,
+        wo: Vec3,
+        time: f32,
+    ) -> Material {
+        let at = self.shading_point(hit, time);
+        let mut params = t.params.clone();
+        for &(input, i) in &t.inputs {
+            let texture = &self.textures[i as usize];
+            match input {
+                Input::Diffuse => params.diffuse = texture.eval(&at),
+                Input::Reflection => params.reflection = texture.eval(&at),
+                Input::Absorption => params.absorption = texture.eval(&at),
+                Input::Emission => params.emission = texture.eval(&at),
+                Input::Gloss => params.gloss = texture.eval_scalar(&at).clamp(0.0, 1.0),
+                Input::Transmission => {
+                    params.transmission = texture.eval_scalar(&at).clamp(0.0, 1.0)
+                }
+            }
+        }
+        if let Some(normal) = t.normal {
+            let ns = self.bent_normal(normal, hit, &at, time);
+            hit.n_shading = shading_normal::facing(ns, hit.n_geo, wo);
+        }
+        Material::new(&params)
+    }
+
+    /// The shading normal a normal or bump map gives at a hit.
+    fn bent_normal(&self, normal: NormalInput, hit: &Hit, at: &ShadingPoint, time: f32) -> Vec3 {
+        let n = hit.n_shading;
+        let (dpdu, dpdv) = self.derivatives(hit, time);
+        match normal {
+            NormalInput::Map(i) => {
+                shading_normal::mapped_normal(self.textures[i as usize].eval(at), n, dpdu)
+            }
+            NormalInput::Bump { texture, height } => {
+                let texture = &self.textures[texture as usize];
+                let h0 = texture.eval_scalar(at);
+                let from_world = self.from_world(hit.prim).copied();
+                // The height's slope along u and along v: one step of
+                // `bump_step` world units each way, moving every
+                // coordinate the texture might read.
+                let slope = |dpd: Vec3, duv: Vec2| {
+                    let len = dpd.length();
+                    if !(len > 0.0 && len.is_finite()) {
+                        return 0.0;
+                    }
+                    let step = bump_step(hit.p) / len;
+                    let moved = step * dpd;
+                    let shifted = ShadingPoint {
+                        uv: at.uv + step * duv,
+                        object: at.object
+                            + from_world.map_or(moved, |m| m.transform_vector3(moved)),
+                        world: at.world + moved,
+                    };
+                    height * (texture.eval_scalar(&shifted) - h0) / step
+                };
+                let dh_du = slope(dpdu, Vec2::X);
+                let dh_dv = slope(dpdv, Vec2::Y);
+                shading_normal::bumped_normal(n, dpdu, dpdv, dh_du, dh_dv)
+            }
+        }
+    }
+
+    /// Where textures are evaluated at a hit at `time`: its texture
+    /// coordinates, the point in its object's frame (at time 0) and in the
+    /// world.
+    pub fn shading_point(&self, hit: &Hit, time: f32) -> ShadingPoint {
+        let velocity = self
+            .prims
+            .get(hit.prim as usize)
+            .map_or(Vec3::ZERO, |p| p.velocity);
+        let at_rest = hit.p - velocity * time;
+        ShadingPoint {
+            uv: self.texcoords(hit, time),
+            object: self
+                .from_world(hit.prim)
+                .map_or(at_rest, |m| m.transform_point3(at_rest)),
+            world: hit.p,
+        }
+    }
+
+    /// The radiance primitive `prim` emits towards `wo` from its point `p`
+    /// (at `time`) with surface parameters `uv` and geometric normal `n`:
+    /// its material's emission, read from its texture there if it has one.
+    pub fn emitted_at(&self, prim: u32, p: Vec3, uv: Vec2, n: Vec3, wo: Vec3, time: f32) -> Vec3 {
+        let m = self.material_of(prim);
+        match &m.textured {
+            Some(t) if t.inputs.iter().any(|&(input, _)| input == Input::Emission) => {
+                let mut hit = Hit {
+                    t: 0.0,
+                    p,
+                    n_geo: n,
+                    n_shading: n,
+                    prim,
+                    uv,
+                };
+                self.textured_material(t, &mut hit, wo, time).emitted(wo, n)
+            }
+            _ => m.emitted(wo, n),
+        }
+    }
+
+    /// The world → object transform of primitive `prim`'s object (`None`:
+    /// the identity).
+    pub fn from_world(&self, prim: u32) -> Option<&Affine3A> {
+        let object = self.prim_object[prim as usize];
+        let i = self
+            .object_from_world
+            .binary_search_by_key(&object, |&(o, _)| o)
+            .ok()?;
+        Some(&self.object_from_world[i].1)
+    }
+
+    /// The texture coordinates of a hit at `time` (see
+    /// [`crate::geometry::texcoord`] for each shape's convention).
+    pub fn texcoords(&self, hit: &Hit, time: f32) -> Vec2 {
+        let Some(record) = self.prims.get(hit.prim as usize) else {
+            // A plain triangle: static, no vertex attributes.
+            return hit.uv;
+        };
+        // The point where the primitive is at time 0, then in its object's frame.
+        let p = hit.p - record.velocity * time;
+        let from_world = self.from_world(hit.prim);
+        let direction = |v: Vec3| from_world.map_or(v, |m| m.transform_vector3(v));
+        match record.shape {
+            Shape::Triangle { attributes, .. } => match self.uvs.get(attributes as usize) {
+                Some(&vertex_uvs) => texcoord::triangle(hit.uv, vertex_uvs),
+                None => hit.uv,
+            },
+            Shape::Quad { .. } => hit.uv,
+            Shape::Sphere { center, .. } => {
+                texcoord::sphere(direction(p - center).normalize_or(Vec3::Y))
+            }
+            Shape::Disk {
+                center,
+                normal,
+                radius,
+            } => {
+                // In the object's frame (a similarity: lengths scale by
+                // |direction(normal)|, the same along every axis).
+                let n = direction(normal);
+                let (local, scale) = in_plane(direction(p - center), n);
+                texcoord::disk(local, radius * scale)
+            }
+            Shape::Plane { point, normal } => {
+                let (local, _) = in_plane(direction(p - point), direction(normal));
+                texcoord::plane(local, 1.0)
+            }
+        }
+    }
+
+    /// How the point of a hit at `time` moves with its texture coordinates,
+    /// (∂p/∂u, ∂p/∂v) in the world: the tangents that normal and bump maps
+    /// are laid along.
+    pub fn derivatives(&self, hit: &Hit, time: f32) -> (Vec3, Vec3) {
+        let Some(record) = self.prims.get(hit.prim as usize) else {
+            // A plain triangle (no UVs, no record): any tangents of its
+            // plane serve solid patterns, the only ones it can carry well.
+            return crate::geometry::orthonormal_basis(hit.n_geo);
+        };
+        let p = hit.p - record.velocity * time;
+        let from_world = self.from_world(hit.prim);
+        let direction = |v: Vec3| from_world.map_or(v, |m| m.transform_vector3(v));
+        // Object-frame vectors back to the world.
+        let to_world = |v: Vec3| match from_world {
+            Some(m) => m.matrix3.inverse() * v,
+            None => v,
+        };
+        match record.shape {
+            Shape::Triangle {
+                e1, e2, attributes, ..
+            } => self
+                .uvs
+                .get(attributes as usize)
+                .and_then(|&uvs| texcoord::triangle_derivatives(e1, e2, uvs))
+                .unwrap_or((e1, e2)),
+            Shape::Quad { e1, e2, .. } => (e1, e2),
+            Shape::Sphere { center, .. } => {
+                let (dpdu, dpdv) = texcoord::sphere_derivatives(direction(p - center));
+                (to_world(dpdu), to_world(dpdv))
+            }
+            Shape::Disk { normal, radius, .. } => {
+                let n = direction(normal);
+                let scale = n.length();
+                let (x, z) = crate::geometry::orthonormal_basis(n / scale);
+                let d = 2.0 * radius * scale;
+                (to_world(d * x), to_world(d * z))
+            }
+            Shape::Plane { normal, .. } => {
+                let n = direction(normal);
+                let (x, z) = crate::geometry::orthonormal_basis(n / n.length());
+                (to_world(x), to_world(z))
+            }
+        }
+    }
+}

@@ -378,6 +378,22 @@ impl Source<'_> {
     }
 }
 
+/// The error for a texture (`what`, at `span`) given to a parameter that
+/// takes a plain value.
+fn texture_not_allowed(spec: &ParamSpec, what: &str, span: Span) -> Diagnostic {
+    Diagnostic::error(
+        codes::TEXTURE_NOT_ALLOWED,
+        format!("`{}` cannot be given a texture", spec.name),
+        span,
+    )
+    .with_label(what.to_string())
+    .with_help(format!(
+        "`{}` takes {}; textures go on a material's colours and numbers (`diffuse`, `gloss`, `emission`, …) and its `normal_map` and `bump`",
+        spec.name,
+        spec.ty.describe()
+    ))
+}
+
 /// The texture `value` names, if it is a bare name that is not a constant
 /// but a declared texture (`texture oak wood { … }`).
 fn named_texture(value: &crate::syntax::ast::Expr, env: &mut Env) -> Option<super::scene::Texture> {
@@ -516,25 +532,20 @@ impl Params {
                     Some(t) => Some(Val::Texture(Box::new(t))),
                     None => typed_value(spec, value, env, diags),
                 },
-                Source::Value(value) => typed_value(spec, value, env, diags),
                 Source::Texture(kind, block, span) if spec.texture => {
                     super::texture::check_texture(kind, block, span, env, diags)
                         .map(|t| Val::Texture(Box::new(t)))
                 }
+                Source::Value(value) => match named_texture(value, env) {
+                    Some(_) => {
+                        diags.push(texture_not_allowed(spec, "a texture's name", value.span));
+                        None
+                    }
+                    None => typed_value(spec, value, env, diags),
+                },
                 Source::Texture(kind, _, span) => {
-                    diags.push(
-                        Diagnostic::error(
-                            codes::TEXTURE_NOT_ALLOWED,
-                            format!("`{}` cannot be given a texture", spec.name),
-                            span,
-                        )
-                        .with_label(format!("a `{}` texture", kind.name))
-                        .with_help(format!(
-                            "`{}` takes {}; textures go on a material's colours and numbers (`diffuse`, `gloss`, `emission`, …) and its `normal_map` and `bump`",
-                            spec.name,
-                            spec.ty.describe()
-                        )),
-                    );
+                    let what = format!("a `{}` texture", kind.name);
+                    diags.push(texture_not_allowed(spec, &what, span));
                     None
                 }
             };

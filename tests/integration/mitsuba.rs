@@ -114,9 +114,77 @@ fn mitsuba_reference_spheres() {
     check_scene("spheres");
 }
 
-/// Checker textures on quads and a sphere (Mitsuba's `checkerboard`, its
-/// sphere's (u, v) mapped onto ptsc's in `scripts/mitsuba_textures.py`).
+/// Checker and image textures on quads and spheres, an HDR image as a
+/// lamp's emission and a normal-mapped quad (Mitsuba's `checkerboard`,
+/// `bitmap`, textured `area` emitter and `normalmap`; conventions mapped
+/// onto ptsc's in `scripts/mitsuba_textures.py`).
 #[test]
 fn mitsuba_reference_textures() {
     check_scene("textures");
+}
+
+/// The normal-mapped quad of `textures.pts` on its own: its pixels match
+/// Mitsuba's `normalmap` (mean within 1 %, error at the level of the
+/// noise), and the same quad without its normal map is measurably further
+/// from the reference, so that the comparison above could fail on a wrong
+/// frame or decoding.
+#[test]
+fn mitsuba_reference_normal_map_region() {
+    let dir = crate::root().join("tests/mitsuba");
+    let (w, _, reference) = read_exr(&dir.join("textures_ref_64_16384spp.exr")).unwrap();
+    // The quad's pixels (rows 10 to 26, columns 37 to 57 of the 64 × 64
+    // image: where its normal map changes the image).
+    let region: Vec<usize> = (10..=26)
+        .flat_map(|y| (37..=57).map(move |x| y * w as usize + x))
+        .collect();
+    let path = dir.join("textures.pts");
+    let text = std::fs::read_to_string(&path).unwrap();
+    let flat_text: String = text
+        .lines()
+        .map(|l| match l.find("normal_map") {
+            Some(i) => format!("{}}} }}", &l[..i]),
+            None => l.to_string(),
+        })
+        .collect::<Vec<_>>()
+        .join("\n");
+    assert_ne!(text, flat_text);
+    let error = |scene: &str| {
+        let options = Options {
+            adjust: &|s| (s.width, s.height, s.samples, s.seed) = (64, 64, 1024, 7),
+            ..Options::default()
+        };
+        let c = ptsc::compile::compile_str(&path, scene, options);
+        let ir =
+            c.ir.unwrap_or_else(|| panic!("{}", c.diagnostics.render_human(&c.sources, false)));
+        let integ = integrator::make(ir.settings.integrator);
+        let px = render(
+            &ir,
+            integ.as_ref(),
+            &AtomicBool::new(false),
+            &|_| {},
+            &mut |_, _| {},
+        )
+        .film
+        .pixels();
+        let (mut abs, mut mean, mut ours) = (0.0f64, 0.0f64, 0.0f64);
+        for &i in &region {
+            let d = (px[i] - reference[i]).abs();
+            abs += (d.x + d.y + d.z) as f64;
+            mean += (reference[i].x + reference[i].y + reference[i].z) as f64;
+            ours += (px[i].x + px[i].y + px[i].z) as f64;
+        }
+        (abs / mean, ours / mean)
+    };
+    let (mapped, ratio) = error(&text);
+    let (flat, _) = error(&flat_text);
+    eprintln!("normal-mapped quad: MAE/mean {mapped:.4} (without the map {flat:.4}), mean ratio {ratio:.4}");
+    assert!((ratio - 1.0).abs() < 0.01, "mean ratio {ratio}");
+    assert!(
+        mapped < 0.03,
+        "MAE/mean {mapped} in the normal-mapped region"
+    );
+    assert!(
+        flat > 2.0 * mapped,
+        "without its normal map: {flat} vs {mapped}"
+    );
 }

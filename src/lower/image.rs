@@ -246,6 +246,26 @@ mod tests {
     }
 
     #[test]
+    fn exr_images_are_read_and_absurd_headers_refused_before_allocation() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("t.exr");
+        let px = |i: usize| Vec3::new(i as f32, 0.5, 2.0);
+        crate::output::write_image(&path, (3, 2), px, 0.0).unwrap();
+        let mut bytes = std::fs::read(&path).unwrap();
+        let im = decode_exr(&bytes).unwrap();
+        assert_eq!((im.width, im.height), (3, 2));
+        assert_eq!(im.texels[4], px(4));
+        // The header claims a 100,000 × 100,000 data window: refused from
+        // the header, before 120 GB of texels would be allocated.
+        let name = b"dataWindow\0box2i\0";
+        let at = bytes.windows(name.len()).position(|w| w == name).unwrap() + name.len() + 4;
+        bytes[at + 8..at + 12].copy_from_slice(&99_999i32.to_le_bytes());
+        bytes[at + 12..at + 16].copy_from_slice(&99_999i32.to_le_bytes());
+        let e = decode_exr(&bytes).unwrap_err();
+        assert!(e.contains("more than ptsc reads"), "{e}");
+    }
+
+    #[test]
     fn broken_and_absurd_images_are_errors_not_panics_or_allocations() {
         assert!(decode(b"not a png", image::ImageFormat::Png, false).is_err());
         let mut bytes = png(1, 1, &[1, 2, 3]);

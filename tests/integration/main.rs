@@ -12,6 +12,7 @@ mod mitsuba;
 mod nasty;
 mod render;
 mod shapes;
+mod texture_inputs;
 mod textures;
 mod watch;
 

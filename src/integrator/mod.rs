@@ -57,7 +57,7 @@ pub fn direct_light_mis(
     let Some(ls) = light.sample(emitted, hit.p, time, u) else {
         return Vec3::ZERO;
     };
-    if crosses_surface(scene, hit, wo, ls.wi) {
+    if crosses_surface(hit, wo, ls.wi) {
         return Vec3::ZERO;
     }
     let (f, bsdf_pdf) = material.eval(wo, ls.wi, hit.n_shading);
@@ -88,10 +88,8 @@ pub fn direct_light_mis(
 /// through it (Veach 1997, §5.3: the geometric normal decides). Smooth
 /// meshes keep their shading normals' answer, as in pbrt and Mitsuba.
 #[inline]
-pub fn crosses_surface(scene: &Scene, hit: &Hit, wo: Vec3, wi: Vec3) -> bool {
-    hit.n_shading != hit.n_geo
-        && scene.bends_normal(hit.prim)
-        && (wi.dot(hit.n_geo) > 0.0) != (wo.dot(hit.n_geo) > 0.0)
+pub fn crosses_surface(hit: &Hit, wo: Vec3, wi: Vec3) -> bool {
+    hit.bent && (wi.dot(hit.n_geo) > 0.0) != (wo.dot(hit.n_geo) > 0.0)
 }
 
 /// Pdf with which [`direct_light_mis`] would have produced a ray from `from`

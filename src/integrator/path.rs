@@ -87,7 +87,7 @@ pub fn path_li(scene: &Scene, mut ray: Ray, sampler: &mut Sampler, nee: bool) ->
         };
         if !bs.weight.is_finite()
             || bs.weight == Vec3::ZERO
-            || (!bs.transmitted && super::crosses_surface(scene, &hit, wo, bs.wi))
+            || (!bs.transmitted && super::crosses_surface(&hit, wo, bs.wi))
         {
             break;
         }

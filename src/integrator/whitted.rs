@@ -144,7 +144,7 @@ fn direct(
             ) else {
                 continue;
             };
-            if super::crosses_surface(scene, hit, wo, ls.wi) {
+            if super::crosses_surface(hit, wo, ls.wi) {
                 continue;
             }
             let (f, _) = m.eval(wo, ls.wi, hit.n_shading);

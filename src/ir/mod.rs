@@ -42,6 +42,10 @@ pub struct Hit {
     pub n_geo: Vec3,
     /// Shading normal (unit, same hemisphere as `n_geo`).
     pub n_shading: Vec3,
+    /// Whether a texture bent the shading normal (a normal or bump map):
+    /// then a reflection may not cross the surface
+    /// (`integrator::crosses_surface`).
+    pub bent: bool,
     /// Primitive index.
     pub prim: u32,
     /// The shape's surface parameters at the hit: (s, t) along a quad's
@@ -113,6 +117,7 @@ impl Scene {
     }
 
     /// The material of primitive `prim`.
+    #[inline]
     pub fn material_of(&self, prim: u32) -> &Material {
         let object = self.prim_object[prim as usize] as usize;
         &self.materials[self.object_material[object] as usize]
@@ -136,12 +141,6 @@ impl Scene {
             None => m,
             Some(t) => slot.insert(self.textured_material(t, hit, wo, time)),
         }
-    }
-
-    /// Whether primitive `prim`'s material bends its shading normal (a
-    /// normal or bump map).
-    pub fn bends_normal(&self, prim: u32) -> bool {
-        (self.material_of(prim).textured.as_ref()).is_some_and(|t| t.normal.is_some())
     }
 
     /// The light that primitive `prim` is, if it is emissive.
@@ -224,6 +223,7 @@ impl Scene {
             p: p_local + prim.velocity * ray.time,
             n_geo,
             n_shading,
+            bent: false,
             prim: i,
             uv,
         })

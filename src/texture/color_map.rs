@@ -10,6 +10,9 @@ use glam::Vec3;
 #[derive(Debug, Clone, PartialEq)]
 pub struct ColorMap {
     stops: Vec<(f32, Vec3)>,
+    /// The colours at 0 and at 1, which two-valued patterns read at every
+    /// hit (kept apart: no search).
+    ends: [Vec3; 2],
 }
 
 impl ColorMap {
@@ -17,6 +20,7 @@ impl ColorMap {
     pub fn two(low: Vec3, high: Vec3) -> ColorMap {
         ColorMap {
             stops: vec![(0.0, low), (1.0, high)],
+            ends: [low, high],
         }
     }
 
@@ -24,7 +28,22 @@ impl ColorMap {
     /// there are none or they are out of order.
     pub fn new(stops: Vec<(f32, Vec3)>) -> Option<ColorMap> {
         let ordered = stops.windows(2).all(|w| w[0].0 <= w[1].0);
-        (!stops.is_empty() && ordered).then_some(ColorMap { stops })
+        if stops.is_empty() || !ordered {
+            return None;
+        }
+        let mut map = ColorMap {
+            stops,
+            ends: [Vec3::ZERO; 2],
+        };
+        map.ends = [map.at(0.0), map.at(1.0)];
+        Some(map)
+    }
+
+    /// The colour at 0 (`odd` false) or at 1 (`odd` true): a checker's or
+    /// stripes' cell.
+    #[inline]
+    pub fn end(&self, odd: bool) -> Vec3 {
+        self.ends[odd as usize]
     }
 
     /// The colour at `t`: the first or last stop's colour outside them, the
@@ -88,6 +107,9 @@ mod tests {
         assert!((m.at(0.65) - (b + r) * 0.5).length() < 1e-6);
         assert_eq!(m.at(0.9), r);
         assert_eq!(ColorMap::new(vec![(0.5, r)]).unwrap().at(0.0), r);
+        assert_eq!((m.end(false), m.end(true)), (r, r));
+        let two = ColorMap::new(vec![(0.0, g), (1.0, b)]).unwrap();
+        assert_eq!((two.end(false), two.end(true)), (g, b));
     }
 
     #[test]

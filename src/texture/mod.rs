@@ -92,10 +92,10 @@ impl Texture {
                     Space::Uv => checker::odd_uv(Vec2::new(p.x, p.y)),
                     Space::Object | Space::World => checker::odd_solid(p),
                 };
-                self.colors.at(odd as u32 as f32)
+                self.colors.end(odd)
             }
             Pattern::Gradient => self.colors.at(gradient::ramp(p)),
-            Pattern::Stripes => self.colors.at(gradient::stripe(p)),
+            Pattern::Stripes => self.colors.end(gradient::stripe(p) > 0.5),
             Pattern::Image { image, wrap } => image.lookup(Vec2::new(p.x, p.y), *wrap),
             Pattern::Noise { kind, octaves } => self.colors.at(kind.value(p, *octaves)),
         }

@@ -107,7 +107,7 @@ pub fn light_pdf(scene: &Scene, light: u32, from: Vec3, hit: &Hit, dir: Vec3) ->
                 pick * d2 / (cos * area)
             }
         }
-        crate::light::Light::Environment { .. } => pick * crate::sampling::warp::UNIFORM_SPHERE_PDF,
+        env @ crate::light::Light::Environment { .. } => pick * env.direction_pdf(dir),
         _ => 0.0,
     }
 }

@@ -36,14 +36,14 @@ pub fn path_li(scene: &Scene, mut ray: Ray, sampler: &mut Sampler, nee: bool) ->
         segments += 1;
         let Some(mut hit) = scene.intersect(&ray, T_MIN, f32::INFINITY) else {
             if let Some(env) = scene.env_light {
+                let light = &scene.lights[env as usize];
                 let w = if nee && prev_pdf > 0.0 {
-                    let lp =
-                        scene.light_pmf[env as usize] * crate::sampling::warp::UNIFORM_SPHERE_PDF;
+                    let lp = scene.light_pmf[env as usize] * light.direction_pdf(ray.d);
                     power_heuristic(prev_pdf, lp)
                 } else {
                     1.0
                 };
-                radiance += beta * scene.background * w;
+                radiance += beta * light.arriving_from(ray.d) * w;
             }
             break;
         };

@@ -39,7 +39,7 @@ impl Integrator for Whitted {
 pub fn trace(scene: &Scene, ray: Ray, sampler: &mut Sampler, segment: u32, weight: f32) -> Vec3 {
     let s = &scene.settings;
     let Some(mut hit) = scene.intersect(&ray, T_MIN, f32::INFINITY) else {
-        return scene.background;
+        return scene.environment(ray.d);
     };
     let wo = -ray.d;
     let mut textured = None;

@@ -143,6 +143,13 @@ impl Scene {
         }
     }
 
+    /// The radiance arriving from the direction `d` from outside the scene:
+    /// the background or the environment map.
+    pub fn environment(&self, d: Vec3) -> Vec3 {
+        self.env_light
+            .map_or(Vec3::ZERO, |i| self.lights[i as usize].arriving_from(d))
+    }
+
     /// The light that primitive `prim` is, if it is emissive.
     pub fn area_light(&self, prim: u32) -> Option<u32> {
         self.area_lights.binary_search(&prim).ok().map(|i| i as u32)

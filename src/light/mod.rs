@@ -2,6 +2,8 @@
 //! and the constant background. Each can be sampled from a shading point;
 //! lights are chosen in proportion to their power.
 
+pub mod environment;
+
 use crate::geometry::shape::Shape;
 use crate::geometry::Aabb;
 use crate::material::Material;
@@ -46,10 +48,13 @@ pub enum Light {
         /// Irradiance.
         irradiance: Vec3,
     },
-    /// The constant background.
+    /// Light from every direction: the background, a constant radiance or
+    /// an environment map scaled by it.
     Environment {
-        /// Radiance.
+        /// Radiance (the map's scale when there is one).
         radiance: Vec3,
+        /// The map, if any (shared by clones of the scene).
+        map: Option<std::sync::Arc<environment::EnvironmentMap>>,
     },
 }
 
@@ -109,7 +114,10 @@ impl Light {
                 2.0 * pi * lum(*intensity) * (1.0 - 0.5 * (*cos_total as f64 + *cos_falloff as f64))
             }
             Light::Directional { irradiance, .. } => pi * radius * radius * lum(*irradiance),
-            Light::Environment { radiance } => 4.0 * pi * pi * radius * radius * lum(*radiance),
+            Light::Environment { radiance, map } => {
+                let mean = map.as_ref().map_or(Vec3::ONE, |m| m.mean());
+                4.0 * pi * pi * radius * radius * lum(*radiance * mean)
+            }
         }
     }
 
@@ -190,7 +198,10 @@ impl Light {
                 li: *irradiance,
                 pdf: 0.0,
             }),
-            Light::Environment { radiance } => {
+            Light::Environment {
+                radiance,
+                map: None,
+            } => {
                 let wi = crate::sampling::warp::uniform_sphere(u);
                 Some(LightSample {
                     wi,
@@ -199,6 +210,40 @@ impl Light {
                     pdf: crate::sampling::warp::UNIFORM_SPHERE_PDF,
                 })
             }
+            Light::Environment {
+                radiance,
+                map: Some(map),
+            } => {
+                let (wi, li, pdf) = map.sample(u)?;
+                Some(LightSample {
+                    wi,
+                    dist: f32::INFINITY,
+                    li: *radiance * li,
+                    pdf,
+                })
+            }
+        }
+    }
+
+    /// The radiance an environment light sends along `-d` (arriving from
+    /// the direction `d`); zero for the other lights.
+    pub fn arriving_from(&self, d: Vec3) -> Vec3 {
+        match self {
+            Light::Environment { radiance, map } => match map {
+                Some(m) => *radiance * m.eval(d),
+                None => *radiance,
+            },
+            _ => Vec3::ZERO,
+        }
+    }
+
+    /// The density in solid angle with which [`Light::sample`] picks the
+    /// direction `d` of an environment light (0 for the other lights).
+    pub fn direction_pdf(&self, d: Vec3) -> f32 {
+        match self {
+            Light::Environment { map: Some(m), .. } => m.pdf(d),
+            Light::Environment { map: None, .. } => crate::sampling::warp::UNIFORM_SPHERE_PDF,
+            _ => 0.0,
         }
     }
 

@@ -590,6 +590,7 @@ fn finish(
     let background = rgb(&scene.background);
     let env_light = (background != Vec3::ZERO).then(|| {
         lights.push(Light::Environment {
+            map: None,
             radiance: background,
         });
         lights.len() as u32 - 1

@@ -71,7 +71,12 @@ impl Distribution1D {
         let bin = (self.cdf.partition_point(|&c| c <= u).max(1) - 1).min(n - 1);
         let (c0, c1) = (self.cdf[bin], self.cdf[bin + 1]);
         let du = if c1 > c0 { (u - c0) / (c1 - c0) } else { 0.5 };
-        let x = ((bin as f32 + du.clamp(0.0, 1.0)) / n as f32).min(1.0 - f32::EPSILON / 2.0);
+        let mut x = (bin as f32 + du.clamp(0.0, 1.0)) / n as f32;
+        // Rounding may carry x into the next bin (or to 1): keep it in its
+        // own, where `pdf` will look for it.
+        while x > 0.0 && ((x * n as f32) as usize).min(n) > bin {
+            x = f32::from_bits(x.to_bits() - 1);
+        }
         (x, self.pdf_of_bin(bin), bin)
     }
 
@@ -162,8 +167,14 @@ mod tests {
         let z = Distribution1D::new(&[0.0, 0.0]);
         assert_eq!(z.pdf(0.7), 1.0);
         assert!((z.sample(0.75).0 - 0.75).abs() < 1e-6);
-        // The end of the range stays inside it.
+        // The end of the range stays inside it, and every sample in the
+        // bin it was drawn from.
         assert!(d.sample(1.0 - f32::EPSILON).0 < 1.0);
+        let many = Distribution1D::new(&(0..1000).map(|i| (i % 7) as f32).collect::<Vec<_>>());
+        for k in 0..100_000 {
+            let (x, pdf, bin) = many.sample(k as f32 / 100_000.0);
+            assert_eq!(((x * 1000.0) as usize, pdf), (bin, many.pdf(x)));
+        }
     }
 
     #[test]

@@ -369,6 +369,30 @@ pub fn camera(p: &Params, span: Span, diags: &mut Diagnostics) -> Option<Camera>
     })
 }
 
+/// `environment { }` → the environment map (its file relative to `base`).
+pub fn environment(
+    p: &Params,
+    base: &Path,
+    span: Span,
+    diags: &mut Diagnostics,
+) -> Option<Environment> {
+    let schema = super::params::ENVIRONMENT;
+    let (file, path_span) = match p.require("file", schema, diags)? {
+        (Val::Str(f), s) => (f.clone(), *s),
+        _ => return None,
+    };
+    let rotation = super::objects::transform(p, diags);
+    let mut r = Reader { p, diags };
+    let intensity = r.color("intensity", [1.0; 3]);
+    Some(Environment {
+        path: base.join(file),
+        path_span,
+        intensity,
+        rotation,
+        span,
+    })
+}
+
 /// `material { }` → material.
 pub fn material(p: &Params, name: Option<String>, span: Span, diags: &mut Diagnostics) -> Material {
     let mut r = Reader { p, diags };

@@ -72,6 +72,10 @@ impl Checker {
                 Light::Directional { irradiance, .. } => irradiance.iter().any(|c| *c > 0.0),
             })
             || background.iter().any(|c| *c > 0.0)
+            || self
+                .environment
+                .as_ref()
+                .is_some_and(|e| e.intensity.iter().any(|c| *c > 0.0))
             || render.settings.ambient.max_element() > 0.0;
         if !has_light && !render.settings.integrator.is_debug_view() {
             let at = self.camera_span.unwrap_or(Span::new(root, 0, 0));
@@ -139,6 +143,7 @@ impl Checker {
                 render,
                 camera,
                 background,
+                environment: self.environment,
                 materials: self.materials,
                 objects: self.objects,
                 lights: self.lights,

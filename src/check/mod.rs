@@ -165,6 +165,8 @@ struct Checker {
     camera: Option<Camera>,
     camera_span: Option<Span>,
     background: Option<([f64; 3], Span)>,
+    /// The environment block, if any.
+    environment: Option<scene::Environment>,
     materials: Vec<Material>,
     material_names: HashMap<String, MaterialEntry>,
     used_materials: HashSet<usize>,
@@ -202,6 +204,7 @@ impl Checker {
             camera: None,
             camera_span: None,
             background: None,
+            environment: None,
             materials: Vec::new(),
             material_names: HashMap::new(),
             used_materials: HashSet::new(),
@@ -447,8 +450,12 @@ impl Checker {
             }
             Statement::Background { value, span } => {
                 let v = eval(value, &mut self.env, &mut self.diags);
-                if let Some((_, first)) = self.background {
+                if let Some(first) = self.background.map(|b| b.1) {
                     self.diags.push(duplicate_block("background", *span, first));
+                    return;
+                }
+                if let Some(e) = &self.environment {
+                    self.diags.push(two_skies(*span, e.span));
                     return;
                 }
                 match v {
@@ -696,6 +703,20 @@ impl Checker {
                 self.camera_span = Some(kind_span);
                 self.camera = cam;
             }
+            BlockKind::Environment => {
+                let base = folder_of(&self.sources, file);
+                let environment = blocks::environment(&p, base, span, &mut self.diags);
+                if let Some(e) = &self.environment {
+                    self.diags
+                        .push(duplicate_block("environment", kind_span, e.span));
+                    return;
+                }
+                if let Some((_, first)) = self.background {
+                    self.diags.push(two_skies(kind_span, first));
+                    return;
+                }
+                self.environment = environment;
+            }
             BlockKind::PointLight | BlockKind::SpotLight | BlockKind::DirectionalLight => {
                 if let Some(l) = blocks::light(kind, &p, &mut self.diags) {
                     self.lights.push((l, span));
@@ -803,6 +824,18 @@ pub(super) fn group_digits(n: u64) -> String {
         out.push(c);
     }
     out
+}
+
+/// A `background` and an `environment` in one scene.
+fn two_skies(span: Span, first: Span) -> Diagnostic {
+    Diagnostic::error(
+        codes::DUPLICATE_BLOCK,
+        "a scene has one light at infinity: a `background` or an `environment`",
+        span,
+    )
+    .with_label("the second one")
+    .with_secondary(first, "the first one")
+    .with_help("keep one; `environment { … intensity rgb … }` scales its image, as a background colour would")
 }
 
 fn duplicate_block(what: &str, span: Span, first: Span) -> Diagnostic {

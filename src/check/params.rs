@@ -150,6 +150,13 @@ pub const CAMERA: &[ParamSpec] = &[
     p("shutter", Ty::Vec2, "<0, 1>").of(Magnitude),
 ];
 
+/// `environment { }`
+pub const ENVIRONMENT: &[ParamSpec] = &[
+    p("file", Ty::Str, "\"studio.hdr\""),
+    p("intensity", Ty::Color, "rgb 1").of(Radiance),
+    t("rotate", Ty::Vec3, "<0, 90, 0>"),
+];
+
 /// `material { }`
 pub const MATERIAL: &[ParamSpec] = &[
     p("diffuse", Ty::Color, "rgb <0.8, 0.8, 0.8>")
@@ -337,6 +344,7 @@ pub fn shape_schema(kind: crate::syntax::ast::BlockKind) -> &'static [ParamSpec]
         }
         Render => RENDER,
         Camera => CAMERA,
+        Environment => ENVIRONMENT,
     }
 }
 

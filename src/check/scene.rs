@@ -335,6 +335,21 @@ pub enum Light {
     },
 }
 
+/// The `environment { }` block: light from an image all around.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Environment {
+    /// The image (relative to the scene file's folder once resolved).
+    pub path: PathBuf,
+    /// Where its name is written.
+    pub path_span: Span,
+    /// The radiance scale (per channel).
+    pub intensity: Rgb,
+    /// The map's rotations, in the order written.
+    pub rotation: DMat4,
+    /// Where the block is.
+    pub span: Span,
+}
+
 /// A checked scene, ready to lower.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Scene {
@@ -344,6 +359,8 @@ pub struct Scene {
     pub camera: Camera,
     /// Background radiance.
     pub background: Rgb,
+    /// The environment map, if any (the background is then black).
+    pub environment: Option<Environment>,
     /// Materials (named and inline), referenced by index.
     pub materials: Vec<Material>,
     /// Objects.

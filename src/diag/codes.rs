@@ -78,6 +78,8 @@ pub const UNORDERED_STOPS: &str = "pts::check::unordered_stops";
 pub const IMAGE_FILE: &str = "pts::lower::image_file";
 /// Warning: a texture that reads texture coordinates on a mesh that has none.
 pub const NO_TEXCOORDS: &str = "pts::lower::no_texcoords";
+/// Warning: an environment map that is not twice as wide as high.
+pub const NOT_LATLONG: &str = "pts::lower::not_latlong";
 /// A material that does not exist.
 pub const UNKNOWN_MATERIAL: &str = "pts::check::unknown_material";
 /// An included file that cannot be read.
@@ -340,6 +342,12 @@ pub const CATALOGUE: &[Entry] = &[
         title: "An image file that is missing, unreadable or of an unknown format",
         explanation: "`image { file … }` reads PNG and JPEG (8-bit: colours decoded from sRGB, data such as normal maps as they are), Radiance HDR and OpenEXR (linear) files, relative to the scene file. The label says what went wrong: the file is missing, has another extension, cannot be decoded, is larger than ptsc reads (1 GiB, 16,384² texels), or holds texels that are not finite, non-negative numbers.",
         example: "material { diffuse image { file \"wood.gif\" } }",
+    },
+    Entry {
+        code: NOT_LATLONG,
+        title: "An environment map that is not equirectangular",
+        explanation: "`environment { file … }` reads a latitude-longitude image: 360° across, 180° down, so twice as wide as high. Another shape still renders, stretched. A cube map or a mirror-ball photograph has to be converted first (e.g. with Blender or HDRShop).",
+        example: "environment { file \"square.hdr\" }",
     },
     Entry {
         code: NO_TEXCOORDS,

@@ -6,6 +6,7 @@
 pub mod cache;
 mod camera;
 mod collect;
+mod environment;
 pub mod image;
 mod lights;
 mod material;
@@ -23,6 +24,7 @@ use crate::geometry::texcoord;
 use crate::geometry::Aabb;
 use crate::ir::settings::Settings;
 use crate::ir::{Prim, Scene};
+use crate::light::environment::EnvironmentMap;
 use crate::light::Light;
 use crate::material::Material;
 use crate::texture::Texture;
@@ -136,6 +138,8 @@ pub fn lower(
     let materials: Vec<Material> = (scene.materials.iter())
         .map(|m| lower_material(m, &mut textures, images, &mut diags))
         .collect();
+    let environment = (scene.environment.as_ref())
+        .and_then(|e| environment::lower_environment(e, images, &mut diags, warnings));
     images.keep_only_used();
     if diags.has_errors() {
         return Err(diags);
@@ -144,7 +148,7 @@ pub fn lower(
     if cache.is_one_off() {
         let geometry = build_geometry(scene, cache)?;
         warn_missing_texcoords(scene, &geometry, warnings);
-        return Ok(finish(scene, settings, materials, geometry));
+        return Ok(finish(scene, settings, materials, geometry, environment));
     }
     let key = cache.geometry_key(scene);
     // Shared, not copied: materials and lights live outside the geometry.
@@ -157,7 +161,7 @@ pub fn lower(
         }
     };
     warn_missing_texcoords(scene, &geometry, warnings);
-    Ok(finish(scene, settings, materials, geometry))
+    Ok(finish(scene, settings, materials, geometry, environment))
 }
 
 /// Warns about each mesh without texture coordinates whose material has
@@ -206,6 +210,7 @@ pub fn named_files(scene: &check::Scene) -> (Vec<PathBuf>, Option<PathBuf>) {
                 _ => None,
             })
         }))
+        .chain(scene.environment.iter().map(|e| e.path.clone()))
         .collect();
     (meshes, scene.render.output.clone())
 }
@@ -527,6 +532,7 @@ fn finish(
     settings: Settings,
     (materials, textures): (Vec<Material>, Vec<Texture>),
     geometry: Geometry,
+    environment: Option<Arc<EnvironmentMap>>,
 ) -> Scene {
     let object_spans = scene.objects.iter().map(|o| o.span).collect();
     let object_material: Vec<u32> = scene.objects.iter().map(|o| o.material as u32).collect();
@@ -588,11 +594,19 @@ fn finish(
         .collect();
     lights.extend(scene.lights.iter().map(|(l, _)| lower_light(l)));
     let background = rgb(&scene.background);
-    let env_light = (background != Vec3::ZERO).then(|| {
-        lights.push(Light::Environment {
+    let env_light = match (environment, &scene.environment) {
+        (Some(map), Some(e)) => Some(Light::Environment {
+            radiance: rgb(&e.intensity),
+            map: Some(map),
+        }),
+        _ => (background != Vec3::ZERO).then_some(Light::Environment {
             map: None,
             radiance: background,
-        });
+        }),
+    }
+    .filter(|l| matches!(l, Light::Environment { radiance, .. } if *radiance != Vec3::ZERO))
+    .map(|l| {
+        lights.push(l);
         lights.len() as u32 - 1
     });
 

@@ -77,9 +77,74 @@ pub fn power_heuristic(pdf_a: f32, pdf_b: f32) -> f32 {
     }
 }
 
+/// A point of [0, 1] with density proportional to the line from `a` at 0
+/// to `b` at 1 (both ≥ 0, not both 0), by inverting its cdf (pbrt-v4's
+/// `SampleLinear`, written to stay exact as a or b goes to 0).
+pub fn linear(u: f32, a: f32, b: f32) -> f32 {
+    if u == 0.0 && a == 0.0 {
+        return 0.0;
+    }
+    let x = u * (a + b) / (a + (a * a + u * (b * b - a * a)).max(0.0).sqrt());
+    x.min(1.0 - f32::EPSILON / 2.0)
+}
+
+/// A point of [0, 1]² with density proportional to the bilinear
+/// interpolation of the corner weights `w` = [w(0, 0), w(1, 0), w(0, 1),
+/// w(1, 1)] (pbrt-v4's `SampleBilinear`): y from its marginal, x from the
+/// line at that y.
+pub fn bilinear(u: Vec2, w: [f32; 4]) -> Vec2 {
+    let y = linear(u.y, w[0] + w[1], w[2] + w[3]);
+    let x = linear(u.x, w[0] + (w[2] - w[0]) * y, w[1] + (w[3] - w[1]) * y);
+    Vec2::new(x, y)
+}
+
+/// The density of [`bilinear`] at `p` (uniform when every weight is 0).
+pub fn bilinear_pdf(p: Vec2, w: [f32; 4]) -> f32 {
+    let sum = w[0] + w[1] + w[2] + w[3];
+    if sum <= 0.0 {
+        return 1.0;
+    }
+    let (x, y) = (p.x, p.y);
+    4.0 * ((1.0 - x) * (1.0 - y) * w[0]
+        + x * (1.0 - y) * w[1]
+        + (1.0 - x) * y * w[2]
+        + x * y * w[3])
+        / sum
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn bilinear_samples_follow_their_density() {
+        use crate::sampling::chi2::pearson_p_value;
+        let w = [0.0, 4.0, 1.0, 9.0];
+        let n = 8;
+        let mut observed = vec![0.0; n * n];
+        let mut s = crate::sampling::sampler::Sampler::new(4, 4, 0, 0);
+        let count = 100_000;
+        for _ in 0..count {
+            let p = bilinear(s.next_2d(), w);
+            assert!((0.0..1.0).contains(&p.x) && (0.0..1.0).contains(&p.y));
+            observed[(p.y * n as f32) as usize * n + (p.x * n as f32) as usize] += 1.0;
+        }
+        let expected: Vec<f64> = (0..n * n)
+            .map(|k| {
+                let c = Vec2::new(
+                    ((k % n) as f32 + 0.5) / n as f32,
+                    ((k / n) as f32 + 0.5) / n as f32,
+                );
+                // Bilinear: the midpoint rule is exact.
+                bilinear_pdf(c, w) as f64 / (n * n) as f64 * count as f64
+            })
+            .collect();
+        assert!(pearson_p_value(&observed, &expected) > 1e-3);
+        assert_eq!(bilinear_pdf(Vec2::splat(0.3), [0.0; 4]), 1.0);
+        assert_eq!(linear(0.5, 1.0, 1.0), 0.5);
+        assert_eq!(linear(0.0, 0.0, 1.0), 0.0);
+        assert!((linear(0.25, 0.0, 1.0) - 0.5).abs() < 1e-6);
+    }
 
     #[test]
     fn warps_stay_in_their_domains() {

@@ -115,6 +115,8 @@ pub enum BlockKind {
     Render,
     /// `camera { }`.
     Camera,
+    /// `environment { }`: light from an image all around.
+    Environment,
     /// `sphere { }`.
     Sphere,
     /// `plane { }` (infinite).
@@ -139,9 +141,10 @@ pub enum BlockKind {
 
 impl BlockKind {
     /// Every block kind.
-    pub const ALL: [BlockKind; 12] = [
+    pub const ALL: [BlockKind; 13] = [
         BlockKind::Render,
         BlockKind::Camera,
+        BlockKind::Environment,
         BlockKind::Sphere,
         BlockKind::Plane,
         BlockKind::Quad,
@@ -159,6 +162,7 @@ impl BlockKind {
         match self {
             BlockKind::Render => "render",
             BlockKind::Camera => "camera",
+            BlockKind::Environment => "environment",
             BlockKind::Sphere => "sphere",
             BlockKind::Plane => "plane",
             BlockKind::Quad => "quad",
@@ -178,6 +182,7 @@ impl BlockKind {
             self,
             BlockKind::Render
                 | BlockKind::Camera
+                | BlockKind::Environment
                 | BlockKind::PointLight
                 | BlockKind::SpotLight
                 | BlockKind::DirectionalLight

@@ -134,6 +134,7 @@ impl Builder {
                 let kind = match kw.as_rule() {
                     Rule::kw_render => BlockKind::Render,
                     Rule::kw_camera => BlockKind::Camera,
+                    Rule::kw_environment => BlockKind::Environment,
                     Rule::kw_sphere => BlockKind::Sphere,
                     Rule::kw_plane => BlockKind::Plane,
                     Rule::kw_quad => BlockKind::Quad,

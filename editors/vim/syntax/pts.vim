@@ -6,7 +6,7 @@ if exists("b:current_syntax")
 endif
 
 syn keyword ptsControl let include for in
-syn keyword ptsBlock render camera background material texture sphere plane quad disk triangle box mesh point_light spot_light directional_light
+syn keyword ptsBlock render camera environment background material texture sphere plane quad disk triangle box mesh point_light spot_light directional_light
 syn keyword ptsColour rgb
 syn keyword ptsBoolean true false
 syn keyword ptsParam absorption ambient angle aperture bump bump_height center clamp corner diffuse direction edge1 edge2 emission even exposure falloff file focus_distance fov gloss high hybrid_weight integrator intensity ior irradiance light_samples light_sampling look_at low matrix max_depth normal normal_map octaves odd output point position radius reflection resolution rotate rr_depth samples scale seed shutter smooth space stop translate transmission two_sided up v0 v1 v2 velocity wrap

@@ -1,0 +1,71 @@
+//! The checked `environment { }` → an environment map: its image read
+//! through the compile's images, its rotations as a frame.
+
+use crate::check;
+use crate::diag::{codes, Diagnostic, Diagnostics};
+use crate::light::environment::EnvironmentMap;
+use crate::lower::image::Images;
+use glam::{DMat3, Mat3};
+use std::sync::Arc;
+
+/// The environment map of `e`; `None` after an error in `diags` (a
+/// missing or unreadable image, one of a single row). An image that is not
+/// twice as wide as high is a warning in `warnings`.
+pub fn lower_environment(
+    e: &check::scene::Environment,
+    images: &mut Images,
+    diags: &mut Diagnostics,
+    warnings: &mut Diagnostics,
+) -> Option<Arc<EnvironmentMap>> {
+    let image = match images.get(&e.path, false) {
+        Ok(image) if image.height >= 2 => image,
+        Ok(_) => {
+            diags.push(
+                Diagnostic::error(
+                    codes::IMAGE_FILE,
+                    format!("`{}` has one row of texels", e.path.display()),
+                    e.path_span,
+                )
+                .with_label("an environment map needs two rows at least")
+                .with_help("use an equirectangular image, twice as wide as high"),
+            );
+            return None;
+        }
+        Err(why) => {
+            diags.push(
+                Diagnostic::error(
+                    codes::IMAGE_FILE,
+                    format!("cannot load image `{}`", e.path.display()),
+                    e.path_span,
+                )
+                .with_label(why)
+                .with_help(
+                    "an environment is an .hdr or .exr file (or .png, .jpg), relative to the scene",
+                ),
+            );
+            return None;
+        }
+    };
+    if image.width != 2 * image.height {
+        warnings.push(
+            Diagnostic::warning(
+                codes::NOT_LATLONG,
+                format!(
+                    "an environment map of {} × {} texels is not equirectangular",
+                    image.width, image.height
+                ),
+                e.path_span,
+            )
+            .with_label("not twice as wide as high")
+            .with_help("an equirectangular (latitude-longitude) image spans 360° across and 180° down: twice as wide as high; this one is stretched"),
+        );
+    }
+    // The rotations' 3 × 3 part (the checker accepts rotations only).
+    let m = DMat3::from_mat4(e.rotation);
+    let to_world = Mat3::from_cols(
+        m.x_axis.normalize().as_vec3(),
+        m.y_axis.normalize().as_vec3(),
+        m.z_axis.normalize().as_vec3(),
+    );
+    Some(Arc::new(EnvironmentMap::new(image, to_world)))
+}

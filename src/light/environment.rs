@@ -29,6 +29,9 @@ pub struct EnvironmentMap {
     distribution: Distribution2D,
     /// The mean radiance over the sphere (for the light's power).
     mean: Vec3,
+    /// Whether directions are sampled uniformly over the sphere instead
+    /// (to measure what importance sampling gains).
+    uniform: bool,
 }
 
 fn luminance(c: Vec3) -> f32 {
@@ -82,16 +85,31 @@ impl EnvironmentMap {
             mean: mean / weight.max(1e-30) as f32,
             image,
             to_world,
+            uniform: false,
         };
+        map.build_distribution();
+        map
+    }
+
+    /// The same map, its directions sampled uniformly over the sphere (the
+    /// cells by their solid angle alone): the baseline importance sampling
+    /// is measured against.
+    pub fn with_uniform_sampling(mut self) -> EnvironmentMap {
+        self.uniform = true;
+        self.build_distribution();
+        self
+    }
+
+    fn build_distribution(&mut self) {
+        let (w, h) = (self.image.width, self.image.height);
         // One cell between each two columns (the last wrapping) and rows,
         // chosen by the integral of its corners' bilinear weights (their
         // mean), then sampled bilinearly within (as Mitsuba's warp does
         // over the whole map).
         let cells: Vec<f32> = (0..(h - 1) * w)
-            .map(|k| map.corner_weights((k % w, k / w)).iter().sum::<f32>() * 0.25)
+            .map(|k| self.corner_weights((k % w, k / w)).iter().sum::<f32>() * 0.25)
             .collect();
-        map.distribution = Distribution2D::new(&cells, w, h - 1);
-        map
+        self.distribution = Distribution2D::new(&cells, w, h - 1);
     }
 
     /// The radiance arriving from the world direction `d` (unit), before
@@ -168,7 +186,12 @@ impl EnvironmentMap {
         let h = self.image.height;
         let weight = |i: usize, j: usize| {
             let sin_theta = (j as f32 / (h - 1) as f32 * PI).sin().max(0.0);
-            luminance(self.image.texels[j * w + i % w]) * sin_theta
+            let importance = if self.uniform {
+                1.0
+            } else {
+                luminance(self.image.texels[j * w + i % w])
+            };
+            importance * sin_theta
         };
         [
             weight(i, j),
@@ -321,6 +344,20 @@ mod tests {
             .collect();
         let p = pearson_p_value(&observed, &expected);
         assert!(p > 1e-3, "χ² p-value {p}");
+    }
+
+    #[test]
+    fn uniform_sampling_is_uniform_over_the_sphere() {
+        let im = image(16, 9, |i, _| Vec3::splat(if i == 3 { 100.0 } else { 0.1 }));
+        let map = EnvironmentMap::new(im, Mat3::IDENTITY).with_uniform_sampling();
+        let mut s = Sampler::new(1, 1, 0, 0);
+        for _ in 0..1000 {
+            let (d, _, pdf) = map.sample(s.next_2d()).unwrap();
+            // Bilinear in sin θ within each cell: about 1 / 4π, exactly
+            // what `pdf` says.
+            assert!((pdf * 4.0 * PI - 1.0).abs() < 0.1, "{pdf}");
+            assert!((pdf - map.pdf(d)).abs() < 1e-2 * pdf);
+        }
     }
 
     #[test]

@@ -4,6 +4,7 @@ mod catalogue;
 mod cli;
 mod diagnostics;
 mod editors;
+mod environment;
 mod examples;
 mod golden;
 mod hostile;

@@ -68,21 +68,33 @@ impl EnvironmentMap {
         let (w, h) = (image.width, image.height);
         assert!(w >= 1 && h >= 2, "an environment map has two rows at least");
         let texel = |i: usize, j: usize| image.texels[j * w + i % w];
-        // The mean radiance, each row weighted by the solid angle it stands for.
-        let mut mean = Vec3::ZERO;
+        // The mean radiance, each row weighted by the solid angle it stands
+        // for; in f64, so that texels near f32's largest value do not add
+        // up to infinity.
+        let mut mean = glam::DVec3::ZERO;
         let mut weight = 0.0f64;
         for j in 0..h - 1 {
-            let sin_theta = ((j as f32 + 0.5) / (h - 1) as f32 * PI).sin();
+            let sin_theta = ((j as f64 + 0.5) / (h - 1) as f64 * std::f64::consts::PI).sin();
             for i in 0..w {
-                let c =
-                    (texel(i, j) + texel(i + 1, j) + texel(i, j + 1) + texel(i + 1, j + 1)) * 0.25;
+                let c = [
+                    texel(i, j),
+                    texel(i + 1, j),
+                    texel(i, j + 1),
+                    texel(i + 1, j + 1),
+                ]
+                .iter()
+                .fold(glam::DVec3::ZERO, |a, t| a + t.as_dvec3())
+                    * 0.25;
                 mean += c * sin_theta;
-                weight += sin_theta as f64;
+                weight += sin_theta;
             }
         }
+        let mean = (mean / weight.max(1e-30))
+            .min(glam::DVec3::splat(1e30))
+            .as_vec3();
         let mut map = EnvironmentMap {
             distribution: Distribution2D::new(&[1.0], 1, 1),
-            mean: mean / weight.max(1e-30) as f32,
+            mean,
             image,
             to_world,
             uniform: false,
@@ -191,7 +203,10 @@ impl EnvironmentMap {
             } else {
                 luminance(self.image.texels[j * w + i % w])
             };
-            importance * sin_theta
+            // Capped: texels near f32's largest value must not overflow
+            // the sums and squares of the bilinear warp (the density would
+            // turn to NaN); 10^15 against the rest is importance enough.
+            (importance * sin_theta).min(1e15)
         };
         [
             weight(i, j),
@@ -357,6 +372,21 @@ mod tests {
             // what `pdf` says.
             assert!((pdf * 4.0 * PI - 1.0).abs() < 0.1, "{pdf}");
             assert!((pdf - map.pdf(d)).abs() < 1e-2 * pdf);
+        }
+    }
+
+    #[test]
+    fn texels_at_the_edge_of_f32_keep_everything_finite() {
+        let im = image(8, 4, |i, j| {
+            Vec3::splat(if (i, j) == (2, 1) { 3.4e38 } else { 1.0 })
+        });
+        let map = EnvironmentMap::new(im, Mat3::IDENTITY);
+        assert!(map.mean().is_finite());
+        let mut s = Sampler::new(2, 2, 0, 0);
+        for _ in 0..1000 {
+            let (d, li, pdf) = map.sample(s.next_2d()).unwrap();
+            assert!(li.is_finite() && pdf.is_finite() && pdf > 0.0, "{li} {pdf}");
+            assert!(map.pdf(d).is_finite());
         }
     }
 

@@ -116,7 +116,10 @@ impl Light {
             Light::Directional { irradiance, .. } => pi * radius * radius * lum(*irradiance),
             Light::Environment { radiance, map } => {
                 let mean = map.as_ref().map_or(Vec3::ONE, |m| m.mean());
-                4.0 * pi * pi * radius * radius * lum(*radiance * mean)
+                // In f64: a bright map times a large intensity overflows f32.
+                let c = radiance.as_dvec3() * mean.as_dvec3();
+                let lum64 = 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z;
+                4.0 * pi * pi * radius * radius * lum64
             }
         }
     }

@@ -205,14 +205,22 @@ pub fn decode_exr(bytes: &[u8]) -> Result<Image, String> {
     })
 }
 
-/// Refuses texels that are not finite or negative (a texture is a colour).
-fn finite(image: Image) -> Result<Image, String> {
+/// Texels above this are read as it: the largest radiance the checker
+/// accepts, so that a texel times any accepted scale stays finite in f32.
+pub const MAX_TEXEL: f32 = 1e12;
+
+/// Refuses texels that are not finite or negative (a texture is a colour)
+/// and caps the others at [`MAX_TEXEL`].
+fn finite(mut image: Image) -> Result<Image, String> {
     if image
         .texels
         .iter()
         .any(|t| !t.is_finite() || t.min_element() < 0.0)
     {
         return Err("the image has texels that are not finite, non-negative numbers".into());
+    }
+    for t in &mut image.texels {
+        *t = t.min(Vec3::splat(MAX_TEXEL));
     }
     Ok(image)
 }

@@ -648,7 +648,12 @@ fn finish(
         .collect();
     match light_table(&powers) {
         Some((pmf, cdf)) => (ir.light_pmf, ir.light_cdf) = (pmf, cdf),
-        None => ir.lights.clear(),
+        None => {
+            // No light with power: none to sample, none to look up.
+            ir.lights.clear();
+            ir.area_lights.clear();
+            ir.env_light = None;
+        }
     }
     ir
 }

@@ -94,3 +94,33 @@ fn a_white_ball_under_a_white_sky_is_white() {
         assert!((*p - Vec3::ONE).abs().max_element() < 0.15, "pixel {p}");
     }
 }
+
+#[test]
+fn the_brightest_map_at_the_largest_intensity_renders_finite() {
+    // A texel at f32's largest value, scaled by the largest intensity the
+    // checker accepts: texels are capped at 10^12 when read, the light's
+    // power is computed in f64, the sampling weights are capped.
+    let dir = tempfile::tempdir().unwrap();
+    let texel = |i: usize| {
+        if i == 10 {
+            Vec3::splat(3.4e38)
+        } else {
+            Vec3::ONE
+        }
+    };
+    ptsc::output::write_image(&dir.path().join("sun.exr"), (8, 4), texel, 0.0).unwrap();
+    let text = "render { resolution <8, 8> samples 16 }\n\
+        camera { position <0, 0, 3> look_at <0, 0, 0> }\n\
+        environment { file \"sun.exr\" intensity rgb 1e12 }\n\
+        sphere { center <0, 0, 0> radius 1 material { diffuse rgb 0.5 } }\n";
+    let c = compile_str(&dir.path().join("s.pts"), text, Options::default());
+    let ir =
+        c.ir.unwrap_or_else(|| panic!("{}", c.diagnostics.render_human(&c.sources, false)));
+    assert!(ir.env_light.is_some());
+    let px = pixels(&ir);
+    assert!(px.iter().all(|p| p.is_finite()), "a pixel is not finite");
+    assert!(
+        px.iter().any(|p| p.max_element() > 1e20),
+        "the sun's light is lost"
+    );
+}

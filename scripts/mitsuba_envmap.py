@@ -11,17 +11,13 @@ convention (u = atan2(x, -z) / 2 pi, v = acos(y) / pi, texels at grid
 points, bilinear). The mirror is a `conductor` without Fresnel
 (material "none") scaled by 0.9 (ptsc's `reflection rgb 0.9`).
 """
-import argparse
-import json
-import statistics
 import sys
 from pathlib import Path
 
-import numpy as np
 import mitsuba as mi
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from mitsuba_textures import rgb, rectangle  # noqa: E402
+from mitsuba_textures import rgb, rectangle, reference_and_baseline  # noqa: E402
 
 ROOT = Path(__file__).resolve().parent.parent
 OUT = ROOT / "tests" / "mitsuba"
@@ -48,30 +44,9 @@ def scene(res, spp):
 
 
 def main():
-    ap = argparse.ArgumentParser()
-    ap.add_argument("--res", type=int, default=64)
-    ap.add_argument("--ref-spp", type=int, default=16384)
-    ap.add_argument("--spp", type=int, default=64)
-    ap.add_argument("--seeds", type=int, default=32)
-    a = ap.parse_args()
     mi.set_variant("scalar_rgb")
-    ref_scene = mi.load_dict(scene(a.res, a.ref_spp))
-    passes = max(1, a.ref_spp // 1024)
-    ref = sum(np.array(mi.render(ref_scene, spp=a.ref_spp // passes, seed=10_000 + k), dtype=np.float64)
-              for k in range(passes)) / passes
-    name = f"envmap_ref_{a.res}_{a.ref_spp}spp.exr"
-    mi.Bitmap(ref.astype(np.float32)).write(str(OUT / name))
-    s = mi.load_dict(scene(a.res, a.spp))
-    maes = []
-    for seed in range(a.seeds):
-        img = np.array(mi.render(s, spp=a.spp, seed=seed), dtype=np.float64)[..., :3]
-        maes.append(float(np.abs(img - ref[..., :3]).mean() / ref[..., :3].mean()))
-    base_path = OUT / "baseline.json"
-    base = json.loads(base_path.read_text())
-    base["scenes"]["envmap"] = {"reference": name, "mae_over_mean": maes,
-                                "median_mae_over_mean": statistics.median(maes)}
-    base_path.write_text(json.dumps(base, indent=1) + "\n")
-    print("envmap", f"median MAE/mean {statistics.median(maes):.5f}", [round(x, 5) for x in maes])
+    # Fireflies (the sun in the mirror): 32 seeds for a stable median.
+    reference_and_baseline("envmap", scene, 32)
 
 
 if __name__ == "__main__":

@@ -154,34 +154,42 @@ def scene(res, spp):
     }
 
 
-def main():
+def reference_and_baseline(key, scene_of, default_seeds):
+    """Parses --res --ref-spp --spp --seeds, renders Mitsuba's reference of
+    scene_of(res, spp) (passes of 1024 spp with distinct seeds, averaged) to
+    tests/mitsuba/<key>_ref_<res>_<ref-spp>spp.exr and writes Mitsuba's own
+    MAE/mean at --spp over --seeds seeds as baseline.json's <key> entry.
+    Shared by the Mitsuba scripts of the test scenes."""
     ap = argparse.ArgumentParser()
     ap.add_argument("--res", type=int, default=64)
     ap.add_argument("--ref-spp", type=int, default=16384)
     ap.add_argument("--spp", type=int, default=64)
-    ap.add_argument("--seeds", type=int, default=8)
+    ap.add_argument("--seeds", type=int, default=default_seeds)
     a = ap.parse_args()
-    mi.set_variant("scalar_rgb")
-    ripples_normal_map(OUT / "ripples_normal.png")
-    lamp_image(OUT / "lamp.exr")
-    ref_scene = mi.load_dict(scene(a.res, a.ref_spp))
-    # The reference: passes of 1024 spp with distinct seeds, averaged.
+    ref_scene = mi.load_dict(scene_of(a.res, a.ref_spp))
     passes = max(1, a.ref_spp // 1024)
     ref = sum(np.array(mi.render(ref_scene, spp=a.ref_spp // passes, seed=10_000 + k), dtype=np.float64)
               for k in range(passes)) / passes
-    name = f"textures_ref_{a.res}_{a.ref_spp}spp.exr"
+    name = f"{key}_ref_{a.res}_{a.ref_spp}spp.exr"
     mi.Bitmap(ref.astype(np.float32)).write(str(OUT / name))
-    s = mi.load_dict(scene(a.res, a.spp))
+    s = mi.load_dict(scene_of(a.res, a.spp))
     maes = []
     for seed in range(a.seeds):
         img = np.array(mi.render(s, spp=a.spp, seed=seed), dtype=np.float64)[..., :3]
         maes.append(float(np.abs(img - ref[..., :3]).mean() / ref[..., :3].mean()))
     base_path = OUT / "baseline.json"
     base = json.loads(base_path.read_text())
-    base["scenes"]["textures"] = {"reference": name, "mae_over_mean": maes,
-                                  "median_mae_over_mean": statistics.median(maes)}
+    base["scenes"][key] = {"reference": name, "mae_over_mean": maes,
+                           "median_mae_over_mean": statistics.median(maes)}
     base_path.write_text(json.dumps(base, indent=1) + "\n")
-    print("textures", f"median MAE/mean {statistics.median(maes):.5f}", [round(x, 5) for x in maes])
+    print(key, f"median MAE/mean {statistics.median(maes):.5f}", [round(x, 5) for x in maes])
+
+
+def main():
+    mi.set_variant("scalar_rgb")
+    ripples_normal_map(OUT / "ripples_normal.png")
+    lamp_image(OUT / "lamp.exr")
+    reference_and_baseline("textures", scene, 8)
 
 
 if __name__ == "__main__":

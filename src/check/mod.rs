@@ -282,18 +282,15 @@ impl Checker {
         }
         match st {
             Statement::Let { name, value, .. } => {
-                if let Some(prev) = self.env.in_current_frame(&name.name) {
-                    let first = prev.decl;
-                    self.diags.push(
-                        Diagnostic::error(
-                            codes::DUPLICATE_NAME,
-                            format!("`{}` is already defined", name.name),
-                            name.span,
-                        )
-                        .with_label("defined again here")
-                        .with_secondary(first, "first defined here")
-                        .with_help("constants cannot be redefined; pick another name"),
-                    );
+                // A texture's name is taken too (both are read as names).
+                let first = (self.env.in_current_frame(&name.name).map(|b| b.decl))
+                    .or_else(|| self.env.textures.get(&name.name).map(|t| t.1));
+                if let Some(first) = first {
+                    self.diags.push(defined_again(
+                        name,
+                        first,
+                        "constants cannot be redefined; pick another name",
+                    ));
                     return;
                 }
                 let v = eval(value, &mut self.env, &mut self.diags);
@@ -321,16 +318,11 @@ impl Checker {
                 let clash = (self.env.textures.get(&name.name).map(|t| t.1))
                     .or_else(|| self.env.in_current_frame(&name.name).map(|b| b.decl));
                 if let Some(first) = clash.filter(|&first| first != name.span) {
-                    self.diags.push(
-                        Diagnostic::error(
-                            codes::DUPLICATE_NAME,
-                            format!("`{}` is already defined", name.name),
-                            name.span,
-                        )
-                        .with_label("defined again here")
-                        .with_secondary(first, "first defined here")
-                        .with_help("give each texture and constant its own name"),
-                    );
+                    self.diags.push(defined_again(
+                        name,
+                        first,
+                        "give each texture and constant its own name",
+                    ));
                     return;
                 }
                 let texture =
@@ -824,6 +816,18 @@ pub(super) fn group_digits(n: u64) -> String {
         out.push(c);
     }
     out
+}
+
+/// A name declared again (`let`, `texture`) where it was declared `first`.
+fn defined_again(name: &crate::syntax::ast::Ident, first: Span, help: &str) -> Diagnostic {
+    Diagnostic::error(
+        codes::DUPLICATE_NAME,
+        format!("`{}` is already defined", name.name),
+        name.span,
+    )
+    .with_label("defined again here")
+    .with_secondary(first, "first defined here")
+    .with_help(help.to_string())
 }
 
 /// A `background` and an `environment` in one scene.

@@ -1,7 +1,7 @@
 //! Each block kind, checked: values in range, defaults filled in, the result
 //! a piece of the checked [`Scene`](super::scene::Scene).
 
-use super::params::{Params, Val, MATERIAL};
+use super::params::{Params, Val};
 use super::scene::*;
 use crate::diag::codes;
 use crate::diag::{Diagnostic, Diagnostics};
@@ -227,7 +227,7 @@ impl Reader<'_> {
 }
 
 /// The textures given to a material's parameters.
-fn textures(p: &Params) -> Vec<(TextureInput, Texture)> {
+pub(super) fn textures(p: &Params) -> Vec<(TextureInput, Texture)> {
     (TextureInput::ALL.iter())
         .filter_map(|&(name, input)| match p.get(name) {
             Some((Val::Texture(t), _)) => Some((input, (**t).clone())),
@@ -393,117 +393,6 @@ pub fn environment(
     })
 }
 
-/// `material { }` → material.
-pub fn material(p: &Params, name: Option<String>, span: Span, diags: &mut Diagnostics) -> Material {
-    let mut r = Reader { p, diags };
-    let diffuse_given = p.given("diffuse");
-    let mut m = Material {
-        name,
-        diffuse: r.color("diffuse", if diffuse_given { [0.5; 3] } else { [0.0; 3] }),
-        reflection: r.color("reflection", [0.0; 3]),
-        textures: textures(p),
-        bump_height: r.num_in("bump_height", -1e6, 1e6, false, 0.01),
-        gloss: r.num_in("gloss", 0.0, 1.0, false, 0.0),
-        transmission: r.num_in("transmission", 0.0, 1.0, false, 0.0),
-        ior: r.num_in("ior", 1.0, 10.0, false, 1.5),
-        absorption: r.color("absorption", [0.0; 3]),
-        emission: r.color("emission", [0.0; 3]),
-        two_sided: r.boolean("two_sided", false),
-        span,
-    };
-    // A textured parameter stands for its brightest value in the checks
-    // below, in the lobes' weights and in a light's power (an image's
-    // brightest texel is known only once it is read: 1 until then).
-    for (input, t) in &m.textures {
-        let bright = match t.kind {
-            TextureKind::Image { .. } => [1.0; 3],
-            _ => t.brightest(),
-        };
-        let number = bright.iter().cloned().fold(0.0, f64::max).min(1.0);
-        match input {
-            TextureInput::Diffuse => m.diffuse = bright,
-            TextureInput::Reflection => m.reflection = bright,
-            TextureInput::Absorption => m.absorption = bright,
-            TextureInput::Emission => m.emission = bright,
-            TextureInput::Gloss => m.gloss = number,
-            TextureInput::Transmission => m.transmission = number,
-            TextureInput::NormalMap | TextureInput::Bump => {}
-        }
-    }
-    if let Some((_, s)) = p.get("bump_height") {
-        if !p.given("bump") {
-            diags.push(
-                Diagnostic::warning(
-                    codes::NO_EFFECT,
-                    "`bump_height` has no effect without `bump`",
-                    *s,
-                )
-                .with_label("ignored")
-                .with_help("give `bump` a texture, e.g. `bump noise { scale 0.05 }`"),
-            );
-        }
-    }
-    // A material with no lobe at all is the default grey diffuse (unless it only emits).
-    let any_lobe = ["diffuse", "reflection", "transmission", "emission"]
-        .iter()
-        .any(|n| p.given(n));
-    if !any_lobe {
-        m.diffuse = [0.5; 3];
-    }
-    if let Some((_, s)) = p.get("diffuse") {
-        if m.diffuse.iter().any(|c| *c > 1.0) {
-            diags.push(
-                Diagnostic::warning(codes::ENERGY_GAIN, "diffuse albedo above 1", *s)
-                    .with_label("a surface cannot reflect more light than it receives")
-                    .with_help("keep every component of `diffuse` at most 1"),
-            );
-        }
-    }
-    let max = |c: Rgb| c.iter().cloned().fold(0.0, f64::max);
-    let total = max(m.diffuse) + max(m.reflection) + m.transmission;
-    if total > 1.0 + 1e-9
-        && p.given("diffuse") as u8 + p.given("reflection") as u8 + p.given("transmission") as u8
-            > 1
-    {
-        diags.push(
-            Diagnostic::warning(
-                codes::ENERGY_GAIN,
-                format!("the lobes of this material add up to {total:.3}, more than 1"),
-                p.head,
-            )
-            .with_label("diffuse + reflection + transmission > 1")
-            .with_help("ptsc scales the lobes down to sum to 1; lower them to silence this"),
-        );
-    }
-    if let Some((_, s)) = p.get("gloss") {
-        if max(m.reflection) == 0.0 {
-            diags.push(
-                Diagnostic::warning(
-                    codes::NO_EFFECT,
-                    "`gloss` has no effect without `reflection`",
-                    *s,
-                )
-                .with_label("ignored")
-                .with_help("add `reflection rgb 1` to make the surface a glossy reflector"),
-            );
-        }
-    }
-    if let Some((_, s)) = p.get("absorption") {
-        if m.transmission == 0.0 {
-            diags.push(
-                Diagnostic::warning(
-                    codes::NO_EFFECT,
-                    "`absorption` has no effect without `transmission`",
-                    *s,
-                )
-                .with_label("ignored")
-                .with_help("absorption acts inside transparent objects: add `transmission 1`"),
-            );
-        }
-    }
-    m
-}
-
 /// A light block → light.
 pub fn light(kind: BlockKind, p: &Params, diags: &mut Diagnostics) -> Option<Light> {
     let schema = super::params::shape_schema(kind);
@@ -559,9 +448,4 @@ pub fn light(kind: BlockKind, p: &Params, diags: &mut Diagnostics) -> Option<Lig
         }
         _ => unreachable!("not a light: {kind:?}"),
     }
-}
-
-/// The material schema (for inline and named materials).
-pub fn material_schema() -> [&'static [super::params::ParamSpec]; 1] {
-    [MATERIAL]
 }

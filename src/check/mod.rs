@@ -3,6 +3,7 @@
 //! first error.
 
 mod blocks;
+mod material;
 pub mod domain;
 pub mod eval;
 mod finish;
@@ -484,7 +485,7 @@ impl Checker {
                     format!("material {}", name.name),
                     name.span,
                     block,
-                    &blocks::material_schema(),
+                    &material::material_schema(),
                     &mut self.env,
                     &mut self.diags,
                 );
@@ -501,7 +502,7 @@ impl Checker {
                         );
                     }
                 }
-                let mut m = blocks::material(&p, Some(name.name.clone()), *span, &mut self.diags);
+                let mut m = material::material(&p, Some(name.name.clone()), *span, &mut self.diags);
                 m.resolve_paths(folder_of(&self.sources, span.file));
                 if let Some(prev) = self.material_names.get(&name.name) {
                     // Loops may redeclare the same declaration; only distinct declarations clash.
@@ -781,11 +782,11 @@ impl Checker {
                     "material",
                     *s,
                     block,
-                    &blocks::material_schema(),
+                    &material::material_schema(),
                     &mut self.env,
                     &mut self.diags,
                 );
-                let mut m = blocks::material(&p, None, *s, &mut self.diags);
+                let mut m = material::material(&p, None, *s, &mut self.diags);
                 m.resolve_paths(folder_of(&self.sources, s.file));
                 self.materials.push(m);
                 let i = self.materials.len() - 1;

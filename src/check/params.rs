@@ -179,7 +179,19 @@ pub const MATERIAL: &[ParamSpec] = &[
     .textured(),
     p("bump", Ty::Texture, "noise { scale 0.05 }").textured(),
     p("bump_height", Ty::Num, "0.01").of(Magnitude),
+    p("type", Ty::Word(MATERIAL_TYPES), "plastic"),
+    p("preset", Ty::Word(METAL_PRESETS), "gold"),
+    p("eta", Ty::Color, "rgb <0.2, 0.92, 1.1>").of(Magnitude),
+    p("k", Ty::Color, "rgb <3.9, 2.45, 2.14>").of(Magnitude),
 ];
+
+/// The scattering models a material's `type` names (`mix`, the paper's
+/// weighted lobes, when none is given).
+pub const MATERIAL_TYPES: &[&str] = &["mix", "conductor", "plastic", "dielectric", "thin_dielectric"];
+
+/// The named metals of `type conductor` (their constants live with the
+/// conductor model, `material::conductor::PRESETS`, in this order).
+pub const METAL_PRESETS: &[&str] = &["gold", "silver", "copper", "aluminium", "chromium"];
 
 /// The kinds of texture a parameter may be given.
 pub const TEXTURE_KINDS: &[&str] = &[

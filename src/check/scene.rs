@@ -168,11 +168,36 @@ pub struct Camera {
     pub span: Span,
 }
 
+/// A material's scattering model (`type`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum MaterialKind {
+    /// The paper's weighted mix of lobes.
+    Mix,
+    /// A metal: a named one, or one of complex index `eta` + i`k`.
+    Conductor {
+        /// The preset's name, if one is named (its constants are the
+        /// renderer's).
+        preset: Option<&'static str>,
+        /// Real part of the index per channel.
+        eta: Rgb,
+        /// Extinction coefficient per channel.
+        k: Rgb,
+    },
+    /// `diffuse` under a dielectric coat of index `ior`.
+    Plastic,
+    /// Glass of index `ior`, smooth or rough (`gloss`).
+    Dielectric,
+    /// A thin pane of index `ior`.
+    ThinDielectric,
+}
+
 /// A material, resolved.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Material {
     /// Name (`None` for inline materials).
     pub name: Option<String>,
+    /// Its scattering model.
+    pub kind: MaterialKind,
     /// Lambertian albedo.
     pub diffuse: Rgb,
     /// Specular (mirror or glossy) reflectance.
@@ -203,6 +228,7 @@ impl Material {
     pub fn default_at(span: Span) -> Material {
         Material {
             name: None,
+            kind: MaterialKind::Mix,
             diffuse: [0.5; 3],
             reflection: [0.0; 3],
             textures: Vec::new(),

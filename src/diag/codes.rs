@@ -110,6 +110,8 @@ pub const ENERGY_GAIN: &str = "pts::check::energy_gain";
 pub const INTEGRATOR_SETTING: &str = "pts::check::integrator_setting";
 /// Warning: a parameter that has no effect.
 pub const NO_EFFECT: &str = "pts::check::no_effect";
+/// Two parameters that say the same thing differently.
+pub const CONFLICTING_PARAMS: &str = "pts::check::conflicting_params";
 /// The scene file cannot be read.
 pub const IO_READ: &str = "pts::io::read";
 
@@ -388,8 +390,14 @@ pub const CATALOGUE: &[Entry] = &[
     Entry {
         code: NO_EFFECT,
         title: "Warning: a parameter that has no effect",
-        explanation: "A parameter whose lobe is absent does nothing: `gloss` without `reflection`, `absorption` without `transmission`.",
+        explanation: "A parameter whose lobe is absent does nothing: `gloss` without `reflection`, `absorption` without `transmission`; so does one that a material's `type` does not use (`diffuse` on a conductor, `preset` on a plastic).",
         example: "material { diffuse rgb 0.5 gloss 0.3 }",
+    },
+    Entry {
+        code: CONFLICTING_PARAMS,
+        title: "Two parameters that say the same thing",
+        explanation: "A conductor's optical constants come from a `preset` or from `eta` and `k`, not both: the preset would silently win.",
+        example: "material { type conductor preset gold eta rgb 0.2 k rgb 3 }",
     },
     Entry {
         code: IO_READ,

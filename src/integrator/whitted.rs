@@ -11,7 +11,7 @@ use super::{Integrator, T_MIN};
 use crate::geometry::{offset_origin, Ray};
 use crate::ir::{Hit, Scene};
 use crate::light::Light;
-use crate::material::{fresnel, reflect, refract, Material};
+use crate::material::{fresnel, reflect, refract, thin_dielectric, Kind, Material};
 use crate::sampling::sampler::Sampler;
 use glam::Vec3;
 
@@ -71,6 +71,51 @@ pub fn trace(scene: &Scene, ray: Ray, sampler: &mut Sampler, segment: u32, weigh
         let r = Ray::new(offset_origin(hit.p, hit.n_geo, dir), dir, ray.time);
         trace(scene, r, sampler, segment + 1, w)
     };
+    match m.kind {
+        Kind::Lobes => l += lobes(m, wo, nf, outside, sampler, branch),
+        Kind::ThinDielectric => {
+            let r = thin_dielectric::reflectance(wo.dot(nf), m.ior);
+            l += r * branch(sampler, r, reflect(wo, nf));
+            l += (1.0 - r) * branch(sampler, 1.0 - r, -wo);
+        }
+        Kind::Conductor(_) | Kind::Plastic(_) | Kind::RoughDielectric => {
+            // A metal, a plastic's coat or frosted glass: one branch when
+            // it is a mirror, else a few importance-sampled ones.
+            let mut acc = Vec3::ZERO;
+            let mut count = 0;
+            while count < GLOSSY_SAMPLES {
+                count += 1;
+                let u = (sampler.next_f32(), sampler.next_2d());
+                if let Some(b) = m.sample_specular(wo, hit.n_shading, u.0, u.1) {
+                    let share = if b.delta { 1.0 } else { GLOSSY_SAMPLES as f32 };
+                    acc += b.weight * branch(sampler, b.weight.max_element() / share, b.wi);
+                    if b.delta {
+                        break;
+                    }
+                }
+            }
+            l += acc / count as f32;
+        }
+    }
+    // Beer's law over the segment just travelled inside this object.
+    if m.transmission > 0.0 && !outside && m.absorption != Vec3::ZERO {
+        l *= (-m.absorption * hit.t).exp();
+    }
+    l
+}
+
+/// The reflected and refracted branches of the paper's mix of lobes: the
+/// mirror, a few directions around it when glossy, and the smooth
+/// dielectric's Fresnel-weighted pair.
+fn lobes(
+    m: &Material,
+    wo: Vec3,
+    nf: Vec3,
+    outside: bool,
+    sampler: &mut Sampler,
+    branch: impl Fn(&mut Sampler, f32, Vec3) -> Vec3,
+) -> Vec3 {
+    let mut l = Vec3::ZERO;
     if m.reflection != Vec3::ZERO {
         if m.alpha == 0.0 {
             let wi = reflect(wo, nf);
@@ -85,7 +130,7 @@ pub fn trace(scene: &Scene, ray: Ray, sampler: &mut Sampler, segment: u32, weigh
             };
             for _ in 0..GLOSSY_SAMPLES {
                 if let Some(b) =
-                    only_gloss.sample(wo, hit.n_shading, sampler.next_f32(), sampler.next_2d())
+                    only_gloss.sample(wo, nf, sampler.next_f32(), sampler.next_2d())
                 {
                     let k = b.weight.max_element() / GLOSSY_SAMPLES as f32;
                     acc += b.weight * branch(sampler, k, b.wi);
@@ -106,10 +151,6 @@ pub fn trace(scene: &Scene, ray: Ray, sampler: &mut Sampler, segment: u32, weigh
             }
         }
         l += m.transmission * t;
-    }
-    // Beer's law over the segment just travelled inside this object.
-    if m.transmission > 0.0 && !outside && m.absorption != Vec3::ZERO {
-        l *= (-m.absorption * hit.t).exp();
     }
     l
 }

@@ -5,7 +5,9 @@ use crate::check;
 use crate::check::scene::TextureInput;
 use crate::diag::{codes, Diagnostic, Diagnostics};
 use crate::lower::image::Images;
-use crate::material::{self, Input, Material, NormalInput, Textured};
+use crate::material::conductor::Conductor;
+use crate::material::plastic::Plastic;
+use crate::material::{self, microfacet, Input, Material, NormalInput, Textured};
 use crate::texture::image::Wrap;
 use crate::texture::noise::NoiseKind;
 use crate::texture::{ColorMap, Pattern, Space, Texture};
@@ -29,7 +31,9 @@ pub fn lower_material(
         absorption: DVec3::from_array(m.absorption).as_vec3(),
         emission: DVec3::from_array(m.emission).as_vec3(),
         two_sided: m.two_sided,
+        kind: material::Kind::Lobes,
     };
+    params.kind = kind(m, &mut params);
     if m.textures.is_empty() {
         return Material::new(&params);
     }
@@ -80,6 +84,41 @@ pub fn lower_material(
     let mut material = Material::new(&params);
     material.textured = Some(Box::new(textured));
     material
+}
+
+/// The renderer's scattering model for a checked material; smooth glass
+/// (and glass of index 1, which bends nothing) is the mix's transmission
+/// lobe.
+fn kind(m: &check::Material, params: &mut material::Params) -> material::Kind {
+    match m.kind {
+        check::MaterialKind::Mix => material::Kind::Lobes,
+        check::MaterialKind::Conductor { preset, eta, k } => material::Kind::Conductor(
+            preset.and_then(Conductor::preset).unwrap_or_else(|| {
+                Conductor::new(
+                    DVec3::from_array(eta).as_vec3(),
+                    DVec3::from_array(k).as_vec3(),
+                )
+            }),
+        ),
+        check::MaterialKind::Plastic => {
+            let alpha = if m.gloss > 0.0 {
+                microfacet::gloss_to_alpha(m.gloss as f32)
+            } else {
+                0.0
+            };
+            material::Kind::Plastic(Plastic::new(m.ior as f32, alpha))
+        }
+        check::MaterialKind::Dielectric => {
+            let textured_gloss = (m.textures.iter()).any(|(i, _)| *i == TextureInput::Gloss);
+            if (m.gloss == 0.0 && !textured_gloss) || m.ior == 1.0 {
+                params.transmission = 1.0;
+                material::Kind::Lobes
+            } else {
+                material::Kind::RoughDielectric
+            }
+        }
+        check::MaterialKind::ThinDielectric => material::Kind::ThinDielectric,
+    }
 }
 
 /// A checked texture in the renderer's f32: its transforms inverted, to
@@ -143,4 +182,15 @@ fn lower_texture(
         // The checker keeps stops in order; a lone colour is a flat map.
         colors: ColorMap::new(stops).unwrap_or_else(|| ColorMap::two(Vec3::ZERO, Vec3::ZERO)),
     })
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn the_checker_knows_the_renderers_metals() {
+        let names: Vec<&str> = (crate::material::conductor::PRESETS.iter())
+            .map(|p| p.0)
+            .collect();
+        assert_eq!(names, crate::check::params::METAL_PRESETS);
+    }
 }

@@ -5,8 +5,10 @@
 //! that does not match the sampler (wrong Jacobian, missing lobe, wrong mixture
 //! weight) fails; so does a sampler whose weight is not f·cos/pdf.
 
+use super::conductor::Conductor;
+use super::plastic::Plastic;
 use super::tests::mat as material;
-use super::Material;
+use super::{Kind, Material, Params};
 use crate::sampling::chi2::{gamma_q, pearson_p_value};
 use crate::sampling::sampler::Sampler;
 use glam::Vec3;
@@ -108,6 +110,109 @@ fn every_sampler_follows_its_pdf() {
             );
         }
     }
+}
+
+/// A material of one of the models beside the mix.
+fn model(kind: Kind, gloss: f32) -> Material {
+    Material::new(&Params {
+        kind,
+        gloss,
+        diffuse: Vec3::new(0.7, 0.4, 0.2),
+        reflection: Vec3::ONE,
+        ior: 1.5,
+        ..Params::default()
+    })
+}
+
+fn gold() -> Kind {
+    Kind::Conductor(Conductor::preset("gold").unwrap())
+}
+
+fn plastic(gloss: f32) -> Kind {
+    let alpha = if gloss > 0.0 {
+        super::microfacet::gloss_to_alpha(gloss)
+    } else {
+        0.0
+    };
+    Kind::Plastic(Plastic::new(1.5, alpha))
+}
+
+#[test]
+fn every_model_samples_its_pdf() {
+    let cases = [
+        ("rough gold 0.3", model(gold(), 0.3), false),
+        ("rough gold 0.8", model(gold(), 0.8), false),
+        ("smooth plastic", model(plastic(0.0), 0.0), false),
+        ("rough plastic 0.3", model(plastic(0.3), 0.3), false),
+        ("rough plastic 0.7", model(plastic(0.7), 0.7), false),
+        ("frosted glass 0.3", model(Kind::RoughDielectric, 0.3), true),
+        ("frosted glass 0.7", model(Kind::RoughDielectric, 0.7), true),
+    ];
+    let views = [0.95f32, 0.5, 0.1, -0.3, -0.8];
+    let tests = (cases.len() * views.len()) as f64;
+    let alpha = 1.0 - 0.99f64.powf(1.0 / tests);
+    for (name, m, both_sides) in &cases {
+        for (k, cos) in views.iter().enumerate() {
+            if *cos < 0.0 && !both_sides {
+                continue;
+            }
+            let wo = Vec3::new((1.0 - cos * cos).sqrt(), 0.0, *cos);
+            let p = chi2_p_value(m, wo, 200_000, 10 + k as u64);
+            assert!(
+                p > alpha,
+                "{name}, cos θo = {cos}: χ² p-value {p:.2e} < {alpha:.2e}"
+            );
+        }
+    }
+}
+
+#[test]
+fn the_models_are_reciprocal_and_keep_energy() {
+    let mut s = Sampler::new(6, 3, 0, 0);
+    for (m, name) in [
+        (model(gold(), 0.4), "gold"),
+        (model(plastic(0.0), 0.0), "plastic"),
+        (model(plastic(0.5), 0.5), "rough plastic"),
+    ] {
+        for _ in 0..200 {
+            let a = crate::sampling::warp::uniform_sphere(s.next_2d());
+            let b = crate::sampling::warp::uniform_sphere(s.next_2d());
+            let (fab, _) = m.eval(a, b, Vec3::Z);
+            let (fba, _) = m.eval(b, a, Vec3::Z);
+            assert!(
+                (fab - fba).abs().max_element() <= 1e-4 * fab.max_element().max(1.0),
+                "{name}: {fab} vs {fba}"
+            );
+        }
+        for cos in [0.05f32, 0.5, 1.0] {
+            let wo = Vec3::new((1.0 - cos * cos).sqrt(), 0.0, cos);
+            let n = 50_000;
+            let mut sum = Vec3::ZERO;
+            for _ in 0..n {
+                if let Some(b) = m.sample(wo, Vec3::Z, s.next_f32(), s.next_2d()) {
+                    sum += b.weight;
+                }
+            }
+            let albedo = sum / n as f32;
+            assert!(albedo.max_element() <= 1.01, "{name} cos {cos}: {albedo}");
+        }
+    }
+    // A thin pane reflects R and passes the rest straight through.
+    let pane = model(Kind::ThinDielectric, 0.0);
+    let wo = Vec3::new(0.6, 0.0, 0.8);
+    let (mut reflected, n) = (0usize, 100_000);
+    for _ in 0..n {
+        let b = pane.sample(wo, Vec3::Z, s.next_f32(), s.next_2d()).unwrap();
+        assert!(b.delta && b.weight == Vec3::ONE);
+        if b.transmitted {
+            assert!((b.wi + wo).length() < 1e-6);
+        } else {
+            reflected += 1;
+        }
+    }
+    let r = super::thin_dielectric::reflectance(0.8, 1.5);
+    let share = reflected as f32 / n as f32;
+    assert!((share - r).abs() < 4.0 * (r * (1.0 - r) / n as f32).sqrt(), "{share} vs {r}");
 }
 
 #[test]

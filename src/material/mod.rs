@@ -1,24 +1,52 @@
 //! Materials: the paper's weighted mix of lobes — Lambertian diffuse,
 //! specular (mirror or GGX glossy) reflection, smooth dielectric — made
-//! physically correct. A path picks one lobe with probability proportional to
-//! its weight; weights above 1 in sum are scaled down, so the mix never
-//! creates energy.
+//! physically correct, and the models of today's renderers, one file each:
+//! metals (`conductor`), coated diffuse (`plastic`), frosted glass
+//! (`rough_dielectric`) and window panes (`thin_dielectric`). In the mix a
+//! path picks one lobe with probability proportional to its weight; weights
+//! above 1 in sum are scaled down, so the mix never creates energy.
 
+pub mod conductor;
 pub mod fresnel;
 pub mod microfacet;
 pub mod multiscatter;
+pub mod plastic;
+pub mod rough_dielectric;
+pub mod thin_dielectric;
 
 #[cfg(test)]
 mod chi2;
 
 use crate::geometry::orthonormal_basis;
 use crate::sampling::warp::{cosine_hemisphere, cosine_hemisphere_pdf};
+use conductor::Conductor;
 use glam::{Vec2, Vec3};
+use plastic::Plastic;
 use std::f32::consts::FRAC_1_PI;
+
+/// How a material scatters light.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Kind {
+    /// The paper's weighted mix of diffuse, reflection and transmission
+    /// lobes (a smooth glass is a mix of transmission alone).
+    Lobes,
+    /// A metal: `reflection` tints it, `alpha` roughens it.
+    Conductor(Conductor),
+    /// `diffuse` under a dielectric coat tinted by `reflection`.
+    Plastic(Plastic),
+    /// Glass of index `ior` roughened by `alpha` (> 0).
+    RoughDielectric,
+    /// A thin pane of index `ior`.
+    ThinDielectric,
+}
 
 /// A resolved material.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Material {
+    /// Its scattering model.
+    pub kind: Kind,
+    /// Whether it has a non-delta lobe (worth sampling lights for).
+    pub smooth_lobe: bool,
     /// Lambertian albedo (after weight normalisation).
     pub diffuse: Vec3,
     /// Specular reflectance (after weight normalisation).
@@ -108,12 +136,15 @@ pub struct Params {
     pub emission: Vec3,
     /// Emission from both sides.
     pub two_sided: bool,
+    /// The scattering model.
+    pub kind: Kind,
 }
 
 impl Default for Params {
     /// Black, no lobes, the IOR of glass.
     fn default() -> Params {
         Params {
+            kind: Kind::Lobes,
             diffuse: Vec3::ZERO,
             reflection: Vec3::ZERO,
             gloss: 0.0,
@@ -168,26 +199,60 @@ impl Material {
     pub fn new(p: &Params) -> Material {
         let (mut diffuse, mut reflection, mut transmission) =
             (p.diffuse, p.reflection, p.transmission);
-        let w = [max3(diffuse), max3(reflection), transmission];
-        let sum: f32 = w.iter().sum();
-        if sum > 1.0 {
-            diffuse /= sum;
-            reflection /= sum;
-            transmission /= sum;
-        }
-        let lobe_pdf = if sum > 0.0 {
-            [w[0] / sum, w[1] / sum, w[2] / sum]
+        // Rough glass stays rough where a texture's gloss reaches 0 (its
+        // smooth case is the mix's transmission lobe).
+        let alpha = if p.gloss > 0.0 || p.kind == Kind::RoughDielectric {
+            microfacet::gloss_to_alpha(p.gloss)
         } else {
-            [0.0; 3]
+            0.0
+        };
+        let (lobe_pdf, smooth_lobe) = match p.kind {
+            Kind::Lobes => {
+                let w = [max3(diffuse), max3(reflection), transmission];
+                let sum: f32 = w.iter().sum();
+                if sum > 1.0 {
+                    diffuse /= sum;
+                    reflection /= sum;
+                    transmission /= sum;
+                }
+                let lobe_pdf = if sum > 0.0 {
+                    [w[0] / sum, w[1] / sum, w[2] / sum]
+                } else {
+                    [0.0; 3]
+                };
+                let smooth = lobe_pdf[0] > 0.0 || (lobe_pdf[1] > 0.0 && alpha > 0.0);
+                (lobe_pdf, smooth)
+            }
+            // The other models choose among their parts themselves; the
+            // mix's probabilities only say which parts exist (the
+            // integrators' ambient term reads the diffuse one).
+            Kind::Conductor(_) => {
+                diffuse = Vec3::ZERO;
+                transmission = 0.0;
+                ([0.0, 1.0, 0.0], alpha > 0.0)
+            }
+            Kind::Plastic(_) => {
+                transmission = 0.0;
+                ([1.0, 0.0, 0.0], true)
+            }
+            Kind::RoughDielectric | Kind::ThinDielectric => {
+                diffuse = Vec3::ZERO;
+                reflection = Vec3::ZERO;
+                // Beer's law applies inside rough glass, not in a pane.
+                transmission = if p.kind == Kind::RoughDielectric {
+                    1.0
+                } else {
+                    0.0
+                };
+                ([0.0, 0.0, 1.0], p.kind == Kind::RoughDielectric)
+            }
         };
         Material {
+            kind: p.kind,
+            smooth_lobe,
             diffuse,
             reflection,
-            alpha: if p.gloss > 0.0 {
-                microfacet::gloss_to_alpha(p.gloss)
-            } else {
-                0.0
-            },
+            alpha,
             transmission,
             ior: p.ior,
             absorption: p.absorption,
@@ -204,8 +269,9 @@ impl Material {
     }
 
     /// Whether it has a non-delta lobe (worth sampling lights for).
+    #[inline]
     pub fn has_smooth_lobe(&self) -> bool {
-        self.lobe_pdf[0] > 0.0 || (self.lobe_pdf[1] > 0.0 && self.alpha > 0.0)
+        self.smooth_lobe
     }
 
     /// Emitted radiance towards `wo` from a surface with geometric normal `n`.
@@ -221,6 +287,9 @@ impl Material {
     /// surface with normal `n` (either orientation).
     #[inline]
     pub fn eval(&self, wo: Vec3, wi: Vec3, n: Vec3) -> (Vec3, f32) {
+        if !matches!(self.kind, Kind::Lobes) {
+            return self.eval_model(wo, wi, n);
+        }
         let nf = if wo.dot(n) < 0.0 { -n } else { n };
         let cos_i = wi.dot(nf);
         let cos_o = wo.dot(nf);
@@ -254,6 +323,9 @@ impl Material {
     /// geometric normal is `n`.
     #[inline(always)]
     pub fn sample(&self, wo: Vec3, n: Vec3, u_lobe: f32, u: Vec2) -> Option<BsdfSample> {
+        if !matches!(self.kind, Kind::Lobes) {
+            return self.sample_model(wo, n, u_lobe, u);
+        }
         let outside = wo.dot(n) >= 0.0;
         let nf = if outside { n } else { -n };
         let [pd, pr, _] = self.lobe_pdf;
@@ -340,7 +412,119 @@ impl Material {
 
     /// The albedo shown by the debug integrator.
     pub fn albedo(&self) -> Vec3 {
-        self.diffuse + self.reflection + Vec3::splat(self.transmission)
+        match self.kind {
+            Kind::Lobes => self.diffuse + self.reflection + Vec3::splat(self.transmission),
+            Kind::Conductor(c) => self.reflection * c.fresnel(1.0),
+            Kind::Plastic(_) => self.diffuse,
+            Kind::RoughDielectric | Kind::ThinDielectric => Vec3::ONE,
+        }
+    }
+
+    /// [`Material::eval`] for the models other than the mix, in the local
+    /// frame of the normal (turned towards `wo` for the opaque ones).
+    #[inline(never)]
+    fn eval_model(&self, wo: Vec3, wi: Vec3, n: Vec3) -> (Vec3, f32) {
+        let nf = match self.kind {
+            Kind::RoughDielectric => n,
+            _ if wo.dot(n) < 0.0 => -n,
+            _ => n,
+        };
+        let (t, b) = orthonormal_basis(nf);
+        let local = |w: Vec3| Vec3::new(w.dot(t), w.dot(b), w.dot(nf));
+        let (lo, li) = (local(wo), local(wi));
+        match self.kind {
+            Kind::Conductor(c) => {
+                let (f, pdf) = c.eval(lo, li, self.alpha);
+                (self.reflection * f, pdf)
+            }
+            Kind::Plastic(coat) => coat.eval(self.diffuse, self.reflection, lo, li),
+            Kind::RoughDielectric => {
+                let (f, pdf) = rough_dielectric::eval(lo, li, self.ior, self.alpha);
+                (Vec3::splat(f), pdf)
+            }
+            Kind::ThinDielectric | Kind::Lobes => (Vec3::ZERO, 0.0),
+        }
+    }
+
+    /// [`Material::sample`] for the models other than the mix.
+    #[inline(never)]
+    fn sample_model(&self, wo: Vec3, n: Vec3, u_lobe: f32, u: Vec2) -> Option<BsdfSample> {
+        let nf = match self.kind {
+            Kind::RoughDielectric | Kind::ThinDielectric => n,
+            _ if wo.dot(n) < 0.0 => -n,
+            _ => n,
+        };
+        let (t, b) = orthonormal_basis(nf);
+        let lo = Vec3::new(wo.dot(t), wo.dot(b), wo.dot(nf));
+        let world = |l: Vec3| l.x * t + l.y * b + l.z * nf;
+        let smooth = |wi: Vec3, weight: Vec3, pdf: f32, transmitted: bool| BsdfSample {
+            wi,
+            weight,
+            pdf,
+            delta: false,
+            transmitted,
+        };
+        let delta = |wi: Vec3, weight: Vec3, transmitted: bool| BsdfSample {
+            wi,
+            weight,
+            pdf: 0.0,
+            delta: true,
+            transmitted,
+        };
+        match self.kind {
+            Kind::Conductor(c) => {
+                let (li, w, pdf) = c.sample(lo, self.alpha, u_lobe, u)?;
+                let w = self.reflection * w;
+                Some(if pdf == 0.0 {
+                    delta(world(li), w, false)
+                } else {
+                    smooth(world(li), w, pdf, false)
+                })
+            }
+            Kind::Plastic(coat) => {
+                let (li, w, pdf, mirror) =
+                    coat.sample(self.diffuse, self.reflection, lo, u_lobe, u)?;
+                Some(if mirror {
+                    delta(world(li), w, false)
+                } else {
+                    smooth(world(li), w, pdf, false)
+                })
+            }
+            Kind::RoughDielectric => {
+                let (li, w, pdf) = rough_dielectric::sample(lo, self.ior, self.alpha, u_lobe, u)?;
+                Some(smooth(world(li), Vec3::splat(w), pdf, li.z * lo.z < 0.0))
+            }
+            Kind::ThinDielectric => {
+                if u_lobe < thin_dielectric::reflectance(lo.z, self.ior) {
+                    Some(delta(world(Vec3::new(-lo.x, -lo.y, lo.z)), Vec3::ONE, false))
+                } else {
+                    Some(delta(-wo, Vec3::ONE, true))
+                }
+            }
+            Kind::Lobes => None,
+        }
+    }
+
+    /// Samples only the specular part of a metal, a plastic's coat or
+    /// rough glass (for Whitted's reflected and refracted branches; diffuse
+    /// light there comes from shadow rays alone).
+    pub fn sample_specular(&self, wo: Vec3, n: Vec3, u_lobe: f32, u: Vec2) -> Option<BsdfSample> {
+        match self.kind {
+            Kind::Plastic(coat) => {
+                let nf = if wo.dot(n) < 0.0 { -n } else { n };
+                let (t, b) = orthonormal_basis(nf);
+                let lo = Vec3::new(wo.dot(t), wo.dot(b), wo.dot(nf));
+                let (li, weight) = coat.sample_coat(self.reflection, lo, u)?;
+                Some(BsdfSample {
+                    wi: li.x * t + li.y * b + li.z * nf,
+                    weight,
+                    pdf: 0.0,
+                    delta: coat.alpha == 0.0,
+                    transmitted: false,
+                })
+            }
+            _ => self.sample(wo, n, u_lobe, u),
+        }
     }
 }
 

@@ -1,0 +1,311 @@
+//! `material { }` → a checked material: the paper's mix of lobes or one of
+//! the models a `type` names, each with its own defaults and the
+//! parameters that mean nothing to it reported.
+
+use super::blocks::{textures, Reader};
+use super::params::{ParamSpec, Params, Val, MATERIAL, METAL_PRESETS};
+use super::scene::*;
+use crate::diag::codes;
+use crate::diag::{Diagnostic, Diagnostics};
+use crate::span::Span;
+
+/// `material { }` → material.
+pub fn material(p: &Params, name: Option<String>, span: Span, diags: &mut Diagnostics) -> Material {
+    let mut r = Reader { p, diags };
+    let diffuse_given = p.given("diffuse");
+    let kind = kind(&mut r);
+    let mut m = Material {
+        name,
+        kind,
+        diffuse: r.color("diffuse", if diffuse_given { [0.5; 3] } else { [0.0; 3] }),
+        reflection: r.color("reflection", [0.0; 3]),
+        textures: textures(p),
+        bump_height: r.num_in("bump_height", -1e6, 1e6, false, 0.01),
+        gloss: r.num_in("gloss", 0.0, 1.0, false, 0.0),
+        transmission: r.num_in("transmission", 0.0, 1.0, false, 0.0),
+        ior: r.num_in("ior", 1.0, 10.0, false, 1.5),
+        absorption: r.color("absorption", [0.0; 3]),
+        emission: r.color("emission", [0.0; 3]),
+        two_sided: r.boolean("two_sided", false),
+        span,
+    };
+    // A textured parameter stands for its brightest value in the checks
+    // below, in the lobes' weights and in a light's power (an image's
+    // brightest texel is known only once it is read: 1 until then).
+    for (input, t) in &m.textures {
+        let bright = match t.kind {
+            TextureKind::Image { .. } => [1.0; 3],
+            _ => t.brightest(),
+        };
+        let number = bright.iter().cloned().fold(0.0, f64::max).min(1.0);
+        match input {
+            TextureInput::Diffuse => m.diffuse = bright,
+            TextureInput::Reflection => m.reflection = bright,
+            TextureInput::Absorption => m.absorption = bright,
+            TextureInput::Emission => m.emission = bright,
+            TextureInput::Gloss => m.gloss = number,
+            TextureInput::Transmission => m.transmission = number,
+            TextureInput::NormalMap | TextureInput::Bump => {}
+        }
+    }
+    if let Some((_, s)) = p.get("bump_height") {
+        if !p.given("bump") {
+            diags.push(
+                Diagnostic::warning(
+                    codes::NO_EFFECT,
+                    "`bump_height` has no effect without `bump`",
+                    *s,
+                )
+                .with_label("ignored")
+                .with_help("give `bump` a texture, e.g. `bump noise { scale 0.05 }`"),
+            );
+        }
+    }
+    if m.kind == MaterialKind::Mix {
+        mix_checks(p, &mut m, diags);
+    } else {
+        model_checks(p, &mut m, diags);
+    }
+    m
+}
+
+/// The checks of the paper's mix of lobes: its default, its energy, and
+/// the parameters that need another lobe.
+fn mix_checks(p: &Params, m: &mut Material, diags: &mut Diagnostics) {
+    // A material with no lobe at all is the default grey diffuse (unless it only emits).
+    let any_lobe = ["diffuse", "reflection", "transmission", "emission"]
+        .iter()
+        .any(|n| p.given(n));
+    if !any_lobe {
+        m.diffuse = [0.5; 3];
+    }
+    if let Some((_, s)) = p.get("diffuse") {
+        if m.diffuse.iter().any(|c| *c > 1.0) {
+            diags.push(
+                Diagnostic::warning(codes::ENERGY_GAIN, "diffuse albedo above 1", *s)
+                    .with_label("a surface cannot reflect more light than it receives")
+                    .with_help("keep every component of `diffuse` at most 1"),
+            );
+        }
+    }
+    let max = |c: Rgb| c.iter().cloned().fold(0.0, f64::max);
+    let total = max(m.diffuse) + max(m.reflection) + m.transmission;
+    if total > 1.0 + 1e-9
+        && p.given("diffuse") as u8 + p.given("reflection") as u8 + p.given("transmission") as u8
+            > 1
+    {
+        diags.push(
+            Diagnostic::warning(
+                codes::ENERGY_GAIN,
+                format!("the lobes of this material add up to {total:.3}, more than 1"),
+                p.head,
+            )
+            .with_label("diffuse + reflection + transmission > 1")
+            .with_help("ptsc scales the lobes down to sum to 1; lower them to silence this"),
+        );
+    }
+    if let Some((_, s)) = p.get("gloss") {
+        if max(m.reflection) == 0.0 {
+            diags.push(
+                Diagnostic::warning(
+                    codes::NO_EFFECT,
+                    "`gloss` has no effect without `reflection`",
+                    *s,
+                )
+                .with_label("ignored")
+                .with_help("add `reflection rgb 1` to make the surface a glossy reflector"),
+            );
+        }
+    }
+    if let Some((_, s)) = p.get("absorption") {
+        if m.transmission == 0.0 {
+            diags.push(
+                Diagnostic::warning(
+                    codes::NO_EFFECT,
+                    "`absorption` has no effect without `transmission`",
+                    *s,
+                )
+                .with_label("ignored")
+                .with_help("absorption acts inside transparent objects: add `transmission 1`"),
+            );
+        }
+    }
+    for name in ["preset", "eta", "k"] {
+        if let Some((_, s)) = p.get(name) {
+            diags.push(no_effect(name, "the mix of lobes", *s, "write `type conductor` to make a metal"));
+        }
+    }
+}
+
+/// The scattering model a material's `type` names; a conductor's
+/// constants from its `preset` or its `eta` and `k`.
+fn kind(r: &mut Reader) -> MaterialKind {
+    let p = r.p;
+    let word = match p.get("type") {
+        Some((Val::Word(w), _)) => w.as_str(),
+        _ => "mix",
+    };
+    match word {
+        "conductor" => {
+            let preset = match p.get("preset") {
+                Some((Val::Word(w), s)) => Some((w.as_str(), *s)),
+                _ => None,
+            };
+            let (eta, k) = (p.given("eta"), p.given("k"));
+            if let (Some((_, s)), true) = (preset, eta || k) {
+                let other = if eta { "eta" } else { "k" };
+                r.diags.push(
+                    Diagnostic::error(
+                        codes::CONFLICTING_PARAMS,
+                        format!("`preset` and `{other}` both give the metal's constants"),
+                        s,
+                    )
+                    .with_label("a preset sets `eta` and `k`")
+                    .with_help("keep the preset, or remove it and give both `eta` and `k`"),
+                );
+            }
+            if let Some((name, _)) = preset {
+                let name = METAL_PRESETS.iter().find(|n| **n == name).copied();
+                return MaterialKind::Conductor {
+                    preset: name,
+                    eta: [1.0; 3],
+                    k: [0.0; 3],
+                };
+            }
+            if !(eta && k) && !p.given("preset") {
+                let missing = if eta { "k" } else { "eta" };
+                r.diags.push(
+                    Diagnostic::error(
+                        codes::MISSING_PARAM,
+                        format!("`{}` needs a `preset` or both `eta` and `k`", p.what),
+                        p.head,
+                    )
+                    .with_label(format!("a conductor without `preset` or `{missing}`"))
+                    .with_help("add `preset gold` (or silver, copper, aluminium, chromium)"),
+                );
+            }
+            MaterialKind::Conductor {
+                preset: None,
+                eta: r.color("eta", [1.0; 3]),
+                k: r.color("k", [0.0; 3]),
+            }
+        }
+        "plastic" => MaterialKind::Plastic,
+        "dielectric" => MaterialKind::Dielectric,
+        "thin_dielectric" => MaterialKind::ThinDielectric,
+        _ => MaterialKind::Mix,
+    }
+}
+
+/// A warning for a parameter that a material's model ignores.
+fn no_effect(name: &str, model: &str, span: Span, help: &str) -> Diagnostic {
+    Diagnostic::warning(
+        codes::NO_EFFECT,
+        format!("`{name}` has no effect on {model}"),
+        span,
+    )
+    .with_label("ignored")
+    .with_help(help.to_string())
+}
+
+/// The defaults of the models other than the mix, and the parameters they
+/// ignore.
+fn model_checks(p: &Params, m: &mut Material, diags: &mut Diagnostics) {
+    let (model, ignored, help): (&str, &[&str], &str) = match m.kind {
+        MaterialKind::Conductor { .. } => (
+            "a conductor",
+            &["diffuse", "transmission", "absorption", "ior"],
+            "a metal is its `preset` (or `eta` and `k`), tinted by `reflection` and roughened by `gloss`",
+        ),
+        MaterialKind::Plastic => (
+            "a plastic",
+            &["transmission", "absorption", "preset", "eta", "k"],
+            "a plastic is its `diffuse` base under a coat of index `ior`, roughened by `gloss`",
+        ),
+        MaterialKind::Dielectric => (
+            "a dielectric",
+            &["diffuse", "reflection", "transmission", "preset", "eta", "k"],
+            "glass is its `ior`, `gloss` (frosting) and `absorption` inside",
+        ),
+        MaterialKind::ThinDielectric | MaterialKind::Mix => (
+            "a thin dielectric",
+            &["diffuse", "reflection", "transmission", "absorption", "gloss", "preset", "eta", "k"],
+            "a thin pane is its `ior` alone",
+        ),
+    };
+    for &name in ignored {
+        if let Some((_, s)) = p.get(name) {
+            diags.push(no_effect(name, model, *s, help));
+        }
+    }
+    // A metal's or a coat's tint is white unless given; a plastic's base
+    // is grey unless given.
+    if !p.given("reflection") {
+        m.reflection = [1.0; 3];
+    }
+    if m.kind == MaterialKind::Plastic && !p.given("diffuse") {
+        m.diffuse = [0.5; 3];
+    }
+    if m.kind == MaterialKind::Plastic {
+        if let Some((Val::Texture(_), s)) = p.get("gloss") {
+            diags.push(
+                Diagnostic::error(
+                    codes::TEXTURE_NOT_ALLOWED,
+                    "a plastic's `gloss` takes one value, not a texture",
+                    *s,
+                )
+                .with_label("a texture")
+                .with_help("how much light the coat lets through is computed once per plastic: give `gloss` a number"),
+            );
+            m.textures.retain(|(input, _)| *input != TextureInput::Gloss);
+        }
+    }
+    for name in ["diffuse", "reflection"] {
+        if let Some((_, s)) = p.get(name) {
+            let c = if name == "diffuse" { m.diffuse } else { m.reflection };
+            if c.iter().any(|x| *x > 1.0) && !matches!(m.kind, MaterialKind::Dielectric) {
+                diags.push(
+                    Diagnostic::warning(codes::ENERGY_GAIN, format!("`{name}` above 1"), *s)
+                        .with_label("a surface cannot reflect more light than it receives")
+                        .with_help(format!("keep every component of `{name}` at most 1")),
+                );
+            }
+        }
+    }
+    // Ignored parameters play no part in the renderer.
+    match m.kind {
+        MaterialKind::Conductor { .. } => {
+            m.diffuse = [0.0; 3];
+            m.transmission = 0.0;
+        }
+        MaterialKind::Plastic => m.transmission = 0.0,
+        _ => {
+            m.diffuse = [0.0; 3];
+            m.reflection = [0.0; 3];
+            m.transmission = 0.0;
+        }
+    }
+    let ignored_textures = |input: &TextureInput| match m.kind {
+        MaterialKind::Conductor { .. } => matches!(
+            input,
+            TextureInput::Diffuse | TextureInput::Transmission | TextureInput::Absorption
+        ),
+        MaterialKind::Plastic => {
+            matches!(input, TextureInput::Transmission | TextureInput::Absorption)
+        }
+        MaterialKind::Dielectric => matches!(
+            input,
+            TextureInput::Diffuse | TextureInput::Reflection | TextureInput::Transmission
+        ),
+        _ => !matches!(
+            input,
+            TextureInput::Emission | TextureInput::NormalMap | TextureInput::Bump
+        ),
+    };
+    m.textures.retain(|(input, _)| !ignored_textures(input));
+}
+
+/// The material schema (for inline and named materials).
+pub fn material_schema() -> [&'static [ParamSpec]; 1] {
+    [MATERIAL]
+}

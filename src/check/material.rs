@@ -17,6 +17,7 @@ pub fn material(p: &Params, name: Option<String>, span: Span, diags: &mut Diagno
     let mut m = Material {
         name,
         kind,
+        multiscatter: r.boolean("multiscatter", true),
         diffuse: r.color("diffuse", if diffuse_given { [0.5; 3] } else { [0.0; 3] }),
         reflection: r.color("reflection", [0.0; 3]),
         textures: textures(p),
@@ -132,7 +133,12 @@ fn mix_checks(p: &Params, m: &mut Material, diags: &mut Diagnostics) {
     }
     for name in ["preset", "eta", "k"] {
         if let Some((_, s)) = p.get(name) {
-            diags.push(no_effect(name, "the mix of lobes", *s, "write `type conductor` to make a metal"));
+            diags.push(no_effect(
+                name,
+                "the mix of lobes",
+                *s,
+                "write `type conductor` to make a metal",
+            ));
         }
     }
 }
@@ -172,7 +178,7 @@ fn kind(r: &mut Reader) -> MaterialKind {
                     k: [0.0; 3],
                 };
             }
-            if !(eta && k) && !p.given("preset") {
+            if !(p.given("preset") || eta && k) {
                 let missing = if eta { "k" } else { "eta" };
                 r.diags.push(
                     Diagnostic::error(
@@ -219,17 +225,27 @@ fn model_checks(p: &Params, m: &mut Material, diags: &mut Diagnostics) {
         ),
         MaterialKind::Plastic => (
             "a plastic",
-            &["transmission", "absorption", "preset", "eta", "k"],
+            &["transmission", "absorption", "preset", "eta", "k", "multiscatter"],
             "a plastic is its `diffuse` base under a coat of index `ior`, roughened by `gloss`",
         ),
         MaterialKind::Dielectric => (
             "a dielectric",
-            &["diffuse", "reflection", "transmission", "preset", "eta", "k"],
+            &["diffuse", "reflection", "transmission", "preset", "eta", "k", "multiscatter"],
             "glass is its `ior`, `gloss` (frosting) and `absorption` inside",
         ),
         MaterialKind::ThinDielectric | MaterialKind::Mix => (
             "a thin dielectric",
-            &["diffuse", "reflection", "transmission", "absorption", "gloss", "preset", "eta", "k"],
+            &[
+                "diffuse",
+                "reflection",
+                "transmission",
+                "absorption",
+                "gloss",
+                "preset",
+                "eta",
+                "k",
+                "multiscatter",
+            ],
             "a thin pane is its `ior` alone",
         ),
     };
@@ -257,12 +273,17 @@ fn model_checks(p: &Params, m: &mut Material, diags: &mut Diagnostics) {
                 .with_label("a texture")
                 .with_help("how much light the coat lets through is computed once per plastic: give `gloss` a number"),
             );
-            m.textures.retain(|(input, _)| *input != TextureInput::Gloss);
+            m.textures
+                .retain(|(input, _)| *input != TextureInput::Gloss);
         }
     }
     for name in ["diffuse", "reflection"] {
         if let Some((_, s)) = p.get(name) {
-            let c = if name == "diffuse" { m.diffuse } else { m.reflection };
+            let c = if name == "diffuse" {
+                m.diffuse
+            } else {
+                m.reflection
+            };
             if c.iter().any(|x| *x > 1.0) && !matches!(m.kind, MaterialKind::Dielectric) {
                 diags.push(
                     Diagnostic::warning(codes::ENERGY_GAIN, format!("`{name}` above 1"), *s)

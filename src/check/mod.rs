@@ -3,10 +3,10 @@
 //! first error.
 
 mod blocks;
-mod material;
 pub mod domain;
 pub mod eval;
 mod finish;
+mod material;
 mod objects;
 pub mod params;
 pub mod scene;

@@ -183,11 +183,18 @@ pub const MATERIAL: &[ParamSpec] = &[
     p("preset", Ty::Word(METAL_PRESETS), "gold"),
     p("eta", Ty::Color, "rgb <0.2, 0.92, 1.1>").of(Magnitude),
     p("k", Ty::Color, "rgb <3.9, 2.45, 2.14>").of(Magnitude),
+    p("multiscatter", Ty::Bool, "false"),
 ];
 
 /// The scattering models a material's `type` names (`mix`, the paper's
 /// weighted lobes, when none is given).
-pub const MATERIAL_TYPES: &[&str] = &["mix", "conductor", "plastic", "dielectric", "thin_dielectric"];
+pub const MATERIAL_TYPES: &[&str] = &[
+    "mix",
+    "conductor",
+    "plastic",
+    "dielectric",
+    "thin_dielectric",
+];
 
 /// The named metals of `type conductor` (their constants live with the
 /// conductor model, `material::conductor::PRESETS`, in this order).

@@ -198,6 +198,8 @@ pub struct Material {
     pub name: Option<String>,
     /// Its scattering model.
     pub kind: MaterialKind,
+    /// Whether glossy reflection gets the multiple-scattering compensation.
+    pub multiscatter: bool,
     /// Lambertian albedo.
     pub diffuse: Rgb,
     /// Specular (mirror or glossy) reflectance.
@@ -229,6 +231,7 @@ impl Material {
         Material {
             name: None,
             kind: MaterialKind::Mix,
+            multiscatter: true,
             diffuse: [0.5; 3],
             reflection: [0.0; 3],
             textures: Vec::new(),

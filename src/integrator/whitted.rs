@@ -129,9 +129,7 @@ fn lobes(
                 ..m.clone()
             };
             for _ in 0..GLOSSY_SAMPLES {
-                if let Some(b) =
-                    only_gloss.sample(wo, nf, sampler.next_f32(), sampler.next_2d())
-                {
+                if let Some(b) = only_gloss.sample(wo, nf, sampler.next_f32(), sampler.next_2d()) {
                     let k = b.weight.max_element() / GLOSSY_SAMPLES as f32;
                     acc += b.weight * branch(sampler, k, b.wi);
                 }

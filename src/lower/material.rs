@@ -32,6 +32,7 @@ pub fn lower_material(
         emission: DVec3::from_array(m.emission).as_vec3(),
         two_sided: m.two_sided,
         kind: material::Kind::Lobes,
+        multiscatter: m.multiscatter,
     };
     params.kind = kind(m, &mut params);
     if m.textures.is_empty() {
@@ -92,14 +93,14 @@ pub fn lower_material(
 fn kind(m: &check::Material, params: &mut material::Params) -> material::Kind {
     match m.kind {
         check::MaterialKind::Mix => material::Kind::Lobes,
-        check::MaterialKind::Conductor { preset, eta, k } => material::Kind::Conductor(
-            preset.and_then(Conductor::preset).unwrap_or_else(|| {
+        check::MaterialKind::Conductor { preset, eta, k } => {
+            material::Kind::Conductor(preset.and_then(Conductor::preset).unwrap_or_else(|| {
                 Conductor::new(
                     DVec3::from_array(eta).as_vec3(),
                     DVec3::from_array(k).as_vec3(),
                 )
-            }),
-        ),
+            }))
+        }
         check::MaterialKind::Plastic => {
             let alpha = if m.gloss > 0.0 {
                 microfacet::gloss_to_alpha(m.gloss as f32)

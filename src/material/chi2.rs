@@ -212,7 +212,10 @@ fn the_models_are_reciprocal_and_keep_energy() {
     }
     let r = super::thin_dielectric::reflectance(0.8, 1.5);
     let share = reflected as f32 / n as f32;
-    assert!((share - r).abs() < 4.0 * (r * (1.0 - r) / n as f32).sqrt(), "{share} vs {r}");
+    assert!(
+        (share - r).abs() < 4.0 * (r * (1.0 - r) / n as f32).sqrt(),
+        "{share} vs {r}"
+    );
 }
 
 #[test]

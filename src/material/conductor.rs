@@ -5,7 +5,8 @@
 //! average Fresnel (Kulla and Conty 2017, "Revisiting Physically Based
 //! Shading at Imageworks", slide "Fresnel"). Mitsuba 3's `conductor` and
 //! `roughconductor` leave out the compensation: rough metals here are
-//! brighter by the light their microfacets bounce more than once.
+//! brighter by the light their microfacets bounce more than once, unless
+//! `multiscatter` is off.
 //!
 //! Directions are local: the normal is +z, on the side of `wo`.
 
@@ -34,11 +35,31 @@ pub struct Conductor {
 /// `scalar_rgb` variant (`mi.traverse(conductor{material=…})`), so that a
 /// preset here and the same name there are the same metal.
 pub const PRESETS: &[(&str, [f32; 3], [f32; 3])] = &[
-    ("gold", [0.143036, 0.375307, 1.44205], [3.983, 2.38556, 1.60336]),
-    ("silver", [0.155276, 0.116728, 0.138388], [4.82835, 3.12222, 2.1469]),
-    ("copper", [0.201005, 0.92375, 1.10222], [3.91326, 2.45305, 2.14209]),
-    ("aluminium", [1.6575, 0.880405, 0.521244], [9.22381, 6.2695, 4.837]),
-    ("chromium", [4.36967, 2.91651, 1.6549], [5.20655, 4.23131, 3.7547]),
+    (
+        "gold",
+        [0.143036, 0.375307, 1.44205],
+        [3.983, 2.38556, 1.60336],
+    ),
+    (
+        "silver",
+        [0.155276, 0.116728, 0.138388],
+        [4.82835, 3.12222, 2.1469],
+    ),
+    (
+        "copper",
+        [0.201005, 0.92375, 1.10222],
+        [3.91326, 2.45305, 2.14209],
+    ),
+    (
+        "aluminium",
+        [1.6575, 0.880405, 0.521244],
+        [9.22381, 6.2695, 4.837],
+    ),
+    (
+        "chromium",
+        [4.36967, 2.91651, 1.6549],
+        [5.20655, 4.23131, 3.7547],
+    ),
 ];
 
 /// The preset names, in the order of [`PRESETS`].
@@ -75,15 +96,23 @@ impl Conductor {
     }
 
     /// BRDF value (without the tint) and pdf of the rough metal for local
-    /// `wo` → `wi`; zero when either is below the surface.
-    pub fn eval(&self, wo: Vec3, wi: Vec3, alpha: f32) -> (Vec3, f32) {
+    /// `wo` → `wi`, with the compensation lobe when `multiscatter`; zero
+    /// when either is below the surface.
+    pub fn eval(&self, wo: Vec3, wi: Vec3, alpha: f32, multiscatter: bool) -> (Vec3, f32) {
         if wo.z <= 0.0 || wi.z <= 0.0 || alpha == 0.0 {
             return (Vec3::ZERO, 0.0);
         }
         let m = (wo + wi).normalize();
         let single = self.fresnel(wo.dot(m)) * reflection_brdf(wo, wi, alpha);
-        let multi = self.multiscatter_fresnel(alpha) * multiscatter::brdf(wo.z, wi.z, alpha);
-        let k = multiscatter_fraction(wo.z, alpha);
+        let (multi, k) = if multiscatter {
+            let f_ms = self.multiscatter_fresnel(alpha);
+            (
+                f_ms * multiscatter::brdf(wo.z, wi.z, alpha),
+                multiscatter_fraction(wo.z, alpha),
+            )
+        } else {
+            (Vec3::ZERO, 0.0)
+        };
         let pdf = (1.0 - k) * reflection_pdf(wo, wi, alpha) + k * cosine_hemisphere_pdf(wi.z);
         (single + multi, pdf)
     }
@@ -92,19 +121,26 @@ impl Conductor {
     /// weight the Fresnel reflectance, pdf 0), else a visible normal's
     /// reflection or, with probability 1 − E(μo), the compensation lobe.
     /// Returns (wi, weight f·cos/pdf without the tint, pdf).
-    pub fn sample(&self, wo: Vec3, alpha: f32, u_lobe: f32, u: Vec2) -> Option<(Vec3, Vec3, f32)> {
+    pub fn sample(
+        &self,
+        wo: Vec3,
+        alpha: f32,
+        multiscatter: bool,
+        u_lobe: f32,
+        u: Vec2,
+    ) -> Option<(Vec3, Vec3, f32)> {
         if wo.z <= 0.0 {
             return None;
         }
         if alpha == 0.0 {
             return Some((Vec3::new(-wo.x, -wo.y, wo.z), self.fresnel(wo.z), 0.0));
         }
-        let wi = if u_lobe < multiscatter_fraction(wo.z, alpha) {
+        let wi = if multiscatter && u_lobe < multiscatter_fraction(wo.z, alpha) {
             cosine_hemisphere(u)
         } else {
             reflect(wo, sample_visible_normal(wo, alpha, u))
         };
-        let (f, pdf) = self.eval(wo, wi, alpha);
+        let (f, pdf) = self.eval(wo, wi, alpha, multiscatter);
         (pdf > 0.0).then(|| (wi, f * wi.z / pdf, pdf))
     }
 }
@@ -124,12 +160,19 @@ mod tests {
             let c = Conductor::preset(name).unwrap();
             // Metals reflect most light at normal incidence, all at grazing.
             let f0 = c.fresnel(1.0);
-            assert!(f0.min_element() > 0.3 && f0.max_element() < 1.0, "{name}: {f0}");
+            assert!(
+                f0.min_element() > 0.3 && f0.max_element() < 1.0,
+                "{name}: {f0}"
+            );
             assert!(f0.max_element() > 0.5, "{name}: {f0}");
             assert!((c.fresnel(0.0) - Vec3::ONE).abs().max_element() < 1e-4);
             // F dips a little below F0 at middle angles before rising to
             // 1; its average stays near F0.
-            assert!(c.f_avg.cmpge(f0 - 0.05).all(), "{name}: {} vs {f0}", c.f_avg);
+            assert!(
+                c.f_avg.cmpge(f0 - 0.05).all(),
+                "{name}: {} vs {f0}",
+                c.f_avg
+            );
         }
         assert_eq!(PRESETS.len(), PRESET_NAMES.len());
         assert!(PRESETS.iter().zip(PRESET_NAMES).all(|(p, n)| p.0 == n));
@@ -151,7 +194,7 @@ mod tests {
                 let n = 40_000;
                 let mut sum = 0.0f64;
                 for _ in 0..n {
-                    if let Some((_, w, _)) = c.sample(wo, alpha, s.next_f32(), s.next_2d()) {
+                    if let Some((_, w, _)) = c.sample(wo, alpha, true, s.next_f32(), s.next_2d()) {
                         sum += w.x as f64;
                     }
                 }

@@ -92,7 +92,10 @@ mod tests {
         let ci = C(cos_i, 0.0);
         let nci = mul(n, ci);
         let nct = mul(n, cos_t);
-        let r_parl = div(C(nci.0 - cos_t.0, nci.1 - cos_t.1), C(nci.0 + cos_t.0, nci.1 + cos_t.1));
+        let r_parl = div(
+            C(nci.0 - cos_t.0, nci.1 - cos_t.1),
+            C(nci.0 + cos_t.0, nci.1 + cos_t.1),
+        );
         let r_perp = div(C(ci.0 - nct.0, -nct.1), C(ci.0 + nct.0, nct.1));
         let norm = |c: C| c.0 * c.0 + c.1 * c.1;
         0.5 * (norm(r_parl) + norm(r_perp))
@@ -100,11 +103,19 @@ mod tests {
 
     #[test]
     fn conductor_matches_complex_arithmetic() {
-        for (eta, k) in [(0.143f32, 3.983f32), (1.6575, 9.2238), (4.37, 5.21), (1.5, 0.0)] {
+        for (eta, k) in [
+            (0.143f32, 3.983f32),
+            (1.6575, 9.2238),
+            (4.37, 5.21),
+            (1.5, 0.0),
+        ] {
             for cos in [1.0f32, 0.8, 0.5, 0.2, 0.05] {
                 let ours = conductor_channel(cos, eta, k);
                 let theirs = complex_fresnel(cos as f64, eta as f64, k as f64) as f32;
-                assert!((ours - theirs).abs() < 1e-4, "η {eta} k {k} cos {cos}: {ours} vs {theirs}");
+                assert!(
+                    (ours - theirs).abs() < 1e-4,
+                    "η {eta} k {k} cos {cos}: {ours} vs {theirs}"
+                );
             }
         }
     }

@@ -47,6 +47,10 @@ pub struct Material {
     pub kind: Kind,
     /// Whether it has a non-delta lobe (worth sampling lights for).
     pub smooth_lobe: bool,
+    /// Whether glossy reflection (of the mix or a metal) gets the
+    /// Kulla–Conty multiple-scattering compensation (off: single
+    /// scattering, as Mitsuba's and pbrt's).
+    pub multiscatter: bool,
     /// Lambertian albedo (after weight normalisation).
     pub diffuse: Vec3,
     /// Specular reflectance (after weight normalisation).
@@ -138,6 +142,8 @@ pub struct Params {
     pub two_sided: bool,
     /// The scattering model.
     pub kind: Kind,
+    /// Whether glossy reflection gets the multiple-scattering compensation.
+    pub multiscatter: bool,
 }
 
 impl Default for Params {
@@ -145,6 +151,7 @@ impl Default for Params {
     fn default() -> Params {
         Params {
             kind: Kind::Lobes,
+            multiscatter: true,
             diffuse: Vec3::ZERO,
             reflection: Vec3::ZERO,
             gloss: 0.0,
@@ -250,6 +257,7 @@ impl Material {
         Material {
             kind: p.kind,
             smooth_lobe,
+            multiscatter: p.multiscatter,
             diffuse,
             reflection,
             alpha,
@@ -309,7 +317,11 @@ impl Material {
             // Single scattering plus the multiple-scattering compensation,
             // sampled as a mix: VNDF with probability E(μo), cosine otherwise.
             let single = microfacet::reflection_brdf(lo, li, self.alpha);
-            let multi = multiscatter::brdf(cos_o, cos_i, self.alpha);
+            let multi = if self.multiscatter {
+                multiscatter::brdf(cos_o, cos_i, self.alpha)
+            } else {
+                0.0
+            };
             f += self.reflection * (single + multi);
             let k = self.multiscatter_fraction(cos_o);
             pdf += self.lobe_pdf[1]
@@ -407,6 +419,9 @@ impl Material {
     /// Probability of sampling the multiple-scattering lobe of glossy
     /// reflection for a view at cosine `cos_o`: the energy it carries, 1 − E(μo).
     fn multiscatter_fraction(&self, cos_o: f32) -> f32 {
+        if !self.multiscatter {
+            return 0.0;
+        }
         (1.0 - multiscatter::directional_albedo(cos_o, self.alpha)).clamp(0.0, 1.0)
     }
 
@@ -434,7 +449,7 @@ impl Material {
         let (lo, li) = (local(wo), local(wi));
         match self.kind {
             Kind::Conductor(c) => {
-                let (f, pdf) = c.eval(lo, li, self.alpha);
+                let (f, pdf) = c.eval(lo, li, self.alpha, self.multiscatter);
                 (self.reflection * f, pdf)
             }
             Kind::Plastic(coat) => coat.eval(self.diffuse, self.reflection, lo, li),
@@ -473,7 +488,7 @@ impl Material {
         };
         match self.kind {
             Kind::Conductor(c) => {
-                let (li, w, pdf) = c.sample(lo, self.alpha, u_lobe, u)?;
+                let (li, w, pdf) = c.sample(lo, self.alpha, self.multiscatter, u_lobe, u)?;
                 let w = self.reflection * w;
                 Some(if pdf == 0.0 {
                     delta(world(li), w, false)
@@ -496,7 +511,11 @@ impl Material {
             }
             Kind::ThinDielectric => {
                 if u_lobe < thin_dielectric::reflectance(lo.z, self.ior) {
-                    Some(delta(world(Vec3::new(-lo.x, -lo.y, lo.z)), Vec3::ONE, false))
+                    Some(delta(
+                        world(Vec3::new(-lo.x, -lo.y, lo.z)),
+                        Vec3::ONE,
+                        false,
+                    ))
                 } else {
                     Some(delta(-wo, Vec3::ONE, true))
                 }

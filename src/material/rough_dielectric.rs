@@ -99,7 +99,7 @@ mod tests {
                 let mut sum = 0.0f64;
                 for _ in 0..n {
                     if let Some((wi, w, _)) = sample(wo, 1.5, alpha, s.next_f32(), s.next_2d()) {
-                        assert!(w <= 1.0 + 1e-3 && w >= 0.0, "weight {w}");
+                        assert!((0.0..=1.0 + 1e-3).contains(&w), "weight {w}");
                         assert!(wi.is_normalized());
                         sum += w as f64;
                     }
@@ -112,7 +112,10 @@ mod tests {
                 // facets (a midpoint quadrature of `eval` gives the same
                 // 0.772 at α 0.3).
                 let floor = if alpha < 0.1 { 0.98 } else { 0.5 };
-                assert!(albedo <= 1.0 && albedo > floor, "α {alpha} cos {cos}: {albedo}");
+                assert!(
+                    albedo <= 1.0 && albedo > floor,
+                    "α {alpha} cos {cos}: {albedo}"
+                );
             }
         }
     }

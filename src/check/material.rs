@@ -131,8 +131,9 @@ fn mix_checks(p: &Params, m: &mut Material, diags: &mut Diagnostics) {
             );
         }
     }
+    // (After an unknown `type`, the words of the type meant are no news.)
     for name in ["preset", "eta", "k"] {
-        if let Some((_, s)) = p.get(name) {
+        if let Some((_, s)) = p.get(name).filter(|_| !p.given("type")) {
             diags.push(no_effect(
                 name,
                 "the mix of lobes",

@@ -3,6 +3,8 @@
 //! lights are chosen in proportion to their power.
 
 pub mod environment;
+pub mod sky;
+mod sun_table;
 
 use crate::geometry::shape::Shape;
 use crate::geometry::Aabb;
@@ -55,6 +57,11 @@ pub enum Light {
         radiance: Vec3,
         /// The map, if any (shared by clones of the scene).
         map: Option<std::sync::Arc<environment::EnvironmentMap>>,
+    },
+    /// A daylight sky and its sun, at infinity.
+    Sky {
+        /// The sky (shared by clones of the scene).
+        sky: std::sync::Arc<sky::SunSky>,
     },
 }
 
@@ -118,6 +125,11 @@ impl Light {
                 let mean = map.as_ref().map_or(Vec3::ONE, |m| m.mean());
                 // In f64: a bright map times a large intensity overflows f32.
                 let c = radiance.as_dvec3() * mean.as_dvec3();
+                let lum64 = 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z;
+                4.0 * pi * pi * radius * radius * lum64
+            }
+            Light::Sky { sky } => {
+                let c = sky.mean().as_dvec3();
                 let lum64 = 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z;
                 4.0 * pi * pi * radius * radius * lum64
             }
@@ -225,6 +237,15 @@ impl Light {
                     pdf,
                 })
             }
+            Light::Sky { sky } => {
+                let (wi, li, pdf) = sky.sample(u)?;
+                Some(LightSample {
+                    wi,
+                    dist: f32::INFINITY,
+                    li,
+                    pdf,
+                })
+            }
         }
     }
 
@@ -236,6 +257,7 @@ impl Light {
                 Some(m) => *radiance * m.eval(d),
                 None => *radiance,
             },
+            Light::Sky { sky } => sky.eval(d),
             _ => Vec3::ZERO,
         }
     }
@@ -246,6 +268,7 @@ impl Light {
         match self {
             Light::Environment { map: Some(m), .. } => m.pdf(d),
             Light::Environment { map: None, .. } => crate::sampling::warp::UNIFORM_SPHERE_PDF,
+            Light::Sky { sky } => sky.pdf(d),
             _ => 0.0,
         }
     }

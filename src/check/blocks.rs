@@ -393,6 +393,73 @@ pub fn environment(
     })
 }
 
+/// `sky { }` → the daylight sky: the sun's direction from `sun_direction`
+/// or from `sun_elevation` and `sun_azimuth` (degrees; azimuth 0 puts the
+/// sun ahead, towards −z, 90 to the right, towards +x), above the horizon.
+pub fn sky(p: &Params, span: Span, diags: &mut Diagnostics) -> Option<Sky> {
+    let schema = super::params::shape_schema(BlockKind::Sky);
+    let mut r = Reader { p, diags };
+    let angles = p.given("sun_elevation") || p.given("sun_azimuth");
+    let direction = if p.given("sun_direction") {
+        if let (true, Some((_, s))) = (angles, p.get("sun_direction")) {
+            r.diags.push(
+                Diagnostic::error(
+                    codes::CONFLICTING_PARAMS,
+                    "`sun_direction` and `sun_elevation`/`sun_azimuth` both place the sun",
+                    *s,
+                )
+                .with_label("a direction")
+                .with_help("give the sun a direction or an elevation and azimuth, not both"),
+            );
+        }
+        r.direction("sun_direction", schema)?
+    } else {
+        let elevation = r
+            .num_in("sun_elevation", 0.0, 90.0, false, 45.0)
+            .to_radians();
+        let azimuth = r
+            .num_in("sun_azimuth", -360.0, 360.0, false, 0.0)
+            .to_radians();
+        DVec3::new(
+            azimuth.sin() * elevation.cos(),
+            elevation.sin(),
+            -azimuth.cos() * elevation.cos(),
+        )
+    };
+    let turbidity = r.num_in("turbidity", 1.0, 10.0, false, 3.0);
+    let albedo = r.color("albedo", [0.3; 3]);
+    if let Some((_, s)) = p.get("albedo").filter(|_| albedo.iter().any(|c| *c > 1.0)) {
+        let what = p.what.clone();
+        r.diags.push(range_error(
+            &what,
+            "albedo",
+            *s,
+            "between 0 and 1",
+            "the ground's albedo is a reflectance".into(),
+        ));
+    }
+    if direction.y < 0.0 {
+        let s = p.get("sun_direction").map_or(span, |v| v.1);
+        let what = p.what.clone();
+        r.diags.push(range_error(
+            &what,
+            "sun_direction",
+            s,
+            "above the horizon (y ≥ 0)",
+            "the sky model covers daylight: the sun between the horizon and the zenith".into(),
+        ));
+        return None;
+    }
+    Some(Sky {
+        sun_direction: direction,
+        turbidity,
+        albedo: albedo.map(|c| c.min(1.0)),
+        intensity: r.color("intensity", [1.0; 3]),
+        sun_intensity: r.color("sun_intensity", [1.0; 3]),
+        span,
+    })
+}
+
 /// A light block → light.
 pub fn light(kind: BlockKind, p: &Params, diags: &mut Diagnostics) -> Option<Light> {
     let schema = super::params::shape_schema(kind);

@@ -76,6 +76,10 @@ impl Checker {
                 .environment
                 .as_ref()
                 .is_some_and(|e| e.intensity.iter().any(|c| *c > 0.0))
+            || self
+                .sky
+                .as_ref()
+                .is_some_and(|s| (s.intensity.iter().chain(&s.sun_intensity)).any(|c| *c > 0.0))
             || render.settings.ambient.max_element() > 0.0;
         if !has_light && !render.settings.integrator.is_debug_view() {
             let at = self.camera_span.unwrap_or(Span::new(root, 0, 0));
@@ -144,6 +148,7 @@ impl Checker {
                 camera,
                 background,
                 environment: self.environment,
+                sky: self.sky,
                 materials: self.materials,
                 objects: self.objects,
                 lights: self.lights,

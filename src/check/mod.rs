@@ -168,6 +168,8 @@ struct Checker {
     background: Option<([f64; 3], Span)>,
     /// The environment block, if any.
     environment: Option<scene::Environment>,
+    /// The sky block, if any.
+    sky: Option<scene::Sky>,
     materials: Vec<Material>,
     material_names: HashMap<String, MaterialEntry>,
     used_materials: HashSet<usize>,
@@ -191,6 +193,14 @@ struct Checker {
 }
 
 impl Checker {
+    /// Where the scene's light at infinity (background, environment or
+    /// sky) was given, if it has one yet.
+    fn infinite_light(&self) -> Option<Span> {
+        (self.background.map(|b| b.1))
+            .or(self.environment.as_ref().map(|e| e.span))
+            .or(self.sky.as_ref().map(|s| s.span))
+    }
+
     fn new(loop_statements: u64) -> Self {
         Checker {
             sources: SourceMap::new(),
@@ -206,6 +216,7 @@ impl Checker {
             camera_span: None,
             background: None,
             environment: None,
+            sky: None,
             materials: Vec::new(),
             material_names: HashMap::new(),
             used_materials: HashSet::new(),
@@ -447,8 +458,8 @@ impl Checker {
                     self.diags.push(duplicate_block("background", *span, first));
                     return;
                 }
-                if let Some(e) = &self.environment {
-                    self.diags.push(two_skies(*span, e.span));
+                if let Some(first) = self.infinite_light() {
+                    self.diags.push(two_skies(*span, first));
                     return;
                 }
                 match v {
@@ -704,11 +715,23 @@ impl Checker {
                         .push(duplicate_block("environment", kind_span, e.span));
                     return;
                 }
-                if let Some((_, first)) = self.background {
+                if let Some(first) = self.infinite_light() {
                     self.diags.push(two_skies(kind_span, first));
                     return;
                 }
                 self.environment = environment;
+            }
+            BlockKind::Sky => {
+                let sky = blocks::sky(&p, span, &mut self.diags);
+                if let Some(s) = &self.sky {
+                    self.diags.push(duplicate_block("sky", kind_span, s.span));
+                    return;
+                }
+                if let Some(first) = self.infinite_light() {
+                    self.diags.push(two_skies(kind_span, first));
+                    return;
+                }
+                self.sky = sky;
             }
             BlockKind::PointLight | BlockKind::SpotLight | BlockKind::DirectionalLight => {
                 if let Some(l) = blocks::light(kind, &p, &mut self.diags) {
@@ -831,11 +854,11 @@ fn defined_again(name: &crate::syntax::ast::Ident, first: Span, help: &str) -> D
     .with_help(help.to_string())
 }
 
-/// A `background` and an `environment` in one scene.
+/// Two of `background`, `environment` and `sky` in one scene.
 fn two_skies(span: Span, first: Span) -> Diagnostic {
     Diagnostic::error(
         codes::DUPLICATE_BLOCK,
-        "a scene has one light at infinity: a `background` or an `environment`",
+        "a scene has one light at infinity: a `background`, an `environment` or a `sky`",
         span,
     )
     .with_label("the second one")

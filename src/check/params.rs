@@ -157,6 +157,17 @@ pub const ENVIRONMENT: &[ParamSpec] = &[
     t("rotate", Ty::Vec3, "<0, 90, 0>"),
 ];
 
+/// `sky { }`
+pub const SKY: &[ParamSpec] = &[
+    p("sun_direction", Ty::Vec3, "<0.3, 0.6, -1>").of(Direction),
+    p("sun_elevation", Ty::Num, "35"),
+    p("sun_azimuth", Ty::Num, "20"),
+    p("turbidity", Ty::Num, "3"),
+    p("albedo", Ty::Color, "rgb 0.3").of(Magnitude),
+    p("intensity", Ty::Color, "rgb 1").of(Radiance),
+    p("sun_intensity", Ty::Color, "rgb 1").of(Radiance),
+];
+
 /// `material { }`
 pub const MATERIAL: &[ParamSpec] = &[
     p("diffuse", Ty::Color, "rgb <0.8, 0.8, 0.8>")
@@ -364,6 +375,7 @@ pub fn shape_schema(kind: crate::syntax::ast::BlockKind) -> &'static [ParamSpec]
         Render => RENDER,
         Camera => CAMERA,
         Environment => ENVIRONMENT,
+        Sky => SKY,
     }
 }
 
@@ -511,18 +523,26 @@ impl Params {
                         params.suggested.push(s);
                         format!("did you mean `{s}`?")
                     }
-                    None => match crate::syntax::povray::hint(&name.name) {
-                        Some(hint) if crate::syntax::povray::parameter(&name.name).is_some() => {
-                            let instead =
-                                crate::syntax::povray::parameter(&name.name).unwrap_or("");
-                            if let Some(&known) = all.iter().find(|&&n| n == instead) {
-                                params.suggested.push(known);
+                    None => {
+                        let hint = crate::syntax::povray::hint(&name.name);
+                        match crate::syntax::povray::parameter(&name.name) {
+                            Some(instead) => {
+                                if let Some(&known) = all.iter().find(|&&n| n == instead) {
+                                    params.suggested.push(known);
+                                }
+                                let hint = hint.map(String::from).unwrap_or_else(|| {
+                                    format!("POV-Ray's `{}` is `{instead}` in ptsc", name.name)
+                                });
+                                format!("{hint}; `{what}` accepts {}", all.join(", "))
                             }
-                            format!("{hint}; `{what}` accepts {}", all.join(", "))
+                            None => match hint {
+                                Some(hint) => {
+                                    format!("{hint}; `{what}` accepts {}", all.join(", "))
+                                }
+                                None => format!("`{what}` accepts {}", all.join(", ")),
+                            },
                         }
-                        Some(hint) => format!("{hint}; `{what}` accepts {}", all.join(", ")),
-                        None => format!("`{what}` accepts {}", all.join(", ")),
-                    },
+                    }
                 };
                 diags.push(
                     Diagnostic::error(

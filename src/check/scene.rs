@@ -364,6 +364,23 @@ pub enum Light {
     },
 }
 
+/// The `sky { }` block: a daylight sky and its sun.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Sky {
+    /// Unit direction towards the sun (above the horizon).
+    pub sun_direction: DVec3,
+    /// Atmospheric turbidity, 1 to 10.
+    pub turbidity: f64,
+    /// Ground albedo per channel, 0 to 1.
+    pub albedo: Rgb,
+    /// Scale of the sky's radiance.
+    pub intensity: Rgb,
+    /// Scale of the sun's radiance.
+    pub sun_intensity: Rgb,
+    /// Where the block is.
+    pub span: Span,
+}
+
 /// The `environment { }` block: light from an image all around.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Environment {
@@ -390,6 +407,8 @@ pub struct Scene {
     pub background: Rgb,
     /// The environment map, if any (the background is then black).
     pub environment: Option<Environment>,
+    /// The daylight sky, if any (the background is then black).
+    pub sky: Option<Sky>,
     /// Materials (named and inline), referenced by index.
     pub materials: Vec<Material>,
     /// Objects.

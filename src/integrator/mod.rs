@@ -107,7 +107,9 @@ pub fn light_pdf(scene: &Scene, light: u32, from: Vec3, hit: &Hit, dir: Vec3) ->
                 pick * d2 / (cos * area)
             }
         }
-        env @ crate::light::Light::Environment { .. } => pick * env.direction_pdf(dir),
+        env @ (crate::light::Light::Environment { .. } | crate::light::Light::Sky { .. }) => {
+            pick * env.direction_pdf(dir)
+        }
         _ => 0.0,
     }
 }

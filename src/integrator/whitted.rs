@@ -168,8 +168,10 @@ fn direct(
     let n = scene.settings.light_samples.max(1);
     for light in &scene.lights {
         let count = if light.is_delta() { 1 } else { n };
-        if matches!(light, Light::Area { .. } | Light::Environment { .. })
-            && scene.settings.light_samples == 0
+        if matches!(
+            light,
+            Light::Area { .. } | Light::Environment { .. } | Light::Sky { .. }
+        ) && scene.settings.light_samples == 0
         {
             continue;
         }

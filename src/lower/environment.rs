@@ -1,11 +1,14 @@
 //! The checked `environment { }` → an environment map: its image read
-//! through the compile's images, its rotations as a frame.
+//! through the compile's images, its rotations as a frame; and the checked
+//! `sky { }` → the daylight sky's light.
 
 use crate::check;
 use crate::diag::{codes, Diagnostic, Diagnostics};
 use crate::light::environment::EnvironmentMap;
+use crate::light::sky::{SkyParameters, SunSky, SUN_APERTURE_DEGREES};
+use crate::light::Light;
 use crate::lower::image::Images;
-use glam::{DMat3, Mat3};
+use glam::{DMat3, DVec3, Mat3, Vec3};
 use std::sync::Arc;
 
 /// The environment map of `e`; `None` after an error in `diags` (a
@@ -68,4 +71,18 @@ pub fn lower_environment(
         m.z_axis.normalize().as_vec3(),
     );
     Some(Arc::new(EnvironmentMap::new(image, to_world)))
+}
+
+/// The checked sky as the renderer's light (`None` when it gives no light).
+pub fn lower_sky(s: &check::scene::Sky) -> Option<Light> {
+    let v = |c: [f64; 3]| DVec3::from_array(c).as_vec3();
+    let sky = SunSky::new(&SkyParameters {
+        sun_direction: s.sun_direction.as_vec3(),
+        turbidity: s.turbidity as f32,
+        albedo: v(s.albedo),
+        sky_scale: v(s.intensity),
+        sun_scale: v(s.sun_intensity),
+        sun_aperture: SUN_APERTURE_DEGREES,
+    })?;
+    (sky.mean() != Vec3::ZERO).then(|| Light::Sky { sky: Arc::new(sky) })
 }

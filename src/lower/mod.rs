@@ -594,8 +594,9 @@ fn finish(
         .collect();
     lights.extend(scene.lights.iter().map(|(l, _)| lower_light(l)));
     let background = rgb(&scene.background);
-    let env_light = match (environment, &scene.environment) {
-        (Some(map), Some(e)) => Some(Light::Environment {
+    let env_light = match (environment, &scene.environment, &scene.sky) {
+        (_, _, Some(sky)) => environment::lower_sky(sky),
+        (Some(map), Some(e), _) => Some(Light::Environment {
             radiance: rgb(&e.intensity),
             map: Some(map),
         }),
@@ -604,7 +605,7 @@ fn finish(
             radiance: background,
         }),
     }
-    .filter(|l| matches!(l, Light::Environment { radiance, .. } if *radiance != Vec3::ZERO))
+    .filter(|l| !matches!(l, Light::Environment { radiance, .. } if *radiance == Vec3::ZERO))
     .map(|l| {
         lights.push(l);
         lights.len() as u32 - 1

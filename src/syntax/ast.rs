@@ -117,6 +117,8 @@ pub enum BlockKind {
     Camera,
     /// `environment { }`: light from an image all around.
     Environment,
+    /// `sky { }`: a daylight sky and its sun.
+    Sky,
     /// `sphere { }`.
     Sphere,
     /// `plane { }` (infinite).
@@ -141,10 +143,11 @@ pub enum BlockKind {
 
 impl BlockKind {
     /// Every block kind.
-    pub const ALL: [BlockKind; 13] = [
+    pub const ALL: [BlockKind; 14] = [
         BlockKind::Render,
         BlockKind::Camera,
         BlockKind::Environment,
+        BlockKind::Sky,
         BlockKind::Sphere,
         BlockKind::Plane,
         BlockKind::Quad,
@@ -163,6 +166,7 @@ impl BlockKind {
             BlockKind::Render => "render",
             BlockKind::Camera => "camera",
             BlockKind::Environment => "environment",
+            BlockKind::Sky => "sky",
             BlockKind::Sphere => "sphere",
             BlockKind::Plane => "plane",
             BlockKind::Quad => "quad",
@@ -183,6 +187,7 @@ impl BlockKind {
             BlockKind::Render
                 | BlockKind::Camera
                 | BlockKind::Environment
+                | BlockKind::Sky
                 | BlockKind::PointLight
                 | BlockKind::SpotLight
                 | BlockKind::DirectionalLight

@@ -135,6 +135,7 @@ impl Builder {
                     Rule::kw_render => BlockKind::Render,
                     Rule::kw_camera => BlockKind::Camera,
                     Rule::kw_environment => BlockKind::Environment,
+                    Rule::kw_sky => BlockKind::Sky,
                     Rule::kw_sphere => BlockKind::Sphere,
                     Rule::kw_plane => BlockKind::Plane,
                     Rule::kw_quad => BlockKind::Quad,

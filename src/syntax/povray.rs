@@ -8,7 +8,7 @@
 const WORDS: &[(&str, &str)] = &[
     ("light_source", "POV-Ray's `light_source` is `point_light { position <x, y, z> intensity rgb … }` in ptsc (also `spot_light`, `directional_light`)"),
     ("spotlight", "a spot light is its own block: `spot_light { position … look_at … intensity … angle … }`"),
-    ("sky_sphere", "ptsc's `background rgb …` is light from every direction, and lights the scene"),
+    ("sky_sphere", "ptsc's `sky { … }` (a daylight sky and sun), `environment { … }` (an HDR image) or `background rgb …` is light from every direction, and lights the scene"),
     ("cylinder", "ptsc has no `cylinder` yet (cylinders, cones and tori are planned); use a `mesh` for now"),
     ("cone", "ptsc has no `cone` yet (cylinders, cones and tori are planned); use a `mesh` for now"),
     ("torus", "ptsc has no `torus` yet (cylinders, cones and tori are planned); use a `mesh` for now"),
@@ -41,7 +41,6 @@ const WORDS: &[(&str, &str)] = &[
     ("location", "POV-Ray's camera `location` is `position` in ptsc"),
     ("angle", "POV-Ray's camera `angle` is `fov` in ptsc, and ptsc's `fov` is the vertical field of view (POV-Ray's is horizontal)"),
     ("orthographic", "ptsc's camera is a perspective one (pinhole, or a thin lens with `aperture`); an orthographic camera is planned"),
-    ("sky", "the camera's `sky` is `up` in ptsc"),
     ("right", "ptsc's image proportions come from `render { resolution <w, h> }`"),
     ("focal_point", "POV-Ray's `focal_point` is `focus_distance` (a distance) in ptsc"),
     ("blur_samples", "ptsc takes depth of field samples from `render { samples … }`"),

@@ -184,6 +184,14 @@ fn mitsuba_reference_envmap() {
     check_scene("envmap");
 }
 
+/// A daylight sky and its sun (Mitsuba's `sunsky`: the same Hošek–Wilkie
+/// sky, the same solar table) over a diffuse floor, a white ball and a
+/// glossy ball that shows the sun's highlight.
+#[test]
+fn mitsuba_reference_sky() {
+    check_scene("sky");
+}
+
 /// The normal-mapped quad of `textures.pts` on its own: its pixels match
 /// Mitsuba's `normalmap` (mean within 1 %, error at the level of the
 /// noise), and the same quad without its normal map is measurably further

@@ -6,10 +6,10 @@ if exists("b:current_syntax")
 endif
 
 syn keyword ptsControl let include for in
-syn keyword ptsBlock render camera environment background material texture sphere plane quad disk triangle box mesh point_light spot_light directional_light
+syn keyword ptsBlock render camera environment sky background material texture sphere plane quad disk triangle box mesh point_light spot_light directional_light
 syn keyword ptsColour rgb
 syn keyword ptsBoolean true false
-syn keyword ptsParam absorption ambient angle aperture bump bump_height center clamp corner diffuse direction edge1 edge2 emission eta even exposure falloff file focus_distance fov gloss high hybrid_weight integrator intensity ior irradiance k light_samples light_sampling look_at low matrix max_depth multiscatter normal normal_map octaves odd output point position preset radius reflection resolution rotate rr_depth samples scale seed shutter smooth space stop translate transmission two_sided type up v0 v1 v2 velocity wrap
+syn keyword ptsParam absorption albedo ambient angle aperture bump bump_height center clamp corner diffuse direction edge1 edge2 emission eta even exposure falloff file focus_distance fov gloss high hybrid_weight integrator intensity ior irradiance k light_samples light_sampling look_at low matrix max_depth multiscatter normal normal_map octaves odd output point position preset radius reflection resolution rotate rr_depth samples scale seed shutter smooth space stop sun_azimuth sun_direction sun_elevation sun_intensity translate transmission turbidity two_sided type up v0 v1 v2 velocity wrap
 syn keyword ptsWord path whitted hybrid normals albedo depth uv object world checker image noise turbulence marble wood gradient stripes repeat clamp mirror mix conductor plastic dielectric thin_dielectric gold silver copper aluminium chromium
 syn keyword ptsFunction sin cos tan sqrt pow abs min max radians degrees normalize length dot cross
 " 1, 2.5, 1e-3 and .5, but not the .. of a range (0..10).

@@ -17,7 +17,7 @@ from pathlib import Path
 import mitsuba as mi
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from mitsuba_textures import rgb, rectangle, reference_and_baseline  # noqa: E402
+from mitsuba_textures import rgb, rectangle, reference_and_baseline, sensor  # noqa: E402
 
 ROOT = Path(__file__).resolve().parent.parent
 OUT = ROOT / "tests" / "mitsuba"
@@ -27,13 +27,7 @@ def scene(res, spp):
     return {
         "type": "scene",
         "integrator": {"type": "path", "max_depth": 4},
-        "sensor": {
-            "type": "perspective", "fov": 45.0, "fov_axis": "y", "near_clip": 1e-3, "far_clip": 1e4,
-            "to_world": mi.ScalarTransform4f().look_at(origin=[0, 1, 4], target=[0, 0.4, 0], up=[0, 1, 0]),
-            "film": {"type": "hdrfilm", "width": res, "height": res, "pixel_format": "rgb",
-                     "component_format": "float32", "rfilter": {"type": "box"}},
-            "sampler": {"type": "independent", "sample_count": spp},
-        },
+        "sensor": sensor(res, spp, [0, 1, 4], [0, 0.4, 0], 45.0, [0, 1, 0]),
         "sky": {"type": "envmap", "filename": str(ROOT / "examples" / "images" / "studio.exr"), "scale": 0.8},
         "floor": rectangle([-3, 0, 3], [6, 0, 0], [0, 0, -6], {"type": "diffuse", "reflectance": rgb([0.5] * 3)}),
         "ball": {"type": "sphere", "center": [-0.6, 0.5, 0], "radius": 0.5,

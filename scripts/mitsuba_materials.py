@@ -17,7 +17,7 @@ from pathlib import Path
 import mitsuba as mi
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from mitsuba_textures import rgb, rectangle, reference_and_baseline  # noqa: E402
+from mitsuba_textures import rgb, rectangle, reference_and_baseline, sensor  # noqa: E402
 
 ROOT = Path(__file__).resolve().parent.parent
 
@@ -34,13 +34,7 @@ def scene(res, spp):
     return {
         "type": "scene",
         "integrator": {"type": "path", "max_depth": 8},
-        "sensor": {
-            "type": "perspective", "fov": 40.0, "fov_axis": "y", "near_clip": 1e-3, "far_clip": 1e4,
-            "to_world": mi.ScalarTransform4f().look_at(origin=[0, 2.2, 5], target=[0, 0.5, 0], up=[0, 1, 0]),
-            "film": {"type": "hdrfilm", "width": res, "height": res, "pixel_format": "rgb",
-                     "component_format": "float32", "rfilter": {"type": "box"}},
-            "sampler": {"type": "independent", "sample_count": spp},
-        },
+        "sensor": sensor(res, spp, [0, 2.2, 5], [0, 0.5, 0], 40.0, [0, 1, 0]),
         "sky": {"type": "envmap", "filename": str(ROOT / "examples" / "images" / "studio.exr"), "scale": 0.8},
         "floor": rectangle([-4, 0, 3], [8, 0, 0], [0, 0, -7], {"type": "diffuse", "reflectance": rgb([0.5] * 3)}),
         "gold": ball(-1.2, -0.8, {"type": "conductor", "eta": rgb(GOLD[0]), "k": rgb(GOLD[1])}),

@@ -120,6 +120,18 @@ def turned_sphere(centre, radius):
     return mi.ScalarTransform4f(m.tolist())
 
 
+def sensor(res, spp, origin, target, fov, up=(0, 1, 0)):
+    """ptsc's camera: perspective with a vertical fov, box filter, RGB
+    float film, independent sampler."""
+    return {
+        "type": "perspective", "fov": float(fov), "fov_axis": "y", "near_clip": 1e-3, "far_clip": 1e4,
+        "to_world": mi.ScalarTransform4f().look_at(origin=list(origin), target=list(target), up=list(up)),
+        "film": {"type": "hdrfilm", "width": res, "height": res, "pixel_format": "rgb",
+                 "component_format": "float32", "rfilter": {"type": "box"}},
+        "sampler": {"type": "independent", "sample_count": spp},
+    }
+
+
 def rectangle(p0, e1, e2, bsdf):
     p0, e1, e2 = (np.asarray(x, dtype=np.float64) for x in (p0, e1, e2))
     n = np.cross(e1, e2)
@@ -133,13 +145,7 @@ def scene(res, spp):
     return {
         "type": "scene",
         "integrator": {"type": "path", "max_depth": 4},
-        "sensor": {
-            "type": "perspective", "fov": 40.0, "fov_axis": "y", "near_clip": 1e-3, "far_clip": 1e4,
-            "to_world": mi.ScalarTransform4f().look_at(origin=[0, 0.3, 4], target=[0, -0.1, 0], up=[0, 1, 0]),
-            "film": {"type": "hdrfilm", "width": res, "height": res, "pixel_format": "rgb",
-                     "component_format": "float32", "rfilter": {"type": "box"}},
-            "sampler": {"type": "independent", "sample_count": spp},
-        },
+        "sensor": sensor(res, spp, [0, 0.3, 4], [0, -0.1, 0], 40.0, [0, 1, 0]),
         "lamp": emitter([-0.6, 1.2, 0.2], [1.2, 0, 0], [0, 0, 0.8], flip(1, -1)),
         "ripples": rectangle([0.3, 0.1, -0.9], [1.1, 0, 0], [0, 0.9, 0],
                              normal_mapped([0.7, 0.7, 0.75], flip(1, -1))),

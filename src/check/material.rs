@@ -234,7 +234,8 @@ fn model_checks(p: &Params, m: &mut Material, diags: &mut Diagnostics) {
             &["diffuse", "reflection", "transmission", "preset", "eta", "k", "multiscatter"],
             "glass is its `ior`, `gloss` (frosting) and `absorption` inside",
         ),
-        MaterialKind::ThinDielectric | MaterialKind::Mix => (
+        MaterialKind::Mix => return,
+        MaterialKind::ThinDielectric => (
             "a thin dielectric",
             &[
                 "diffuse",
@@ -294,37 +295,21 @@ fn model_checks(p: &Params, m: &mut Material, diags: &mut Diagnostics) {
             }
         }
     }
-    // Ignored parameters play no part in the renderer.
-    match m.kind {
-        MaterialKind::Conductor { .. } => {
-            m.diffuse = [0.0; 3];
-            m.transmission = 0.0;
-        }
-        MaterialKind::Plastic => m.transmission = 0.0,
-        _ => {
-            m.diffuse = [0.0; 3];
-            m.reflection = [0.0; 3];
-            m.transmission = 0.0;
+    // A parameter the model ignores plays no part: neither its value nor
+    // its texture.
+    for &name in ignored {
+        match name {
+            "diffuse" => m.diffuse = [0.0; 3],
+            "reflection" => m.reflection = [0.0; 3],
+            "transmission" => m.transmission = 0.0,
+            "absorption" => m.absorption = [0.0; 3],
+            "gloss" => m.gloss = 0.0,
+            _ => {}
         }
     }
-    let ignored_textures = |input: &TextureInput| match m.kind {
-        MaterialKind::Conductor { .. } => matches!(
-            input,
-            TextureInput::Diffuse | TextureInput::Transmission | TextureInput::Absorption
-        ),
-        MaterialKind::Plastic => {
-            matches!(input, TextureInput::Transmission | TextureInput::Absorption)
-        }
-        MaterialKind::Dielectric => matches!(
-            input,
-            TextureInput::Diffuse | TextureInput::Reflection | TextureInput::Transmission
-        ),
-        _ => !matches!(
-            input,
-            TextureInput::Emission | TextureInput::NormalMap | TextureInput::Bump
-        ),
-    };
-    m.textures.retain(|(input, _)| !ignored_textures(input));
+    m.textures.retain(|(input, _)| {
+        !(TextureInput::ALL.iter()).any(|(name, i)| i == input && ignored.contains(name))
+    });
 }
 
 /// The material schema (for inline and named materials).

@@ -246,7 +246,7 @@ impl EnvironmentMap {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::sampling::chi2::pearson_p_value;
+    use crate::sampling::chi2::sphere_p_value;
     use crate::sampling::sampler::Sampler;
 
     fn image(w: usize, h: usize, f: impl Fn(usize, usize) -> Vec3) -> Arc<Image> {
@@ -305,21 +305,15 @@ mod tests {
             }
         });
         let map = EnvironmentMap::new(im, Mat3::from_rotation_x(0.3));
-        let (n_cos, n_phi) = (16usize, 32usize);
-        let bin = |d: Vec3| {
-            let c = (((d.z + 1.0) * 0.5 * n_cos as f32) as usize).min(n_cos - 1);
-            let phi = d.y.atan2(d.x).rem_euclid(TAU);
-            c * n_phi + ((phi / TAU * n_phi as f32) as usize).min(n_phi - 1)
-        };
         let n = 300_000;
-        let mut observed = vec![0.0; n_cos * n_phi];
+        let mut directions = Vec::with_capacity(n);
         let mut s = Sampler::new(9, 2, 0, 0);
         let mut bright = 0;
         for _ in 0..n {
             let Some((d, radiance, pdf)) = map.sample(s.next_2d()) else {
                 continue;
             };
-            observed[bin(d)] += 1.0;
+            directions.push(d);
             assert!(
                 (pdf - map.pdf(d)).abs() <= 1e-2 * pdf,
                 "{pdf} vs {} at {d} (uv {})",
@@ -331,33 +325,7 @@ mod tests {
         }
         // The spot's cells hold most of the luminance: most samples go there.
         assert!(bright > n / 2, "{bright} of {n} samples in the bright spot");
-        let sub = 16;
-        let expected: Vec<f64> = (0..n_cos * n_phi)
-            .map(|b| {
-                let (c, p) = (b / n_phi, b % n_phi);
-                let mut sum = 0.0;
-                for a in 0..sub {
-                    for q in 0..sub {
-                        let cos =
-                            -1.0 + 2.0 * (c as f64 + (a as f64 + 0.5) / sub as f64) / n_cos as f64;
-                        let phi =
-                            TAU as f64 * (p as f64 + (q as f64 + 0.5) / sub as f64) / n_phi as f64;
-                        let sin = (1.0 - cos * cos).sqrt();
-                        let d = Vec3::new(
-                            (sin * phi.cos()) as f32,
-                            (sin * phi.sin()) as f32,
-                            cos as f32,
-                        );
-                        sum += map.pdf(d) as f64;
-                    }
-                }
-                sum / (sub * sub) as f64
-                    * (2.0 / n_cos as f64)
-                    * (TAU as f64 / n_phi as f64)
-                    * n as f64
-            })
-            .collect();
-        let p = pearson_p_value(&observed, &expected);
+        let p = sphere_p_value(directions, n, |d| map.pdf(d), 16);
         assert!(p > 1e-3, "χ² p-value {p}");
     }
 

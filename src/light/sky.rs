@@ -16,6 +16,7 @@
 //! hemisphere; the density of a direction is the mixture of both, so a
 //! direction from either is weighed right.
 
+use super::luminance;
 use super::sun_table::SUN_RADIANCE;
 use crate::geometry::orthonormal_basis;
 use crate::sampling::distribution::Distribution2D;
@@ -54,9 +55,7 @@ pub struct SkyParameters {
 /// A sky and its sun, ready to be evaluated and sampled.
 #[derive(Debug, Clone)]
 pub struct SunSky {
-    state: SkyState,
-    sky_scale: Vec3,
-    sun_direction: Vec3,
+    dome: Dome,
     sun_radiance: Vec3,
     /// cos of the sun's angular radius.
     cos_sun: f32,
@@ -79,9 +78,31 @@ pub fn sun_radiance(elevation: f32, turbidity: f32) -> Vec3 {
     row(t0) * (1.0 - wt) + row(t0 + 1) * wt
 }
 
-/// Luminance of a linear-sRGB colour.
-fn luminance(c: Vec3) -> f32 {
-    0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z
+/// The sky without its sun: the model's state, its scale, where the sun
+/// stands.
+#[derive(Debug, Clone)]
+struct Dome {
+    state: SkyState,
+    scale: Vec3,
+    sun_direction: Vec3,
+}
+
+impl Dome {
+    /// The sky's radiance towards `d`: black below the horizon.
+    fn radiance(&self, d: Vec3) -> Vec3 {
+        if d.y <= 0.0 {
+            return Vec3::ZERO;
+        }
+        let theta = d.y.clamp(-1.0, 1.0).acos();
+        let gamma = d.dot(self.sun_direction).clamp(-1.0, 1.0).acos();
+        Vec3::new(
+            self.state.radiance(theta, gamma, Channel::R),
+            self.state.radiance(theta, gamma, Channel::G),
+            self.state.radiance(theta, gamma, Channel::B),
+        )
+        .max(Vec3::ZERO)
+            * self.scale
+    }
 }
 
 impl SunSky {
@@ -90,23 +111,15 @@ impl SunSky {
     pub fn new(p: &SkyParameters) -> Option<SunSky> {
         let sun_direction = p.sun_direction.normalize();
         let elevation = sun_direction.y.clamp(0.0, 1.0).asin();
-        let state = SkyState::new(&SkyParams {
-            elevation: elevation.min(FRAC_PI_2),
-            turbidity: p.turbidity,
-            albedo: p.albedo.to_array(),
-        })
-        .ok()?;
-        let sun_radiance = sun_radiance(elevation.to_degrees(), p.turbidity) * p.sun_scale;
-        let cos_sun = (0.5 * p.sun_aperture).to_radians().cos();
-        let mut sky = SunSky {
-            state,
-            sky_scale: p.sky_scale / MITSUBA_SCALE,
+        let dome = Dome {
+            state: SkyState::new(&SkyParams {
+                elevation: elevation.min(FRAC_PI_2),
+                turbidity: p.turbidity,
+                albedo: p.albedo.to_array(),
+            })
+            .ok()?,
+            scale: p.sky_scale / MITSUBA_SCALE,
             sun_direction,
-            sun_radiance,
-            cos_sun,
-            sun_probability: 0.0,
-            distribution: Distribution2D::new(&[1.0], 1, 1),
-            mean: Vec3::ZERO,
         };
         // The sky's luminance × sin θ at the cells' centres, and its
         // integral over the hemisphere.
@@ -119,60 +132,50 @@ impl SunSky {
                     (i as f32 + 0.5) / GRID_PHI as f32,
                     (j as f32 + 0.5) / GRID_THETA as f32,
                 ));
-                let l = sky.sky(d);
+                let l = dome.radiance(d);
                 let sin_theta = (1.0 - d.y * d.y).max(0.0).sqrt();
                 func.push((luminance(l) * sin_theta).max(0.0));
                 sky_integral += l * sin_theta * cell;
             }
         }
-        sky.distribution = Distribution2D::new(&func, GRID_PHI, GRID_THETA);
-        let sun_solid_angle = TAU * (1.0 - cos_sun);
-        let sun_power = if sun_direction.y > 0.0 {
-            luminance(sun_radiance) * sun_solid_angle
+        let sun_radiance = sun_radiance(elevation.to_degrees(), p.turbidity) * p.sun_scale;
+        let cos_sun = (0.5 * p.sun_aperture).to_radians().cos();
+        // The sun's light (radiance × solid angle), none below the horizon.
+        let sun_light = if sun_direction.y > 0.0 {
+            sun_radiance * TAU * (1.0 - cos_sun)
         } else {
-            0.0
+            Vec3::ZERO
         };
-        let sky_power = luminance(sky_integral);
-        // The sun's share of the light, kept between 0.2 and 0.8 so that
+        let (sun_power, sky_power) = (luminance(sun_light), luminance(sky_integral));
+        // The sun's share of the samples, kept between 0.2 and 0.8 so that
         // neither part goes unsampled (the sun's reflection in glossy
         // surfaces, the sky's in rough ones).
-        let total = sun_power + sky_power;
-        sky.sun_probability = if sun_power <= 0.0 {
+        let sun_probability = if sun_power <= 0.0 {
             0.0
         } else if sky_power <= 0.0 {
             1.0
         } else {
-            (sun_power / total).clamp(0.2, 0.8)
+            (sun_power / (sun_power + sky_power)).clamp(0.2, 0.8)
         };
-        let sun_light = if sun_direction.y > 0.0 {
-            sun_radiance * sun_solid_angle
-        } else {
-            Vec3::ZERO
-        };
-        sky.mean = (sky_integral + sun_light) / (4.0 * PI);
-        Some(sky)
+        Some(SunSky {
+            dome,
+            sun_radiance,
+            cos_sun,
+            sun_probability,
+            distribution: Distribution2D::new(&func, GRID_PHI, GRID_THETA),
+            mean: (sky_integral + sun_light) / (4.0 * PI),
+        })
     }
 
     /// The sky alone (no sun) towards `d`.
     pub fn sky(&self, d: Vec3) -> Vec3 {
-        if d.y <= 0.0 {
-            return Vec3::ZERO;
-        }
-        let theta = d.y.clamp(-1.0, 1.0).acos();
-        let gamma = d.dot(self.sun_direction).clamp(-1.0, 1.0).acos();
-        Vec3::new(
-            self.state.radiance(theta, gamma, Channel::R),
-            self.state.radiance(theta, gamma, Channel::G),
-            self.state.radiance(theta, gamma, Channel::B),
-        )
-        .max(Vec3::ZERO)
-            * self.sky_scale
+        self.dome.radiance(d)
     }
 
     /// The sun alone towards `d`: its radiance within its disk while it is
     /// above the horizon, else black.
     pub fn sun(&self, d: Vec3) -> Vec3 {
-        if d.dot(self.sun_direction) >= self.cos_sun && d.y > 0.0 {
+        if d.dot(self.dome.sun_direction) >= self.cos_sun && d.y > 0.0 {
             self.sun_radiance
         } else {
             Vec3::ZERO
@@ -196,8 +199,8 @@ impl SunSky {
             let cos = 1.0 - u.x * (1.0 - self.cos_sun);
             let sin = (1.0 - cos * cos).max(0.0).sqrt();
             let phi = TAU * u.y;
-            let (t, b) = orthonormal_basis(self.sun_direction);
-            (sin * phi.cos()) * t + (sin * phi.sin()) * b + cos * self.sun_direction
+            let (t, b) = orthonormal_basis(self.dome.sun_direction);
+            (sin * phi.cos()) * t + (sin * phi.sin()) * b + cos * self.dome.sun_direction
         } else {
             let u = Vec2::new(
                 ((u.x - self.sun_probability) / (1.0 - self.sun_probability)).min(1.0 - 1e-7),
@@ -212,7 +215,7 @@ impl SunSky {
 
     /// The density in solid angle with which [`SunSky::sample`] picks `d`.
     pub fn pdf(&self, d: Vec3) -> f32 {
-        let sun = if d.dot(self.sun_direction) >= self.cos_sun {
+        let sun = if d.dot(self.dome.sun_direction) >= self.cos_sun {
             1.0 / (TAU * (1.0 - self.cos_sun))
         } else {
             0.0
@@ -241,7 +244,7 @@ fn grid_direction(p: Vec2) -> Vec3 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::sampling::chi2::pearson_p_value;
+    use crate::sampling::chi2::sphere_p_value;
     use crate::sampling::sampler::Sampler;
 
     fn sky(elevation_deg: f32, aperture: f32) -> SunSky {
@@ -311,50 +314,18 @@ mod tests {
         // A sun 20° across (so that the bins resolve it) over the sky; a
         // fine grid integrates the pdf over the bins the disk's edge cuts.
         let s = sky(35.0, 20.0);
-        let (n_cos, n_phi) = (16usize, 32usize);
-        let bin = |d: Vec3| {
-            let c = (((d.y + 1.0) * 0.5 * n_cos as f32) as usize).min(n_cos - 1);
-            let phi = d.z.atan2(d.x).rem_euclid(TAU);
-            c * n_phi + ((phi / TAU * n_phi as f32) as usize).min(n_phi - 1)
-        };
         let n = 300_000;
-        let mut observed = vec![0.0; n_cos * n_phi];
+        let mut directions = Vec::with_capacity(n);
         let mut sampler = Sampler::new(4, 2, 0, 0);
         for _ in 0..n {
             let Some((d, radiance, pdf)) = s.sample(sampler.next_2d()) else {
                 continue;
             };
-            observed[bin(d)] += 1.0;
+            directions.push(d);
             assert!((pdf - s.pdf(d)).abs() <= 1e-3 * pdf);
             assert!((radiance - s.eval(d)).abs().max_element() <= 1e-3 * radiance.max_element());
         }
-        let sub = 64;
-        let expected: Vec<f64> = (0..n_cos * n_phi)
-            .map(|b| {
-                let (c, p) = (b / n_phi, b % n_phi);
-                let mut sum = 0.0;
-                for a in 0..sub {
-                    for q in 0..sub {
-                        let cos =
-                            -1.0 + 2.0 * (c as f64 + (a as f64 + 0.5) / sub as f64) / n_cos as f64;
-                        let phi =
-                            TAU as f64 * (p as f64 + (q as f64 + 0.5) / sub as f64) / n_phi as f64;
-                        let sin = (1.0 - cos * cos).sqrt();
-                        let d = Vec3::new(
-                            (sin * phi.cos()) as f32,
-                            cos as f32,
-                            (sin * phi.sin()) as f32,
-                        );
-                        sum += s.pdf(d) as f64;
-                    }
-                }
-                sum / (sub * sub) as f64
-                    * (2.0 / n_cos as f64)
-                    * (TAU as f64 / n_phi as f64)
-                    * n as f64
-            })
-            .collect();
-        let p = pearson_p_value(&observed, &expected);
+        let p = sphere_p_value(directions, n, |d| s.pdf(d), 64);
         assert!(p > 1e-3, "χ² p-value {p}");
     }
 

@@ -135,8 +135,9 @@ pub fn lower(
     } else {
         &mut cache.images
     };
+    let mut coats = material::Coats::default();
     let materials: Vec<Material> = (scene.materials.iter())
-        .map(|m| lower_material(m, &mut textures, images, &mut diags))
+        .map(|m| lower_material(m, &mut textures, images, &mut coats, &mut diags))
         .collect();
     let environment = (scene.environment.as_ref())
         .and_then(|e| environment::lower_environment(e, images, &mut diags, warnings));

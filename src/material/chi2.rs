@@ -9,62 +9,28 @@ use super::conductor::Conductor;
 use super::plastic::Plastic;
 use super::tests::mat as material;
 use super::{Kind, Material, Params};
-use crate::sampling::chi2::{gamma_q, pearson_p_value};
+use crate::sampling::chi2::{gamma_q, sphere_bin, sphere_p_value, sphere_shares, N_COS, N_PHI};
 use crate::sampling::sampler::Sampler;
 use glam::Vec3;
-use std::f64::consts::PI;
 
-/// Bins in cos θ over [−1, 1] and in φ over [0, 2π).
-const N_COS: usize = 16;
-const N_PHI: usize = 32;
 /// Midpoint sub-grid per bin side for integrating the pdf (fine enough for
 /// the narrow lobe of gloss 0.2 at grazing views; 8 was not).
 const SUB: usize = 32;
 
-fn bin_of(w: Vec3) -> usize {
-    let c = ((w.z as f64 + 1.0) * 0.5 * N_COS as f64) as usize;
-    let phi = (w.y as f64).atan2(w.x as f64).rem_euclid(2.0 * PI);
-    let p = (phi / (2.0 * PI) * N_PHI as f64) as usize;
-    c.min(N_COS - 1) * N_PHI + p.min(N_PHI - 1)
-}
-
-fn direction(cos: f64, phi: f64) -> Vec3 {
-    let sin = (1.0 - cos * cos).max(0.0).sqrt();
-    Vec3::new(
-        (sin * phi.cos()) as f32,
-        (sin * phi.sin()) as f32,
-        cos as f32,
-    )
-}
-
-/// Expected fraction of samples per bin: ∫ pdf dω with dω = d(cos θ) dφ.
+/// Expected share of samples per bin: the pdf `eval` reports for `wo`.
 fn expected(m: &Material, wo: Vec3) -> Vec<f64> {
-    let (dc, dp) = (2.0 / N_COS as f64, 2.0 * PI / N_PHI as f64);
-    let mut out = vec![0.0; N_COS * N_PHI];
-    for (i, e) in out.iter_mut().enumerate() {
-        let (c0, p0) = (-1.0 + (i / N_PHI) as f64 * dc, (i % N_PHI) as f64 * dp);
-        let mut s = 0.0;
-        for a in 0..SUB {
-            for b in 0..SUB {
-                let c = c0 + (a as f64 + 0.5) / SUB as f64 * dc;
-                let p = p0 + (b as f64 + 0.5) / SUB as f64 * dp;
-                s += m.eval(wo, direction(c, p), Vec3::Z).1 as f64;
-            }
-        }
-        *e = s * dc * dp / (SUB * SUB) as f64;
-    }
-    out
+    sphere_shares(|wi| m.eval(wo, wi, Vec3::Z).1, SUB)
 }
 
 /// Pearson's χ² test of the sampler against the pdf for one view direction;
 /// returns the p-value. Bins expecting fewer than 5 samples are pooled.
 fn chi2_p_value(m: &Material, wo: Vec3, samples: usize, seed: u64) -> f64 {
-    let mut observed = vec![0.0f64; N_COS * N_PHI];
     let mut s = Sampler::new(seed, 7, 0, 0);
+    let mut directions = Vec::with_capacity(samples);
     for _ in 0..samples {
         if let Some(b) = m.sample(wo, Vec3::Z, s.next_f32(), s.next_2d()) {
             if !b.delta {
-                observed[bin_of(b.wi)] += 1.0;
+                directions.push(b.wi);
                 // The weight must be f·cos/pdf with the pdf that eval reports.
                 let (f, pdf) = m.eval(wo, b.wi, Vec3::Z);
                 let w = f * b.wi.z.abs() / pdf;
@@ -76,11 +42,7 @@ fn chi2_p_value(m: &Material, wo: Vec3, samples: usize, seed: u64) -> f64 {
             }
         }
     }
-    let expected: Vec<f64> = expected(m, wo)
-        .into_iter()
-        .map(|p| p * samples as f64)
-        .collect();
-    pearson_p_value(&observed, &expected)
+    sphere_p_value(directions, samples, |wi| m.eval(wo, wi, Vec3::Z).1, SUB)
 }
 
 #[test]
@@ -231,7 +193,7 @@ fn a_wrong_pdf_fails_the_test() {
     let n = 200_000;
     for _ in 0..n {
         if let Some(b) = sampled.sample(wo, Vec3::Z, s.next_f32(), s.next_2d()) {
-            observed[bin_of(b.wi)] += 1.0;
+            observed[sphere_bin(b.wi)] += 1.0;
         }
     }
     let e = expected(&wrong, wo);

@@ -59,6 +59,23 @@ pub fn sample_visible_normal(wo: Vec3, alpha: f32, u: Vec2) -> Vec3 {
     Vec3::new(alpha * nh.x, alpha * nh.y, nh.z.max(1e-6)).normalize()
 }
 
+/// Visible normals for `wo` at the centres of a `strata` × `strata` grid of
+/// sample points: a stratified quadrature over the visible normals, for
+/// the albedo tables.
+pub fn stratified_visible_normals(
+    wo: Vec3,
+    alpha: f32,
+    strata: usize,
+) -> impl Iterator<Item = Vec3> {
+    (0..strata * strata).map(move |k| {
+        let u = Vec2::new(
+            ((k / strata) as f32 + 0.5) / strata as f32,
+            ((k % strata) as f32 + 0.5) / strata as f32,
+        );
+        sample_visible_normal(wo, alpha, u)
+    })
+}
+
 /// Pdf (solid angle of ωi) of reflecting `wo` about a visible normal into `wi`.
 pub fn reflection_pdf(wo: Vec3, wi: Vec3, alpha: f32) -> f32 {
     let m = (wo + wi).normalize_or_zero();

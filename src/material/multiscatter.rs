@@ -15,9 +15,9 @@
 //! E is tabulated once per process over (μ, √α) by stratified quadrature of
 //! visible-normal samples, where each sample weighs G2/G1 (with F = 1).
 
-use super::microfacet::{g1, g2, sample_visible_normal};
+use super::microfacet::{g1, g2, stratified_visible_normals};
 use super::reflect;
-use glam::{Vec2, Vec3};
+use glam::Vec3;
 use std::f32::consts::PI;
 use std::sync::OnceLock;
 
@@ -48,17 +48,10 @@ pub fn albedo_by_quadrature(mu: f32, alpha: f32) -> f32 {
     let wo = Vec3::new((1.0 - mu * mu).sqrt(), 0.0, mu);
     let g1o = g1(wo, alpha);
     let mut sum = 0.0f64;
-    for i in 0..STRATA {
-        for j in 0..STRATA {
-            let u = Vec2::new(
-                (i as f32 + 0.5) / STRATA as f32,
-                (j as f32 + 0.5) / STRATA as f32,
-            );
-            let m = sample_visible_normal(wo, alpha, u);
-            let wi = reflect(wo, m);
-            if wi.z > 0.0 {
-                sum += (g2(wo, wi, alpha) / g1o) as f64;
-            }
+    for m in stratified_visible_normals(wo, alpha, STRATA) {
+        let wi = reflect(wo, m);
+        if wi.z > 0.0 {
+            sum += (g2(wo, wi, alpha) / g1o) as f64;
         }
     }
     (sum / (STRATA * STRATA) as f64) as f32

@@ -24,7 +24,7 @@
 //! Directions are local: the normal is +z, on the side of `wo`.
 
 use super::fresnel;
-use super::microfacet::{d, g1, reflection_pdf, sample_visible_normal};
+use super::microfacet::{d, g1, reflection_pdf, sample_visible_normal, stratified_visible_normals};
 use super::reflect;
 use crate::sampling::warp::{cosine_hemisphere, cosine_hemisphere_pdf};
 use glam::{Vec2, Vec3};
@@ -57,21 +57,14 @@ fn coat_albedo(mu: f32, eta: f32, alpha: f32) -> (f32, f32) {
     let mu = mu.clamp(1e-4, 1.0);
     let wo = Vec3::new((1.0 - mu * mu).sqrt(), 0.0, mu);
     let (mut reflected, mut transmitted) = (0.0f64, 0.0f64);
-    for i in 0..STRATA {
-        for j in 0..STRATA {
-            let u = Vec2::new(
-                (i as f32 + 0.5) / STRATA as f32,
-                (j as f32 + 0.5) / STRATA as f32,
-            );
-            let m = sample_visible_normal(wo, alpha, u);
-            let f = fresnel::dielectric(wo.dot(m), eta);
-            let wi = reflect(wo, m);
-            if wi.z > 0.0 {
-                reflected += (f * g1(wi, alpha)) as f64;
-            }
-            if let Some(wt) = super::refract(wo, m, eta).filter(|w| w.z < 0.0) {
-                transmitted += ((1.0 - f) * g1(wt, alpha)) as f64;
-            }
+    for m in stratified_visible_normals(wo, alpha, STRATA) {
+        let f = fresnel::dielectric(wo.dot(m), eta);
+        let wi = reflect(wo, m);
+        if wi.z > 0.0 {
+            reflected += (f * g1(wi, alpha)) as f64;
+        }
+        if let Some(wt) = super::refract(wo, m, eta).filter(|w| w.z < 0.0) {
+            transmitted += ((1.0 - f) * g1(wt, alpha)) as f64;
         }
     }
     let n = (STRATA * STRATA) as f64;

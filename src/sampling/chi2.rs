@@ -2,7 +2,72 @@
 //! (materials, lights, distributions): observed counts per bin against the
 //! counts a pdf predicts.
 
+use glam::Vec3;
 use std::f64::consts::PI;
+
+/// Bins over the sphere: in cos θ about +z over [−1, 1], and in φ over
+/// [0, 2π).
+pub const N_COS: usize = 16;
+/// Bins in φ (see [`N_COS`]).
+pub const N_PHI: usize = 32;
+
+/// The bin of a unit direction.
+pub fn sphere_bin(w: Vec3) -> usize {
+    let c = ((w.z as f64 + 1.0) * 0.5 * N_COS as f64) as usize;
+    let phi = (w.y as f64).atan2(w.x as f64).rem_euclid(2.0 * PI);
+    let p = (phi / (2.0 * PI) * N_PHI as f64) as usize;
+    c.min(N_COS - 1) * N_PHI + p.min(N_PHI - 1)
+}
+
+/// The unit direction of a cosine about +z and an angle φ.
+fn direction(cos: f64, phi: f64) -> Vec3 {
+    let sin = (1.0 - cos * cos).max(0.0).sqrt();
+    Vec3::new(
+        (sin * phi.cos()) as f32,
+        (sin * phi.sin()) as f32,
+        cos as f32,
+    )
+}
+
+/// The share of samples a density in solid angle puts in each bin: ∫ pdf
+/// dω with dω = d(cos θ) dφ, by a `sub` × `sub` midpoint rule per bin
+/// (fine enough for the pdf's narrowest feature, e.g. a glossy lobe or a
+/// disk's edge).
+pub fn sphere_shares(pdf: impl Fn(Vec3) -> f32, sub: usize) -> Vec<f64> {
+    let (dc, dp) = (2.0 / N_COS as f64, 2.0 * PI / N_PHI as f64);
+    (0..N_COS * N_PHI)
+        .map(|i| {
+            let (c0, p0) = (-1.0 + (i / N_PHI) as f64 * dc, (i % N_PHI) as f64 * dp);
+            let mut s = 0.0;
+            for a in 0..sub {
+                for b in 0..sub {
+                    let c = c0 + (a as f64 + 0.5) / sub as f64 * dc;
+                    let p = p0 + (b as f64 + 0.5) / sub as f64 * dp;
+                    s += pdf(direction(c, p)) as f64;
+                }
+            }
+            s * dc * dp / (sub * sub) as f64
+        })
+        .collect()
+}
+
+/// The p-value of sampled `directions` (out of `attempts`, failed ones
+/// included) against the density `pdf` that the sampler claims.
+pub fn sphere_p_value(
+    directions: impl IntoIterator<Item = Vec3>,
+    attempts: usize,
+    pdf: impl Fn(Vec3) -> f32,
+    sub: usize,
+) -> f64 {
+    let mut observed = vec![0.0; N_COS * N_PHI];
+    for d in directions {
+        observed[sphere_bin(d)] += 1.0;
+    }
+    let expected: Vec<f64> = (sphere_shares(pdf, sub).iter())
+        .map(|s| s * attempts as f64)
+        .collect();
+    pearson_p_value(&observed, &expected)
+}
 
 /// The p-value of `observed` counts against `expected` ones (same bins).
 /// Bins expecting fewer than 5 samples are pooled into one; samples where

@@ -9,6 +9,7 @@ mod examples;
 mod golden;
 mod hostile;
 mod layering;
+mod materials;
 mod mitsuba;
 mod nasty;
 mod render;

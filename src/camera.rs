@@ -48,6 +48,11 @@ impl Camera {
         }
     }
 
+    /// The shutter interval: the times rays are given.
+    pub fn shutter(&self) -> (f32, f32) {
+        self.shutter
+    }
+
     /// The ray through image position `film` (pixels, y down), lens sample
     /// `lens` and time sample `u_time`.
     pub fn ray(&self, film: Vec2, lens: Vec2, u_time: f32) -> Ray {

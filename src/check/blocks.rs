@@ -274,6 +274,10 @@ pub fn render_settings(p: &Params, base_dir: &Path, diags: &mut Diagnostics) -> 
         Some((Val::Word(w), _)) => IntegratorKind::from_name(w).unwrap_or(d.integrator),
         _ => d.integrator,
     };
+    let light_selection = match p.get("light_selection") {
+        Some((Val::Word(w), _)) => LightSelection::from_name(w).unwrap_or(d.light_selection),
+        _ => d.light_selection,
+    };
     let clamp = r
         .num("clamp")
         .map(|_| r.num_in("clamp", 0.0, f64::INFINITY, true, f64::INFINITY));
@@ -290,6 +294,7 @@ pub fn render_settings(p: &Params, base_dir: &Path, diags: &mut Diagnostics) -> 
         hybrid_weight: r.num_in("hybrid_weight", 0.0, 1.0, false, d.hybrid_weight as f64) as f32,
         clamp: clamp.filter(|c| c.is_finite()).map(|c| c as f32),
         light_sampling: r.boolean("light_sampling", true),
+        light_selection,
         light_samples: r.num_in("light_samples", 0.0, 1024.0, false, d.light_samples as f64) as u32,
         exposure: r.num_in("exposure", -32.0, 32.0, false, 0.0) as f32,
     };

@@ -122,6 +122,9 @@ pub const SHAPE_COMMON: &[ParamSpec] = &[
 /// Integrator names accepted by `render { integrator … }`.
 pub const INTEGRATORS: &[&str] = &crate::ir::settings::IntegratorKind::WORDS;
 
+/// Light selection rules accepted by `render { light_selection … }`.
+pub const LIGHT_SELECTIONS: &[&str] = &crate::ir::settings::LightSelection::WORDS;
+
 /// `render { }`
 pub const RENDER: &[ParamSpec] = &[
     p("resolution", Ty::Vec2, "<512, 512>"),
@@ -135,6 +138,7 @@ pub const RENDER: &[ParamSpec] = &[
     p("hybrid_weight", Ty::Num, "0.5"),
     p("clamp", Ty::Num, "10"),
     p("light_sampling", Ty::Bool, "true"),
+    p("light_selection", Ty::Word(LIGHT_SELECTIONS), "auto"),
     p("light_samples", Ty::Int, "4"),
     p("exposure", Ty::Num, "0"),
 ];

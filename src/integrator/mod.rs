@@ -38,7 +38,7 @@ pub fn make(kind: IntegratorKind) -> Box<dyn Integrator> {
 pub const T_MIN: f32 = 1e-5;
 
 /// Next-event estimation at `hit` for outgoing direction `wo`: one light
-/// chosen by power, weighted against BSDF sampling with the power heuristic
+/// chosen by the scene's light selection, weighted against BSDF sampling with the power heuristic
 /// (delta lights get weight 1).
 pub fn direct_light_mis(
     scene: &Scene,
@@ -48,7 +48,8 @@ pub fn direct_light_mis(
     time: f32,
     sampler: &mut Sampler,
 ) -> Vec3 {
-    let Some((li_idx, pick_pdf)) = scene.pick_light(sampler.next_f32()) else {
+    let u = sampler.next_f64();
+    let Some((li_idx, pick_pdf)) = scene.light_sampler.sample(hit.p, hit.n_shading, u) else {
         return Vec3::ZERO;
     };
     let u = sampler.next_2d();
@@ -92,10 +93,17 @@ pub fn crosses_surface(hit: &Hit, wo: Vec3, wi: Vec3) -> bool {
     hit.bent && (wi.dot(hit.n_geo) > 0.0) != (wo.dot(hit.n_geo) > 0.0)
 }
 
-/// Pdf with which [`direct_light_mis`] would have produced a ray from `from`
-/// that hits emitter `light` at `hit` (solid angle, including the light choice).
-pub fn light_pdf(scene: &Scene, light: u32, from: Vec3, hit: &Hit, dir: Vec3) -> f32 {
-    let pick = scene.light_pmf[light as usize];
+/// Pdf with which [`direct_light_mis`] would have produced a ray from the
+/// point `from` with shading normal `from_n` that hits emitter `light` at
+/// `hit` (solid angle, including the light choice).
+pub fn light_pdf(
+    scene: &Scene,
+    light: u32,
+    [from, from_n]: [Vec3; 2],
+    hit: &Hit,
+    dir: Vec3,
+) -> f32 {
+    let pick = scene.light_sampler.pmf(from, from_n, light);
     match &scene.lights[light as usize] {
         crate::light::Light::Area { shape, .. } => {
             let area = shape.area();

@@ -31,6 +31,7 @@ pub fn path_li(scene: &Scene, mut ray: Ray, sampler: &mut Sampler, nee: bool) ->
     // The previous bounce: its pdf (0 = delta) and position, for MIS on emitters hit.
     let mut prev_pdf = 0.0f32;
     let mut prev_p = ray.o;
+    let mut prev_n = Vec3::ZERO;
     let mut segments = 0u32;
     loop {
         segments += 1;
@@ -38,7 +39,8 @@ pub fn path_li(scene: &Scene, mut ray: Ray, sampler: &mut Sampler, nee: bool) ->
             if let Some(env) = scene.env_light {
                 let light = &scene.lights[env as usize];
                 let w = if nee && prev_pdf > 0.0 {
-                    let lp = scene.light_pmf[env as usize] * light.direction_pdf(ray.d);
+                    let pick = scene.light_sampler.pmf(prev_p, prev_n, env);
+                    let lp = pick * light.direction_pdf(ray.d);
                     power_heuristic(prev_pdf, lp)
                 } else {
                     1.0
@@ -63,7 +65,8 @@ pub fn path_li(scene: &Scene, mut ray: Ray, sampler: &mut Sampler, nee: bool) ->
             let light = (nee && prev_pdf > 0.0).then(|| scene.area_light(hit.prim));
             let w = match light.flatten() {
                 Some(light) => {
-                    power_heuristic(prev_pdf, light_pdf(scene, light, prev_p, &hit, ray.d))
+                    let from = [prev_p, prev_n];
+                    power_heuristic(prev_pdf, light_pdf(scene, light, from, &hit, ray.d))
                 }
                 None => 1.0,
             };
@@ -94,6 +97,7 @@ pub fn path_li(scene: &Scene, mut ray: Ray, sampler: &mut Sampler, nee: bool) ->
         beta *= bs.weight;
         prev_pdf = bs.pdf;
         prev_p = hit.p;
+        prev_n = hit.n_shading;
         // Russian roulette once the path has rr_depth segments, deciding on the
         // next one: Mitsuba 3's convention (its `depth >= rr_depth` after the
         // depth-th interaction), so that both trace paths of the same length

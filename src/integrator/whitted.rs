@@ -1,6 +1,7 @@
 //! Recursive ray tracing (Whitted 1980) with distribution effects (Cook
 //! 1984): direct light with shadow rays from every light (several per area
-//! light, for soft shadows), the ambient term, mirror and glossy reflection,
+//! light, for soft shadows; from lights chosen by the light selection when
+//! there are many), the ambient term, mirror and glossy reflection,
 //! refraction weighted by exact Fresnel with total internal reflection, and
 //! Beer's law. Indirect diffuse light is not computed: that is the path
 //! integrator's job.
@@ -153,9 +154,11 @@ fn lobes(
     l
 }
 
-/// Direct light from every light: one shadow ray per delta light,
-/// `light_samples` per area light, and the background by `light_samples`
-/// cosine-weighted directions.
+/// Direct light: from every light when there are few (one shadow ray per
+/// delta light, `light_samples` per area light and for the light at
+/// infinity), else from `light_samples` lights chosen by the scene's light
+/// selection, each divided by the probability of its choice. With
+/// `light_samples 0`, delta lights only.
 fn direct(
     scene: &Scene,
     hit: &Hit,
@@ -164,51 +167,82 @@ fn direct(
     time: f32,
     sampler: &mut Sampler,
 ) -> Vec3 {
-    let mut l = Vec3::ZERO;
     let n = scene.settings.light_samples.max(1);
+    let only_delta = scene.settings.light_samples == 0;
+    if scene.lights.len() > EVERY_LIGHT_UP_TO {
+        let mut acc = Vec3::ZERO;
+        for _ in 0..n {
+            let u = sampler.next_f64();
+            let Some((i, pmf)) = scene.light_sampler.sample(hit.p, hit.n_shading, u) else {
+                continue;
+            };
+            let light = &scene.lights[i as usize];
+            let u = sampler.next_2d();
+            if only_delta && !light.is_delta() {
+                continue;
+            }
+            acc += light_sample(scene, hit, m, wo, time, light, u) / pmf;
+        }
+        return acc / n as f32;
+    }
+    let mut l = Vec3::ZERO;
     for light in &scene.lights {
-        let count = if light.is_delta() { 1 } else { n };
-        if matches!(
-            light,
-            Light::Area { .. } | Light::Environment { .. } | Light::Sky { .. }
-        ) && scene.settings.light_samples == 0
-        {
+        if only_delta && !light.is_delta() {
             continue;
         }
+        let count = if light.is_delta() { 1 } else { n };
         let mut acc = Vec3::ZERO;
         for _ in 0..count {
-            let Some(ls) = light.sample(
-                |prim, q, uv, n, w| scene.emitted_at(prim, q, uv, n, w, time),
-                hit.p,
-                time,
-                sampler.next_2d(),
-            ) else {
-                continue;
-            };
-            if super::crosses_surface(hit, wo, ls.wi) {
-                continue;
-            }
-            let (f, _) = m.eval(wo, ls.wi, hit.n_shading);
-            if f == Vec3::ZERO {
-                continue;
-            }
-            let shadow = Ray::new(offset_origin(hit.p, hit.n_geo, ls.wi), ls.wi, time);
-            let t_max = if ls.dist.is_finite() {
-                ls.dist * (1.0 - 1e-4)
-            } else {
-                f32::INFINITY
-            };
-            if scene.occluded(&shadow, T_MIN, t_max) {
-                continue;
-            }
-            let cos = ls.wi.dot(hit.n_shading).abs();
-            acc += if light.is_delta() {
-                f * ls.li * cos
-            } else {
-                f * ls.li * cos / ls.pdf
-            };
+            acc += light_sample(scene, hit, m, wo, time, light, sampler.next_2d());
         }
         l += acc / count as f32;
     }
     l
+}
+
+/// Lights up to which Whitted sends shadow rays to every light.
+const EVERY_LIGHT_UP_TO: usize = crate::light::selection::EXHAUSTIVE_UP_TO;
+
+/// One shadow ray to `light` from `hit` with the sample `u`: the light it
+/// brings, reflected towards `wo` (divided by the pdf of the point on the
+/// light; zero when it is blocked).
+fn light_sample(
+    scene: &Scene,
+    hit: &Hit,
+    m: &Material,
+    wo: Vec3,
+    time: f32,
+    light: &Light,
+    u: glam::Vec2,
+) -> Vec3 {
+    let Some(ls) = light.sample(
+        |prim, q, uv, n, w| scene.emitted_at(prim, q, uv, n, w, time),
+        hit.p,
+        time,
+        u,
+    ) else {
+        return Vec3::ZERO;
+    };
+    if super::crosses_surface(hit, wo, ls.wi) {
+        return Vec3::ZERO;
+    }
+    let (f, _) = m.eval(wo, ls.wi, hit.n_shading);
+    if f == Vec3::ZERO {
+        return Vec3::ZERO;
+    }
+    let shadow = Ray::new(offset_origin(hit.p, hit.n_geo, ls.wi), ls.wi, time);
+    let t_max = if ls.dist.is_finite() {
+        ls.dist * (1.0 - 1e-4)
+    } else {
+        f32::INFINITY
+    };
+    if scene.occluded(&shadow, T_MIN, t_max) {
+        return Vec3::ZERO;
+    }
+    let cos = ls.wi.dot(hit.n_shading).abs();
+    if light.is_delta() {
+        f * ls.li * cos
+    } else {
+        f * ls.li * cos / ls.pdf
+    }
 }

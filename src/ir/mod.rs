@@ -10,6 +10,7 @@ use crate::accel::ray_count;
 use crate::camera::Camera;
 use crate::geometry::shape::{Shape, ShapeHit};
 use crate::geometry::{Aabb, Ray};
+use crate::light::selection::LightSampler;
 use crate::light::Light;
 use crate::material::Material;
 use crate::span::Span;
@@ -92,10 +93,8 @@ pub struct Scene {
     pub area_lights: Vec<u32>,
     /// Lights.
     pub lights: Vec<Light>,
-    /// Selection probability of each light.
-    pub light_pmf: Vec<f32>,
-    /// Cumulative selection probabilities.
-    pub light_cdf: Vec<f32>,
+    /// How shadow rays choose among `lights`.
+    pub light_sampler: LightSampler,
     /// Background radiance.
     pub background: Vec3,
     /// Index of the environment light, if the background is not black.
@@ -250,17 +249,5 @@ impl Scene {
                 .intersect(&Self::local_ray(p, ray), t_min, t_max)
                 .is_some()
         })
-    }
-
-    /// Chooses a light from `u`: its index and selection probability.
-    pub fn pick_light(&self, u: f32) -> Option<(u32, f32)> {
-        if self.lights.is_empty() {
-            return None;
-        }
-        let i = self
-            .light_cdf
-            .partition_point(|&c| c <= u)
-            .min(self.lights.len() - 1);
-        Some((i as u32, self.light_pmf[i]))
     }
 }

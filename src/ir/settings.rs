@@ -5,6 +5,8 @@
 
 use glam::Vec3;
 
+pub use crate::light::selection::LightSelection;
+
 /// Which light-transport algorithm renders the scene.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum IntegratorKind {
@@ -101,6 +103,8 @@ pub struct Settings {
     pub clamp: Option<f32>,
     /// Whether the path integrator samples lights directly (NEE + MIS); `false` is the paper's naive mode.
     pub light_sampling: bool,
+    /// How shadow rays choose their light.
+    pub light_selection: LightSelection,
     /// Shadow rays per area light and hit in the Whitted integrator.
     pub light_samples: u32,
     /// Exposure in stops applied when writing PNG.
@@ -122,6 +126,7 @@ impl Default for Settings {
             hybrid_weight: 0.5,
             clamp: None,
             light_sampling: true,
+            light_selection: LightSelection::Auto,
             light_samples: 4,
             exposure: 0.0,
         }

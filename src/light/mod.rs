@@ -1,15 +1,20 @@
 //! Lights: emissive shapes (area lights), point, spot and directional lights
 //! and the constant background. Each can be sampled from a shading point;
-//! lights are chosen in proportion to their power.
+//! which light a shadow ray goes to is [`selection`]'s choice.
 
+pub mod bounds;
 pub mod environment;
+pub mod selection;
 pub mod sky;
 mod sun_table;
+pub mod tree;
 
 use crate::geometry::shape::Shape;
 use crate::geometry::Aabb;
 use crate::material::Material;
+use bounds::LightBounds;
 use glam::{Vec2, Vec3};
+use selection::Selectable;
 
 /// One light.
 #[derive(Debug, Clone)]
@@ -96,8 +101,9 @@ pub fn spot_falloff(cos: f32, cos_total: f32, cos_falloff: f32) -> f32 {
 }
 
 impl Light {
-    /// Power used to choose among lights (any positive value keeps the
-    /// estimate unbiased). In f64: products of large accepted values (an
+    /// Power used by the `power` rule to choose among lights, and to find
+    /// the lights that emit at all (any positive value keeps the estimate
+    /// unbiased). In f64: products of large accepted values (an
     /// emission of 1e12 over an area of 4e18) and their sum over many
     /// lights stay finite.
     /// `material_of` gives the material of an emissive primitive.
@@ -134,6 +140,83 @@ impl Light {
                 4.0 * pi * pi * radius * radius * lum64
             }
         }
+    }
+
+    /// What the light selection needs to know of the light: its
+    /// [`LightBounds`] over the shutter interval `(t0, t1)`, or that it is
+    /// at infinity. `material_of` gives the material of an emissive
+    /// primitive.
+    pub fn selectable<'m>(
+        &self,
+        material_of: impl Fn(u32) -> &'m Material,
+        (t0, t1): (f32, f32),
+    ) -> Selectable {
+        let lum = |c: Vec3| luminance(c) as f64;
+        let four_pi = 4.0 * std::f64::consts::PI;
+        let at = |p: Vec3| Aabb { min: p, max: p };
+        let everywhere = |bounds, phi| LightBounds {
+            bounds,
+            w: Vec3::Z,
+            phi,
+            cos_o: -1.0,
+            cos_e: 0.0,
+            two_sided: false,
+        };
+        Selectable::Bounded(match self {
+            Light::Area {
+                prim,
+                shape,
+                velocity,
+            } => {
+                let m = material_of(*prim);
+                let b = shape.bounds();
+                let moved = |t: f32| Aabb {
+                    min: b.min + *velocity * t,
+                    max: b.max + *velocity * t,
+                };
+                let bounds = moved(t0).union(moved(t1));
+                let sides = if m.two_sided { 2.0 } else { 1.0 };
+                let phi = lum(m.emission) * shape.area() as f64 * std::f64::consts::PI * sides;
+                match shape {
+                    Shape::Sphere { .. } => everywhere(bounds, phi),
+                    _ => LightBounds {
+                        bounds,
+                        // The emitting side, as `Material::emitted` sees it.
+                        w: shape.sample_area(Vec2::splat(0.5)).1,
+                        phi,
+                        cos_o: 1.0,
+                        cos_e: 0.0,
+                        two_sided: m.two_sided,
+                    },
+                }
+            }
+            Light::Point {
+                position,
+                intensity,
+            } => everywhere(at(*position), four_pi * lum(*intensity)),
+            Light::Spot {
+                position,
+                direction,
+                intensity,
+                cos_total,
+                cos_falloff,
+            } => {
+                // The cone is in the bounds, so the power is a point
+                // light's (as pbrt-v4's `SpotLight::Bounds`).
+                let (total, falloff) = (cos_total.acos(), cos_falloff.acos());
+                LightBounds {
+                    bounds: at(*position),
+                    w: *direction,
+                    phi: four_pi * lum(*intensity),
+                    cos_o: *cos_falloff,
+                    cos_e: (total - falloff).max(0.0).cos(),
+                    two_sided: false,
+                }
+            }
+            Light::Directional { .. } | Light::Environment { .. } | Light::Sky { .. } => {
+                return Selectable::Infinite
+            }
+        })
     }
 
     /// Samples light arriving at `p`. `time` is the ray's: a moving emitter

@@ -25,6 +25,7 @@ use crate::geometry::Aabb;
 use crate::ir::settings::Settings;
 use crate::ir::{Prim, Scene};
 use crate::light::environment::EnvironmentMap;
+use crate::light::selection::{LightSampler, Selectable};
 use crate::light::Light;
 use crate::material::Material;
 use crate::texture::Texture;
@@ -33,7 +34,7 @@ use camera::lower_camera;
 use collect::{Collected, PlainMesh};
 use glam::{Affine3A, DMat4, DVec3, Vec2, Vec3};
 use image::Images;
-use lights::{light_table, lower_light};
+use lights::lower_light;
 use material::lower_material;
 use std::path::PathBuf;
 use std::sync::Arc;
@@ -629,8 +630,7 @@ fn finish(
         uvs,
         area_lights,
         lights,
-        light_pmf: Vec::new(),
-        light_cdf: Vec::new(),
+        light_sampler: LightSampler::default(),
         background,
         env_light,
         bounds,
@@ -648,8 +648,14 @@ fn finish(
         .iter()
         .map(|l| l.power(|prim| ir.material_of(prim), scene_bounds))
         .collect();
-    match light_table(&powers) {
-        Some((pmf, cdf)) => (ir.light_pmf, ir.light_cdf) = (pmf, cdf),
+    let shutter = ir.camera.shutter();
+    let selectable: Vec<Selectable> = ir
+        .lights
+        .iter()
+        .map(|l| l.selectable(|prim| ir.material_of(prim), shutter))
+        .collect();
+    match LightSampler::new(ir.settings.light_selection, &selectable, &powers) {
+        Some(sampler) => ir.light_sampler = sampler,
         None => {
             // No light with power: none to sample, none to look up.
             ir.lights.clear();

@@ -49,6 +49,13 @@ impl Sampler {
         (self.next_u32() >> 8) as f32 * (1.0 / 16_777_216.0)
     }
 
+    /// A uniform number in [0, 1) with 32 bits (from one draw, as
+    /// [`Sampler::next_f32`]): for choices among many (a light of a tree).
+    #[inline]
+    pub fn next_f64(&mut self) -> f64 {
+        self.next_u32() as f64 * (1.0 / 4_294_967_296.0)
+    }
+
     /// A uniform point in [0, 1)².
     #[inline]
     pub fn next_2d(&mut self) -> Vec2 {

@@ -1,0 +1,369 @@
+//! Choosing the light a shadow ray goes to (next-event estimation), and the
+//! probability of that choice for multiple importance sampling.
+//!
+//! The default rule (`auto`, as pbrt-v4's `BVHLightSampler`): lights at
+//! infinity (background, environment map, sky, directional lights) and the
+//! set of bounded lights each get an equal share, whatever the scene's
+//! extent; within the bounded set a light is chosen by its estimated
+//! contribution at the shading point ([`LightBounds::importance`]): exactly,
+//! by evaluating every light, up to [`EXHAUSTIVE_UP_TO`] lights, and by a
+//! light tree above. `power` is the earlier rule (in proportion to power,
+//! the power of lights at infinity growing with the scene's extent) and
+//! `uniform` is Mitsuba 3's; both are kept for comparison. The measurements
+//! behind the choice are in docs/performance.md ("Light selection").
+
+use super::bounds::LightBounds;
+use super::tree::LightTree;
+use glam::Vec3;
+
+/// How lights are chosen for shadow rays (`render { light_selection … }`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum LightSelection {
+    /// Lights at infinity and the bounded set share equally; bounded lights
+    /// by importance, exhaustively for a few, by the tree for many.
+    Auto,
+    /// As `Auto`, always through the light tree.
+    Bvh,
+    /// As `Auto`, always evaluating every bounded light.
+    Exhaustive,
+    /// In proportion to each light's power (lights at infinity by their
+    /// power over the scene's bounding sphere).
+    Power,
+    /// Every light alike (Mitsuba 3's rule).
+    Uniform,
+}
+
+impl LightSelection {
+    /// Every rule with its `.pts` name.
+    pub const NAMES: [(&'static str, LightSelection); 5] = [
+        ("auto", LightSelection::Auto),
+        ("bvh", LightSelection::Bvh),
+        ("exhaustive", LightSelection::Exhaustive),
+        ("power", LightSelection::Power),
+        ("uniform", LightSelection::Uniform),
+    ];
+
+    /// The names alone, in the order of [`LightSelection::NAMES`].
+    pub const WORDS: [&'static str; 5] = {
+        let mut words = [""; 5];
+        let mut i = 0;
+        while i < words.len() {
+            words[i] = Self::NAMES[i].0;
+            i += 1;
+        }
+        words
+    };
+
+    /// Looks a rule up by name.
+    pub fn from_name(name: &str) -> Option<Self> {
+        Self::NAMES
+            .iter()
+            .find(|(n, _)| *n == name)
+            .map(|(_, k)| *k)
+    }
+}
+
+/// Bounded lights up to which `auto` evaluates every light rather than
+/// walking the tree (measured: docs/performance.md, "Light selection").
+pub const EXHAUSTIVE_UP_TO: usize = 16;
+
+/// What a light is for the selection.
+#[derive(Debug, Clone, Copy)]
+pub enum Selectable {
+    /// At infinity (or directional): its own share.
+    Infinite,
+    /// Bounded, with its bounds.
+    Bounded(LightBounds),
+}
+
+/// How the bounded lights are chosen among themselves.
+#[derive(Debug, Clone)]
+enum Bounded {
+    /// None.
+    Empty,
+    /// By importance, evaluating each.
+    Exhaustive(Vec<LightBounds>),
+    /// By importance, through the tree.
+    Tree(LightTree),
+}
+
+/// The light selector of a scene.
+#[derive(Debug, Clone)]
+pub struct LightSampler {
+    kind: Kind,
+    /// Number of lights.
+    count: usize,
+}
+
+#[derive(Debug, Clone)]
+enum Kind {
+    /// No lights.
+    None,
+    /// Probabilities that do not depend on the shading point.
+    Table { pmf: Vec<f32>, cdf: Vec<f64> },
+    /// Shares for the lights at infinity and the bounded set.
+    Importance {
+        /// The lights at infinity (indices into the scene's lights).
+        infinite: Vec<u32>,
+        /// The bounded lights' indices, in the order of `bounded`.
+        bounded_lights: Vec<u32>,
+        /// Each light's place in `infinite` or `bounded_lights`.
+        slot: Vec<u32>,
+        bounded: Bounded,
+    },
+}
+
+impl Default for LightSampler {
+    fn default() -> Self {
+        LightSampler {
+            kind: Kind::None,
+            count: 0,
+        }
+    }
+}
+
+impl LightSampler {
+    /// The selector for lights described by `selectable`, with `power` the
+    /// power of each (used by the `power` rule; its lights at infinity
+    /// measured over the scene's extent). `None` when no light has power.
+    pub fn new(rule: LightSelection, selectable: &[Selectable], power: &[f64]) -> Option<Self> {
+        let count = selectable.len();
+        let clean = |p: f64| if p.is_finite() && p > 0.0 { p } else { 0.0 };
+        let weights: Vec<f64> = match rule {
+            LightSelection::Power => power.iter().map(|&p| clean(p)).collect(),
+            _ => power
+                .iter()
+                .map(|&p| if clean(p) > 0.0 { 1.0 } else { 0.0 })
+                .collect(),
+        };
+        let kind = match rule {
+            LightSelection::Power | LightSelection::Uniform => {
+                let (pmf, cdf) = table(&weights)?;
+                Kind::Table { pmf, cdf }
+            }
+            LightSelection::Auto | LightSelection::Bvh | LightSelection::Exhaustive => {
+                let mut infinite = Vec::new();
+                let mut bounded_lights = Vec::new();
+                let mut bounds = Vec::new();
+                let mut slot = vec![u32::MAX; count];
+                for (i, s) in selectable.iter().enumerate() {
+                    if weights[i] == 0.0 {
+                        continue;
+                    }
+                    match s {
+                        Selectable::Infinite => {
+                            slot[i] = infinite.len() as u32;
+                            infinite.push(i as u32);
+                        }
+                        Selectable::Bounded(b) if b.phi > 0.0 && b.phi.is_finite() => {
+                            slot[i] = bounded_lights.len() as u32;
+                            bounded_lights.push(i as u32);
+                            bounds.push(*b);
+                        }
+                        // A light with power but no estimate: treated as at
+                        // infinity so that it keeps a share.
+                        Selectable::Bounded(_) => {
+                            slot[i] = infinite.len() as u32;
+                            infinite.push(i as u32);
+                        }
+                    }
+                }
+                if infinite.is_empty() && bounds.is_empty() {
+                    return None;
+                }
+                let tree = match rule {
+                    LightSelection::Bvh => true,
+                    LightSelection::Exhaustive => false,
+                    _ => bounds.len() > EXHAUSTIVE_UP_TO,
+                };
+                let bounded = if bounds.is_empty() {
+                    Bounded::Empty
+                } else if tree {
+                    Bounded::Tree(LightTree::build(&bounds))
+                } else {
+                    Bounded::Exhaustive(bounds)
+                };
+                Kind::Importance {
+                    infinite,
+                    bounded_lights,
+                    slot,
+                    bounded,
+                }
+            }
+        };
+        Some(LightSampler { kind, count })
+    }
+
+    /// Whether there is no light to choose.
+    pub fn is_empty(&self) -> bool {
+        matches!(self.kind, Kind::None)
+    }
+
+    /// Whether the choice depends on the shading point.
+    pub fn is_spatial(&self) -> bool {
+        matches!(
+            self.kind,
+            Kind::Importance {
+                bounded: Bounded::Exhaustive(_) | Bounded::Tree(_),
+                ..
+            }
+        )
+    }
+
+    /// Chooses a light for the point `p` with normal `n` (zero: none) from
+    /// `u` in [0, 1): its index and the probability of the choice; `None`
+    /// when no light can reach `p`.
+    #[inline]
+    pub fn sample(&self, p: Vec3, n: Vec3, u: f64) -> Option<(u32, f32)> {
+        if self.count == 1 && !self.is_empty() {
+            // One light: no estimate needed (a light that cannot reach `p`
+            // gives no light when sampled).
+            return Some((0, 1.0));
+        }
+        match &self.kind {
+            Kind::None => None,
+            Kind::Table { pmf, cdf } => {
+                let i = cdf.partition_point(|&c| c <= u).min(pmf.len() - 1);
+                Some((i as u32, pmf[i]))
+            }
+            Kind::Importance {
+                infinite,
+                bounded_lights,
+                bounded,
+                ..
+            } => {
+                let shares = shares(infinite.len(), bounded);
+                let k = ((u * shares as f64) as usize).min(shares - 1);
+                let share = 1.0 / shares as f64;
+                if k < infinite.len() {
+                    return Some((infinite[k], share as f32));
+                }
+                let u = (u * shares as f64 - k as f64).clamp(0.0, 1.0 - f64::EPSILON / 2.0);
+                let (i, pmf) = match bounded {
+                    Bounded::Empty => return None,
+                    Bounded::Exhaustive(bounds) => sample_exhaustive(bounds, p, n, u)?,
+                    Bounded::Tree(tree) => tree.sample(p, n, u)?,
+                };
+                Some((bounded_lights[i as usize], (pmf * share) as f32))
+            }
+        }
+    }
+
+    /// The probability that [`LightSampler::sample`] at `p`, `n` chooses
+    /// `light`.
+    #[inline]
+    pub fn pmf(&self, p: Vec3, n: Vec3, light: u32) -> f32 {
+        if self.count == 1 && !self.is_empty() {
+            return 1.0;
+        }
+        match &self.kind {
+            Kind::None => 0.0,
+            Kind::Table { pmf, .. } => pmf.get(light as usize).copied().unwrap_or(0.0),
+            Kind::Importance {
+                infinite,
+                slot,
+                bounded,
+                bounded_lights,
+            } => {
+                let Some(&s) = slot.get(light as usize) else {
+                    return 0.0;
+                };
+                if s == u32::MAX {
+                    return 0.0;
+                }
+                let shares = shares(infinite.len(), bounded);
+                let share = 1.0 / shares as f64;
+                if infinite.get(s as usize) == Some(&light) {
+                    return share as f32;
+                }
+                debug_assert_eq!(bounded_lights[s as usize], light);
+                let pmf = match bounded {
+                    Bounded::Empty => 0.0,
+                    Bounded::Exhaustive(bounds) => pmf_exhaustive(bounds, p, n, s),
+                    Bounded::Tree(tree) => tree.pmf(p, n, s),
+                };
+                (pmf * share) as f32
+            }
+        }
+    }
+}
+
+/// Number of equal shares: one per light at infinity, one for the bounded set.
+fn shares(infinite: usize, bounded: &Bounded) -> usize {
+    infinite + usize::from(!matches!(bounded, Bounded::Empty))
+}
+
+/// Chooses among `bounds` in proportion to importance at `p`.
+fn sample_exhaustive(bounds: &[LightBounds], p: Vec3, n: Vec3, u: f64) -> Option<(u32, f64)> {
+    let total: f64 = bounds.iter().map(|b| b.importance(p, n)).sum();
+    if !(total > 0.0 && total.is_finite()) {
+        return None;
+    }
+    let target = u * total;
+    let mut acc = 0.0;
+    let mut last = None;
+    for (i, b) in bounds.iter().enumerate() {
+        let w = b.importance(p, n);
+        if w > 0.0 {
+            acc += w;
+            last = Some((i as u32, w / total));
+            if target < acc {
+                break;
+            }
+        }
+    }
+    last
+}
+
+/// The probability of `light` in [`sample_exhaustive`].
+fn pmf_exhaustive(bounds: &[LightBounds], p: Vec3, n: Vec3, light: u32) -> f64 {
+    let total: f64 = bounds.iter().map(|b| b.importance(p, n)).sum();
+    if !(total > 0.0 && total.is_finite()) {
+        return 0.0;
+    }
+    bounds[light as usize].importance(p, n) / total
+}
+
+/// The probability of choosing each light (its share of the total weight)
+/// and the running sums, the last exactly 1; `None` when nothing has
+/// weight. Summed in f64, so that no light's power, however large,
+/// overflows the table and turns every light off.
+fn table(weights: &[f64]) -> Option<(Vec<f32>, Vec<f64>)> {
+    let clean = |p: f64| if p.is_finite() && p > 0.0 { p } else { 0.0 };
+    let weights: Vec<f64> = weights.iter().map(|&w| clean(w)).collect();
+    let total: f64 = weights.iter().sum();
+    if !(total > 0.0 && total.is_finite()) {
+        return None;
+    }
+    let pmf: Vec<f32> = weights.iter().map(|&p| (p / total) as f32).collect();
+    let mut acc = 0.0f64;
+    let mut cdf: Vec<f64> = weights
+        .iter()
+        .map(|&p| {
+            acc += p / total;
+            acc
+        })
+        .collect();
+    *cdf.last_mut().expect("at least one light") = 1.0;
+    Some((pmf, cdf))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_light_keeps_its_share_however_large_the_others() {
+        // The largest powers the numeric domain allows beside a dim light:
+        // in f32 their sum overflowed and the table turned every light off.
+        let huge = 2.0 * std::f64::consts::PI * 1e12 * 4e18;
+        let (pmf, cdf) = table(&[huge, huge, 1.0]).expect("lights");
+        assert!(pmf.iter().all(|p| *p > 0.0 && p.is_finite()), "{pmf:?}");
+        assert_eq!(*cdf.last().unwrap(), 1.0);
+        assert!(cdf.windows(2).all(|w| w[0] <= w[1]));
+        // A light that cannot emit gets no share; none at all, no table.
+        let (pmf, _) = table(&[0.0, f64::NAN, 2.0]).expect("one light");
+        assert_eq!(pmf, vec![0.0, 0.0, 1.0]);
+        assert!(table(&[0.0, 0.0]).is_none());
+    }
+}

@@ -150,53 +150,10 @@ impl LightBounds {
         }
     }
 
-    /// An estimate of the light arriving at `p` (on a surface with normal
-    /// `n`, or `Vec3::ZERO` for none): power × the cosine of the smallest
-    /// angle between the emitters' cone and the direction to `p` ÷ the
-    /// squared distance, × the smallest incident cosine at `p` (pbrt-v4
-    /// §12.6.3, `LightBounds::Importance`). Zero only where none of the
-    /// emitters can send light to `p` (so that choosing by it stays
-    /// unbiased). The squared distance is clamped to the squared radius of
-    /// the bounds (pbrt-v4 clamps to the half diagonal, unsquared: a length
-    /// against an area).
-    #[inline]
+    /// An estimate of the light arriving at `p`: see
+    /// [`CompactLightBounds::importance`].
     pub fn importance(&self, p: Vec3, n: Vec3) -> f64 {
-        let pc = self.bounds.center();
-        let r2 = 0.25 * (self.bounds.max - self.bounds.min).length_squared();
-        let to = p - pc;
-        let d2 = to.length_squared();
-        // The cone of directions from p that the bounding sphere subtends.
-        let (sin_b, cos_b) = if d2 <= r2 {
-            (0.0, -1.0)
-        } else {
-            let sin2 = r2 / d2;
-            (sin2.sqrt(), safe_sqrt(1.0 - sin2))
-        };
-        let wi = if d2 > 0.0 { to / d2.sqrt() } else { Vec3::ZERO };
-        let mut cos_w = self.w.dot(wi);
-        if self.two_sided {
-            cos_w = cos_w.abs();
-        }
-        let sin_w = safe_sqrt(1.0 - cos_w * cos_w);
-        // θ' = max(0, θ_w − θ_o − θ_b): the smallest angle between an
-        // emitter's normal and a direction towards p.
-        let sin_o = safe_sqrt(1.0 - self.cos_o * self.cos_o);
-        let cos_x = cos_sub_clamped(sin_w, cos_w, sin_o, self.cos_o);
-        let sin_x = sin_sub_clamped(sin_w, cos_w, sin_o, self.cos_o);
-        let cos_p = cos_sub_clamped(sin_x, cos_x, sin_b, cos_b);
-        if cos_p <= self.cos_e {
-            return 0.0;
-        }
-        let mut cosines = cos_p;
-        if n != Vec3::ZERO {
-            let cos_i = wi.dot(n).abs();
-            let sin_i = safe_sqrt(1.0 - cos_i * cos_i);
-            cosines *= cos_sub_clamped(sin_i, cos_i, sin_b, cos_b);
-        }
-        // The point inside a lamp's bounds (or on a point light) keeps a
-        // finite, positive estimate.
-        let d2 = (d2.max(r2) as f64).max(1e-30);
-        (self.phi * cosines.max(0.0) as f64 / d2).max(0.0)
+        CompactLightBounds::from(self).importance(p, n)
     }
 
     /// The measure M_Ω of the emission cones (Conty Estevez & Kulla 2018;
@@ -211,6 +168,101 @@ impl LightBounds {
             + PI / 2.0
                 * (2.0 * theta_w * sin_o - (theta_o - 2.0 * theta_w).cos() - 2.0 * theta_o * sin_o
                     + self.cos_o)
+    }
+}
+
+/// [`LightBounds`] as the samplers read them: the bounding sphere instead of
+/// the box, the sine of the normals' cone precomputed.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CompactLightBounds {
+    /// Centre of the bounding sphere.
+    pub center: Vec3,
+    /// Its radius.
+    pub radius: f32,
+    /// Axis of the normals' cone.
+    pub w: Vec3,
+    /// Cosine of the normals' cone's half-angle (−1: every direction).
+    pub cos_o: f32,
+    /// Its sine.
+    pub sin_o: f32,
+    /// Cosine of the emission's spread beyond the normals' cone.
+    pub cos_e: f32,
+    /// Whether the emitters emit on both sides.
+    pub two_sided: bool,
+    /// Emitted power.
+    pub phi: f64,
+}
+
+impl From<&LightBounds> for CompactLightBounds {
+    fn from(b: &LightBounds) -> Self {
+        CompactLightBounds {
+            center: b.bounds.center(),
+            radius: 0.5 * (b.bounds.max - b.bounds.min).length(),
+            w: b.w,
+            cos_o: b.cos_o,
+            sin_o: safe_sqrt(1.0 - b.cos_o * b.cos_o),
+            cos_e: b.cos_e,
+            two_sided: b.two_sided,
+            phi: b.phi,
+        }
+    }
+}
+
+impl CompactLightBounds {
+    /// An estimate of the light arriving at `p` (on a surface with normal
+    /// `n`, or `Vec3::ZERO` for none): power × the cosine of the smallest
+    /// angle between the emitters' cone and the direction to `p` ÷ the
+    /// squared distance, × the smallest incident cosine at `p` (pbrt-v4
+    /// §12.6.3, `LightBounds::Importance`). Zero only where none of the
+    /// emitters can send light to `p` (so that choosing by it stays
+    /// unbiased). The squared distance is clamped to the squared radius of
+    /// the bounds (pbrt-v4 clamps to the half diagonal, unsquared: a length
+    /// against an area).
+    #[inline]
+    pub fn importance(&self, p: Vec3, n: Vec3) -> f64 {
+        let to = p - self.center;
+        let d2 = to.length_squared();
+        let r2 = self.radius * self.radius;
+        if d2 <= r2 {
+            // Inside the bounding sphere every direction is possible: the
+            // estimate is the power over the squared radius (finite and
+            // positive on a point light too).
+            return self.phi / (r2 as f64).max(1e-30);
+        }
+        let inv_d = d2.sqrt().recip();
+        let wi = to * inv_d;
+        // The cone of directions from p that the bounding sphere subtends.
+        let sin_b = (self.radius * inv_d).min(1.0);
+        let cos_b = safe_sqrt(1.0 - sin_b * sin_b);
+        // θ' = max(0, θ_w − θ_o − θ_b): the smallest angle between an
+        // emitter's normal and a direction towards p (1 when the normals
+        // span every direction).
+        let cos_p = if self.cos_o <= -1.0 {
+            1.0
+        } else {
+            let mut cos_w = self.w.dot(wi);
+            if self.two_sided {
+                cos_w = cos_w.abs();
+            }
+            let sin_w = safe_sqrt(1.0 - cos_w * cos_w);
+            let cos_x = cos_sub_clamped(sin_w, cos_w, self.sin_o, self.cos_o);
+            let sin_x = sin_sub_clamped(sin_w, cos_w, self.sin_o, self.cos_o);
+            cos_sub_clamped(sin_x, cos_x, sin_b, cos_b)
+        };
+        // Strictly beyond: a hard-edged spot (θ_e = 0) still lights the
+        // points inside its cone (pbrt-v4's `<=` turns it off).
+        if cos_p < self.cos_e {
+            return 0.0;
+        }
+        let mut cosines = cos_p;
+        if n != Vec3::ZERO {
+            let cos_i = wi.dot(n).abs();
+            let sin_i = safe_sqrt(1.0 - cos_i * cos_i);
+            cosines *= cos_sub_clamped(sin_i, cos_i, sin_b, cos_b);
+        }
+        // Multiplied by 1/d² (no f64 division: the costliest step here).
+        let inv_d = inv_d as f64;
+        (self.phi * cosines.max(0.0) as f64 * (inv_d * inv_d)).max(0.0)
     }
 }
 
@@ -297,6 +349,16 @@ mod tests {
         );
         assert!(on_axis > 0.0 && in_falloff > 0.0 && in_falloff < on_axis);
         assert_eq!(outside, 0.0);
+        // A hard cone (θ_e = 0) lights its inside.
+        let hard = LightBounds { cos_e: 1.0, ..spot };
+        assert!(hard.importance(Vec3::new(0.0, 0.0, 3.0), Vec3::ZERO) > 0.0);
+        assert_eq!(
+            hard.importance(
+                3.0 * Vec3::new(35f32.to_radians().sin(), 0.0, 35f32.to_radians().cos()),
+                Vec3::ZERO
+            ),
+            0.0
+        );
     }
 
     #[test]

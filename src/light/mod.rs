@@ -203,7 +203,9 @@ impl Light {
             } => {
                 // The cone is in the bounds, so the power is a point
                 // light's (as pbrt-v4's `SpotLight::Bounds`).
-                let (total, falloff) = (cos_total.acos(), cos_falloff.acos());
+                // A milliradian of slack: the edge of a hard cone must not
+                // round to outside it.
+                let (total, falloff) = (cos_total.acos() + 1e-3, cos_falloff.acos());
                 LightBounds {
                     bounds: at(*position),
                     w: *direction,

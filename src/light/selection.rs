@@ -12,7 +12,7 @@
 //! `uniform` is Mitsuba 3's; both are kept for comparison. The measurements
 //! behind the choice are in docs/performance.md ("Light selection").
 
-use super::bounds::LightBounds;
+use super::bounds::{CompactLightBounds, LightBounds};
 use super::tree::LightTree;
 use glam::Vec3;
 
@@ -82,7 +82,7 @@ enum Bounded {
     /// None.
     Empty,
     /// By importance, evaluating each.
-    Exhaustive(Vec<LightBounds>),
+    Exhaustive(Vec<CompactLightBounds>),
     /// By importance, through the tree.
     Tree(LightTree),
 }
@@ -181,7 +181,7 @@ impl LightSampler {
                 } else if tree {
                     Bounded::Tree(LightTree::build(&bounds))
                 } else {
-                    Bounded::Exhaustive(bounds)
+                    Bounded::Exhaustive(bounds.iter().map(CompactLightBounds::from).collect())
                 };
                 Kind::Importance {
                     infinite,
@@ -294,7 +294,12 @@ fn shares(infinite: usize, bounded: &Bounded) -> usize {
 }
 
 /// Chooses among `bounds` in proportion to importance at `p`.
-fn sample_exhaustive(bounds: &[LightBounds], p: Vec3, n: Vec3, u: f64) -> Option<(u32, f64)> {
+fn sample_exhaustive(
+    bounds: &[CompactLightBounds],
+    p: Vec3,
+    n: Vec3,
+    u: f64,
+) -> Option<(u32, f64)> {
     let total: f64 = bounds.iter().map(|b| b.importance(p, n)).sum();
     if !(total > 0.0 && total.is_finite()) {
         return None;
@@ -316,7 +321,7 @@ fn sample_exhaustive(bounds: &[LightBounds], p: Vec3, n: Vec3, u: f64) -> Option
 }
 
 /// The probability of `light` in [`sample_exhaustive`].
-fn pmf_exhaustive(bounds: &[LightBounds], p: Vec3, n: Vec3, light: u32) -> f64 {
+fn pmf_exhaustive(bounds: &[CompactLightBounds], p: Vec3, n: Vec3, light: u32) -> f64 {
     let total: f64 = bounds.iter().map(|b| b.importance(p, n)).sum();
     if !(total > 0.0 && total.is_finite()) {
         return 0.0;
@@ -365,5 +370,128 @@ mod tests {
         let (pmf, _) = table(&[0.0, f64::NAN, 2.0]).expect("one light");
         assert_eq!(pmf, vec![0.0, 0.0, 1.0]);
         assert!(table(&[0.0, 0.0]).is_none());
+    }
+
+    fn rng(seed: u64) -> impl FnMut() -> f32 {
+        let mut state = seed;
+        move || {
+            state = state
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1_442_695_040_888_963_407);
+            (state >> 40) as f32 / (1u64 << 24) as f32
+        }
+    }
+
+    /// Random lights of every kind: infinite ones, points, one-sided and
+    /// two-sided quads, spots (narrow cones), lights of no power.
+    fn mixed_lights(n: usize, seed: u64) -> (Vec<Selectable>, Vec<f64>) {
+        let mut r = rng(seed);
+        let mut selectable = Vec::new();
+        let mut power = Vec::new();
+        for k in 0..n {
+            let c = Vec3::new(r() * 10.0 - 5.0, r() * 4.0, r() * 10.0 - 5.0);
+            let w = Vec3::new(r() - 0.5, r() - 0.5, r() - 0.5).normalize_or(Vec3::Y);
+            let half = Vec3::splat(0.01 + 0.5 * r());
+            let kind = k % 6;
+            let b = LightBounds {
+                bounds: crate::geometry::Aabb {
+                    min: c - half * (kind % 2) as f32,
+                    max: c + half * (kind % 2) as f32,
+                },
+                w,
+                phi: (1.0 + 100.0 * r() as f64).powi(2),
+                cos_o: [-1.0, 1.0, 0.9, 1.0, -1.0, 1.0][kind],
+                cos_e: [0.0, 0.0, 0.95, 0.0, 0.0, 0.0][kind],
+                two_sided: kind == 3,
+            };
+            selectable.push(if kind == 4 && k % 4 == 0 {
+                Selectable::Infinite
+            } else {
+                Selectable::Bounded(b)
+            });
+            power.push(if k % 17 == 5 { 0.0 } else { b.phi });
+        }
+        (selectable, power)
+    }
+
+    #[test]
+    fn the_sampled_pmf_is_the_mis_pmf_and_the_frequencies_follow_it() {
+        // For the exhaustive rule and the tree, with lights at infinity
+        // among the bounded ones: at random shading points each sample's
+        // probability equals `pmf` of the light it gives, the pmfs sum to
+        // one less the chance of no light (none can reach the point), and
+        // stratified samples fall on each light as often as its pmf says.
+        for (n, seed) in [(9, 1), (40, 2), (700, 3)] {
+            let (selectable, power) = mixed_lights(n, seed);
+            for rule in [
+                LightSelection::Exhaustive,
+                LightSelection::Bvh,
+                LightSelection::Auto,
+            ] {
+                let sampler = LightSampler::new(rule, &selectable, &power).unwrap();
+                let mut r = rng(seed + 10);
+                for _ in 0..20 {
+                    let p = Vec3::new(r() * 14.0 - 7.0, r() * 6.0 - 1.0, r() * 14.0 - 7.0);
+                    let normal = Vec3::new(r() - 0.5, r() - 0.5, r() - 0.5).normalize_or(Vec3::Y);
+                    let pmfs: Vec<f64> = (0..n as u32)
+                        .map(|i| sampler.pmf(p, normal, i) as f64)
+                        .collect();
+                    for (i, &pmf) in pmfs.iter().enumerate() {
+                        if power[i] == 0.0 {
+                            assert_eq!(pmf, 0.0, "a light of no power is never chosen");
+                        }
+                    }
+                    const K: usize = 20_000;
+                    let mut counts = vec![0usize; n];
+                    let mut none = 0usize;
+                    for k in 0..K {
+                        match sampler.sample(p, normal, (k as f64 + 0.5) / K as f64) {
+                            Some((i, pmf)) => {
+                                assert_eq!(pmf, sampler.pmf(p, normal, i), "{rule:?}");
+                                counts[i as usize] += 1;
+                            }
+                            None => none += 1,
+                        }
+                    }
+                    let total: f64 = pmfs.iter().sum();
+                    assert!(total <= 1.0 + 1e-5, "{total}");
+                    for (i, &c) in counts.iter().enumerate() {
+                        let f = c as f64 / K as f64;
+                        assert!(
+                            (f - pmfs[i]).abs() <= 2.0 / K as f64 + 1e-6,
+                            "{rule:?} light {i}: {f} vs {}",
+                            pmfs[i]
+                        );
+                    }
+                    assert!(((none as f64 / K as f64) - (1.0 - total)).abs() <= 50.0 / K as f64);
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn lights_at_infinity_keep_their_share_whatever_the_bounded_ones() {
+        let (mut selectable, mut power) = mixed_lights(300, 4);
+        selectable.push(Selectable::Infinite);
+        power.push(1e-6);
+        let sampler = LightSampler::new(LightSelection::Auto, &selectable, &power).unwrap();
+        let infinite = selectable
+            .iter()
+            .zip(&power)
+            .filter(|(s, &p)| matches!(s, Selectable::Infinite) && p > 0.0)
+            .count();
+        let share = sampler.pmf(Vec3::ZERO, Vec3::Y, 300);
+        assert_eq!(share, 1.0 / (infinite + 1) as f32);
+    }
+
+    #[test]
+    fn uniform_and_power_rules_do_not_depend_on_the_point() {
+        let (selectable, power) = mixed_lights(12, 5);
+        let uniform = LightSampler::new(LightSelection::Uniform, &selectable, &power).unwrap();
+        let lit = power.iter().filter(|&&p| p > 0.0).count() as f32;
+        assert_eq!(uniform.pmf(Vec3::ONE, Vec3::Y, 0), 1.0 / lit);
+        let by_power = LightSampler::new(LightSelection::Power, &selectable, &power).unwrap();
+        let total: f64 = power.iter().sum();
+        assert!((by_power.pmf(Vec3::ZERO, Vec3::X, 1) as f64 - power[1] / total).abs() < 1e-6);
     }
 }

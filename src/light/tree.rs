@@ -6,7 +6,7 @@
 //! probability of a given light is found by walking the same path again
 //! (its bit trail), so that the pmf used for MIS is exactly the one sampled.
 
-use super::bounds::LightBounds;
+use super::bounds::{CompactLightBounds, LightBounds};
 use crate::geometry::Aabb;
 use glam::Vec3;
 
@@ -14,7 +14,7 @@ use glam::Vec3;
 /// `index`; a leaf's `index` is the light's (its position in the input).
 #[derive(Debug, Clone, Copy)]
 struct Node {
-    bounds: LightBounds,
+    bounds: CompactLightBounds,
     index: u32,
     leaf: bool,
 }
@@ -62,7 +62,7 @@ impl LightTree {
         if let [only] = order {
             let bounds = lights[*only as usize];
             self.nodes.push(Node {
-                bounds,
+                bounds: CompactLightBounds::from(&bounds),
                 index: *only,
                 leaf: true,
             });
@@ -77,7 +77,7 @@ impl LightTree {
         .unwrap_or(order.len() / 2);
         let at = self.nodes.len();
         self.nodes.push(Node {
-            bounds: lights[order[0] as usize],
+            bounds: CompactLightBounds::from(&lights[order[0] as usize]),
             index: 0,
             leaf: false,
         });
@@ -86,7 +86,7 @@ impl LightTree {
         self.nodes[at].index = self.nodes.len() as u32;
         let b = self.build_range(lights, second, trail | (1u64 << depth), depth + 1);
         let bounds = LightBounds::union(&a, &b);
-        self.nodes[at].bounds = bounds;
+        self.nodes[at].bounds = CompactLightBounds::from(&bounds);
         bounds
     }
 
@@ -109,14 +109,16 @@ impl LightTree {
             if total <= 0.0 || total.is_nan() {
                 return None;
             }
-            let p0 = i0 / total;
+            let inv_total = total.recip();
+            let p0 = i0 * inv_total;
             if u < p0 {
                 u = (u / p0).min(ONE_BELOW);
                 pmf *= p0;
                 at = first;
             } else {
-                u = ((u - p0) / (1.0 - p0)).clamp(0.0, ONE_BELOW);
-                pmf *= i1 / total;
+                let p1 = i1 * inv_total;
+                u = ((u - p0) / p1).clamp(0.0, ONE_BELOW);
+                pmf *= p1;
                 at = second;
             }
         }
@@ -148,11 +150,13 @@ impl LightTree {
             if total <= 0.0 || total.is_nan() {
                 return 0.0;
             }
+            // The same arithmetic as `sample`, so that the two agree exactly.
+            let inv_total = total.recip();
             if trail >> depth & 1 == 0 {
-                pmf *= i0 / total;
+                pmf *= i0 * inv_total;
                 at = first;
             } else {
-                pmf *= i1 / total;
+                pmf *= i1 * inv_total;
                 at = second;
             }
             depth += 1;

@@ -3,7 +3,7 @@
 use super::signals::Signals;
 use super::{check::report, Format, Verbosity, EXIT_OK, EXIT_SCENE_ERROR, EXIT_USAGE};
 use crate::compile::{compile_file, Compiled, Options};
-use crate::ir::settings::{IntegratorKind, Settings};
+use crate::ir::settings::{IntegratorKind, LightSelection, Settings};
 use crate::lower::cache::LowerCache;
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
@@ -34,6 +34,9 @@ pub struct RenderArgs {
     /// Integrator: path, whitted, hybrid, normals, albedo, depth or uv.
     #[arg(long, value_parser = parse_integrator)]
     pub integrator: Option<IntegratorKind>,
+    /// How shadow rays choose their light: auto, bvh, exhaustive, power or uniform.
+    #[arg(long, value_parser = parse_light_selection)]
+    pub light_selection: Option<LightSelection>,
     /// Only errors: no warnings, progress or figures.
     #[arg(short, long, conflicts_with = "verbose")]
     pub quiet: bool,
@@ -100,6 +103,14 @@ fn parse_integrator(s: &str) -> Result<IntegratorKind, String> {
     })
 }
 
+fn parse_light_selection(s: &str) -> Result<LightSelection, String> {
+    LightSelection::from_name(s).ok_or_else(|| {
+        let words = LightSelection::WORDS;
+        let (last, rest) = words.split_last().expect("rules");
+        format!("expected {} or {last}", rest.join(", "))
+    })
+}
+
 /// Applies the command line's overrides to the scene's settings.
 pub fn apply_overrides(settings: &mut Settings, args: &RenderArgs) {
     if let Some(n) = args.spp {
@@ -114,6 +125,9 @@ pub fn apply_overrides(settings: &mut Settings, args: &RenderArgs) {
     }
     if let Some(k) = args.integrator {
         settings.integrator = k;
+    }
+    if let Some(rule) = args.light_selection {
+        settings.light_selection = rule;
     }
 }
 

@@ -7,9 +7,11 @@ pub mod hybrid;
 pub mod path;
 pub mod whitted;
 
+use crate::geometry::shape::Shape;
 use crate::geometry::{offset_origin, Ray};
 use crate::ir::settings::IntegratorKind;
 use crate::ir::{Hit, Scene};
+use crate::light::sphere;
 use crate::material::Material;
 use crate::sampling::sampler::Sampler;
 use crate::sampling::warp::power_heuristic;
@@ -65,13 +67,7 @@ pub fn direct_light_mis(
     if f == Vec3::ZERO {
         return Vec3::ZERO;
     }
-    let origin = offset_origin(hit.p, hit.n_geo, ls.wi);
-    let shadow = Ray::new(origin, ls.wi, time);
-    let t_max = if ls.dist.is_finite() {
-        ls.dist * (1.0 - 1e-4)
-    } else {
-        f32::INFINITY
-    };
+    let (shadow, t_max) = shadow_ray(hit, ls.wi, ls.dist, time);
     if scene.occluded(&shadow, T_MIN, t_max) {
         return Vec3::ZERO;
     }
@@ -82,6 +78,29 @@ pub fn direct_light_mis(
     let light_pdf = ls.pdf * pick_pdf;
     let w = power_heuristic(light_pdf, bsdf_pdf);
     f * ls.li * cos * w / light_pdf
+}
+
+/// The shadow ray from `hit` towards a light point at distance `dist` along
+/// `wi` (infinite for lights at infinity), and how far it must be free. The
+/// ray starts off the surface and is aimed at the light point itself (as
+/// pbrt's `SpawnRayTo`), stopping a relative margin short of it so that the
+/// light's own surface does not block it. (Sent along `wi` from the offset
+/// origin, it passed beside the point and entered a curved lamp before it:
+/// a sphere lamp within ~0.2 units of a surface lost up to all of its light
+/// there.)
+#[inline]
+pub fn shadow_ray(hit: &Hit, wi: Vec3, dist: f32, time: f32) -> (Ray, f32) {
+    let origin = offset_origin(hit.p, hit.n_geo, wi);
+    if !dist.is_finite() {
+        return (Ray::new(origin, wi, time), f32::INFINITY);
+    }
+    let to = hit.p + wi * dist - origin;
+    let length = to.length();
+    if length > 0.0 {
+        (Ray::new(origin, to / length, time), length * (1.0 - 1e-4))
+    } else {
+        (Ray::new(origin, wi, time), 0.0)
+    }
 }
 
 /// Whether `wi` leaves a hit whose shading normal a texture bent on the
@@ -106,6 +125,14 @@ pub fn light_pdf(
     let pick = scene.light_sampler.pmf(from, from_n, light);
     match &scene.lights[light as usize] {
         crate::light::Light::Area { shape, .. } => {
+            if let Shape::Sphere { radius, .. } = shape {
+                // Sampled by its cone from outside; the centre where the
+                // sphere was hit (it may be moving).
+                let center = hit.p - *radius * hit.n_geo;
+                if let Some(pdf) = sphere::cone_pdf(center, *radius, from) {
+                    return pick * pdf;
+                }
+            }
             let area = shape.area();
             let d2 = (hit.p - from).length_squared();
             let cos = hit.n_geo.dot(-dir).abs();

@@ -230,12 +230,7 @@ fn light_sample(
     if f == Vec3::ZERO {
         return Vec3::ZERO;
     }
-    let shadow = Ray::new(offset_origin(hit.p, hit.n_geo, ls.wi), ls.wi, time);
-    let t_max = if ls.dist.is_finite() {
-        ls.dist * (1.0 - 1e-4)
-    } else {
-        f32::INFINITY
-    };
+    let (shadow, t_max) = super::shadow_ray(hit, ls.wi, ls.dist, time);
     if scene.occluded(&shadow, T_MIN, t_max) {
         return Vec3::ZERO;
     }

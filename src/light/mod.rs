@@ -6,6 +6,7 @@ pub mod bounds;
 pub mod environment;
 pub mod selection;
 pub mod sky;
+pub mod sphere;
 mod sun_table;
 pub mod tree;
 
@@ -236,6 +237,22 @@ impl Light {
         match self {
             Light::Area {
                 prim,
+                shape: Shape::Sphere { center, radius },
+                velocity,
+            } if sphere::cone_pdf(*center + *velocity * time, *radius, p).is_some() => {
+                // From outside: by the cone the sphere subtends.
+                let (q, n, pdf) = sphere::sample_cone(*center + *velocity * time, *radius, p, u)?;
+                let to = q - p;
+                let dist = to.length();
+                if dist == 0.0 {
+                    return None;
+                }
+                let wi = to / dist;
+                let li = emitted(*prim, q, Vec2::ZERO, n, -wi);
+                (li != Vec3::ZERO).then_some(LightSample { wi, dist, li, pdf })
+            }
+            Light::Area {
+                prim,
                 shape,
                 velocity,
             } => {
@@ -378,5 +395,43 @@ mod tests {
         assert_eq!(spot_falloff(0.5, ct, cf), 0.0);
         let mid = spot_falloff(0.85, ct, cf);
         assert!((mid - 0.5).abs() < 1e-5);
+    }
+
+    #[test]
+    fn a_sphere_lamp_gives_the_analytic_irradiance() {
+        // A sphere of radiance 1 wholly above a point's horizon: E = π (r/D)²
+        // cos θ (the sphere subtends a cone of sin² = (r/D)²), close to the
+        // point and far from it.
+        let material = Material::new(&crate::material::Params {
+            emission: Vec3::ONE,
+            ..Default::default()
+        });
+        for (center, radius) in [
+            (Vec3::new(0.0, 0.25, 0.0), 0.2f32),
+            (Vec3::new(0.3, 2.0, 0.1), 0.5),
+        ] {
+            let light = Light::Area {
+                prim: 0,
+                shape: Shape::Sphere { center, radius },
+                velocity: Vec3::ZERO,
+            };
+            let n = Vec3::Y;
+            let k = 1024;
+            let mut sum = 0.0f64;
+            for i in 0..k {
+                for j in 0..k {
+                    let u = Vec2::new((i as f32 + 0.5) / k as f32, (j as f32 + 0.5) / k as f32);
+                    let emitted = |_, _, _, nq: Vec3, w: Vec3| material.emitted(w, nq);
+                    if let Some(ls) = light.sample(emitted, Vec3::ZERO, 0.0, u) {
+                        sum += (luminance(ls.li) * ls.wi.dot(n).max(0.0) / ls.pdf) as f64;
+                    }
+                }
+            }
+            let e = sum / (k * k) as f64;
+            let d = center.length() as f64;
+            let expected =
+                std::f64::consts::PI * (radius as f64 / d).powi(2) * (center.y as f64 / d);
+            assert!((e / expected - 1.0).abs() < 1e-3, "{e} vs {expected}");
+        }
     }
 }

@@ -88,7 +88,7 @@ pub fn direct_light_mis(
 /// origin, it passed beside the point and entered a curved lamp before it:
 /// a sphere lamp within ~0.2 units of a surface lost up to all of its light
 /// there.)
-#[inline]
+#[inline(always)]
 pub fn shadow_ray(hit: &Hit, wi: Vec3, dist: f32, time: f32) -> (Ray, f32) {
     let origin = offset_origin(hit.p, hit.n_geo, wi);
     if !dist.is_finite() {

@@ -91,8 +91,9 @@ enum Bounded {
 #[derive(Debug, Clone)]
 pub struct LightSampler {
     kind: Kind,
-    /// Number of lights.
-    count: usize,
+    /// Whether there is exactly one light to choose (checked inline before
+    /// anything else: most scenes have one lamp or one sky).
+    single: bool,
 }
 
 #[derive(Debug, Clone)]
@@ -117,7 +118,7 @@ impl Default for LightSampler {
     fn default() -> Self {
         LightSampler {
             kind: Kind::None,
-            count: 0,
+            single: false,
         }
     }
 }
@@ -191,7 +192,10 @@ impl LightSampler {
                 }
             }
         };
-        Some(LightSampler { kind, count })
+        Some(LightSampler {
+            kind,
+            single: count == 1,
+        })
     }
 
     /// Whether there is no light to choose.
@@ -213,13 +217,18 @@ impl LightSampler {
     /// Chooses a light for the point `p` with normal `n` (zero: none) from
     /// `u` in [0, 1): its index and the probability of the choice; `None`
     /// when no light can reach `p`.
-    #[inline]
+    #[inline(always)]
     pub fn sample(&self, p: Vec3, n: Vec3, u: f64) -> Option<(u32, f32)> {
-        if self.count == 1 && !self.is_empty() {
+        if self.single {
             // One light: no estimate needed (a light that cannot reach `p`
             // gives no light when sampled).
             return Some((0, 1.0));
         }
+        self.sample_among(p, n, u)
+    }
+
+    /// [`LightSampler::sample`] among several lights.
+    fn sample_among(&self, p: Vec3, n: Vec3, u: f64) -> Option<(u32, f32)> {
         match &self.kind {
             Kind::None => None,
             Kind::Table { pmf, cdf } => {
@@ -251,11 +260,16 @@ impl LightSampler {
 
     /// The probability that [`LightSampler::sample`] at `p`, `n` chooses
     /// `light`.
-    #[inline]
+    #[inline(always)]
     pub fn pmf(&self, p: Vec3, n: Vec3, light: u32) -> f32 {
-        if self.count == 1 && !self.is_empty() {
+        if self.single {
             return 1.0;
         }
+        self.pmf_among(p, n, light)
+    }
+
+    /// [`LightSampler::pmf`] among several lights.
+    fn pmf_among(&self, p: Vec3, n: Vec3, light: u32) -> f32 {
         match &self.kind {
             Kind::None => 0.0,
             Kind::Table { pmf, .. } => pmf.get(light as usize).copied().unwrap_or(0.0),

@@ -150,6 +150,43 @@ quad { corner <-0.5, 2, -0.5> edge1 <1, 0, 0> edge2 <0, 0, 1> material { emissio
     }
 }
 
+#[test]
+fn whitted_with_many_lights_samples_them_and_matches_path() {
+    // 40 lamps (more than Whitted visits one by one) of very different
+    // brightness and a point light: Whitted's chosen-light estimate of
+    // direct light equals the path tracer's with two segments, and so does
+    // every selection rule's.
+    let mut base = String::from(
+        "camera { position <0, 1, 4> look_at <0, 0.5, 0> fov 40 }
+plane { normal <0, 1, 0> material { diffuse rgb 0.7 } }
+sphere { center <0, 0.5, 0> radius 0.5 material { diffuse rgb <0.3, 0.6, 0.9> } }
+point_light { position <1, 1.5, 1> intensity rgb 2 }
+",
+    );
+    for i in 0..40 {
+        let (x, z) = ((i % 8) as f64 * 0.5 - 2.0, (i / 8) as f64 * 0.5 - 1.5);
+        let e = 2.0 + (i * 7 % 11) as f64;
+        base.push_str(&format!(
+            "quad {{ corner <{x}, 1.8, {z}> edge1 <0.2, 0, 0> edge2 <0, 0, 0.2> material {{ diffuse rgb 0 emission rgb {e} }} }}\n"
+        ));
+    }
+    let w = mean(&film_of(&format!("render {{ resolution <24, 24> samples 256 integrator whitted max_depth 2 light_samples 4 }}\n{base}"), 2));
+    for rule in ["auto", "bvh", "power", "uniform"] {
+        let p = mean(&film_of(
+            &format!(
+                "render {{ resolution <24, 24> samples 1024 integrator path max_depth 2 light_selection {rule} }}\n{base}"
+            ),
+            2,
+        ));
+        for k in 0..3 {
+            assert!(
+                (w[k] - p[k]).abs() < 0.02 * p[k].max(1e-3),
+                "whitted {w:?} vs path ({rule}) {p:?}"
+            );
+        }
+    }
+}
+
 fn ptsc(args: &[&str]) -> (i32, String) {
     let out = std::process::Command::new(env!("CARGO_BIN_EXE_ptsc"))
         .args(args)

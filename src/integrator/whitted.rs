@@ -200,8 +200,10 @@ fn direct(
     l
 }
 
-/// Lights up to which Whitted sends shadow rays to every light.
-const EVERY_LIGHT_UP_TO: usize = crate::light::selection::EXHAUSTIVE_UP_TO;
+/// Lights up to which Whitted sends shadow rays to every light (each
+/// `light_samples` times: beyond a few dozen lights, that many shadow rays
+/// per hit cost more than a chosen few).
+const EVERY_LIGHT_UP_TO: usize = 16;
 
 /// One shadow ray to `light` from `hit` with the sample `u`: the light it
 /// brings, reflected towards `wo` (divided by the pdf of the point on the

@@ -207,18 +207,22 @@ fn split_by_cost(lights: &[LightBounds], order: &mut [u32]) -> Option<usize> {
             let l = &lights[i as usize];
             *b = Some(b.map_or(*l, |acc| LightBounds::union(&acc, l)));
         }
-        let merge = |range: &[Option<LightBounds>]| {
-            range
-                .iter()
-                .flatten()
-                .fold(None, |acc: Option<LightBounds>, b| {
-                    Some(acc.map_or(*b, |a| LightBounds::union(&a, b)))
-                })
+        // Unions of the buckets below and above each boundary, by one sweep
+        // each way (not one union per pair of boundary and bucket).
+        let sweep = |acc: &mut Option<LightBounds>, b: &Option<LightBounds>| {
+            if let Some(b) = b {
+                *acc = Some(acc.map_or(*b, |a| LightBounds::union(&a, b)));
+            }
+            *acc
         };
+        let mut acc = None;
+        let below: Vec<Option<LightBounds>> = buckets.iter().map(|b| sweep(&mut acc, b)).collect();
+        let mut acc = None;
+        let mut above: Vec<Option<LightBounds>> =
+            buckets.iter().rev().map(|b| sweep(&mut acc, b)).collect();
+        above.reverse();
         for split in 0..BUCKETS - 1 {
-            let (Some(below), Some(above)) =
-                (merge(&buckets[..=split]), merge(&buckets[split + 1..]))
-            else {
+            let (Some(below), Some(above)) = (below[split], above[split + 1]) else {
                 continue;
             };
             let c = cost(&below, axis) + cost(&above, axis);

@@ -10,13 +10,13 @@ tests/mitsuba/baseline.json. Each scene is written by hand, the same as its
 ptsc's light selection must meet. lamp_and_sky is z-up (Mitsuba's `sunsky`):
 ptsc's (x, y, z) is Mitsuba's (x, -z, y) there, as in mitsuba_sky.py.
 """
-import math
 import sys
 from pathlib import Path
 
 import mitsuba as mi
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
+from mitsuba_sky import m, sun_direction  # noqa: E402
 from mitsuba_textures import rgb, rectangle, reference_and_baseline, sensor  # noqa: E402
 
 
@@ -50,14 +50,8 @@ def lights_mixed(res, spp):
     }
 
 
-def m(p):
-    """ptsc's (x, y, z), y up, as Mitsuba's z-up (x, -z, y)."""
-    return [p[0], -p[2], p[1]]
-
-
 def lamp_and_sky(res, spp):
-    el, az = math.radians(4), math.radians(40)
-    sun = [math.sin(az) * math.cos(el), math.sin(el), -math.cos(az) * math.cos(el)]
+    sun = sun_direction(4, 40)
     return {
         "type": "scene",
         "integrator": {"type": "path", "max_depth": 4},

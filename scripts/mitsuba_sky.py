@@ -24,9 +24,14 @@ def m(p):
     return [p[0], -p[2], p[1]]
 
 
+def sun_direction(elevation, azimuth):
+    """ptsc's sun direction (y up, azimuth from -z towards +x), in degrees."""
+    el, az = math.radians(elevation), math.radians(azimuth)
+    return [math.sin(az) * math.cos(el), math.sin(el), -math.cos(az) * math.cos(el)]
+
+
 def scene(res, spp):
-    el, az = math.radians(30), math.radians(60)
-    sun = [math.sin(az) * math.cos(el), math.sin(el), -math.cos(az) * math.cos(el)]
+    sun = sun_direction(30, 60)
     return {
         "type": "scene",
         "integrator": {"type": "path", "max_depth": 4},

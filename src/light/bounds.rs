@@ -373,13 +373,7 @@ mod tests {
 
     #[test]
     fn cone_union_holds_both_cones() {
-        let mut state = 7u64;
-        let mut rnd = || {
-            state = state
-                .wrapping_mul(6_364_136_223_846_793_005)
-                .wrapping_add(1_442_695_040_888_963_407);
-            (state >> 40) as f32 / (1u64 << 24) as f32
-        };
+        let mut rnd = crate::light::test_rng(7);
         for _ in 0..2000 {
             let dir = |a: f32, b: f32| {
                 let z = 2.0 * a - 1.0;

@@ -384,6 +384,18 @@ impl Light {
     }
 }
 
+/// A small deterministic stream of numbers in [0, 1) for the light tests.
+#[cfg(test)]
+pub(crate) fn test_rng(seed: u64) -> impl FnMut() -> f32 {
+    let mut state = seed;
+    move || {
+        state = state
+            .wrapping_mul(6_364_136_223_846_793_005)
+            .wrapping_add(1_442_695_040_888_963_407);
+        (state >> 40) as f32 / (1u64 << 24) as f32
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

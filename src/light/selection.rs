@@ -378,15 +378,7 @@ mod tests {
         assert!(table(&[0.0, 0.0]).is_none());
     }
 
-    fn rng(seed: u64) -> impl FnMut() -> f32 {
-        let mut state = seed;
-        move || {
-            state = state
-                .wrapping_mul(6_364_136_223_846_793_005)
-                .wrapping_add(1_442_695_040_888_963_407);
-            (state >> 40) as f32 / (1u64 << 24) as f32
-        }
-    }
+    use crate::light::test_rng as rng;
 
     /// Random lights of every kind: infinite ones, points, one-sided and
     /// two-sided quads, spots (narrow cones), lights of no power.

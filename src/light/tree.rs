@@ -252,15 +252,7 @@ fn split_by_cost(lights: &[LightBounds], order: &mut [u32]) -> Option<usize> {
 mod tests {
     use super::*;
 
-    fn rng(seed: u64) -> impl FnMut() -> f32 {
-        let mut state = seed;
-        move || {
-            state = state
-                .wrapping_mul(6_364_136_223_846_793_005)
-                .wrapping_add(1_442_695_040_888_963_407);
-            (state >> 40) as f32 / (1u64 << 24) as f32
-        }
-    }
+    use crate::light::test_rng as rng;
 
     fn random_lights(n: usize, seed: u64) -> Vec<LightBounds> {
         let mut r = rng(seed);

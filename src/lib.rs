@@ -9,6 +9,27 @@
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
 
+/// The `.pts` names of a setting's values, one list for the checker, the
+/// command line, the docs and the editors: `NAMES` (name, value), `WORDS`
+/// (the names alone, in order) and `from_name`. Used by `IntegratorKind`
+/// and `LightSelection`, which live on different floors.
+macro_rules! named_values {
+    ($ty:ident { $($name:literal => $value:ident),+ $(,)? }) => {
+        impl $ty {
+            /// Every value with its `.pts` name.
+            pub const NAMES: [(&'static str, $ty); [$($name),+].len()] = [$(($name, $ty::$value)),+];
+
+            /// The names alone, in the order of `NAMES`.
+            pub const WORDS: [&'static str; [$($name),+].len()] = [$($name),+];
+
+            /// Looks a value up by name.
+            pub fn from_name(name: &str) -> Option<Self> {
+                Self::NAMES.iter().find(|(n, _)| *n == name).map(|(_, k)| *k)
+            }
+        }
+    };
+}
+
 pub mod accel;
 pub mod bench_data;
 pub mod camera;

@@ -96,19 +96,19 @@ fn parse_resolution(s: &str) -> Result<(u32, u32), String> {
 }
 
 fn parse_integrator(s: &str) -> Result<IntegratorKind, String> {
-    IntegratorKind::from_name(s).ok_or_else(|| {
-        let words = IntegratorKind::WORDS;
-        let (last, rest) = words.split_last().expect("integrators");
-        format!("expected {} or {last}", rest.join(", "))
-    })
+    IntegratorKind::from_name(s).ok_or_else(|| expected_one_of(&IntegratorKind::WORDS))
 }
 
 fn parse_light_selection(s: &str) -> Result<LightSelection, String> {
-    LightSelection::from_name(s).ok_or_else(|| {
-        let words = LightSelection::WORDS;
-        let (last, rest) = words.split_last().expect("rules");
-        format!("expected {} or {last}", rest.join(", "))
-    })
+    LightSelection::from_name(s).ok_or_else(|| expected_one_of(&LightSelection::WORDS))
+}
+
+/// "expected a, b or c".
+fn expected_one_of(words: &[&str]) -> String {
+    match words.split_last() {
+        Some((last, rest)) if !rest.is_empty() => format!("expected {} or {last}", rest.join(", ")),
+        _ => format!("expected {}", words.join("")),
+    }
 }
 
 /// Applies the command line's overrides to the scene's settings.

@@ -26,38 +26,19 @@ pub enum IntegratorKind {
     Uv,
 }
 
+// The one list the checker, the command line, the docs' tables and the
+// editors' grammars follow.
+named_values!(IntegratorKind {
+    "path" => Path,
+    "whitted" => Whitted,
+    "hybrid" => Hybrid,
+    "normals" => Normals,
+    "albedo" => Albedo,
+    "depth" => Depth,
+    "uv" => Uv,
+});
+
 impl IntegratorKind {
-    /// Every integrator with its `.pts` name: the one list the checker,
-    /// the command line, the docs' tables and the editors' grammars follow.
-    pub const NAMES: [(&'static str, IntegratorKind); 7] = [
-        ("path", IntegratorKind::Path),
-        ("whitted", IntegratorKind::Whitted),
-        ("hybrid", IntegratorKind::Hybrid),
-        ("normals", IntegratorKind::Normals),
-        ("albedo", IntegratorKind::Albedo),
-        ("depth", IntegratorKind::Depth),
-        ("uv", IntegratorKind::Uv),
-    ];
-
-    /// The names alone, in the order of [`IntegratorKind::NAMES`].
-    pub const WORDS: [&'static str; 7] = {
-        let mut words = [""; 7];
-        let mut i = 0;
-        while i < words.len() {
-            words[i] = Self::NAMES[i].0;
-            i += 1;
-        }
-        words
-    };
-
-    /// Looks an integrator up by name.
-    pub fn from_name(name: &str) -> Option<Self> {
-        Self::NAMES
-            .iter()
-            .find(|(n, _)| *n == name)
-            .map(|(_, k)| *k)
-    }
-
     /// The integrator's `.pts` name.
     pub fn name(self) -> &'static str {
         Self::NAMES

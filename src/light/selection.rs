@@ -33,35 +33,13 @@ pub enum LightSelection {
     Uniform,
 }
 
-impl LightSelection {
-    /// Every rule with its `.pts` name.
-    pub const NAMES: [(&'static str, LightSelection); 5] = [
-        ("auto", LightSelection::Auto),
-        ("bvh", LightSelection::Bvh),
-        ("exhaustive", LightSelection::Exhaustive),
-        ("power", LightSelection::Power),
-        ("uniform", LightSelection::Uniform),
-    ];
-
-    /// The names alone, in the order of [`LightSelection::NAMES`].
-    pub const WORDS: [&'static str; 5] = {
-        let mut words = [""; 5];
-        let mut i = 0;
-        while i < words.len() {
-            words[i] = Self::NAMES[i].0;
-            i += 1;
-        }
-        words
-    };
-
-    /// Looks a rule up by name.
-    pub fn from_name(name: &str) -> Option<Self> {
-        Self::NAMES
-            .iter()
-            .find(|(n, _)| *n == name)
-            .map(|(_, k)| *k)
-    }
-}
+named_values!(LightSelection {
+    "auto" => Auto,
+    "bvh" => Bvh,
+    "exhaustive" => Exhaustive,
+    "power" => Power,
+    "uniform" => Uniform,
+});
 
 /// Bounded lights up to which `auto` evaluates every light rather than
 /// walking the tree. Measured on a grid of N lamps over a floor (equal-time

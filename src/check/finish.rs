@@ -31,6 +31,9 @@ impl Checker {
                             Some((_, decl)) if decl == span => {
                                 format!("texture `{name}` is never used")
                             }
+                            _ if self.functions.contains(span) => {
+                                format!("function `{name}` is never called")
+                            }
                             _ => format!("constant `{name}` is never used"),
                         },
                         *span,
@@ -60,10 +63,19 @@ impl Checker {
             );
         }
         let background = self.background.map(|b| b.0).unwrap_or([0.0; 3]);
-        let has_emitter = self
-            .objects
-            .iter()
-            .any(|o| self.materials[o.material].is_emissive());
+        // Objects of groups placed count (an instance's material makes
+        // objects without one emissive too).
+        let placed = |g: &usize| self.placed_groups.contains(g);
+        let has_emitter = (self.objects.iter())
+            .chain(
+                (0..self.groups.len())
+                    .filter(placed)
+                    .flat_map(|g| &self.groups[g].objects),
+            )
+            .any(|o| self.materials[o.material].is_emissive())
+            || (self.instances.iter())
+                .chain(self.groups.iter().flat_map(|g| &g.instances))
+                .any(|i| i.material.is_some_and(|m| self.materials[m].is_emissive()));
         let has_light = has_emitter
             || self.lights.iter().any(|(l, _)| match l {
                 Light::Point { intensity, .. } | Light::Spot { intensity, .. } => {
@@ -152,6 +164,8 @@ impl Checker {
                 materials: self.materials,
                 objects: self.objects,
                 lights: self.lights,
+                groups: self.groups,
+                instances: self.instances,
             })
         };
         Checked {
@@ -168,24 +182,33 @@ impl Checker {
     /// did-you-mean, whose material then does not count as unused: the
     /// typo already explains it).
     fn resolve_pending_materials(&mut self) {
-        for (object, name) in std::mem::take(&mut self.pending_materials) {
+        for (at, name) in std::mem::take(&mut self.pending_materials) {
+            let objects = match at.group {
+                Some(g) => &mut self.groups[g].objects,
+                None => &mut self.objects,
+            };
+            let object = &mut objects[at.index];
             if let Some(m) = self.material_names.get(&name.name) {
                 let index = m.index;
                 self.used_materials.insert(index);
-                self.objects[object].material = index;
-                if matches!(self.objects[object].shape, Shape::Plane { .. })
+                object.material = index;
+                if matches!(object.shape, Shape::Plane { .. })
                     && self.materials[index].is_emissive()
                 {
-                    self.diags.push(emissive_plane(self.objects[object].span));
+                    self.diags.push(emissive_plane(object.span));
                 }
                 continue;
             }
             // The scene has an error now; the object still needs a valid index.
-            let span = self.objects[object].span;
-            self.objects[object].material = *self.default_material.get_or_insert_with(|| {
+            let span = object.span;
+            let material = *self.default_material.get_or_insert_with(|| {
                 self.materials.push(Material::default_at(span));
                 self.materials.len() - 1
             });
+            match at.group {
+                Some(g) => self.groups[g].objects[at.index].material = material,
+                None => self.objects[at.index].material = material,
+            }
             let suggestion =
                 did_you_mean(&name.name, self.material_names.keys().map(String::as_str))
                     .map(str::to_string);

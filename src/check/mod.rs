@@ -46,6 +46,9 @@ const STATEMENT_BYTES: u64 = 64;
 /// [`MAX_LOOP_STATEMENTS`] besides its size: a parse's set-up takes about
 /// as long as checking 30 statements.
 const INCLUDE_RUN_COST: u64 = 32;
+/// Most objects the instances of a scene may place in all (a mesh counts
+/// one), through every level of groups placing groups.
+pub const MAX_PLACED_OBJECTS: u64 = 4_000_000;
 /// Deepest chain of includes.
 pub const MAX_INCLUDE_DEPTH: usize = 32;
 
@@ -148,6 +151,15 @@ struct MaterialEntry {
     span: Span,
 }
 
+/// An object of the scene or of a group.
+#[derive(Debug, Clone, Copy)]
+struct ObjectRef {
+    /// The group that holds it, if any.
+    group: Option<usize>,
+    /// Its index there.
+    index: usize,
+}
+
 struct Checker {
     sources: SourceMap,
     diags: Diagnostics,
@@ -178,13 +190,29 @@ struct Checker {
     /// Where each included file was first included (the include's path).
     included_from: HashMap<FileId, Span>,
     /// Objects whose material was named before its declaration: the
-    /// object's index and the name as written.
-    pending_materials: Vec<(usize, crate::syntax::ast::Ident)>,
+    /// object (its group, if any, and index) and the name as written.
+    pending_materials: Vec<(ObjectRef, crate::syntax::ast::Ident)>,
     objects: Vec<Object>,
+    /// Declared groups (the one being declared too, last).
+    groups: Vec<Group>,
+    /// The groups' names, once declared whole: index and name's span.
+    group_names: HashMap<String, (usize, Span)>,
+    /// The group whose body runs now: objects and instances go there.
+    open_group: Option<usize>,
+    /// Placements of groups at the top level.
+    instances: Vec<Instance>,
+    /// Groups placed at least once.
+    placed_groups: HashSet<usize>,
+    /// Objects the top-level instances place, all together.
+    placed_objects: u64,
+    /// [`MAX_PLACED_OBJECTS`] was passed (reported once).
+    placements_exhausted: bool,
     lights: Vec<(Light, Span)>,
     lets: Vec<(String, Span)>,
     /// The declarations in `lets` (a loop runs one declaration many times).
     let_spans: HashSet<Span>,
+    /// The declarations in `lets` that are functions.
+    functions: HashSet<Span>,
     ambient_span: Option<Span>,
     /// Where `light_samples` was set, for the Whitted warning.
     light_samples_span: Option<Span>,
@@ -224,9 +252,17 @@ impl Checker {
             pending_materials: Vec::new(),
             included_from: HashMap::new(),
             objects: Vec::new(),
+            groups: Vec::new(),
+            group_names: HashMap::new(),
+            open_group: None,
+            instances: Vec::new(),
+            placed_groups: HashSet::new(),
+            placed_objects: 0,
+            placements_exhausted: false,
             lights: Vec::new(),
             lets: Vec::new(),
             let_spans: HashSet::new(),
+            functions: HashSet::new(),
             ambient_span: None,
             light_samples_span: None,
             syntax_failed: false,
@@ -287,6 +323,237 @@ impl Checker {
         true
     }
 
+    /// Where the constant, function or texture named `name` visible in
+    /// the current frame is declared, if there is one.
+    fn name_taken(&self, name: &str) -> Option<Span> {
+        (self.env.in_current_frame(name).map(|b| b.decl))
+            .or_else(|| self.env.textures.get(name).map(|t| t.1))
+    }
+
+    /// Checks `body` in order.
+    fn statements(&mut self, body: &[Statement], file: FileId) {
+        for st in body {
+            self.statement(st, file);
+        }
+    }
+
+    /// Runs `body` once per item of `items` with `var` bound to it, each
+    /// statement charged to the loop budget (`range` is the loop's range
+    /// or list, where a runaway is reported).
+    fn run_loop(
+        &mut self,
+        var: &crate::syntax::ast::Ident,
+        items: impl Iterator<Item = Value>,
+        range: Span,
+        body: &[Statement],
+        file: FileId,
+    ) {
+        self.env.used.insert(var.span);
+        self.loops.push(range);
+        for item in items {
+            if self.loops_exhausted {
+                break;
+            }
+            if body.is_empty() && !self.charge_loop_statement() {
+                break;
+            }
+            let errors_before = self.diags.error_count();
+            self.env.push();
+            self.env.bind(
+                &var.name,
+                Binding {
+                    value: Some(item),
+                    decl: var.span,
+                },
+            );
+            self.statements(body, file);
+            self.env.pop();
+            // One broken iteration is enough to report; the others repeat it.
+            if self.diags.error_count() > errors_before {
+                break;
+            }
+        }
+        self.loops.pop();
+    }
+
+    /// `group name { body }`: runs the body with objects and instances
+    /// going to the new group, which is named once it is whole (so that
+    /// placing itself is a cycle, not a placement).
+    fn group(
+        &mut self,
+        name: &crate::syntax::ast::Ident,
+        body: &[Statement],
+        span: Span,
+        file: FileId,
+    ) {
+        if let Some(outer) = self.open_group {
+            self.diags.push(not_in_group(
+                "a group declaration",
+                span,
+                self.groups[outer].span,
+                "declare groups at the top level and place one in another with `instance`",
+            ));
+            return;
+        }
+        if let Some(&(_, first)) = self.group_names.get(&name.name) {
+            // A loop or a second include runs one declaration again: it
+            // declares the same group again, once.
+            if first != name.span {
+                self.diags
+                    .push(defined_again(name, first, "give each group its own name"));
+            }
+            return;
+        }
+        self.groups.push(Group {
+            name: name.name.clone(),
+            objects: Vec::new(),
+            unmaterialled: Vec::new(),
+            instances: Vec::new(),
+            placed_objects: 0,
+            span: name.span,
+        });
+        let index = self.groups.len() - 1;
+        self.open_group = Some(index);
+        // The body's constants and functions are its own.
+        self.env.push();
+        self.statements(body, file);
+        self.env.pop();
+        self.open_group = None;
+        let g = &self.groups[index];
+        let nested = (g.instances.iter()).fold(0u64, |n, i| {
+            n.saturating_add(self.groups[i.group].placed_objects)
+        });
+        self.groups[index].placed_objects = nested.saturating_add(g.objects.len() as u64);
+        self.group_names
+            .insert(name.name.clone(), (index, name.span));
+    }
+
+    /// `instance name { … }`: a placement of a declared group.
+    fn instance(
+        &mut self,
+        name: &crate::syntax::ast::Ident,
+        block: &crate::syntax::ast::Block,
+        span: Span,
+    ) {
+        let p = Params::collect(
+            "instance",
+            name.span,
+            block,
+            &[params::SHAPE_COMMON],
+            &mut self.env,
+            &mut self.diags,
+        );
+        let material_entries: Vec<(&MaterialRef, Span)> = block
+            .entries
+            .iter()
+            .filter_map(|e| match e {
+                Entry::Material { material, span } => Some((material, *span)),
+                _ => None,
+            })
+            .collect();
+        let transform = objects::transform(&p, &mut self.diags);
+        let velocity = objects::velocity(&p);
+        let material = if material_entries.is_empty() {
+            None
+        } else {
+            self.object_material(&material_entries, span)
+        };
+        let group = match self.group_names.get(&name.name) {
+            Some(&(g, _)) => g,
+            None => {
+                let open = self.open_group.map(|g| &self.groups[g]);
+                if let Some(open) = open.filter(|g| g.name == name.name) {
+                    self.diags.push(
+                        Diagnostic::error(
+                            codes::GROUP_CYCLE,
+                            format!("group `{}` contains itself", name.name),
+                            name.span,
+                        )
+                        .with_label("placed inside its own declaration")
+                        .with_secondary(open.span, "declared here")
+                        .with_help("a group cannot hold copies of itself; repeat parts with a `for` loop, or place another group"),
+                    );
+                    return;
+                }
+                let mut d = Diagnostic::error(
+                    codes::UNKNOWN_GROUP,
+                    format!("unknown group `{}`", name.name),
+                    name.span,
+                )
+                .with_label("no group of this name");
+                d = match did_you_mean(&name.name, self.group_names.keys().map(String::as_str)) {
+                    Some(s) => d.with_help(format!("did you mean `{s}`?")),
+                    None => d.with_help(format!(
+                        "declare it before placing it: `group {} {{ sphere {{ … }} }}`",
+                        name.name
+                    )),
+                };
+                self.diags.push(d);
+                return;
+            }
+        };
+        self.placed_groups.insert(group);
+        if self.groups[group].is_empty() {
+            self.diags.push(
+                Diagnostic::warning(
+                    codes::EMPTY_GROUP,
+                    format!("group `{}` holds nothing", name.name),
+                    name.span,
+                )
+                .with_label("this instance adds nothing to the image")
+                .with_secondary(self.groups[group].span, "declared here")
+                .with_help("put objects in the group, or remove the instance"),
+            );
+        }
+        if let Some((MaterialRef::Named(m), _)) = material_entries.first() {
+            if material == Some(PENDING_MATERIAL) {
+                // Resolved at the end like an object's; instances name
+                // materials declared before them (reported otherwise).
+                self.diags
+                    .push(unknown_material_here(m, &self.material_names));
+                return;
+            }
+        }
+        let instance = Instance {
+            group,
+            transform,
+            material,
+            velocity,
+            span,
+        };
+        match self.open_group {
+            Some(g) => self.groups[g].instances.push(instance),
+            None => {
+                // Groups placing groups multiply: the objects all placements
+                // make are bounded like the statements loops run.
+                let more = self.groups[group].placed_objects;
+                self.placed_objects = self.placed_objects.saturating_add(more);
+                if self.placed_objects > MAX_PLACED_OBJECTS {
+                    if !self.placements_exhausted {
+                        self.placements_exhausted = true;
+                        self.diags.push(
+                            Diagnostic::error(
+                                codes::LOOP_TOO_LONG,
+                                format!(
+                                    "the instances of this scene place more than {} objects in all",
+                                    group_digits(MAX_PLACED_OBJECTS)
+                                ),
+                                span,
+                            )
+                            .with_label(format!(
+                                "this one places {}",
+                                group_digits(more)
+                            ))
+                            .with_help("groups that place groups multiply; place fewer, or make a large part a mesh"),
+                        );
+                    }
+                    return;
+                }
+                self.instances.push(instance)
+            }
+        }
+    }
+
     fn statement(&mut self, st: &Statement, file: FileId) {
         // Checking a statement takes time in proportion to its text.
         if !self.charge_loop(1 + st.span().len() as u64 / STATEMENT_BYTES) {
@@ -295,9 +562,7 @@ impl Checker {
         match st {
             Statement::Let { name, value, .. } => {
                 // A texture's name is taken too (both are read as names).
-                let first = (self.env.in_current_frame(&name.name).map(|b| b.decl))
-                    .or_else(|| self.env.textures.get(&name.name).map(|t| t.1));
-                if let Some(first) = first {
+                if let Some(first) = self.name_taken(&name.name) {
                     self.diags.push(defined_again(
                         name,
                         first,
@@ -355,7 +620,39 @@ impl Checker {
             Statement::For {
                 var,
                 start,
-                end,
+                end: None,
+                body,
+                ..
+            } => {
+                let Some(list) = eval(start, &mut self.env, &mut self.diags) else {
+                    return;
+                };
+                let items: Vec<Value> = match list {
+                    Value::List(items) => items.iter().cloned().collect(),
+                    other => {
+                        self.diags.push(
+                            Diagnostic::error(
+                                codes::TYPE_MISMATCH,
+                                format!(
+                                    "`for … in` needs a range `a..b` or a list, found {}",
+                                    other.type_name()
+                                ),
+                                start.span,
+                            )
+                            .with_label(format!("this is {}", other.type_name()))
+                            .with_help(
+                                "write `for i in 0..10 { … }` or `for x in [1, 2, 3] { … }`",
+                            ),
+                        );
+                        return;
+                    }
+                };
+                self.run_loop(var, items.into_iter(), start.span, body, file);
+            }
+            Statement::For {
+                var,
+                start,
+                end: Some(end),
                 body,
                 ..
             } => {
@@ -423,36 +720,90 @@ impl Checker {
                     self.loops_exhausted = true;
                     return;
                 }
-                self.env.used.insert(var.span);
-                self.loops.push(range);
-                for i in a..b {
-                    if self.loops_exhausted {
-                        break;
-                    }
-                    if body.is_empty() && !self.charge_loop_statement() {
-                        break;
-                    }
-                    let errors_before = self.diags.error_count();
-                    self.env.push();
-                    self.env.bind(
-                        &var.name,
-                        Binding {
-                            value: Some(Value::Num(i as f64)),
-                            decl: var.span,
-                        },
-                    );
-                    for s in body {
-                        self.statement(s, file);
-                    }
-                    self.env.pop();
-                    // One broken iteration is enough to report; the others repeat it.
-                    if self.diags.error_count() > errors_before {
-                        break;
+                self.run_loop(var, (a..b).map(|i| Value::Num(i as f64)), range, body, file);
+            }
+            Statement::If {
+                arms, otherwise, ..
+            } => {
+                // A branch's statements run in the enclosing scope, as
+                // POV-Ray's `#if`: `if final { let spp = 1024; } else { let
+                // spp = 16; }` defines `spp` for what follows.
+                for (cond, body) in arms {
+                    match eval::condition(cond, &mut self.env, &mut self.diags) {
+                        Some(true) => return self.statements(body, file),
+                        Some(false) => {}
+                        None => return,
                     }
                 }
-                self.loops.pop();
+                if let Some(body) = otherwise {
+                    self.statements(body, file);
+                }
             }
+            Statement::Function {
+                name, params, body, ..
+            } => {
+                if let Some(first) = self.name_taken(&name.name) {
+                    if first != name.span {
+                        self.diags.push(defined_again(
+                            name,
+                            first,
+                            "give each function, constant and texture its own name",
+                        ));
+                        return;
+                    }
+                }
+                if eval::FUNCTIONS.iter().any(|(f, _)| *f == name.name) {
+                    self.diags.push(
+                        Diagnostic::error(
+                            codes::DUPLICATE_NAME,
+                            format!("`{}` is a built-in function", name.name),
+                            name.span,
+                        )
+                        .with_label("defined again here")
+                        .with_help(format!("pick another name, e.g. `my_{}`", name.name)),
+                    );
+                    return;
+                }
+                let mut seen: HashMap<&str, Span> = HashMap::new();
+                for p in params {
+                    if let Some(first) = seen.insert(&p.name, p.span) {
+                        self.diags.push(defined_again(
+                            p,
+                            first,
+                            "give each parameter its own name",
+                        ));
+                        return;
+                    }
+                }
+                let f = eval::Function {
+                    name: name.name.clone(),
+                    params: params.iter().map(|p| p.name.clone()).collect(),
+                    body: body.clone(),
+                };
+                self.env.bind(
+                    &name.name,
+                    Binding {
+                        value: Some(Value::Function(std::sync::Arc::new(f))),
+                        decl: name.span,
+                    },
+                );
+                if self.let_spans.insert(name.span) {
+                    self.lets.push((name.name.clone(), name.span));
+                    self.functions.insert(name.span);
+                }
+            }
+            Statement::Group { name, body, span } => self.group(name, body, *span, file),
+            Statement::Instance { group, block, span } => self.instance(group, block, *span),
             Statement::Background { value, span } => {
+                if let Some(g) = self.open_group {
+                    self.diags.push(not_in_group(
+                        "`background`",
+                        *span,
+                        self.groups[g].span,
+                        "settings and the sky belong at the top level of the scene",
+                    ));
+                    return;
+                }
                 let v = eval(value, &mut self.env, &mut self.diags);
                 if let Some(first) = self.background.map(|b| b.1) {
                     self.diags.push(duplicate_block("background", *span, first));
@@ -656,6 +1007,21 @@ impl Checker {
         span: Span,
         file: FileId,
     ) {
+        if let Some(g) = self.open_group.filter(|_| !kind.is_shape()) {
+            let help = match kind {
+                BlockKind::PointLight | BlockKind::SpotLight | BlockKind::DirectionalLight => {
+                    "put lights at the top level; an emissive shape (a `sphere` with an emissive material) in a group is a light at every placement"
+                }
+                _ => "settings and the sky belong at the top level of the scene",
+            };
+            self.diags.push(not_in_group(
+                &format!("`{}`", kind.keyword()),
+                kind_span,
+                self.groups[g].span,
+                help,
+            ));
+            return;
+        }
         let p = Params::collect(
             kind.keyword(),
             kind_span,
@@ -756,19 +1122,36 @@ impl Checker {
                         self.diags.push(emissive_plane(kind_span));
                         return;
                     }
-                    if material == PENDING_MATERIAL {
-                        if let Some((MaterialRef::Named(name), _)) = material_entries.first() {
-                            self.pending_materials
-                                .push((self.objects.len(), (*name).clone()));
-                        }
-                    }
-                    self.objects.push(Object {
+                    let object = Object {
                         shape,
                         material,
                         transform,
                         velocity,
                         span,
-                    });
+                    };
+                    let at = match self.open_group {
+                        Some(g) => {
+                            let group = &mut self.groups[g];
+                            group.objects.push(object);
+                            group.unmaterialled.push(material_entries.is_empty());
+                            ObjectRef {
+                                group: Some(g),
+                                index: group.objects.len() - 1,
+                            }
+                        }
+                        None => {
+                            self.objects.push(object);
+                            ObjectRef {
+                                group: None,
+                                index: self.objects.len() - 1,
+                            }
+                        }
+                    };
+                    if material == PENDING_MATERIAL {
+                        if let Some((MaterialRef::Named(name), _)) = material_entries.first() {
+                            self.pending_materials.push((at, (*name).clone()));
+                        }
+                    }
                 }
             }
         }
@@ -817,6 +1200,39 @@ impl Checker {
                 Some(i)
             }
         }
+    }
+}
+
+/// The error for a statement that a group cannot hold, written at `span`
+/// inside the group declared at `group`.
+fn not_in_group(what: &str, span: Span, group: Span, help: &str) -> Diagnostic {
+    Diagnostic::error(
+        codes::NOT_IN_GROUP,
+        format!("{what} cannot be part of a group"),
+        span,
+    )
+    .with_label("inside a group")
+    .with_secondary(group, "the group")
+    .with_help(help.to_string())
+}
+
+/// The error for an instance naming a material not declared before it.
+fn unknown_material_here(
+    name: &crate::syntax::ast::Ident,
+    names: &HashMap<String, MaterialEntry>,
+) -> Diagnostic {
+    let d = Diagnostic::error(
+        codes::UNKNOWN_MATERIAL,
+        format!("unknown material `{}`", name.name),
+        name.span,
+    )
+    .with_label("not declared before this instance");
+    match did_you_mean(&name.name, names.keys().map(String::as_str)) {
+        Some(s) => d.with_help(format!("did you mean `{s}`?")),
+        None => d.with_help(format!(
+            "declare it before the instance: `material {} {{ diffuse rgb 0.8 }}`",
+            name.name
+        )),
     }
 }
 

@@ -231,6 +231,96 @@ pub fn shape(
                 smooth: r.boolean("smooth", false),
             }
         }
+        BlockKind::Cylinder | BlockKind::Cone => {
+            let base = r.vec3_req("base", schema);
+            let top = r.vec3_req("top", schema);
+            let radii = if kind == BlockKind::Cylinder {
+                positive(&mut r, "radius").map(|x| (x, x))
+            } else {
+                let b = r.num_req("base_radius", schema);
+                let t = r.num_req("top_radius", schema);
+                let ((b, bs), (t, ts)) = (b?, t?);
+                for (x, s, name) in [(b, bs, "base_radius"), (t, ts, "top_radius")] {
+                    if x < 0.0 {
+                        r.diags.push(range_error(
+                            what,
+                            name,
+                            s,
+                            "0 or more",
+                            format!("`{name}` is {x} here"),
+                        ));
+                        return None;
+                    }
+                }
+                if b == 0.0 && t == 0.0 {
+                    r.diags.push(
+                        Diagnostic::error(codes::DEGENERATE, "the cone has no width", bs.join(ts))
+                            .with_label("both radii are 0")
+                            .with_help("give the base or the top a radius above 0"),
+                    );
+                    return None;
+                }
+                Some((b, t))
+            };
+            let ((base, bs), (top, ts)) = (base?, top?);
+            let (base_radius, top_radius) = radii?;
+            if base == top {
+                r.diags.push(
+                    Diagnostic::error(
+                        codes::DEGENERATE,
+                        format!("the {what} has no height"),
+                        bs.join(ts),
+                    )
+                    .with_label("`base` and `top` are the same point")
+                    .with_help("move `top` away from `base` along the axis, e.g. `top <0, 1, 0>`"),
+                );
+                return None;
+            }
+            let open = r.boolean("open", false);
+            if kind == BlockKind::Cylinder {
+                Shape::Cylinder {
+                    base,
+                    top,
+                    radius: base_radius,
+                    open,
+                }
+            } else {
+                Shape::Cone {
+                    base,
+                    top,
+                    base_radius,
+                    top_radius,
+                    open,
+                }
+            }
+        }
+        BlockKind::Torus => {
+            let center = r.vec3("center").map(|v| v.0).unwrap_or(DVec3::ZERO);
+            let axis = match p.get("axis") {
+                Some(_) => r.direction("axis", schema)?,
+                None => DVec3::Y,
+            };
+            let major = positive(&mut r, "major_radius");
+            let minor = positive(&mut r, "minor_radius");
+            let (major, minor) = (major?, minor?);
+            if minor >= major {
+                let at = p.get("minor_radius").map(|v| v.1).unwrap_or(p.head);
+                r.diags.push(range_error(
+                    what,
+                    "minor_radius",
+                    at,
+                    "below `major_radius`",
+                    format!("the tube's radius {minor} is not below the ring's {major}: the torus would cross itself at its centre"),
+                ));
+                return None;
+            }
+            Shape::Torus {
+                center,
+                axis,
+                major,
+                minor,
+            }
+        }
         _ => unreachable!("not a shape: {kind:?}"),
     };
     Some(shape)

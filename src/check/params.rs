@@ -345,6 +345,34 @@ pub fn shape_schema(kind: crate::syntax::ast::BlockKind) -> &'static [ParamSpec]
             ];
             S
         }
+        Cylinder => {
+            const S: &[ParamSpec] = &[
+                p("base", Ty::Vec3, "<0, 0, 0>").of(Magnitude),
+                p("top", Ty::Vec3, "<0, 2, 0>").of(Magnitude),
+                p("radius", Ty::Num, "0.5").of(Size),
+                p("open", Ty::Bool, "true"),
+            ];
+            S
+        }
+        Cone => {
+            const S: &[ParamSpec] = &[
+                p("base", Ty::Vec3, "<0, 0, 0>").of(Magnitude),
+                p("top", Ty::Vec3, "<0, 2, 0>").of(Magnitude),
+                p("base_radius", Ty::Num, "1").of(Size),
+                p("top_radius", Ty::Num, "0").of(Size),
+                p("open", Ty::Bool, "true"),
+            ];
+            S
+        }
+        Torus => {
+            const S: &[ParamSpec] = &[
+                p("center", Ty::Vec3, "<0, 0, 0>").of(Magnitude),
+                p("axis", Ty::Vec3, "<0, 1, 0>").of(Direction),
+                p("major_radius", Ty::Num, "1").of(Size),
+                p("minor_radius", Ty::Num, "0.25").of(Size),
+            ];
+            S
+        }
         Mesh => {
             const S: &[ParamSpec] = &[
                 p("file", Ty::Str, "\"bunny.ply\""),

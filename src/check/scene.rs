@@ -306,6 +306,42 @@ pub enum Shape {
         /// Maximum corner.
         max: DVec3,
     },
+    /// A cylinder from the centre of its base to the centre of its top.
+    Cylinder {
+        /// Centre of the base.
+        base: DVec3,
+        /// Centre of the top.
+        top: DVec3,
+        /// Radius.
+        radius: f64,
+        /// Without the two end disks.
+        open: bool,
+    },
+    /// A cone, or a truncated cone, from its base to its top.
+    Cone {
+        /// Centre of the base.
+        base: DVec3,
+        /// Centre of the top.
+        top: DVec3,
+        /// Radius at the base.
+        base_radius: f64,
+        /// Radius at the top (0: a point).
+        top_radius: f64,
+        /// Without the end disks.
+        open: bool,
+    },
+    /// A torus: a circle of radius `minor` swept around a circle of radius
+    /// `major` about `axis`.
+    Torus {
+        /// Centre.
+        center: DVec3,
+        /// Unit axis of symmetry.
+        axis: DVec3,
+        /// Distance from the centre to the tube's centre line.
+        major: f64,
+        /// Radius of the tube.
+        minor: f64,
+    },
     /// Triangle mesh from a file.
     Mesh {
         /// Resolved path.
@@ -415,4 +451,49 @@ pub struct Scene {
     pub objects: Vec<Object>,
     /// Lights that are not shapes.
     pub lights: Vec<(Light, Span)>,
+    /// Groups of objects declared with `group`, referenced by index.
+    pub groups: Vec<Group>,
+    /// The placements of groups at the top level of the scene.
+    pub instances: Vec<Instance>,
+}
+
+/// A named group of objects (`group name { … }`), placed by instances.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Group {
+    /// Its name.
+    pub name: String,
+    /// Its objects, in the group's frame.
+    pub objects: Vec<Object>,
+    /// For each object, whether it named no material (it then takes its
+    /// instance's, if the instance gives one).
+    pub unmaterialled: Vec<bool>,
+    /// The groups it places, in its frame.
+    pub instances: Vec<Instance>,
+    /// How many objects one placement of it makes (its own and those of
+    /// the groups it places, through every level; saturating).
+    pub placed_objects: u64,
+    /// Where its name is written.
+    pub span: Span,
+}
+
+impl Group {
+    /// Whether the group holds nothing (no object, no placement).
+    pub fn is_empty(&self) -> bool {
+        self.objects.is_empty() && self.instances.is_empty()
+    }
+}
+
+/// A placement of a group: `instance name { … }`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Instance {
+    /// Index into [`Scene::groups`].
+    pub group: usize,
+    /// Group-to-parent transform (the world's, or the enclosing group's).
+    pub transform: DMat4,
+    /// The material of the group's objects that name none.
+    pub material: Option<usize>,
+    /// Linear motion per unit of shutter time, in the parent's frame.
+    pub velocity: DVec3,
+    /// Where the instance is written.
+    pub span: Span,
 }

@@ -44,6 +44,20 @@ pub const UNKNOWN_NAME: &str = "pts::check::unknown_name";
 pub const UNKNOWN_FUNCTION: &str = "pts::check::unknown_function";
 /// A call with the wrong number of arguments.
 pub const WRONG_ARGUMENT_COUNT: &str = "pts::check::argument_count";
+/// An index outside a list.
+pub const INDEX_OUT_OF_RANGE: &str = "pts::check::index_out_of_range";
+/// A list or string too large.
+pub const VALUE_TOO_LARGE: &str = "pts::check::value_too_large";
+/// Function calls nested too deeply or made too often.
+pub const RECURSION_LIMIT: &str = "pts::check::recursion_limit";
+/// An instance of a group that is not declared.
+pub const UNKNOWN_GROUP: &str = "pts::check::unknown_group";
+/// A group that contains itself.
+pub const GROUP_CYCLE: &str = "pts::check::group_cycle";
+/// Warning: an instance of a group that holds nothing.
+pub const EMPTY_GROUP: &str = "pts::check::empty_group";
+/// A statement a group cannot hold.
+pub const NOT_IN_GROUP: &str = "pts::check::not_in_group";
 /// A value of the wrong type.
 pub const TYPE_MISMATCH: &str = "pts::check::type_mismatch";
 /// A word outside the accepted set.
@@ -96,7 +110,7 @@ pub const LOOP_TOO_LONG: &str = "pts::check::loop_too_long";
 pub const MESH_FILE: &str = "pts::check::mesh_file";
 /// A transform that cannot be inverted.
 pub const SINGULAR_TRANSFORM: &str = "pts::check::singular_transform";
-/// A sphere or disk under a non-uniform scale.
+/// A sphere, disk, cylinder, cone or torus under a non-uniform scale.
 pub const NON_UNIFORM_SCALE: &str = "pts::lower::non_uniform_scale";
 /// Warning: a material never used.
 pub const UNUSED_MATERIAL: &str = "pts::check::unused_material";
@@ -194,6 +208,48 @@ pub const CATALOGUE: &[Entry] = &[
         title: "A call with the wrong number of arguments",
         explanation: "A built-in function was called with more or fewer arguments than it takes.",
         example: "let m = max(1);",
+    },
+    Entry {
+        code: INDEX_OUT_OF_RANGE,
+        title: "An index outside a list",
+        explanation: "Lists, vectors, colours and strings are indexed from 0: a list of 3 has the items 0, 1 and 2. The label gives the valid range; `len(xs)` is the number of items, one past the last index. `&&` evaluates its right side only when the left is true, so `i < len(xs) && xs[i] > 0` is safe.",
+        example: "let xs = [1, 2, 3];\nlet x = xs[3];",
+    },
+    Entry {
+        code: VALUE_TOO_LARGE,
+        title: "A list or string too large",
+        explanation: "A list holds at most 1,000,000 items and all the lists (and strings, 16 bytes counting as one item) a scene builds together 2,000,000; a string holds at most 4,096 bytes. The limits keep the memory of a compile bounded whatever the scene doubles or repeats. Large generated geometry belongs in a mesh file.",
+        example: "let a = [0, 0, 0, 0, 0, 0, 0, 0];\nlet b = a + a + a + a + a + a + a + a;\nlet c = b + b + b + b + b + b + b + b;\nlet d = c + c + c + c + c + c + c + c;\nlet e = d + d + d + d + d + d + d + d;\nlet f = e + e + e + e + e + e + e + e;\nlet g = f + f + f + f + f + f + f + f;\nlet h = g + g;",
+    },
+    Entry {
+        code: RECURSION_LIMIT,
+        title: "Function calls nested too deeply or made too often",
+        explanation: "A user function may call itself (or another function) but the calls nest at most 64 deep and a scene makes at most 1,000,000 calls; evaluation in all nests at most 1,024 levels. A recursion needs an `if` whose other arm stops calling; a function that calls itself twice doubles its calls at each level. Evaluation always ends: this error instead of a hang or a crash.",
+        example: "fn forever(n) = forever(n + 1);\nlet x = forever(0);",
+    },
+    Entry {
+        code: UNKNOWN_GROUP,
+        title: "An instance of a group that is not declared",
+        explanation: "`instance name { … }` places the group declared by `group name { … }` earlier in the scene (or an included file). Groups are declared before they are placed. The help suggests a similar name when there is one.",
+        example: "group chair { box { min <0, 0, 0> max <1, 1, 1> } }\ninstance chiar { translate <2, 0, 0> }",
+    },
+    Entry {
+        code: GROUP_CYCLE,
+        title: "A group that contains itself",
+        explanation: "A group places itself (directly, while it is being declared): it would hold infinitely many copies. Place another group, or build the repetition with a `for` loop.",
+        example: "group tower {\n    box { min <0, 0, 0> max <1, 1, 1> }\n    instance tower { translate <0, 1, 0> }\n}",
+    },
+    Entry {
+        code: EMPTY_GROUP,
+        title: "An instance of a group that holds nothing",
+        explanation: "A warning: the group placed holds no object (its loops ran no times, its `if` chose no branch, or it is empty), so the instance adds nothing to the image.",
+        example: "group nothing { }\ninstance nothing { }",
+    },
+    Entry {
+        code: NOT_IN_GROUP,
+        title: "A statement a group cannot hold",
+        explanation: "A group holds objects (shapes and meshes), placements of other groups, and the `let`, `fn`, `for` and `if` statements that build them. Settings (`render`, `camera`), lights other than emissive shapes (`point_light`, `spot_light`, `directional_light`), the background, environment and sky, declarations of materials, textures and groups, and includes belong at the top level of a scene.",
+        example: "group lamp {\n    point_light { position <0, 2, 0> intensity rgb 10 }\n}",
     },
     Entry {
         code: TYPE_MISMATCH,
@@ -335,8 +391,8 @@ pub const CATALOGUE: &[Entry] = &[
     },
     Entry {
         code: NON_UNIFORM_SCALE,
-        title: "A sphere or disk under a non-uniform scale",
-        explanation: "Spheres and disks are stored exactly (centre and radius), so they take translations, rotations and uniform scales only. A non-uniform scale or a shear would make an ellipsoid or an ellipse: use a mesh for those.",
+        title: "A round shape under a non-uniform scale",
+        explanation: "Spheres, disks, cylinders, cones and tori are stored exactly (centres, axes and radii), so they take translations, rotations and uniform scales only. A non-uniform scale or a shear would make an ellipsoid, an ellipse or an elliptic cylinder: use a mesh for those.",
         example: "sphere { center <0, 0, 0> radius 1 scale <2, 1, 1> }",
     },
     Entry {

@@ -1,11 +1,14 @@
 //! Geometry: rays, bounds, the shapes (one file each) and the BVH over them.
 
+pub mod cone;
 pub mod disk;
 pub mod plane;
+pub mod polynomial;
 pub mod quad;
 pub mod shape;
 pub mod sphere;
 pub mod texcoord;
+pub mod torus;
 pub mod triangle;
 
 use glam::Vec3;

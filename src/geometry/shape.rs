@@ -1,9 +1,12 @@
 //! The primitives the renderer intersects, after lowering: transforms are
 //! baked in, boxes are six quads (`lower`), meshes are triangles
 //! (`lower::mesh`). One file per shape holds its intersection routine and tests:
-//! `sphere.rs`, `quad.rs`, `disk.rs`, `triangle.rs`, `plane.rs`; this enum
-//! dispatches and holds what lights need (area, sampling).
+//! `sphere.rs`, `quad.rs`, `disk.rs`, `triangle.rs`, `plane.rs`, `cone.rs`
+//! (cylinders too), `torus.rs`; this enum dispatches and holds what lights
+//! need (area, sampling).
 
+use super::cone::Cone;
+use super::torus::Torus;
 use super::{disk, plane, quad, sphere, triangle, Aabb, Ray};
 use glam::{Vec2, Vec3};
 
@@ -54,6 +57,10 @@ pub enum Shape {
         /// Unit normal.
         normal: Vec3,
     },
+    /// The lateral surface of a cone or cylinder (its end disks are disks).
+    Cone(Cone),
+    /// A torus.
+    Torus(Torus),
 }
 
 /// Where a ray hits a shape (before shading).
@@ -105,6 +112,8 @@ impl Shape {
                 min: Vec3::splat(f32::NEG_INFINITY),
                 max: Vec3::splat(f32::INFINITY),
             },
+            Shape::Cone(c) => c.bounds(),
+            Shape::Torus(t) => t.bounds(),
         }
     }
 
@@ -126,6 +135,8 @@ impl Shape {
                 radius,
             } => disk::intersect(center, normal, radius, ray, t_min, t_max),
             Shape::Plane { point, normal } => plane::intersect(point, normal, ray, t_min, t_max),
+            Shape::Cone(ref c) => c.intersect(ray, t_min, t_max),
+            Shape::Torus(ref t) => t.intersect(ray, t_min, t_max),
         }
     }
 
@@ -151,6 +162,8 @@ impl Shape {
                 let q = ray.at(hit.t);
                 q - normal * (q - point).dot(normal)
             }
+            Shape::Cone(ref c) => c.project(ray.at(hit.t)),
+            Shape::Torus(ref t) => t.project(ray.at(hit.t)),
         }
     }
 
@@ -160,6 +173,8 @@ impl Shape {
             Shape::Sphere { center, .. } => (p - center).normalize(),
             Shape::Quad { e1, e2, .. } | Shape::Triangle { e1, e2, .. } => e1.cross(e2).normalize(),
             Shape::Disk { normal, .. } | Shape::Plane { normal, .. } => normal,
+            Shape::Cone(ref c) => c.normal_at(p),
+            Shape::Torus(ref t) => t.normal_at(p),
         }
     }
 
@@ -171,6 +186,8 @@ impl Shape {
             Shape::Triangle { e1, e2, .. } => 0.5 * e1.cross(e2).length(),
             Shape::Disk { radius, .. } => std::f32::consts::PI * radius * radius,
             Shape::Plane { .. } => f32::INFINITY,
+            Shape::Cone(ref c) => c.area(),
+            Shape::Torus(ref t) => t.area(),
         }
     }
 
@@ -198,6 +215,14 @@ impl Shape {
                 (center + radius * (d.x * t + d.y * b), normal, Vec2::ZERO)
             }
             Shape::Plane { point, normal } => (point, normal, Vec2::ZERO),
+            Shape::Cone(ref c) => {
+                let (p, n) = c.sample_area(u);
+                (p, n, Vec2::ZERO)
+            }
+            Shape::Torus(ref t) => {
+                let (p, n) = t.sample_area(u);
+                (p, n, Vec2::ZERO)
+            }
         }
     }
 }
@@ -229,6 +254,19 @@ mod tests {
                 e2: Vec3::Y,
                 attributes: u32::MAX,
             },
+            Shape::Cone(Cone {
+                base: Vec3::new(0.0, -1.0, 0.5),
+                axis: Vec3::new(0.6, 0.0, 0.8),
+                height: 1.5,
+                r0: 0.7,
+                r1: 0.2,
+            }),
+            Shape::Torus(Torus {
+                center: Vec3::ONE,
+                axis: Vec3::X,
+                major: 1.0,
+                minor: 0.3,
+            }),
         ];
         for s in shapes {
             for i in 0..16 {

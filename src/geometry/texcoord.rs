@@ -11,6 +11,8 @@
 //! | disk | planar: 0.5 + x / 2r | 0.5 + z / 2r | Mitsuba's `disk` is polar (r, φ / 2π) |
 //! | triangle | the mesh's vertex UVs interpolated; without any, the barycentrics (b1, b2) | | the same |
 //! | plane | planar: x / scale | z / scale | Mitsuba has no infinite plane |
+//! | cylinder, cone | the angle around the axis / 2π, from the frame's x towards its z | the height / the full height, 0 at the base | Mitsuba's `cylinder` has u = φ / 2π from its local +x, v along its length: the same up to where φ starts |
+//! | torus | the angle around the axis / 2π, as a cylinder's | the angle around the tube / 2π, 0 on the outer equator, ¼ on top | Mitsuba has no torus |
 //!
 //! A disk's and a plane's frame has their normal as y and x, z from
 //! [`super::orthonormal_basis`] of it, in the object's own frame: for a
@@ -51,6 +53,54 @@ pub fn disk(local: Vec3, radius: f32) -> Vec2 {
 /// `scale` units of the plane.
 pub fn plane(local: Vec3, scale: f32) -> Vec2 {
     Vec2::new(local.x, local.z) / scale
+}
+
+/// The angle of (x, z) from +x towards +z, as a fraction of a turn in [0, 1).
+fn turn(x: f32, z: f32) -> f32 {
+    let phi = z.atan2(x);
+    (if phi < 0.0 { phi + TAU } else { phi } / TAU).clamp(0.0, 1.0)
+}
+
+/// Texture coordinates of the point `local` of a cylinder or cone of
+/// `height`, given relative to the centre of its base in the frame of
+/// its axis (y along the axis, x and z across, as for a disk).
+pub fn cone(local: Vec3, height: f32) -> Vec2 {
+    Vec2::new(turn(local.x, local.z), local.y / height)
+}
+
+/// (∂p/∂u, ∂p/∂v) of [`cone`]'s mapping at `local`, in the same frame, for
+/// a cone whose radius grows by `dr` from base to top.
+pub fn cone_derivatives(local: Vec3, height: f32, dr: f32) -> (Vec3, Vec3) {
+    let rho = (local.x * local.x + local.z * local.z).sqrt();
+    let dpdu = TAU * Vec3::new(-local.z, 0.0, local.x);
+    if rho == 0.0 {
+        return (dpdu, Vec3::new(0.0, height, 0.0));
+    }
+    (
+        dpdu,
+        Vec3::new(dr * local.x / rho, height, dr * local.z / rho),
+    )
+}
+
+/// Texture coordinates of the point `local` of a torus of radius `major`,
+/// given relative to its centre in the frame of its axis (y along it).
+pub fn torus(local: Vec3, major: f32) -> Vec2 {
+    let rho = (local.x * local.x + local.z * local.z).sqrt();
+    Vec2::new(turn(local.x, local.z), turn(rho - major, local.y))
+}
+
+/// (∂p/∂u, ∂p/∂v) of [`torus`]'s mapping at `local`, in the same frame.
+pub fn torus_derivatives(local: Vec3, major: f32) -> (Vec3, Vec3) {
+    let rho = (local.x * local.x + local.z * local.z).sqrt();
+    let dpdu = TAU * Vec3::new(-local.z, 0.0, local.x);
+    if rho == 0.0 {
+        return (dpdu, Vec3::Y);
+    }
+    let (cx, cz) = (local.x / rho, local.z / rho);
+    // Around the tube: r(−sin θ · radial + cos θ · axis), with r sin θ = y
+    // and r cos θ = ρ − R.
+    let dpdv = TAU * Vec3::new(-local.y * cx, rho - major, -local.y * cz);
+    (dpdu, dpdv)
 }
 
 /// Texture coordinates of a triangle's point with barycentrics (b1, b2)

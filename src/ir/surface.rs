@@ -20,6 +20,13 @@ fn in_plane(d: Vec3, n: Vec3) -> (Vec3, f32) {
     (Vec3::new(d.dot(x), d.dot(n) / scale, d.dot(z)), scale)
 }
 
+/// Vectors given in the frame of [`in_plane`] for the unit axis `n` (x, y
+/// along `n`, z), back in the frame `n` is given in.
+fn from_axis_frame(n: Vec3) -> impl Fn(Vec3) -> Vec3 {
+    let (x, z) = crate::geometry::orthonormal_basis(n);
+    move |v: Vec3| v.x * x + v.y * n + v.z * z
+}
+
 /// The world length of the step along a surface over which a bump map's
 /// slope is measured, at a point `p`: small against patterns' features,
 /// large against f32's spacing of coordinates there.
@@ -204,6 +211,14 @@ impl Scene {
                 let (local, _) = in_plane(direction(p - point), direction(normal));
                 texcoord::plane(local, 1.0)
             }
+            Shape::Cone(c) => {
+                let (local, scale) = in_plane(direction(p - c.base), direction(c.axis));
+                texcoord::cone(local, c.height * scale)
+            }
+            Shape::Torus(t) => {
+                let (local, scale) = in_plane(direction(p - t.center), direction(t.axis));
+                texcoord::torus(local, t.major * scale)
+            }
         }
     }
 
@@ -248,6 +263,21 @@ impl Scene {
                 let n = direction(normal);
                 let (x, z) = crate::geometry::orthonormal_basis(n / n.length());
                 (to_world(x), to_world(z))
+            }
+            Shape::Cone(c) => {
+                let n = direction(c.axis);
+                let (local, scale) = in_plane(direction(p - c.base), n);
+                let (dpdu, dpdv) =
+                    texcoord::cone_derivatives(local, c.height * scale, (c.r1 - c.r0) * scale);
+                let back = from_axis_frame(n / scale);
+                (to_world(back(dpdu)), to_world(back(dpdv)))
+            }
+            Shape::Torus(t) => {
+                let n = direction(t.axis);
+                let (local, scale) = in_plane(direction(p - t.center), n);
+                let (dpdu, dpdv) = texcoord::torus_derivatives(local, t.major * scale);
+                let back = from_axis_frame(n / scale);
+                (to_world(back(dpdu)), to_world(back(dpdv)))
             }
         }
     }

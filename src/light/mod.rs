@@ -179,7 +179,10 @@ impl Light {
                 let sides = if m.two_sided { 2.0 } else { 1.0 };
                 let phi = lum(m.emission) * shape.area() as f64 * std::f64::consts::PI * sides;
                 match shape {
-                    Shape::Sphere { .. } => everywhere(bounds, phi),
+                    // Round shapes face every way.
+                    Shape::Sphere { .. } | Shape::Cone(_) | Shape::Torus(_) => {
+                        everywhere(bounds, phi)
+                    }
                     _ => LightBounds {
                         bounds,
                         // The emitting side, as `Material::emitted` sees it.

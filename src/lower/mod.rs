@@ -8,6 +8,7 @@ mod camera;
 mod collect;
 mod environment;
 pub mod image;
+mod instances;
 mod lights;
 mod material;
 pub mod mesh;
@@ -19,8 +20,10 @@ use crate::check;
 use crate::check::domain::{self, unit_f32, MAX_MAGNITUDE, MIN_SIZE};
 use crate::diag::codes;
 use crate::diag::{Diagnostic, Diagnostics};
+use crate::geometry::cone::Cone;
 use crate::geometry::shape::Shape;
 use crate::geometry::texcoord;
+use crate::geometry::torus::Torus;
 use crate::geometry::Aabb;
 use crate::ir::settings::Settings;
 use crate::ir::{Prim, Scene};
@@ -127,6 +130,14 @@ pub fn lower(
     cache: &mut LowerCache,
     warnings: &mut Diagnostics,
 ) -> Result<Scene, Diagnostics> {
+    let flat;
+    let scene = match instances::flatten(scene) {
+        Some(s) => {
+            flat = s;
+            &flat
+        }
+        None => scene,
+    };
     let mut settings = scene.render.settings.clone();
     adjust(&mut settings);
     let (mut textures, mut diags) = (Vec::new(), Diagnostics::new());
@@ -199,9 +210,8 @@ fn warn_missing_texcoords(scene: &check::Scene, geometry: &Geometry, warnings: &
 /// texture images it reads, and the image its `render { output … }` asks
 /// for.
 pub fn named_files(scene: &check::Scene) -> (Vec<PathBuf>, Option<PathBuf>) {
-    let meshes = scene
-        .objects
-        .iter()
+    let meshes = (scene.objects.iter())
+        .chain(scene.groups.iter().flat_map(|g| &g.objects))
         .filter_map(|o| match &o.shape {
             check::Shape::Mesh { path, .. } => Some(path.clone()),
             _ => None,
@@ -269,6 +279,45 @@ fn build_geometry(scene: &check::Scene, cache: &mut LowerCache) -> Result<Geomet
                     radius: (radius * s) as f32,
                 }),
                 None => diags.push(non_uniform(obj.span, "sphere")),
+            },
+            check::Shape::Cylinder {
+                base,
+                top,
+                radius,
+                open,
+            } => match uniform_scale(&m) {
+                Some(s) => round_solid(pt(*base), pt(*top), [radius * s; 2], *open, &mut push),
+                None => diags.push(non_uniform(obj.span, "cylinder")),
+            },
+            check::Shape::Cone {
+                base,
+                top,
+                base_radius,
+                top_radius,
+                open,
+            } => match uniform_scale(&m) {
+                Some(s) => round_solid(
+                    pt(*base),
+                    pt(*top),
+                    [base_radius * s, top_radius * s],
+                    *open,
+                    &mut push,
+                ),
+                None => diags.push(non_uniform(obj.span, "cone")),
+            },
+            check::Shape::Torus {
+                center,
+                axis,
+                major,
+                minor,
+            } => match uniform_scale(&m) {
+                Some(s) => push(Shape::Torus(Torus {
+                    center: pt(*center),
+                    axis: unit_f32(m.transform_vector3(*axis)),
+                    major: (major * s) as f32,
+                    minor: (minor * s) as f32,
+                })),
+                None => diags.push(non_uniform(obj.span, "torus")),
             },
             check::Shape::Disk {
                 center,
@@ -683,6 +732,35 @@ fn object_frames(scene: &check::Scene) -> Vec<(u32, Affine3A)> {
             (i as u32, Affine3A::from_mat4(inverse.as_mat4()))
         })
         .collect()
+}
+
+/// A cylinder or cone from `base` to `top` (world space) with the radii at
+/// each end: its lateral surface and, unless `open`, the disks that close
+/// it (a radius of 0 closes itself).
+fn round_solid(base: Vec3, top: Vec3, radii: [f64; 2], open: bool, push: &mut impl FnMut(Shape)) {
+    let along = top - base;
+    let height = along.length();
+    let axis = along / height;
+    let [r0, r1] = radii.map(|r| r as f32);
+    push(Shape::Cone(Cone {
+        base,
+        axis,
+        height,
+        r0,
+        r1,
+    }));
+    if open {
+        return;
+    }
+    for (center, normal, radius) in [(base, -axis, r0), (top, axis, r1)] {
+        if radius > 0.0 {
+            push(Shape::Disk {
+                center,
+                normal,
+                radius,
+            });
+        }
+    }
 }
 
 fn non_uniform(span: crate::span::Span, what: &str) -> Diagnostic {

@@ -40,17 +40,56 @@ pub enum Statement {
         /// The whole statement.
         span: Span,
     },
-    /// `for var in start..end { body }`
+    /// `for var in start..end { body }`, or `for var in list { body }`
+    /// (then `end` is `None` and `start` is the list).
     For {
         /// The loop variable.
         var: Ident,
-        /// Inclusive start.
+        /// Inclusive start, or the list.
         start: Expr,
-        /// Exclusive end.
-        end: Expr,
+        /// Exclusive end of a range.
+        end: Option<Expr>,
         /// Statements repeated per iteration.
         body: Vec<Statement>,
         /// The whole loop.
+        span: Span,
+    },
+    /// `if c { … } else if d { … } else { … }`
+    If {
+        /// Each condition with its statements, in order.
+        arms: Vec<(Expr, Vec<Statement>)>,
+        /// The statements of the final `else`, if any.
+        otherwise: Option<Vec<Statement>>,
+        /// The whole statement.
+        span: Span,
+    },
+    /// `fn name(params) = body;`
+    Function {
+        /// The function's name.
+        name: Ident,
+        /// Its parameters.
+        params: Vec<Ident>,
+        /// Its value.
+        body: std::sync::Arc<Expr>,
+        /// The whole declaration.
+        span: Span,
+    },
+    /// `group name { statements }`
+    Group {
+        /// The group's name.
+        name: Ident,
+        /// The objects (and placements of other groups) it holds.
+        body: Vec<Statement>,
+        /// The whole declaration.
+        span: Span,
+    },
+    /// `instance name { transforms, material, velocity }`
+    Instance {
+        /// The group placed.
+        group: Ident,
+        /// Its placement.
+        block: Block,
+        /// The whole statement.
         span: Span,
     },
     /// `background value`
@@ -100,6 +139,10 @@ impl Statement {
             Statement::Let { span, .. }
             | Statement::Include { span, .. }
             | Statement::For { span, .. }
+            | Statement::If { span, .. }
+            | Statement::Function { span, .. }
+            | Statement::Group { span, .. }
+            | Statement::Instance { span, .. }
             | Statement::Background { span, .. }
             | Statement::Material { span, .. }
             | Statement::Texture { span, .. }
@@ -131,6 +174,12 @@ pub enum BlockKind {
     Triangle,
     /// `box { }` (axis-aligned before transforms).
     Box,
+    /// `cylinder { }`.
+    Cylinder,
+    /// `cone { }` (or a truncated cone).
+    Cone,
+    /// `torus { }`.
+    Torus,
     /// `mesh { }` (OBJ or PLY file).
     Mesh,
     /// `point_light { }`.
@@ -143,7 +192,7 @@ pub enum BlockKind {
 
 impl BlockKind {
     /// Every block kind.
-    pub const ALL: [BlockKind; 14] = [
+    pub const ALL: [BlockKind; 17] = [
         BlockKind::Render,
         BlockKind::Camera,
         BlockKind::Environment,
@@ -154,6 +203,9 @@ impl BlockKind {
         BlockKind::Disk,
         BlockKind::Triangle,
         BlockKind::Box,
+        BlockKind::Cylinder,
+        BlockKind::Cone,
+        BlockKind::Torus,
         BlockKind::Mesh,
         BlockKind::PointLight,
         BlockKind::SpotLight,
@@ -173,6 +225,9 @@ impl BlockKind {
             BlockKind::Disk => "disk",
             BlockKind::Triangle => "triangle",
             BlockKind::Box => "box",
+            BlockKind::Cylinder => "cylinder",
+            BlockKind::Cone => "cone",
+            BlockKind::Torus => "torus",
             BlockKind::Mesh => "mesh",
             BlockKind::PointLight => "point_light",
             BlockKind::SpotLight => "spot_light",
@@ -279,6 +334,24 @@ pub enum BinOp {
     /// `%`: the remainder of a division, with the sign of the dividend
     /// (C's `fmod`, POV-Ray's `mod`).
     Rem,
+    /// `==`
+    Eq,
+    /// `!=`
+    Ne,
+    /// `<`
+    Lt,
+    /// `<=`
+    Le,
+    /// `>`
+    Gt,
+    /// `>=`
+    Ge,
+    /// `&&`: true when both are (the right side is evaluated only when
+    /// the left is true).
+    And,
+    /// `||`: true when either is (the right side is evaluated only when
+    /// the left is false).
+    Or,
 }
 
 impl BinOp {
@@ -290,6 +363,46 @@ impl BinOp {
             BinOp::Mul => "*",
             BinOp::Div => "/",
             BinOp::Rem => "%",
+            BinOp::Eq => "==",
+            BinOp::Ne => "!=",
+            BinOp::Lt => "<",
+            BinOp::Le => "<=",
+            BinOp::Gt => ">",
+            BinOp::Ge => ">=",
+            BinOp::And => "&&",
+            BinOp::Or => "||",
+        }
+    }
+
+    /// The operator written `s`.
+    pub fn from_symbol(s: &str) -> Option<BinOp> {
+        Some(match s {
+            "+" => BinOp::Add,
+            "-" => BinOp::Sub,
+            "*" => BinOp::Mul,
+            "/" => BinOp::Div,
+            "%" => BinOp::Rem,
+            "==" => BinOp::Eq,
+            "!=" => BinOp::Ne,
+            "<" => BinOp::Lt,
+            "<=" => BinOp::Le,
+            ">" => BinOp::Gt,
+            ">=" => BinOp::Ge,
+            "&&" => BinOp::And,
+            "||" => BinOp::Or,
+            _ => return None,
+        })
+    }
+
+    /// How tightly the operator binds: `||` 0, `&&` 1, comparisons 2,
+    /// `+ -` 3, `* / %` 4 (as in C, Rust and POV-Ray).
+    pub fn precedence(self) -> u8 {
+        match self {
+            BinOp::Or => 0,
+            BinOp::And => 1,
+            BinOp::Eq | BinOp::Ne | BinOp::Lt | BinOp::Le | BinOp::Gt | BinOp::Ge => 2,
+            BinOp::Add | BinOp::Sub => 3,
+            BinOp::Mul | BinOp::Div | BinOp::Rem => 4,
         }
     }
 }
@@ -318,6 +431,24 @@ pub enum ExprKind {
     },
     /// `-x`
     Neg(Box<Expr>),
+    /// `!x`
+    Not(Box<Expr>),
+    /// `[a, b, c]`
+    List(Vec<Expr>),
+    /// `list[i][j]…`: one node for a run of indexes.
+    Index {
+        /// The list indexed.
+        base: Box<Expr>,
+        /// Each index, outermost first.
+        indexes: Vec<Expr>,
+    },
+    /// `if c { a } else if d { b } else { e }`
+    If {
+        /// Each condition with its value, in order.
+        arms: Vec<(Expr, Expr)>,
+        /// The value when no condition holds.
+        otherwise: Box<Expr>,
+    },
     /// Operands of one precedence level, `a op b op c …`, folded from the
     /// left: a sum of terms or a product of factors. One node per chain, not
     /// one per operator, so a long chain adds no depth (the evaluator loops).

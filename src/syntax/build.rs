@@ -89,20 +89,78 @@ impl Builder {
                 let var = self.build_decl_name(inner.next().unwrap());
                 inner.next(); // kw_in
                 let start = self.build_expr(inner.next().unwrap());
-                inner.next(); // ..
-                let end = self.build_expr(inner.next().unwrap());
-                inner.next(); // {
-                let body = inner
-                    .filter(|p| p.as_rule() != Rule::rbrace)
-                    .map(|p| self.build_statement(p))
-                    .collect();
+                let mut end = None;
+                let mut next = inner.next().unwrap();
+                if next.as_rule() == Rule::range_dots {
+                    end = Some(self.build_expr(inner.next().unwrap()));
+                    next = inner.next().unwrap();
+                }
                 Statement::For {
                     var,
                     start,
                     end,
-                    body,
+                    body: self.build_body(next),
                     span,
                 }
+            }
+            Rule::if_stmt => {
+                let mut arms = Vec::new();
+                let mut otherwise = None;
+                let mut cond = None;
+                // The statement ends with its last brace: pest's span would
+                // take in the blanks its search for one more `else` skipped.
+                let end = inner.clone().last().map_or(span, |p| self.span(&p));
+                let span = Span {
+                    end: end.end,
+                    ..span
+                };
+                for p in inner {
+                    match p.as_rule() {
+                        Rule::kw_if | Rule::kw_else => {}
+                        Rule::expr => cond = Some(self.build_expr(p)),
+                        Rule::body => match cond.take() {
+                            Some(c) => arms.push((c, self.build_body(p))),
+                            None => otherwise = Some(self.build_body(p)),
+                        },
+                        r => unreachable!("not part of an if: {r:?}"),
+                    }
+                }
+                Statement::If {
+                    arms,
+                    otherwise,
+                    span,
+                }
+            }
+            Rule::fn_stmt => {
+                inner.next(); // kw_fn
+                let name = self.build_decl_name(inner.next().unwrap());
+                let mut params = Vec::new();
+                let mut body = None;
+                for p in inner {
+                    match p.as_rule() {
+                        Rule::ident => params.push(self.build_decl_name(p)),
+                        Rule::expr => body = Some(self.build_expr(p)),
+                        _ => {}
+                    }
+                }
+                Statement::Function {
+                    name,
+                    params,
+                    body: std::sync::Arc::new(body.expect("the grammar gives a body")),
+                    span,
+                }
+            }
+            Rule::group_stmt => {
+                inner.next(); // kw_group
+                let name = self.build_decl_name(inner.next().unwrap());
+                let body = self.build_body(inner.next().unwrap());
+                Statement::Group { name, body, span }
+            }
+            Rule::instance_stmt => {
+                inner.next(); // kw_instance
+                let group = self.build_ident(inner.next().unwrap());
+                let block = self.build_block(inner.next().unwrap());
+                Statement::Instance { group, block, span }
             }
             Rule::background_stmt => {
                 inner.next(); // kw_background
@@ -142,6 +200,9 @@ impl Builder {
                     Rule::kw_disk => BlockKind::Disk,
                     Rule::kw_triangle => BlockKind::Triangle,
                     Rule::kw_box => BlockKind::Box,
+                    Rule::kw_cylinder => BlockKind::Cylinder,
+                    Rule::kw_cone => BlockKind::Cone,
+                    Rule::kw_torus => BlockKind::Torus,
                     Rule::kw_mesh => BlockKind::Mesh,
                     Rule::kw_point_light => BlockKind::PointLight,
                     Rule::kw_spot_light => BlockKind::SpotLight,
@@ -158,6 +219,14 @@ impl Builder {
             }
             r => unreachable!("not a statement: {r:?}"),
         }
+    }
+
+    /// The statements of a `body` pair.
+    fn build_body(&self, pair: Pair<Rule>) -> Vec<Statement> {
+        pair.into_inner()
+            .filter(|p| !matches!(p.as_rule(), Rule::lbrace | Rule::rbrace))
+            .map(|p| self.build_statement(p))
+            .collect()
     }
 
     fn build_block(&self, pair: Pair<Rule>) -> Block {
@@ -216,24 +285,53 @@ impl Builder {
         }
     }
 
-    /// The next operand of `inner`: unary minus signs and a primary.
+    /// The next operand of `inner`: unary minus and not signs, a primary
+    /// and its indexes.
     fn build_operand(&self, inner: &mut Pairs<Rule>) -> Expr {
-        let mut signs: Option<(Span, usize)> = None;
+        let mut signs: Vec<(Rule, Span)> = Vec::new();
         for pair in inner.by_ref() {
-            if pair.as_rule() == Rule::neg {
-                let (first, n) = signs.unwrap_or((self.span(&pair), 0));
-                signs = Some((first, n + 1));
+            let rule = pair.as_rule();
+            if matches!(rule, Rule::neg | Rule::not) {
+                // `--x` and `!!x` are `x`: a sign cancels the same sign
+                // right before it, so that long runs cannot nest deeply.
+                if signs.last().is_some_and(|(r, _)| *r == rule) {
+                    signs.pop();
+                } else {
+                    signs.push((rule, self.span(&pair)));
+                }
                 continue;
             }
-            let e = self.build_expr(pair);
-            // `--x` is `x`: runs of signs fold, so that long runs cannot nest deeply.
-            return match signs {
-                Some((first, n)) if n % 2 == 1 => Expr {
-                    span: first.join(e.span),
-                    kind: ExprKind::Neg(Box::new(e)),
-                },
-                _ => e,
-            };
+            let mut e = self.build_expr(pair);
+            let mut indexes = Vec::new();
+            while inner.peek().is_some_and(|p| p.as_rule() == Rule::index) {
+                let index = inner.next().unwrap();
+                indexes.push(self.build_expr(index.into_inner().nth(1).unwrap()));
+            }
+            if let Some(last) = indexes.last() {
+                e = Expr {
+                    span: e.span.join(last.span),
+                    kind: ExprKind::Index {
+                        base: Box::new(e),
+                        indexes,
+                    },
+                };
+            }
+            // What is left alternates (`-!-x`): any two of them are a type
+            // error whatever `x` is, found by the innermost two, so at
+            // most those two are kept.
+            let keep = signs.len().saturating_sub(2);
+            for (rule, at) in signs.drain(keep..).rev() {
+                let inner = Box::new(e);
+                e = Expr {
+                    span: at.join(inner.span),
+                    kind: if rule == Rule::neg {
+                        ExprKind::Neg(inner)
+                    } else {
+                        ExprKind::Not(inner)
+                    },
+                };
+            }
+            return e;
         }
         unreachable!("the grammar puts a primary after the signs")
     }
@@ -242,53 +340,52 @@ impl Builder {
     fn build_expr(&self, pair: Pair<Rule>) -> Expr {
         let span = self.span(&pair);
         match pair.as_rule() {
-            Rule::expr => {
-                // The grammar keeps `a + b * -c` flat: operands and operators
-                // alternate. Precedence in one pass: factors gather into the
-                // current term; a `+` or `-` closes it into the sum. Each
-                // level is one `Chain` node, however long.
+            Rule::expr | Rule::component => {
+                // The grammar keeps `a + b * -c < d` flat: operands and
+                // operators alternate. Precedence is applied here, one
+                // `Chain` node per run of one level, however long.
                 let mut inner = pair.into_inner();
                 let first = self.build_operand(&mut inner);
                 // Most expressions are one operand (a vector's components):
                 // no allocation for them.
-                let Some(op) = inner.next() else {
+                if inner.peek().is_none() {
                     return first;
-                };
-                // Each term: its first factor and the further ones; the
-                // operator before each term after the first.
-                type Links = Vec<(BinOp, Span, Expr)>;
-                let mut terms: Vec<(Expr, Links)> = vec![(first, Vec::new())];
-                let mut sum_ops: Vec<(BinOp, Span)> = Vec::new();
-                let mut next_op = Some(op);
-                while let Some(op) = next_op.take().or_else(|| inner.next()) {
-                    let op_span = self.span(&op);
-                    let op = match op.as_str() {
-                        "+" => BinOp::Add,
-                        "-" => BinOp::Sub,
-                        "*" => BinOp::Mul,
-                        "/" => BinOp::Div,
-                        "%" => BinOp::Rem,
-                        o => unreachable!("operator {o}"),
-                    };
-                    let rhs = self.build_operand(&mut inner);
-                    if matches!(op, BinOp::Mul | BinOp::Div | BinOp::Rem) {
-                        terms
-                            .last_mut()
-                            .expect("one term")
-                            .1
-                            .push((op, op_span, rhs));
-                    } else {
-                        sum_ops.push((op, op_span));
-                        terms.push((rhs, Vec::new()));
-                    }
                 }
-                let mut terms = terms.into_iter().map(chain);
-                let first = terms.next().expect("one term");
-                let rest = sum_ops
-                    .into_iter()
-                    .zip(terms)
-                    .map(|((op, s), e)| (op, s, e));
-                chain((first, rest.collect()))
+                let mut operands = vec![first];
+                let mut ops = Vec::new();
+                while let Some(op) = inner.next() {
+                    let op_span = self.span(&op);
+                    let op = BinOp::from_symbol(op.as_str()).expect("a binary operator");
+                    ops.push((op, op_span));
+                    operands.push(self.build_operand(&mut inner));
+                }
+                by_precedence(operands, ops, 0)
+            }
+            Rule::list => Expr {
+                kind: ExprKind::List(
+                    pair.into_inner()
+                        .filter(|p| p.as_rule() == Rule::expr)
+                        .map(|p| self.build_expr(p))
+                        .collect(),
+                ),
+                span,
+            },
+            Rule::if_expr => {
+                let mut exprs: Vec<Expr> = pair
+                    .into_inner()
+                    .filter(|p| p.as_rule() == Rule::expr)
+                    .map(|p| self.build_expr(p))
+                    .collect();
+                let otherwise = Box::new(exprs.pop().expect("an else arm"));
+                let mut arms = Vec::new();
+                let mut it = exprs.into_iter();
+                while let (Some(c), Some(v)) = (it.next(), it.next()) {
+                    arms.push((c, v));
+                }
+                Expr {
+                    kind: ExprKind::If { arms, otherwise },
+                    span,
+                }
             }
             Rule::number => Expr {
                 kind: ExprKind::Number(pair.as_str().parse().unwrap_or(f64::INFINITY)),
@@ -305,7 +402,7 @@ impl Builder {
             Rule::vector => Expr {
                 kind: ExprKind::Vector(
                     pair.into_inner()
-                        .filter(|p| p.as_rule() == Rule::expr)
+                        .filter(|p| p.as_rule() == Rule::component)
                         .map(|p| self.build_expr(p))
                         .collect(),
                 ),
@@ -363,6 +460,43 @@ pub fn unescape(s: &str) -> String {
         }
     }
     out
+}
+
+/// The expression `operands[0] ops[0] operands[1] …` with operators of
+/// precedence `level` and above: split at the operators of `level`, each
+/// part built one level up. Recursion depth is the number of levels (5).
+fn by_precedence(operands: Vec<Expr>, ops: Vec<(BinOp, Span)>, level: u8) -> Expr {
+    if ops.is_empty() {
+        return operands.into_iter().next().expect("one operand");
+    }
+    let mut parts: Vec<Expr> = Vec::new();
+    let mut links: Vec<(BinOp, Span)> = Vec::new();
+    let mut part_operands = Vec::new();
+    let mut part_ops = Vec::new();
+    let mut operands = operands.into_iter();
+    part_operands.push(operands.next().expect("one operand"));
+    for ((op, at), rhs) in ops.into_iter().zip(operands) {
+        if op.precedence() == level {
+            parts.push(by_precedence(
+                std::mem::take(&mut part_operands),
+                std::mem::take(&mut part_ops),
+                level + 1,
+            ));
+            links.push((op, at));
+        } else {
+            part_ops.push((op, at));
+        }
+        part_operands.push(rhs);
+    }
+    parts.push(by_precedence(part_operands, part_ops, level + 1));
+    let mut parts = parts.into_iter();
+    let first = parts.next().expect("one part");
+    let rest = links
+        .into_iter()
+        .zip(parts)
+        .map(|((op, s), e)| (op, s, e))
+        .collect();
+    chain((first, rest))
 }
 
 /// `first op x op y …` as one node spanning all operands (the operand

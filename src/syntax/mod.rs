@@ -11,7 +11,7 @@ use crate::span::Span;
 use parser::{PtsParser, Rule};
 use pest::Parser;
 
-/// The deepest nesting of `(`, `<` and `{` the parser accepts. Deeper input is
+/// The deepest nesting of `(`, `[`, `<` and `{` the parser accepts. Deeper input is
 /// reported instead of risking the stack of a recursive-descent parser.
 pub const MAX_NESTING: usize = 128;
 
@@ -235,21 +235,41 @@ fn bom_len(text: &str) -> usize {
 fn pieces(text: &str, min_piece: usize) -> Result<Vec<(usize, usize)>, usize> {
     let mut out = Vec::new();
     let mut start = bom_len(text);
-    let mut depth = 0usize;
+    // The open brackets, innermost last. A `<` is a vector's or a
+    // comparison's: a `>` closes it only right above it, and a `)`, `]`,
+    // `}`, `{` or `;` first drops the `<`s above its own level (they were
+    // comparisons: no vector holds a brace, a statement end or a closing
+    // bracket of an outer level).
+    let mut open: Vec<u8> = Vec::new();
     let mut too_deep = None;
+    let bytes = text.as_bytes();
     for_each_code_mark(text, |i, b| {
+        if matches!(b, b')' | b']' | b'}' | b'{' | b';') {
+            while open.last() == Some(&b'<') {
+                open.pop();
+            }
+        }
         match b {
-            b'(' | b'<' | b'{' => {
-                depth += 1;
-                if depth > MAX_NESTING {
+            b'<' if bytes.get(i + 1) == Some(&b'=') => {}
+            b'(' | b'[' | b'<' | b'{' => {
+                open.push(b);
+                if open.len() > MAX_NESTING {
                     too_deep = Some(i);
                     return false;
                 }
             }
-            b')' | b'>' | b'}' => depth = depth.saturating_sub(1),
+            b'>' if open.last() == Some(&b'<') => {
+                open.pop();
+            }
+            b')' | b']' | b'}' => {
+                open.pop();
+            }
             _ => {}
         }
-        if depth == 0 && (b == b'}' || b == b';') && i + 1 - start >= min_piece {
+        if open.is_empty()
+            && (b == b';' || (b == b'}' && statement_follows(&text[i + 1..])))
+            && i + 1 - start >= min_piece
+        {
             out.push((start, i + 1));
             start = i + 1;
         }
@@ -262,7 +282,29 @@ fn pieces(text: &str, min_piece: usize) -> Result<Vec<(usize, usize)>, usize> {
     Ok(out)
 }
 
-/// Calls `f(offset, byte)` for every bracket (`(`, `)`, `<`, `>`, `{`, `}`)
+/// Whether `rest` (what follows a `}` at nesting depth 0) goes on with a
+/// new statement: a word other than `else`, or nothing. A `}` followed by
+/// `else`, `;`, `{` or an operator closes a branch of an `if` (a statement
+/// or a value, `let y = if a { 1 } else { 2 };`), not a statement.
+fn statement_follows(rest: &str) -> bool {
+    let mut rest = rest;
+    loop {
+        rest = rest.trim_start();
+        if let Some(r) = rest.strip_prefix("//") {
+            rest = r.find('\n').map_or("", |k| &r[k..]);
+        } else if let Some(r) = rest.strip_prefix("/*") {
+            rest = r.find("*/").map_or("", |k| &r[k + 2..]);
+        } else {
+            break;
+        }
+    }
+    let word_len = rest
+        .find(|c: char| !(c.is_alphanumeric() || c == '_'))
+        .unwrap_or(rest.len());
+    rest.is_empty() || (word_len > 0 && &rest[..word_len] != "else")
+}
+
+/// Calls `f(offset, byte)` for every bracket (`(`, `)`, `[`, `]`, `<`, `>`, `{`, `}`)
 /// and `;` of `text` outside comments and strings: the scans for parse pieces
 /// and unclosed blocks need to see those only. `f` returns `false` to stop.
 pub(crate) fn for_each_code_mark(text: &str, mut f: impl FnMut(usize, u8) -> bool) {
@@ -270,7 +312,7 @@ pub(crate) fn for_each_code_mark(text: &str, mut f: impl FnMut(usize, u8) -> boo
     const STOP: [bool; 256] = {
         let mut t = [false; 256];
         let mut k = 0;
-        let marks = b"()<>{};/\"";
+        let marks = b"()[]<>{};/\"";
         while k < marks.len() {
             t[marks[k] as usize] = true;
             k += 1;
@@ -420,6 +462,14 @@ mod tests {
         "background rgb 1",
         "for i in 0..2 { sphere { radius i } }",
         "mesh { file \"a};b.obj\" }",
+        "if a < b { let c = 1; } else if a > 2 { sphere { radius 1 } } else { }",
+        "if a <= 1 {}",
+        " else { let d = 2; }",
+        "let y = if a < 1 { [1, 2][0] } else { 3 } + 1;",
+        "fn f(x, y) = if x >= y && !(x == 2) { x } else { y };",
+        "group g { cylinder { base <0, 0, 0> top <0, a < 1, 0> radius 1 } }",
+        "instance g { translate <1, 0, 0> }",
+        "for x in [1, 2] { torus { minor_radius x } }",
         "\n",
         " ",
         "// };\n",
@@ -430,7 +480,7 @@ mod tests {
 
     /// Fragments that break a text, or nearly do.
     const JUNK: &[&str] = &[
-        "{", "}", ";", "<", ">", "(", "\"", "/*", "\u{FEFF}", "let", "1",
+        "{", "}", ";", "<", ">", "(", "\"", "/*", "\u{FEFF}", "let", "1", "else", "[", "]", "if",
     ];
 
     proptest::proptest! {

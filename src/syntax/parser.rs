@@ -29,6 +29,21 @@ pub fn rule_name(rule: Rule) -> &'static str {
         Rule::let_stmt | Rule::kw_let => "`let`",
         Rule::include_stmt | Rule::kw_include => "`include`",
         Rule::for_stmt | Rule::kw_for => "`for`",
+        Rule::body => "statements in braces `{ … }`",
+        Rule::if_stmt | Rule::if_expr | Rule::kw_if => "`if`",
+        Rule::kw_else => "`else`",
+        Rule::fn_stmt | Rule::kw_fn => "`fn`",
+        Rule::group_stmt | Rule::kw_group => "`group`",
+        Rule::instance_stmt | Rule::kw_instance => "`instance`",
+        Rule::list => "a list `[a, b, c]`",
+        Rule::lbracket => "`[`",
+        Rule::index => "an index `[i]`",
+        Rule::rbracket => "`]`",
+        Rule::not => "`!`",
+        Rule::component_op => "an operator (`+`, `-`, `*`, `/`, `%`, `==`, `&&`, …)",
+        Rule::kw_cylinder => "`cylinder`",
+        Rule::kw_cone => "`cone`",
+        Rule::kw_torus => "`torus`",
         Rule::kw_in => "`in`",
         Rule::background_stmt | Rule::kw_background => "`background`",
         Rule::material_decl | Rule::material_entry | Rule::kw_material => "`material`",
@@ -38,7 +53,7 @@ pub fn rule_name(rule: Rule) -> &'static str {
         Rule::texture_param => "a parameter given a texture",
         Rule::texture_decl | Rule::kw_texture => "`texture`",
         Rule::color_stop | Rule::stop_word => "a colour stop `stop 0.5 rgb …`",
-        Rule::expr | Rule::operand | Rule::primary => {
+        Rule::expr | Rule::component | Rule::operand | Rule::primary => {
             "a value (number, vector, colour, string or name)"
         }
         Rule::paren | Rule::lparen => "`(`",
@@ -54,7 +69,7 @@ pub fn rule_name(rule: Rule) -> &'static str {
         Rule::ident => "a name",
         Rule::keyword => "a keyword",
         Rule::boundary => "the end of a word",
-        Rule::bin_op => "an operator (`+`, `-`, `*`, `/`, `%`)",
+        Rule::bin_op => "an operator (`+`, `-`, `*`, `/`, `%`, `==`, `<`, `&&`, …)",
         Rule::neg => "`-`",
         Rule::equals => "`=`",
         Rule::semicolon => "`;`",
@@ -237,7 +252,11 @@ pub fn convert_error(
             let useful: Vec<&str> = names
                 .iter()
                 .copied()
-                .filter(|n| *n != rule_name(Rule::bin_op))
+                .filter(|n| {
+                    ![Rule::bin_op, Rule::component_op, Rule::lbracket]
+                        .iter()
+                        .any(|r| rule_name(*r) == *n)
+                })
                 // A colour stop is one more name where names are expected.
                 .filter(|n| *n != rule_name(Rule::color_stop))
                 .collect();
@@ -334,14 +353,19 @@ fn unclosed_block(file: FileId, open: usize) -> Diagnostic {
     .with_help("add `}` at the end of the block")
 }
 
-/// Words that open a statement: four that open no block, then `material`
-/// and the block keywords (`block_brace` relies on the order).
+/// Words that open a statement: [`OPEN_NO_BLOCK`] that open no block
+/// (a `for`'s, an `if`'s or a group's braces hold statements), then
+/// `material`, `instance` and the block keywords.
 const STATEMENT_STARTS: &[&str] = &[
     "let",
     "include",
     "for",
     "background",
+    "if",
+    "fn",
+    "group",
     "material",
+    "instance",
     "render",
     "environment",
     "sky",
@@ -352,6 +376,9 @@ const STATEMENT_STARTS: &[&str] = &[
     "disk",
     "triangle",
     "box",
+    "cylinder",
+    "cone",
+    "torus",
     "mesh",
     "point_light",
     "spot_light",
@@ -372,6 +399,9 @@ fn statement_on_line(text: &str, pos: usize) -> Option<(usize, &str)> {
     STATEMENT_STARTS.contains(&word).then_some((at, word))
 }
 
+/// How many of [`STATEMENT_STARTS`] open no block.
+const OPEN_NO_BLOCK: usize = 7;
+
 /// Whether the `{` at `open` opens a block statement or a material (where
 /// statements cannot stand), not the body of a `for` (where they can).
 fn block_brace(text: &str, open: usize) -> bool {
@@ -379,8 +409,8 @@ fn block_brace(text: &str, open: usize) -> bool {
         .rsplit(|c: char| !(c.is_alphanumeric() || c == '_'))
         .filter(|w| !w.is_empty());
     let last = words.next().unwrap_or("");
-    let blocks = &STATEMENT_STARTS[4..];
-    blocks.contains(&last) || words.next() == Some("material")
+    let blocks = &STATEMENT_STARTS[OPEN_NO_BLOCK..];
+    blocks.contains(&last) || matches!(words.next(), Some("material" | "instance"))
 }
 
 /// The last `n` words before `pos` (letters, digits, `_`), nearest last,
@@ -421,7 +451,7 @@ fn help_for(expected: &[&str], found: &str) -> String {
         if let Some(k) = crate::diag::did_you_mean(word, KEYWORDS.iter().copied()) {
             return format!("did you mean `{k}`?");
         }
-        return "a scene is a list of statements: `let`, `include`, `for`, `background`, `material`, `camera { … }`, `render { … }`, a light or an object such as `sphere { … }`".into();
+        return "a scene is a list of statements: `let`, `fn`, `include`, `for`, `if`, `background`, `material`, `group`, `instance`, `camera { … }`, `render { … }`, a light or an object such as `sphere { … }`".into();
     }
     if expected.contains(&"`>`") && expected.contains(&"`,`") {
         return "separate vector components with `,` and close the vector with `>`: `<1, 2, 3>`"
@@ -439,6 +469,14 @@ pub const KEYWORDS: &[&str] = &[
     "include",
     "for",
     "in",
+    "if",
+    "else",
+    "fn",
+    "group",
+    "instance",
+    "cylinder",
+    "cone",
+    "torus",
     "background",
     "material",
     "texture",

@@ -499,3 +499,78 @@ fn hostile_cases_name_existing_files() {
     }
     let _ = std::io::stdout().flush();
 }
+
+/// Functions, conditionals, lists and groups: no construct of the language
+/// can overflow the stack, hang or take unbounded memory; the limits are
+/// diagnostics.
+#[test]
+fn deep_and_long_language_constructs() {
+    let deep = |inner: &str| format!("{}{inner}{}", "-(".repeat(120), ")".repeat(120));
+    // Functions each calling the one before under the deepest brackets
+    // (each a negation: a level of evaluation): evaluation nests past its
+    // limit (an error), within the stack.
+    let mut text = format!("{CAMERA}background rgb 1\nfn f0(x) = x;\n");
+    for k in 1..70 {
+        text += &format!("fn f{k}(x) = {};\n", deep(&format!("f{}(x) + 1", k - 1)));
+    }
+    text += "sphere { center <0, 0, 0> radius f69(1) }\n";
+    let case = generated("deep calls", "// exit: 1\n// stderr: nests deeper");
+    run_generated(&case, "calls.pts", text.as_bytes());
+    // A recursion without an end, and one that branches (2^60 calls).
+    for (name, f) in [
+        ("endless", "fn f(n) = f(n + 1);"),
+        (
+            "branching",
+            "fn f(n) = if n <= 0 { 1 } else { f(n - 1) + f(n - 1) };",
+        ),
+    ] {
+        let text =
+            format!("{CAMERA}background rgb 1\n{f}\nsphere {{ center <0, 0, 0> radius f(60) }}\n");
+        let case = generated(
+            name,
+            "// exit: 1\n// stderr: recursion_limit\n// timeout: 20",
+        );
+        run_generated(&case, "recursion.pts", text.as_bytes());
+    }
+    // 100,000 `else if` arms, statement and expression; alternating signs;
+    // a long run of indexes; lists nested as deep as brackets go.
+    let arms = " else if x == 1 { 2 }".repeat(100_000);
+    let stmt_arms = " else if x == 1 { let _a = 2; }".repeat(100_000);
+    let signs = "-!".repeat(50_000);
+    let indexes = "[0]".repeat(50_000);
+    let nested = format!("{}1{}", "[".repeat(126), "]".repeat(126));
+    let text = format!(
+        "{CAMERA}background rgb 1\nlet x = 0;\nlet y = if x == 0 {{ 1 }}{arms} else {{ 3 }};\n\
+         if x == 0 {{ let _b = 1; }}{stmt_arms}\nlet _z = {signs}true;\nlet n = {nested};\n\
+         let _w = n{indexes};\nsphere {{ center <0, 0, 0> radius y }}\n"
+    );
+    let case = generated(
+        "long chains",
+        "// exit: 1\n// stderr: `-`\n// stderr: cannot index\n// timeout: 30",
+    );
+    run_generated(&case, "chains.pts", text.as_bytes());
+    // Groups each placing the one before twice: 2^3000 objects are refused;
+    // a chain of 3,000 groups placing the one before once is expanded.
+    for (name, twice, expect) in [
+        ("doubling groups", true, "// exit: 1\n// stderr: place more than"),
+        (
+            "chain of groups",
+            false,
+            "// run: render {scene} -o {out}.exr --resolution 4x4 --spp 1\n// exit: 0\n// finite: {out}.exr",
+        ),
+    ] {
+        let mut text = format!(
+            "{CAMERA}background rgb 1\ngroup g0 {{ sphere {{ center <0, 0, 0> radius 1 }} }}\n"
+        );
+        for k in 1..3000 {
+            let again = if twice {
+                format!(" instance g{} {{ translate <0.001, 0, 0> }}", k - 1)
+            } else {
+                String::new()
+            };
+            text += &format!("group g{k} {{ instance g{} {{ }}{again} }}\n", k - 1);
+        }
+        text += "instance g2999 { }\n";
+        run_generated(&generated(name, expect), "groups.pts", text.as_bytes());
+    }
+}

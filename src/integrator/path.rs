@@ -62,7 +62,7 @@ pub fn path_li(scene: &Scene, mut ray: Ray, sampler: &mut Sampler, nee: bool) ->
         // Emission seen along the path.
         let le = material.emitted(wo, hit.n_geo);
         if le != Vec3::ZERO {
-            let light = (nee && prev_pdf > 0.0).then(|| scene.area_light(hit.prim));
+            let light = (nee && prev_pdf > 0.0).then(|| scene.area_light_at(&hit));
             let w = match light.flatten() {
                 Some(light) => {
                     let from = [prev_p, prev_n];

@@ -2,6 +2,7 @@
 //! a power-proportional selection table. Built from the checked scene by
 //! [`lower`](lower::lower); every primitive remembers the span it came from.
 
+pub mod instance;
 pub mod settings;
 mod surface;
 
@@ -47,8 +48,11 @@ pub struct Hit {
     /// then a reflection may not cross the surface
     /// (`integrator::crosses_surface`).
     pub bent: bool,
-    /// Primitive index.
+    /// Primitive index (in the scene, or in the prototype of `instance`).
     pub prim: u32,
+    /// The placement hit ([`instance::NO_INSTANCE`]: the scene's own
+    /// primitives).
+    pub instance: u32,
     /// The shape's surface parameters at the hit: (s, t) along a quad's
     /// edges, a triangle's barycentrics (b1, b2); zero for the others
     /// (see [`Scene::texcoords`]).
@@ -105,6 +109,8 @@ pub struct Scene {
     /// by object (the others are at the identity): texture coordinates and
     /// patterns live in an object's own frame.
     pub object_from_world: Vec<(u32, Affine3A)>,
+    /// Groups placed several times: shared geometry and its placements.
+    pub instances: Arc<instance::Instances>,
 }
 
 const _: () = assert!(std::mem::size_of::<Prim>() == 64);
@@ -122,6 +128,41 @@ impl Scene {
         &self.materials[self.object_material[object] as usize]
     }
 
+    /// The material of the surface hit (an instanced object's own, or its
+    /// placement's when it names none).
+    #[inline(always)]
+    pub fn material_of_hit(&self, hit: &Hit) -> &Material {
+        if hit.instance == instance::NO_INSTANCE {
+            self.material_of(hit.prim)
+        } else {
+            self.instanced_material(hit)
+        }
+    }
+
+    /// [`Scene::material_of_hit`] for a hit on a placement.
+    #[inline(never)]
+    fn instanced_material(&self, hit: &Hit) -> &Material {
+        let placement = &self.instances.placements[hit.instance as usize];
+        let prototype = &self.instances.prototypes[placement.prototype as usize];
+        let object = prototype.prim_object[hit.prim as usize];
+        let m = match prototype.object_material[object as usize] {
+            instance::INHERITED => placement.material,
+            m => m,
+        };
+        &self.materials[m as usize]
+    }
+
+    /// The light the surface hit is, if it is emissive (placed geometry
+    /// never is: lowering flattens placements with emissive parts).
+    #[inline]
+    pub fn area_light_at(&self, hit: &Hit) -> Option<u32> {
+        if hit.instance == instance::NO_INSTANCE {
+            self.area_light(hit.prim)
+        } else {
+            None
+        }
+    }
+
     /// The material at a hit at `time` seen from `wo`: the material of the
     /// primitive, or, when it has textured parameters, the material they
     /// make there, kept in `slot` (a texture that bends normals sets the
@@ -135,7 +176,7 @@ impl Scene {
         time: f32,
         slot: &'a mut Option<Material>,
     ) -> &'a Material {
-        let m = self.material_of(hit.prim);
+        let m = self.material_of_hit(hit);
         match &m.textured {
             None => m,
             Some(t) => slot.insert(self.textured_material(t, hit, wo, time)),
@@ -157,14 +198,23 @@ impl Scene {
     /// The ray moved into the frame of a (possibly moving) primitive.
     #[inline]
     fn local_ray(prim: &Prim, ray: &Ray) -> Ray {
-        if prim.velocity == Vec3::ZERO {
-            *ray
-        } else {
-            Ray::new(ray.o - prim.velocity * ray.time, ray.d, ray.time)
-        }
+        instance::local_ray(prim, ray)
     }
 
-    /// The closest hit along `ray` beyond `t_min`.
+    /// The closest hit along `ray` beyond `t_min`: the scene's own
+    /// primitives, then the placements of groups (if any).
+    #[inline(always)]
+    pub fn intersect(&self, ray: &Ray, t_min: f32, t_max: f32) -> Option<Hit> {
+        let own = self.intersect_own(ray, t_min, t_max);
+        if self.instances.is_empty() {
+            return own;
+        }
+        let t_max = own.map_or(t_max, |h| h.t);
+        self.instances.closest(ray, t_min, t_max).or(own)
+    }
+
+    /// The closest hit along `ray` beyond `t_min` with the scene's own
+    /// primitives.
     // Inlined into the integrators, as are the BSDF's and the lights' `sample`
     // and `eval`: called out of line, the `Hit` and `BsdfSample` they return
     // go through memory and their first loads stall the integrator.
@@ -173,7 +223,7 @@ impl Scene {
     // heuristics after unrelated changes. Measurements: docs/performance.md,
     // "Why the BVH and traversal are as they are".
     #[inline(always)]
-    pub fn intersect(&self, ray: &Ray, t_min: f32, t_max: f32) -> Option<Hit> {
+    fn intersect_own(&self, ray: &Ray, t_min: f32, t_max: f32) -> Option<Hit> {
         ray_count::closest();
         let mut best = self.wide.closest(ray, t_min, t_max, |i, tmax| {
             let p = &self.prims[i as usize];
@@ -231,6 +281,7 @@ impl Scene {
             n_shading,
             bent: false,
             prim: i,
+            instance: instance::NO_INSTANCE,
             uv,
         })
     }
@@ -248,6 +299,6 @@ impl Scene {
             p.shape
                 .intersect(&Self::local_ray(p, ray), t_min, t_max)
                 .is_some()
-        })
+        }) || (!self.instances.is_empty() && self.instances.any(ray, t_min, t_max))
     }
 }

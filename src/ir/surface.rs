@@ -3,7 +3,8 @@
 //! the material its textures make there (colours, numbers and the bent
 //! shading normal).
 
-use super::{Hit, Scene};
+use super::instance::{Placement, NO_INSTANCE};
+use super::{Hit, Prim, Scene};
 use crate::geometry::shape::Shape;
 use crate::geometry::texcoord;
 use crate::material::{Input, Material, NormalInput, Textured};
@@ -18,6 +19,39 @@ fn in_plane(d: Vec3, n: Vec3) -> (Vec3, f32) {
     let scale = n.length();
     let (x, z) = crate::geometry::orthonormal_basis(n / scale);
     (Vec3::new(d.dot(x), d.dot(n) / scale, d.dot(z)), scale)
+}
+
+/// Where a hit's surface is described: see [`Scene::frame`].
+struct Frame<'a> {
+    /// The primitive's record (`None`: a plain triangle).
+    record: Option<&'a Prim>,
+    /// The point at rest, in the record's frame.
+    p: Vec3,
+    /// The record's frame → the object's (`None`: the identity).
+    from_space: Option<Affine3A>,
+    /// The placement whose prototype holds the record, if any.
+    placement: Option<&'a Placement>,
+    /// The vertex texture coordinates the record's `attributes` index.
+    uvs: &'a [[Vec2; 3]],
+}
+
+impl Frame<'_> {
+    /// A vector of the record's frame in the object's.
+    fn object_vector(&self, v: Vec3) -> Vec3 {
+        self.from_space.map_or(v, |m| m.transform_vector3(v))
+    }
+
+    /// A vector of the record's frame in the world's.
+    fn world_vector(&self, v: Vec3) -> Vec3 {
+        self.placement
+            .map_or(v, |pl| pl.world_from_group.transform_vector3(v))
+    }
+
+    /// A world vector in the record's frame.
+    fn space_vector(&self, v: Vec3) -> Vec3 {
+        self.placement
+            .map_or(v, |pl| pl.group_from_world.transform_vector3(v))
+    }
 }
 
 /// Vectors given in the frame of [`in_plane`] for the unit axis `n` (x, y
@@ -79,7 +113,9 @@ impl Scene {
             NormalInput::Bump { texture, height } => {
                 let texture = &self.textures[texture as usize];
                 let h0 = texture.eval_scalar(at);
-                let from_world = self.from_world(hit.prim).copied();
+                let frame = self.frame(hit, time);
+                // World vectors into the object's frame.
+                let to_object = |v: Vec3| frame.object_vector(frame.space_vector(v));
                 // The height's slope along u and along v: one step of
                 // `bump_step` world units each way, moving every
                 // coordinate the texture might read.
@@ -92,8 +128,7 @@ impl Scene {
                     let moved = step * dpd;
                     let shifted = ShadingPoint {
                         uv: at.uv + step * duv,
-                        object: at.object
-                            + from_world.map_or(moved, |m| m.transform_vector3(moved)),
+                        object: at.object + to_object(moved),
                         world: at.world + moved,
                     };
                     height * (texture.eval_scalar(&shifted) - h0) / step
@@ -109,17 +144,45 @@ impl Scene {
     /// coordinates, the point in its object's frame (at time 0) and in the
     /// world.
     pub fn shading_point(&self, hit: &Hit, time: f32) -> ShadingPoint {
-        let velocity = self
-            .prims
-            .get(hit.prim as usize)
-            .map_or(Vec3::ZERO, |p| p.velocity);
-        let at_rest = hit.p - velocity * time;
+        let frame = self.frame(hit, time);
         ShadingPoint {
             uv: self.texcoords(hit, time),
-            object: self
-                .from_world(hit.prim)
-                .map_or(at_rest, |m| m.transform_point3(at_rest)),
+            object: frame
+                .from_space
+                .map_or(frame.p, |m| m.transform_point3(frame.p)),
             world: hit.p,
+        }
+    }
+
+    /// The frame a hit's surface is described in: its primitive's record
+    /// (`None`: a plain triangle), the point at rest in the record's frame
+    /// (the world's, or a prototype's for a placed group), the transform
+    /// from that frame to the object's and the placement, if any.
+    fn frame(&self, hit: &Hit, time: f32) -> Frame<'_> {
+        if hit.instance == NO_INSTANCE {
+            let record = self.prims.get(hit.prim as usize);
+            let velocity = record.map_or(Vec3::ZERO, |p| p.velocity);
+            return Frame {
+                record,
+                p: hit.p - velocity * time,
+                from_space: self.from_world(hit.prim).copied(),
+                placement: None,
+                uvs: &self.uvs,
+            };
+        }
+        let placement = &self.instances.placements[hit.instance as usize];
+        let prototype = &self.instances.prototypes[placement.prototype as usize];
+        let record = prototype.prims.get(hit.prim as usize);
+        let velocity = record.map_or(Vec3::ZERO, |p| p.velocity);
+        let p = placement
+            .group_from_world
+            .transform_point3(hit.p - placement.velocity * time);
+        Frame {
+            record,
+            p: p - velocity * time,
+            from_space: prototype.object_from_group(hit.prim).copied(),
+            placement: Some(placement),
+            uvs: &prototype.uvs,
         }
     }
 
@@ -160,6 +223,7 @@ impl Scene {
             n_shading: n,
             bent: false,
             prim,
+            instance: NO_INSTANCE,
             uv,
         };
         self.textured_material(t, &mut hit, wo, time).emitted(wo, n)
@@ -179,16 +243,16 @@ impl Scene {
     /// The texture coordinates of a hit at `time` (see
     /// [`crate::geometry::texcoord`] for each shape's convention).
     pub fn texcoords(&self, hit: &Hit, time: f32) -> Vec2 {
-        let Some(record) = self.prims.get(hit.prim as usize) else {
+        let frame = self.frame(hit, time);
+        let Some(record) = frame.record else {
             // A plain triangle: static, no vertex attributes.
             return hit.uv;
         };
         // The point where the primitive is at time 0, then in its object's frame.
-        let p = hit.p - record.velocity * time;
-        let from_world = self.from_world(hit.prim);
-        let direction = |v: Vec3| from_world.map_or(v, |m| m.transform_vector3(v));
+        let p = frame.p;
+        let direction = |v: Vec3| frame.object_vector(v);
         match record.shape {
-            Shape::Triangle { attributes, .. } => match self.uvs.get(attributes as usize) {
+            Shape::Triangle { attributes, .. } => match frame.uvs.get(attributes as usize) {
                 Some(&vertex_uvs) => texcoord::triangle(hit.uv, vertex_uvs),
                 None => hit.uv,
             },
@@ -226,28 +290,36 @@ impl Scene {
     /// (∂p/∂u, ∂p/∂v) in the world: the tangents that normal and bump maps
     /// are laid along.
     pub fn derivatives(&self, hit: &Hit, time: f32) -> (Vec3, Vec3) {
-        let Some(record) = self.prims.get(hit.prim as usize) else {
+        let frame = self.frame(hit, time);
+        let Some(record) = frame.record else {
             // A plain triangle (no UVs, no record): any tangents of its
             // plane serve solid patterns, the only ones it can carry well.
             return crate::geometry::orthonormal_basis(hit.n_geo);
         };
-        let p = hit.p - record.velocity * time;
-        let from_world = self.from_world(hit.prim);
-        let direction = |v: Vec3| from_world.map_or(v, |m| m.transform_vector3(v));
+        let p = frame.p;
+        let direction = |v: Vec3| frame.object_vector(v);
         // Object-frame vectors back to the world.
-        let to_world = |v: Vec3| match from_world {
-            Some(m) => m.matrix3.inverse() * v,
-            None => v,
+        let to_world = |v: Vec3| {
+            let v = match frame.from_space {
+                Some(m) => m.matrix3.inverse() * v,
+                None => v,
+            };
+            frame.world_vector(v)
         };
+        // Vectors of the record's frame to the world.
+        let space_to_world = |v: Vec3| frame.world_vector(v);
         match record.shape {
             Shape::Triangle {
                 e1, e2, attributes, ..
-            } => self
-                .uvs
-                .get(attributes as usize)
-                .and_then(|&uvs| texcoord::triangle_derivatives(e1, e2, uvs))
-                .unwrap_or((e1, e2)),
-            Shape::Quad { e1, e2, .. } => (e1, e2),
+            } => {
+                let (du, dv) = frame
+                    .uvs
+                    .get(attributes as usize)
+                    .and_then(|&uvs| texcoord::triangle_derivatives(e1, e2, uvs))
+                    .unwrap_or((e1, e2));
+                (space_to_world(du), space_to_world(dv))
+            }
+            Shape::Quad { e1, e2, .. } => (space_to_world(e1), space_to_world(e2)),
             Shape::Sphere { center, .. } => {
                 let (dpdu, dpdv) = texcoord::sphere_derivatives(direction(p - center));
                 (to_world(dpdu), to_world(dpdv))

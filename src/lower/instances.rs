@@ -1,50 +1,266 @@
-//! Placements of groups (`instance name { … }`) expanded into the objects
-//! they place: each object of a placed group (and of the groups it places
-//! in turn) with the placements' transforms composed onto its own, its
-//! material (or the nearest enclosing instance's, for an object that names
-//! none) and the placements' motion added to its own.
+//! Placements of groups (`instance name { … }`). Each placement, through
+//! every level of groups placing groups, becomes either objects of the
+//! scene (the group's objects with the placements' transforms composed
+//! onto their own, their motion added and, for an object that names no
+//! material, the nearest enclosing instance's) or, for a group placed
+//! several times, a placement of its shared prototype (`ir::instance`).
+//!
+//! A placement is expanded into objects when sharing would gain nothing
+//! or cannot be done: its group is placed once (a single placement renders
+//! as the flat scene does), holds an infinite plane (no bounds to place),
+//! or holds an object emissive under it (lights are sampled as the scene's
+//! primitives; a lamp's bulb is small).
 
+use super::{build_objects, non_uniform, uniform_scale, within_domain, LowerCache};
+use crate::accel::bvh::Bvh;
+use crate::accel::bvh4::Bvh4;
 use crate::check::{self, Instance, Object};
-use glam::{DMat4, DVec3};
+use crate::diag::{codes, Diagnostic, Diagnostics};
+use crate::geometry::Aabb;
+use crate::ir::instance::{Instances, Placement, Prototype, INHERITED};
+use crate::span::Span;
+use glam::{Affine3A, DMat4, DVec3};
+use std::collections::HashMap;
 
-/// The scene with every instance replaced by the objects it places, or
-/// `None` when it has no instance. Iterative (a chain of groups each
-/// placing the one before goes as deep as the scene has groups).
-pub fn flatten(scene: &check::Scene) -> Option<check::Scene> {
-    if scene.instances.is_empty() {
-        return None;
-    }
-    let mut objects = scene.objects.clone();
-    // (instance, parent → world transform, the parent's world velocity,
-    // the material inherited from enclosing instances).
-    let mut stack: Vec<(&Instance, DMat4, DVec3, Option<usize>)> = (scene.instances.iter())
+/// One placement of a group's own objects, in the world.
+#[derive(Debug, Clone)]
+pub struct Leaf {
+    /// The group placed.
+    pub group: usize,
+    /// Group → world.
+    pub transform: DMat4,
+    /// World velocity of the group's frame.
+    pub velocity: DVec3,
+    /// The material of its objects that name none, from the nearest
+    /// enclosing instance that gives one.
+    pub material: Option<usize>,
+    /// The outermost instance.
+    pub span: Span,
+}
+
+/// The scene with its placements sorted out.
+pub struct Split {
+    /// The scene with the placements that are not shared expanded into
+    /// objects (`None`: the scene has no instance, nothing changes).
+    pub scene: Option<check::Scene>,
+    /// The placements of shared groups.
+    pub shared: Vec<Leaf>,
+}
+
+/// Every placement of the scene's groups, through every level (iterative:
+/// a chain of groups each placing the one before goes as deep as the
+/// scene has groups). Only placements of groups with objects of their own.
+fn leaves(scene: &check::Scene) -> Vec<Leaf> {
+    let mut out = Vec::new();
+    let mut stack: Vec<(&Instance, DMat4, DVec3, Option<usize>, Span)> = (scene.instances.iter())
         .rev()
-        .map(|i| (i, DMat4::IDENTITY, DVec3::ZERO, None))
+        .map(|i| (i, DMat4::IDENTITY, DVec3::ZERO, None, i.span))
         .collect();
-    while let Some((instance, parent, parent_velocity, inherited)) = stack.pop() {
-        let to_world = parent * instance.transform;
+    while let Some((instance, parent, parent_velocity, inherited, span)) = stack.pop() {
+        let transform = parent * instance.transform;
         let velocity = parent_velocity + parent.transform_vector3(instance.velocity);
         let material = instance.material.or(inherited);
         let group = &scene.groups[instance.group];
-        for (object, &unmaterialled) in group.objects.iter().zip(&group.unmaterialled) {
-            objects.push(Object {
-                transform: to_world * object.transform,
-                velocity: velocity + to_world.transform_vector3(object.velocity),
-                material: match material {
-                    Some(m) if unmaterialled => m,
-                    _ => object.material,
-                },
-                ..object.clone()
+        if !group.objects.is_empty() {
+            out.push(Leaf {
+                group: instance.group,
+                transform,
+                velocity,
+                material,
+                span,
             });
         }
         for inner in group.instances.iter().rev() {
-            stack.push((inner, to_world, velocity, material));
+            stack.push((inner, transform, velocity, material, span));
         }
     }
-    Some(check::Scene {
-        objects,
-        groups: Vec::new(),
-        instances: Vec::new(),
-        ..scene.clone()
+    out
+}
+
+/// The material an object of a group has under a placement.
+fn material_under(object: &Object, unmaterialled: bool, leaf: &Leaf) -> usize {
+    match leaf.material {
+        Some(m) if unmaterialled => m,
+        _ => object.material,
+    }
+}
+
+/// Sorts the scene's placements into objects and shared placements.
+pub fn split(scene: &check::Scene) -> Split {
+    if scene.instances.is_empty() {
+        return Split {
+            scene: None,
+            shared: Vec::new(),
+        };
+    }
+    let leaves = leaves(scene);
+    let mut count: HashMap<usize, usize> = HashMap::new();
+    for leaf in &leaves {
+        *count.entry(leaf.group).or_default() += 1;
+    }
+    let mut objects = scene.objects.clone();
+    let mut shared = Vec::new();
+    for leaf in leaves {
+        let group = &scene.groups[leaf.group];
+        let parts = group.objects.iter().zip(&group.unmaterialled);
+        let emissive = parts
+            .clone()
+            .any(|(o, &u)| scene.materials[material_under(o, u, &leaf)].is_emissive());
+        let unbounded =
+            (group.objects.iter()).any(|o| matches!(o.shape, check::Shape::Plane { .. }));
+        if count[&leaf.group] >= 2 && !emissive && !unbounded {
+            shared.push(leaf);
+            continue;
+        }
+        for (object, &unmaterialled) in parts {
+            objects.push(Object {
+                transform: leaf.transform * object.transform,
+                velocity: leaf.velocity + leaf.transform.transform_vector3(object.velocity),
+                material: material_under(object, unmaterialled, &leaf),
+                ..object.clone()
+            });
+        }
+    }
+    Split {
+        scene: Some(check::Scene {
+            objects,
+            groups: Vec::new(),
+            instances: Vec::new(),
+            ..scene.clone()
+        }),
+        shared,
+    }
+}
+
+/// Whether the shape keeps its kind only under similarity transforms.
+fn round(shape: &check::Shape) -> Option<&'static str> {
+    Some(match shape {
+        check::Shape::Sphere { .. } => "sphere",
+        check::Shape::Disk { .. } => "disk",
+        check::Shape::Cylinder { .. } => "cylinder",
+        check::Shape::Cone { .. } => "cone",
+        check::Shape::Torus { .. } => "torus",
+        _ => return None,
     })
+}
+
+/// The prototypes of the shared groups and their placements, with the BVH
+/// over the placements.
+pub fn build(
+    scene: &check::Scene,
+    shared: &[Leaf],
+    cache: &mut LowerCache,
+) -> Result<Instances, Diagnostics> {
+    let mut diags = Diagnostics::new();
+    let shutter = (scene.camera.shutter.0 as f32, scene.camera.shutter.1 as f32);
+    let mut prototype_of: HashMap<usize, u32> = HashMap::new();
+    let mut prototypes: Vec<Prototype> = Vec::new();
+    let mut placements: Vec<Placement> = Vec::new();
+    let mut boxes: Vec<Aabb> = Vec::new();
+    for leaf in shared {
+        let group = &scene.groups[leaf.group];
+        // Round shapes take similarity transforms only, placed or not (the
+        // flat scene could not hold an ellipsoid either).
+        for object in &group.objects {
+            if let Some(what) = round(&object.shape) {
+                if uniform_scale(&(leaf.transform * object.transform)).is_none() {
+                    diags.push(
+                        non_uniform(object.span, what).with_secondary(leaf.span, "placed here"),
+                    );
+                }
+            }
+        }
+        let prototype = match prototype_of.get(&leaf.group) {
+            Some(&p) => p,
+            None => {
+                let geometry = match build_objects(&group.objects, scene.camera.shutter, cache) {
+                    Ok(g) => g,
+                    Err(d) => {
+                        diags.extend(d);
+                        continue;
+                    }
+                };
+                let object_material = (group.objects.iter())
+                    .zip(&group.unmaterialled)
+                    .map(|(o, &u)| if u { INHERITED } else { o.material as u32 })
+                    .collect();
+                let object_from_group = (group.objects.iter().enumerate())
+                    .filter(|(_, o)| o.transform != DMat4::IDENTITY)
+                    .map(|(i, o)| {
+                        (
+                            i as u32,
+                            Affine3A::from_mat4(o.transform.inverse().as_mat4()),
+                        )
+                    })
+                    .collect();
+                prototypes.push(Prototype {
+                    prims: geometry.prims,
+                    prim_object: geometry.prim_object,
+                    wide: geometry.wide,
+                    normals: geometry.normals,
+                    uvs: geometry.uvs,
+                    bounds: geometry.bounds,
+                    object_material,
+                    object_from_group,
+                });
+                let p = prototypes.len() as u32 - 1;
+                prototype_of.insert(leaf.group, p);
+                p
+            }
+        };
+        // Objects that name no material take the default one (each such
+        // object's index is it) unless the placement gives one.
+        let default = (group.objects.iter())
+            .zip(&group.unmaterialled)
+            .find(|(_, &u)| u)
+            .map_or(0, |(o, _)| o.material);
+        let placement = Placement::new(
+            prototype,
+            Affine3A::from_mat4(leaf.transform.as_mat4()),
+            leaf.velocity.as_vec3(),
+            leaf.material.unwrap_or(default) as u32,
+            leaf.span,
+        );
+        let bounds = placement.world_bounds(prototypes[prototype as usize].bounds, shutter);
+        if !within_domain(bounds, glam::Vec3::ZERO, (0.0, 0.0)) {
+            diags.push(
+                Diagnostic::error(
+                    codes::OUT_OF_RANGE,
+                    format!(
+                        "this instance reaches beyond ±{} after its transforms and motion",
+                        crate::check::domain::number(crate::check::domain::MAX_MAGNITUDE)
+                    ),
+                    leaf.span,
+                )
+                .with_label("coordinates beyond the renderer's range")
+                .with_help("the renderer computes in 32-bit floats; check the instance's transforms and velocity"),
+            );
+            continue;
+        }
+        boxes.push(bounds);
+        placements.push(placement);
+    }
+    if diags.has_errors() {
+        return Err(diags);
+    }
+    // The tree numbers placements in its leaves' order.
+    let mut bvh = Bvh::build(&boxes, &|_| false);
+    placements = (bvh.order.iter())
+        .map(|&i| placements[i as usize].clone())
+        .collect();
+    bvh.order = (0..placements.len() as u32).collect();
+    let mut tree = Bvh4::from_binary(&bvh);
+    tree.pack_triangles(|_| None);
+    Ok(Instances {
+        prototypes,
+        placements,
+        tree,
+    })
+}
+
+/// The bounds of every placement over the shutter.
+pub fn bounds(instances: &Instances, shutter: (f32, f32)) -> Aabb {
+    (instances.placements.iter())
+        .map(|p| p.world_bounds(instances.prototypes[p.prototype as usize].bounds, shutter))
+        .fold(Aabb::EMPTY, Aabb::union)
 }

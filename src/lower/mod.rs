@@ -25,6 +25,7 @@ use crate::geometry::shape::Shape;
 use crate::geometry::texcoord;
 use crate::geometry::torus::Torus;
 use crate::geometry::Aabb;
+use crate::ir::instance::Instances;
 use crate::ir::settings::Settings;
 use crate::ir::{Prim, Scene};
 use crate::light::environment::EnvironmentMap;
@@ -130,14 +131,11 @@ pub fn lower(
     cache: &mut LowerCache,
     warnings: &mut Diagnostics,
 ) -> Result<Scene, Diagnostics> {
-    let flat;
-    let scene = match instances::flatten(scene) {
-        Some(s) => {
-            flat = s;
-            &flat
-        }
-        None => scene,
-    };
+    // Placements of groups placed once become the scene's objects; the
+    // others share their group's prototype.
+    let original = scene;
+    let split = instances::split(original);
+    let scene = split.scene.as_ref().unwrap_or(original);
     let mut settings = scene.render.settings.clone();
     adjust(&mut settings);
     let (mut textures, mut diags) = (Vec::new(), Diagnostics::new());
@@ -158,10 +156,21 @@ pub fn lower(
         return Err(diags);
     }
     let materials = (materials, textures);
+    let placed = match split.shared.is_empty() {
+        true => Instances::default(),
+        false => instances::build(original, &split.shared, cache)?,
+    };
     if cache.is_one_off() {
         let geometry = build_geometry(scene, cache)?;
         warn_missing_texcoords(scene, &geometry, warnings);
-        return Ok(finish(scene, settings, materials, geometry, environment));
+        return Ok(finish(
+            scene,
+            settings,
+            materials,
+            geometry,
+            environment,
+            placed,
+        ));
     }
     let key = cache.geometry_key(scene);
     // Shared, not copied: materials and lights live outside the geometry.
@@ -174,7 +183,14 @@ pub fn lower(
         }
     };
     warn_missing_texcoords(scene, &geometry, warnings);
-    Ok(finish(scene, settings, materials, geometry, environment))
+    Ok(finish(
+        scene,
+        settings,
+        materials,
+        geometry,
+        environment,
+        placed,
+    ))
 }
 
 /// Warns about each mesh without texture coordinates whose material has
@@ -245,6 +261,16 @@ pub struct Geometry {
 }
 
 fn build_geometry(scene: &check::Scene, cache: &mut LowerCache) -> Result<Geometry, Diagnostics> {
+    build_objects(&scene.objects, scene.camera.shutter, cache)
+}
+
+/// The primitives and BVH of `objects` (the scene's, or a group's in the
+/// group's frame) over the shutter interval.
+fn build_objects(
+    objects: &[check::Object],
+    (t0, t1): (f64, f64),
+    cache: &mut LowerCache,
+) -> Result<Geometry, Diagnostics> {
     let mut diags = Diagnostics::new();
     let mut prims = Collected::default();
     let mut normals: Vec<[Vec3; 3]> = Vec::new();
@@ -254,8 +280,8 @@ fn build_geometry(scene: &check::Scene, cache: &mut LowerCache) -> Result<Geomet
     let mut out_of_range: Option<usize> = None;
     let mut too_small: Option<usize> = None;
     let mut meshes_without_uvs = Vec::new();
-    let shutter = (scene.camera.shutter.0 as f32, scene.camera.shutter.1 as f32);
-    for (o, obj) in scene.objects.iter().enumerate() {
+    let shutter = (t0 as f32, t1 as f32);
+    for (o, obj) in objects.iter().enumerate() {
         let m = obj.transform;
         let pt = |p: DVec3| v3(m.transform_point3(p));
         let vec = |v: DVec3| v3(m.transform_vector3(v));
@@ -506,7 +532,7 @@ fn build_geometry(scene: &check::Scene, cache: &mut LowerCache) -> Result<Geomet
                     "this object reaches beyond ±{} after its transforms and motion",
                     domain::number(MAX_MAGNITUDE)
                 ),
-                scene.objects[o].span,
+                objects[o].span,
             )
             .with_label(format!("coordinates beyond ±{}", domain::number(MAX_MAGNITUDE)))
             .with_help("the renderer computes in 32-bit floats; check the sizes, transforms and velocity (times the shutter) for overflow"),
@@ -517,7 +543,7 @@ fn build_geometry(scene: &check::Scene, cache: &mut LowerCache) -> Result<Geomet
             Diagnostic::error(
                 codes::DEGENERATE,
                 "this object is too small for the renderer's 32-bit floats",
-                scene.objects[o].span,
+                objects[o].span,
             )
             .with_label("its area rounds to zero")
             .with_help(format!(
@@ -529,8 +555,6 @@ fn build_geometry(scene: &check::Scene, cache: &mut LowerCache) -> Result<Geomet
     if diags.has_errors() {
         return Err(diags);
     }
-    let (t0, t1) = scene.camera.shutter;
-    let shutter = (t0 as f32, t1 as f32);
     let n = prims.len();
     let boxes: Vec<Aabb> = (0..n as u32).map(|i| prims.bounds(i, shutter)).collect();
     let mut bvh = Bvh::build(&boxes, &|i| prims.packable(i));
@@ -584,6 +608,7 @@ fn finish(
     (materials, textures): (Vec<Material>, Vec<Texture>),
     geometry: Geometry,
     environment: Option<Arc<EnvironmentMap>>,
+    placed: Instances,
 ) -> Scene {
     let object_spans = scene.objects.iter().map(|o| o.span).collect();
     let object_material: Vec<u32> = scene.objects.iter().map(|o| o.material as u32).collect();
@@ -663,7 +688,10 @@ fn finish(
     });
 
     let camera = lower_camera(&scene.camera, settings.width, settings.height);
+    let shutter = (scene.camera.shutter.0 as f32, scene.camera.shutter.1 as f32);
+    let bounds = bounds.union(instances::bounds(&placed, shutter));
     let mut ir = Scene {
+        instances: Arc::new(placed),
         settings,
         camera,
         prims,

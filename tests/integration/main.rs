@@ -8,6 +8,7 @@ mod environment;
 mod examples;
 mod golden;
 mod hostile;
+mod instances;
 mod layering;
 mod materials;
 mod mitsuba;

@@ -1,0 +1,231 @@
+//! Groups and instances: a scene written with groups placed by instances
+//! renders the image of the same scene written out flat (each object with
+//! its placements' transforms appended to its own, and the placement's
+//! material where it names none), within the float noise of transforming
+//! rays instead of geometry.
+
+use proptest::prelude::*;
+use ptsc::compile::{compile_str, Options};
+use ptsc::integrator;
+use ptsc::render::render;
+use std::path::Path;
+use std::sync::atomic::AtomicBool;
+
+/// The pixels of `text` rendered on one thread.
+fn pixels(text: &str) -> Vec<[f32; 3]> {
+    let c = compile_str(Path::new("instances.pts"), text, Options::default());
+    let ir =
+        c.ir.unwrap_or_else(|| panic!("{}\n{text}", c.diagnostics.render_human(&c.sources, false)));
+    let integ = integrator::make(ir.settings.integrator);
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build()
+        .unwrap();
+    let cancel = AtomicBool::new(false);
+    let r = pool.install(|| render(&ir, integ.as_ref(), &cancel, &|_| {}, &mut |_, _| {}));
+    r.film.pixels().iter().map(|p| p.to_array()).collect()
+}
+
+/// Whether the scene shares geometry (at least one prototype).
+fn shares(text: &str) -> bool {
+    let c = compile_str(Path::new("instances.pts"), text, Options::default());
+    !c.ir.expect("compiles").instances.is_empty()
+}
+
+const HEAD: &str = "render { resolution <48, 36> samples 16 max_depth 4 }\n\
+    camera { position <0, 4, 9> look_at <0, 0.5, 0> }\n\
+    material red { diffuse rgb <0.8, 0.2, 0.2> }\n\
+    material tiles { diffuse checker { even rgb 0.9 odd rgb 0.1 scale 0.3 } }\n\
+    plane { normal <0, 1, 0> material { diffuse rgb 0.5 } }\n\
+    quad { corner <-2, 5, -2> edge1 <4, 0, 0> edge2 <0, 0, 4> material { emission rgb 4 } }\n\
+    background rgb 0.2\n";
+
+/// The parts of the groups: (shape with its own transforms, material entry).
+const PARTS: &[&str] = &[
+    "sphere { center <0, 0.5, 0> radius 0.4 }",
+    "box { min <-0.3, 0, -0.3> max <0.3, 0.6, 0.3> rotate <0, 20, 0> material tiles }",
+    "cylinder { base <0, 0, 0> top <0, 1, 0> radius 0.2 translate <0.5, 0, 0> }",
+    "cone { base <0, 0, 0> top <0, 0.8, 0> base_radius 0.3 top_radius 0.05 material red }",
+    "torus { major_radius 0.4 minor_radius 0.1 rotate <90, 0, 0> translate <0, 0.5, 0> }",
+    "triangle { v0 <-0.5, 0, 0> v1 <0.5, 0, 0> v2 <0, 0.9, 0.2> material tiles }",
+    "disk { center <0, 0.8, 0> normal <0, 1, 0.3> radius 0.3 }",
+];
+
+/// A placement: translate, rotate about y, uniform scale, material.
+type Place = ([f64; 2], f64, f64, Option<&'static str>);
+
+/// The grouped and the flat text of two groups (the second placing the
+/// first at `inner`) placed at `outer` and `places`.
+fn scenes(
+    parts_a: &[usize],
+    parts_b: &[usize],
+    inner: Place,
+    places: &[Place],
+) -> (String, String) {
+    let transforms = |(t, r, s, _): Place| {
+        format!(
+            "scale {s} rotate <0, {r}, 0> translate <{}, 0, {}>",
+            t[0], t[1]
+        )
+    };
+    let material = |m: Option<&str>| m.map_or(String::new(), |m| format!(" material {m}"));
+    let mut grouped = HEAD.to_string();
+    grouped += "group a {\n";
+    for &k in parts_a {
+        grouped += &format!("    {}\n", PARTS[k]);
+    }
+    grouped += "}\ngroup b {\n";
+    for &k in parts_b {
+        grouped += &format!("    {}\n", PARTS[k]);
+    }
+    grouped += &format!(
+        "    instance a {{ {}{} }}\n}}\n",
+        transforms(inner),
+        material(inner.3)
+    );
+    for &p in places {
+        grouped += &format!("instance b {{ {}{} }}\n", transforms(p), material(p.3));
+        grouped += &format!("instance a {{ {}{} }}\n", transforms(p), material(p.3));
+    }
+    // Flat: each part with the transforms of its placements after its own
+    // (innermost first), and the nearest placement's material if it has none.
+    let mut flat = HEAD.to_string();
+    let write = |flat: &mut String, part: &str, chain: &[Place]| {
+        let body = part.trim_end_matches('}').trim_end();
+        let has_material = part.contains("material");
+        let mut extra = String::new();
+        for &p in chain {
+            extra += &format!(" {}", transforms(p));
+        }
+        let inherited = chain.iter().find_map(|p| p.3).filter(|_| !has_material);
+        *flat += &format!("{body}{extra}{} }}\n", material(inherited));
+    };
+    for &p in places {
+        for &k in parts_b {
+            write(&mut flat, PARTS[k], &[p]);
+        }
+        for &k in parts_a {
+            write(&mut flat, PARTS[k], &[inner, p]);
+        }
+        for &k in parts_a {
+            write(&mut flat, PARTS[k], &[p]);
+        }
+    }
+    (grouped, flat)
+}
+
+/// Compares two renders of the same scene: the same image up to the paths
+/// that float rounding sends another way.
+fn assert_same_image(a: &[[f32; 3]], b: &[[f32; 3]], what: &str) {
+    let mean =
+        |p: &[[f32; 3]]| p.iter().flatten().map(|&x| x as f64).sum::<f64>() / (3 * p.len()) as f64;
+    let (ma, mb) = (mean(a), mean(b));
+    assert!(
+        (ma - mb).abs() <= 0.01 * ma.max(1e-3),
+        "{what}: means {ma} vs {mb}"
+    );
+    let differing = a
+        .iter()
+        .zip(b)
+        .filter(|(x, y)| {
+            x.iter()
+                .zip(y.iter())
+                .any(|(u, v)| (u - v).abs() > 1e-3 * (1.0 + u.abs()))
+        })
+        .count();
+    assert!(
+        differing * 50 <= a.len(),
+        "{what}: {differing} of {} pixels differ",
+        a.len()
+    );
+}
+
+fn place() -> impl Strategy<Value = Place> {
+    (
+        (-2.5f64..2.5, -2.0f64..1.5),
+        -180f64..180.0,
+        0.5f64..1.5,
+        prop::option::of(prop::sample::select(vec!["red", "tiles"])),
+    )
+        .prop_map(|((x, z), r, s, m)| {
+            (
+                [(x * 100.0).round() / 100.0, (z * 100.0).round() / 100.0],
+                r.round(),
+                (s * 100.0).round() / 100.0,
+                m,
+            )
+        })
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 6, ..ProptestConfig::default() })]
+    #[test]
+    fn grouped_and_flat_scenes_render_the_same_image(
+        parts_a in prop::sample::subsequence((0..PARTS.len()).collect::<Vec<_>>(), 1..4),
+        parts_b in prop::sample::subsequence((0..PARTS.len()).collect::<Vec<_>>(), 1..3),
+        inner in place(),
+        places in prop::collection::vec(place(), 2..4),
+    ) {
+        let (grouped, flat) = scenes(&parts_a, &parts_b, inner, &places);
+        prop_assert!(shares(&grouped), "the groups are placed several times: shared");
+        assert_same_image(&pixels(&grouped), &pixels(&flat), &grouped);
+    }
+}
+
+/// Four placements of a mesh against the mesh written out four times; a
+/// moving placement against a moving object.
+#[test]
+fn placed_meshes_and_moving_placements_match_their_flat_scenes() {
+    let dir = crate::temp_dir_with(&[(
+        "tet.obj",
+        "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nvt 0 0\nvt 1 0\nvt 0 1\nvn 0 0 -1\nvn 0 -1 0\nvn -1 0 0\nvn 1 1 1\n\
+         f 1/1/1 3/3/1 2/2/1\nf 1/1/2 2/2/2 4/3/2\nf 1/1/3 4/3/3 3/2/3\nf 2/1/4 3/2/4 4/3/4\n",
+    )]);
+    let path = dir.path().join("s.pts");
+    let head = "render { resolution <40, 30> samples 16 }\ncamera { position <0, 2, 6> look_at <0, 0.5, 0> shutter <0, 1> }\n\
+                background rgb 1\nplane { normal <0, 1, 0> }\n";
+    let placements = [
+        "translate <-1.5, 0, 0>",
+        "rotate <0, 45, 0> translate <0, 0, -1>",
+        "scale 0.5 translate <1.5, 0, 0>",
+        "translate <0, 1, 1> velocity <0.3, 0, 0>",
+    ];
+    let mut grouped = format!("{head}group t {{ mesh {{ file \"tet.obj\" smooth true material {{ diffuse image {{ file \"none\" }} }} }} }}\n");
+    grouped = grouped.replace(" material { diffuse image { file \"none\" } }", "");
+    let mut flat = head.to_string();
+    for p in placements {
+        let (transform, velocity) = match p.split_once(" velocity ") {
+            Some((t, v)) => (t, format!(" velocity {v}")),
+            None => (p, String::new()),
+        };
+        grouped += &format!("instance t {{ {p} }}\n");
+        flat += &format!("mesh {{ file \"tet.obj\" smooth true {transform}{velocity} }}\n");
+    }
+    let render_at = |text: &str| {
+        std::fs::write(&path, text).unwrap();
+        let c = ptsc::compile::compile_file(&path, Options::default()).unwrap();
+        let ir =
+            c.ir.unwrap_or_else(|| panic!("{}", c.diagnostics.render_human(&c.sources, false)));
+        let shared = !ir.instances.is_empty();
+        let integ = integrator::make(ir.settings.integrator);
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(1)
+            .build()
+            .unwrap();
+        let cancel = AtomicBool::new(false);
+        let r = pool.install(|| render(&ir, integ.as_ref(), &cancel, &|_| {}, &mut |_, _| {}));
+        (
+            shared,
+            r.film
+                .pixels()
+                .iter()
+                .map(|p| p.to_array())
+                .collect::<Vec<_>>(),
+        )
+    };
+    let (shared, a) = render_at(&grouped);
+    assert!(shared);
+    let (flat_shared, b) = render_at(&flat);
+    assert!(!flat_shared);
+    assert_same_image(&a, &b, "meshes");
+}

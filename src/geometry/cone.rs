@@ -36,7 +36,9 @@ impl Cone {
     }
 
     /// The closest hit in `(t_min, t_max)`, from outside or inside.
-    #[inline]
+    // Out of line: inlined into every primitive test's dispatch it cost
+    // scenes without cones registers (docs/performance.md, "Instancing").
+    #[inline(never)]
     pub fn intersect(&self, ray: &Ray, t_min: f32, t_max: f32) -> Option<ShapeHit> {
         let a = self.axis.as_dvec3();
         let o = ray.o.as_dvec3() - self.base.as_dvec3();

@@ -28,6 +28,7 @@ pub struct Torus {
 
 impl Torus {
     /// The closest hit in `(t_min, t_max)`, from outside or inside the tube.
+    #[inline(never)]
     pub fn intersect(&self, ray: &Ray, t_min: f32, t_max: f32) -> Option<ShapeHit> {
         let (big, small) = (self.major as f64, self.minor as f64);
         let a = self.axis.as_dvec3();

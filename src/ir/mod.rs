@@ -205,10 +205,20 @@ impl Scene {
     /// primitives, then the placements of groups (if any).
     #[inline(always)]
     pub fn intersect(&self, ray: &Ray, t_min: f32, t_max: f32) -> Option<Hit> {
-        let own = self.intersect_own(ray, t_min, t_max);
+        // The flat path as before placements existed, its hit built in
+        // place; a scene with placements goes out of line (choosing between
+        // two hits here cost scenes without placements 1.4 % of their
+        // instructions).
         if self.instances.is_empty() {
-            return own;
+            return self.intersect_own(ray, t_min, t_max);
         }
+        self.intersect_placed(ray, t_min, t_max)
+    }
+
+    /// [`Scene::intersect`] in a scene with placements.
+    #[inline(never)]
+    fn intersect_placed(&self, ray: &Ray, t_min: f32, t_max: f32) -> Option<Hit> {
+        let own = self.intersect_own(ray, t_min, t_max);
         let t_max = own.map_or(t_max, |h| h.t);
         self.instances.closest(ray, t_min, t_max).or(own)
     }

@@ -200,13 +200,13 @@ pub const CATALOGUE: &[Entry] = &[
     Entry {
         code: UNKNOWN_FUNCTION,
         title: "A function that does not exist",
-        explanation: "The name before `(` is not one of the built-in functions: `sin`, `cos`, `tan`, `sqrt`, `pow`, `abs`, `min`, `max`, `radians`, `degrees`, `normalize`, `length`, `dot`, `cross` (see docs/language.md).",
+        explanation: "The name before `(` is neither a function declared before it with `fn name(x) = …;` nor one of the built-in functions: `sin`, `cos`, `tan`, `asin`, `acos`, `atan2`, `sqrt`, `pow`, `exp`, `log`, `abs`, `min`, `max`, `clamp`, `floor`, `ceil`, `round`, `radians`, `degrees`, `normalize`, `length`, `dot`, `cross`, `len`, `str`, `rand` (see docs/language.md). The help suggests a similar name when there is one.",
         example: "let x = sine(1);",
     },
     Entry {
         code: WRONG_ARGUMENT_COUNT,
         title: "A call with the wrong number of arguments",
-        explanation: "A built-in function was called with more or fewer arguments than it takes.",
+        explanation: "A function (built-in or declared with `fn`) was called with more or fewer arguments than it takes.",
         example: "let m = max(1);",
     },
     Entry {

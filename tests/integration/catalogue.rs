@@ -159,3 +159,21 @@ fn explain_prints_every_code() {
     assert_eq!(out.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&out.stderr).contains("did you mean `unknown_param`?"));
 }
+
+/// Every `pts` block of the language reference parses (its examples are
+/// fragments of scenes, so they are only parsed, not checked): as
+/// statements, or as the entries of an object's block.
+#[test]
+fn language_reference_examples_parse() {
+    let text = std::fs::read_to_string(crate::root().join("docs/language.md")).unwrap();
+    let mut blocks = 0;
+    for (k, block) in text.split("```pts\n").skip(1).enumerate() {
+        let code = block.split("```").next().unwrap();
+        let parse = |text: &str| ptsc::syntax::parse(ptsc::source::FileId(0), text);
+        if let (Err(d), Err(_)) = (parse(code), parse(&format!("sphere {{ {code} }}"))) {
+            panic!("block {k} of docs/language.md does not parse: {d:?}\n{code}");
+        }
+        blocks += 1;
+    }
+    assert!(blocks >= 3, "{blocks} pts blocks");
+}

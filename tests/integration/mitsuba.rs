@@ -297,6 +297,14 @@ fn mitsuba_reference_area_sizes() {
 /// lights (run with `--ignored --nocapture`; the figures are in
 /// docs/performance.md, "Light selection").
 #[test]
+// Open cylinders (Mitsuba's `cylinder` has no caps) and a group placed three
+// times, turned and scaled (`shapegroup` + `instance`): shared geometry in
+// ptsc too. scripts/mitsuba_composition.py writes the same scene for Mitsuba.
+fn mitsuba_reference_composition() {
+    check_scene("composition");
+}
+
+#[test]
 #[ignore]
 fn light_selection_rules_against_mitsuba() {
     for name in [

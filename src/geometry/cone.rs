@@ -66,6 +66,7 @@ impl Cone {
 
     /// The point of the surface nearest `p` (a hit point moved onto the
     /// surface: its height kept, its distance from the axis made exact).
+    #[inline(never)]
     pub fn project(&self, p: Vec3) -> Vec3 {
         let d = (p - self.base).as_dvec3();
         let a = self.axis.as_dvec3();
@@ -80,6 +81,7 @@ impl Cone {
     }
 
     /// The outward unit normal at the surface point `p`.
+    #[inline(never)]
     pub fn normal_at(&self, p: Vec3) -> Vec3 {
         let d: DVec3 = (p - self.base).as_dvec3();
         let a = self.axis.as_dvec3();
@@ -99,6 +101,7 @@ impl Cone {
     }
 
     /// The lateral area: π (r0 + r1) × the slant height.
+    #[inline(never)]
     pub fn area(&self) -> f32 {
         let dr = self.r1 - self.r0;
         std::f32::consts::PI * (self.r0 + self.r1) * (self.height * self.height + dr * dr).sqrt()

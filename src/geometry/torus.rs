@@ -78,6 +78,7 @@ impl Torus {
     }
 
     /// The point of the surface nearest `p`.
+    #[inline(never)]
     pub fn project(&self, p: Vec3) -> Vec3 {
         let q = self.ring_point(p);
         match (p - q).try_normalize() {
@@ -87,11 +88,13 @@ impl Torus {
     }
 
     /// The outward unit normal at the surface point `p`.
+    #[inline(never)]
     pub fn normal_at(&self, p: Vec3) -> Vec3 {
         (p - self.ring_point(p)).normalize_or(self.axis)
     }
 
     /// The area, 4π² R r.
+    #[inline(never)]
     pub fn area(&self) -> f32 {
         TAU * TAU * self.major * self.minor
     }

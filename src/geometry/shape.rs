@@ -135,8 +135,20 @@ impl Shape {
                 radius,
             } => disk::intersect(center, normal, radius, ray, t_min, t_max),
             Shape::Plane { point, normal } => plane::intersect(point, normal, ray, t_min, t_max),
-            Shape::Cone(ref c) => c.intersect(ray, t_min, t_max),
-            Shape::Torus(ref t) => t.intersect(ray, t_min, t_max),
+            Shape::Cone(_) | Shape::Torus(_) => self.intersect_curved(ray, t_min, t_max),
+        }
+    }
+
+    /// [`Shape::intersect`] for cones and tori: one cold call out of the
+    /// dispatch, so that the common shapes' code around it keeps its
+    /// registers.
+    #[cold]
+    #[inline(never)]
+    fn intersect_curved(&self, ray: &Ray, t_min: f32, t_max: f32) -> Option<ShapeHit> {
+        match self {
+            Shape::Cone(c) => c.intersect(ray, t_min, t_max),
+            Shape::Torus(t) => t.intersect(ray, t_min, t_max),
+            _ => None,
         }
     }
 

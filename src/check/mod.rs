@@ -443,14 +443,7 @@ impl Checker {
             &mut self.env,
             &mut self.diags,
         );
-        let material_entries: Vec<(&MaterialRef, Span)> = block
-            .entries
-            .iter()
-            .filter_map(|e| match e {
-                Entry::Material { material, span } => Some((material, *span)),
-                _ => None,
-            })
-            .collect();
+        let material_entries = material_entries(block);
         let transform = objects::transform(&p, &mut self.diags);
         let velocity = objects::velocity(&p);
         let material = if material_entries.is_empty() {
@@ -1030,14 +1023,7 @@ impl Checker {
             &mut self.env,
             &mut self.diags,
         );
-        let material_entries: Vec<(&MaterialRef, Span)> = block
-            .entries
-            .iter()
-            .filter_map(|e| match e {
-                Entry::Material { material, span } => Some((material, *span)),
-                _ => None,
-            })
-            .collect();
+        let material_entries = material_entries(block);
         if !kind.is_shape() {
             for (_, s) in &material_entries {
                 self.diags.push(
@@ -1201,6 +1187,16 @@ impl Checker {
             }
         }
     }
+}
+
+/// The `material` entries of a block, with where each is written.
+fn material_entries(block: &crate::syntax::ast::Block) -> Vec<(&MaterialRef, Span)> {
+    (block.entries.iter())
+        .filter_map(|e| match e {
+            Entry::Material { material, span } => Some((material, *span)),
+            _ => None,
+        })
+        .collect()
 }
 
 /// The error for a statement that a group cannot hold, written at `span`

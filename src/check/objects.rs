@@ -276,22 +276,12 @@ pub fn shape(
                 );
                 return None;
             }
-            let open = r.boolean("open", false);
-            if kind == BlockKind::Cylinder {
-                Shape::Cylinder {
-                    base,
-                    top,
-                    radius: base_radius,
-                    open,
-                }
-            } else {
-                Shape::Cone {
-                    base,
-                    top,
-                    base_radius,
-                    top_radius,
-                    open,
-                }
+            Shape::Cone {
+                base,
+                top,
+                base_radius,
+                top_radius,
+                open: r.boolean("open", false),
             }
         }
         BlockKind::Torus => {

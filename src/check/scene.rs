@@ -306,18 +306,8 @@ pub enum Shape {
         /// Maximum corner.
         max: DVec3,
     },
-    /// A cylinder from the centre of its base to the centre of its top.
-    Cylinder {
-        /// Centre of the base.
-        base: DVec3,
-        /// Centre of the top.
-        top: DVec3,
-        /// Radius.
-        radius: f64,
-        /// Without the two end disks.
-        open: bool,
-    },
-    /// A cone, or a truncated cone, from its base to its top.
+    /// A cone, a truncated cone or (equal radii) a cylinder, from the
+    /// centre of its base to the centre of its top.
     Cone {
         /// Centre of the base.
         base: DVec3,
@@ -351,6 +341,25 @@ pub enum Shape {
         /// Interpolate vertex normals when the file has them.
         smooth: bool,
     },
+}
+
+impl Shape {
+    /// The shape's name if it is stored exactly by centres, axes and
+    /// radii, and so keeps its kind only under similarity transforms.
+    pub fn round_kind(&self) -> Option<&'static str> {
+        Some(match self {
+            Shape::Sphere { .. } => "sphere",
+            Shape::Disk { .. } => "disk",
+            Shape::Cone {
+                base_radius,
+                top_radius,
+                ..
+            } if base_radius == top_radius => "cylinder",
+            Shape::Cone { .. } => "cone",
+            Shape::Torus { .. } => "torus",
+            _ => return None,
+        })
+    }
 }
 
 /// An object: a shape with a material, a transform and optional motion.

@@ -138,16 +138,6 @@ impl LowerCache {
                 } => points(&[*corner, *edge1, *edge2], &mut h),
                 check::Shape::Triangle { v } => points(v, &mut h),
                 check::Shape::Box { min, max } => points(&[*min, *max], &mut h),
-                check::Shape::Cylinder {
-                    base,
-                    top,
-                    radius,
-                    open,
-                } => {
-                    points(&[*base, *top], &mut h);
-                    number(*radius, &mut h);
-                    open.hash(&mut h);
-                }
                 check::Shape::Cone {
                     base,
                     top,

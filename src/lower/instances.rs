@@ -132,18 +132,6 @@ pub fn split(scene: &check::Scene) -> Split {
     }
 }
 
-/// Whether the shape keeps its kind only under similarity transforms.
-fn round(shape: &check::Shape) -> Option<&'static str> {
-    Some(match shape {
-        check::Shape::Sphere { .. } => "sphere",
-        check::Shape::Disk { .. } => "disk",
-        check::Shape::Cylinder { .. } => "cylinder",
-        check::Shape::Cone { .. } => "cone",
-        check::Shape::Torus { .. } => "torus",
-        _ => return None,
-    })
-}
-
 /// The prototypes of the shared groups and their placements, with the BVH
 /// over the placements.
 pub fn build(
@@ -162,7 +150,7 @@ pub fn build(
         // Round shapes take similarity transforms only, placed or not (the
         // flat scene could not hold an ellipsoid either).
         for object in &group.objects {
-            if let Some(what) = round(&object.shape) {
+            if let Some(what) = object.shape.round_kind() {
                 if uniform_scale(&(leaf.transform * object.transform)).is_none() {
                     diags.push(
                         non_uniform(object.span, what).with_secondary(leaf.span, "placed here"),

@@ -160,26 +160,18 @@ pub fn lower(
         true => Instances::default(),
         false => instances::build(original, &split.shared, cache)?,
     };
-    if cache.is_one_off() {
-        let geometry = build_geometry(scene, cache)?;
-        warn_missing_texcoords(scene, &geometry, warnings);
-        return Ok(finish(
-            scene,
-            settings,
-            materials,
-            geometry,
-            environment,
-            placed,
-        ));
-    }
-    let key = cache.geometry_key(scene);
-    // Shared, not copied: materials and lights live outside the geometry.
-    let geometry = match cache.reuse_geometry(key) {
-        Some(g) => g,
-        None => {
-            let g = build_geometry(scene, cache)?;
-            cache.store_geometry(key, &g);
-            g
+    let geometry = if cache.is_one_off() {
+        build_geometry(scene, cache)?
+    } else {
+        let key = cache.geometry_key(scene);
+        // Shared, not copied: materials and lights live outside the geometry.
+        match cache.reuse_geometry(key) {
+            Some(g) => g,
+            None => {
+                let g = build_geometry(scene, cache)?;
+                cache.store_geometry(key, &g);
+                g
+            }
         }
     };
     warn_missing_texcoords(scene, &geometry, warnings);
@@ -306,15 +298,6 @@ fn build_objects(
                 }),
                 None => diags.push(non_uniform(obj.span, "sphere")),
             },
-            check::Shape::Cylinder {
-                base,
-                top,
-                radius,
-                open,
-            } => match uniform_scale(&m) {
-                Some(s) => round_solid(pt(*base), pt(*top), [radius * s; 2], *open, &mut push),
-                None => diags.push(non_uniform(obj.span, "cylinder")),
-            },
             check::Shape::Cone {
                 base,
                 top,
@@ -329,7 +312,10 @@ fn build_objects(
                     *open,
                     &mut push,
                 ),
-                None => diags.push(non_uniform(obj.span, "cone")),
+                None => diags.push(non_uniform(
+                    obj.span,
+                    obj.shape.round_kind().unwrap_or("cone"),
+                )),
             },
             check::Shape::Torus {
                 center,

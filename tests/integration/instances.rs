@@ -16,13 +16,18 @@ fn pixels(text: &str) -> Vec<[f32; 3]> {
     let c = compile_str(Path::new("instances.pts"), text, Options::default());
     let ir =
         c.ir.unwrap_or_else(|| panic!("{}\n{text}", c.diagnostics.render_human(&c.sources, false)));
+    render_pixels(&ir)
+}
+
+/// The pixels of a compiled scene rendered on one thread.
+fn render_pixels(ir: &ptsc::ir::Scene) -> Vec<[f32; 3]> {
     let integ = integrator::make(ir.settings.integrator);
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(1)
         .build()
         .unwrap();
     let cancel = AtomicBool::new(false);
-    let r = pool.install(|| render(&ir, integ.as_ref(), &cancel, &|_| {}, &mut |_, _| {}));
+    let r = pool.install(|| render(ir, integ.as_ref(), &cancel, &|_| {}, &mut |_, _| {}));
     r.film.pixels().iter().map(|p| p.to_array()).collect()
 }
 
@@ -115,15 +120,22 @@ fn scenes(
 }
 
 /// Compares two renders of the same scene: the same image up to the paths
-/// that float rounding sends another way.
+/// that float rounding sends another way (a bounce that grazes a torus in
+/// one and misses it in the other changes its pixel by a sample's worth).
 fn assert_same_image(a: &[[f32; 3]], b: &[[f32; 3]], what: &str) {
-    let mean =
-        |p: &[[f32; 3]]| p.iter().flatten().map(|&x| x as f64).sum::<f64>() / (3 * p.len()) as f64;
-    let (ma, mb) = (mean(a), mean(b));
-    assert!(
-        (ma - mb).abs() <= 0.01 * ma.max(1e-3),
-        "{what}: means {ma} vs {mb}"
-    );
+    let (d, diff) = image_difference(a, b);
+    eprintln!("relative MAE {d:.5}, {diff} of {} pixels differ", a.len());
+    assert_images(a, b, what);
+}
+
+/// The mean absolute difference of two images over the first's mean, and
+/// how many pixels differ at all.
+fn image_difference(a: &[[f32; 3]], b: &[[f32; 3]]) -> (f64, usize) {
+    let total: f64 = a.iter().flatten().map(|&x| x.abs() as f64).sum();
+    let abs: f64 = (a.iter().flatten())
+        .zip(b.iter().flatten())
+        .map(|(x, y)| (x - y).abs() as f64)
+        .sum();
     let differing = a
         .iter()
         .zip(b)
@@ -133,9 +145,25 @@ fn assert_same_image(a: &[[f32; 3]], b: &[[f32; 3]], what: &str) {
                 .any(|(u, v)| (u - v).abs() > 1e-3 * (1.0 + u.abs()))
         })
         .count();
+    (abs / total.max(1e-9), differing)
+}
+
+fn assert_images(a: &[[f32; 3]], b: &[[f32; 3]], what: &str) {
+    let mean =
+        |p: &[[f32; 3]]| p.iter().flatten().map(|&x| x as f64).sum::<f64>() / (3 * p.len()) as f64;
+    let (ma, mb) = (mean(a), mean(b));
     assert!(
-        differing * 50 <= a.len(),
-        "{what}: {differing} of {} pixels differ",
+        (ma - mb).abs() <= 0.01 * ma.max(1e-3),
+        "{what}: means {ma} vs {mb}"
+    );
+    // Most cases are identical to the last bit; a surface lying on a
+    // texture's cell boundary costs a few tenths of a percent (0.22 % in
+    // the worst case found). Normals left in the group's frame cost 0.6 %
+    // to 5.6 % (checked by breaking them).
+    let (mae, differing) = image_difference(a, b);
+    assert!(
+        mae <= 0.004,
+        "{what}: relative MAE {mae:.5} ({differing} of {} pixels differ)",
         a.len()
     );
 }
@@ -206,22 +234,7 @@ fn placed_meshes_and_moving_placements_match_their_flat_scenes() {
         let c = ptsc::compile::compile_file(&path, Options::default()).unwrap();
         let ir =
             c.ir.unwrap_or_else(|| panic!("{}", c.diagnostics.render_human(&c.sources, false)));
-        let shared = !ir.instances.is_empty();
-        let integ = integrator::make(ir.settings.integrator);
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(1)
-            .build()
-            .unwrap();
-        let cancel = AtomicBool::new(false);
-        let r = pool.install(|| render(&ir, integ.as_ref(), &cancel, &|_| {}, &mut |_, _| {}));
-        (
-            shared,
-            r.film
-                .pixels()
-                .iter()
-                .map(|p| p.to_array())
-                .collect::<Vec<_>>(),
-        )
+        (!ir.instances.is_empty(), render_pixels(&ir))
     };
     let (shared, a) = render_at(&grouped);
     assert!(shared);
@@ -293,4 +306,24 @@ fn four_placed_blobs_match_four_blobs() {
     }
     assert!(shares(&grouped));
     assert_same_image(&pixels(&grouped), &pixels(&flat), "blobs");
+}
+
+/// A case the property test found: the box's faces at x = ±0.3 in its own
+/// frame lie exactly on the boundaries of its checker's cells (0.3 wide),
+/// so float rounding picks a cell's colour per sample there, differently
+/// for a transformed ray and for transformed geometry (73 pixels of 1,728,
+/// relative MAE 0.21 %; without the box the images are identical).
+#[test]
+fn grazing_placements_match_their_flat_scene() {
+    let (grouped, flat) = scenes(
+        &[1, 4, 5],
+        &[3],
+        ([2.25, 1.5], 147.0, 1.27, None),
+        &[
+            ([-1.1, 1.36], -77.0, 1.2, None),
+            ([1.35, 0.21], 119.0, 1.43, None),
+            ([-0.27, 0.02], 32.0, 1.36, None),
+        ],
+    );
+    assert_same_image(&pixels(&grouped), &pixels(&flat), &grouped);
 }

@@ -327,3 +327,24 @@ fn grazing_placements_match_their_flat_scene() {
     );
     assert_same_image(&pixels(&grouped), &pixels(&flat), &grouped);
 }
+
+/// An emissive shape in a group is a light at every placement: the
+/// placements with it become the scene's own primitives (two lights), and
+/// the image is the flat scene's.
+#[test]
+fn emissive_parts_of_groups_are_lights_at_every_placement() {
+    let head = "render { resolution <32, 24> samples 8 }\ncamera { position <0, 2, 6> look_at <0, 0.5, 0> }\n\
+                plane { normal <0, 1, 0> }\n";
+    let lamp = "sphere { center <0, 1.5, 0> radius 0.1 material { emission rgb 40 } } box { min <-0.2, 0, -0.2> max <0.2, 1.3, 0.2> }";
+    let grouped = format!(
+        "{head}group lamp {{ {lamp} }}\ninstance lamp {{ translate <-1, 0, 0> }}\ninstance lamp {{ translate <1, 0, 0> }}\n"
+    );
+    let flat = format!(
+        "{head}sphere {{ center <-1, 1.5, 0> radius 0.1 material {{ emission rgb 40 }} }} box {{ min <-1.2, 0, -0.2> max <-0.8, 1.3, 0.2> }}\n\
+         sphere {{ center <1, 1.5, 0> radius 0.1 material {{ emission rgb 40 }} }} box {{ min <0.8, 0, -0.2> max <1.2, 1.3, 0.2> }}\n"
+    );
+    let c = compile_str(Path::new("lamps.pts"), &grouped, Options::default());
+    let ir = c.ir.expect("compiles");
+    assert_eq!(ir.area_lights.len(), 2, "one light per placement");
+    assert_same_image(&pixels(&grouped), &pixels(&flat), "lamps");
+}

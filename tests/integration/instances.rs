@@ -40,15 +40,15 @@ fn shares(text: &str) -> bool {
 const HEAD: &str = "render { resolution <48, 36> samples 16 max_depth 4 }\n\
     camera { position <0, 4, 9> look_at <0, 0.5, 0> }\n\
     material red { diffuse rgb <0.8, 0.2, 0.2> }\n\
-    material tiles { diffuse checker { even rgb 0.9 odd rgb 0.1 scale 0.3 } }\n\
-    plane { normal <0, 1, 0> material { diffuse rgb 0.5 } }\n\
+    material tiles { diffuse checker { even rgb 0.9 odd rgb 0.1 scale 0.27 } }\n\
+    plane { point <0, -0.001, 0> normal <0, 1, 0> material { diffuse rgb 0.5 } }\n\
     quad { corner <-2, 5, -2> edge1 <4, 0, 0> edge2 <0, 0, 4> material { emission rgb 4 } }\n\
     background rgb 0.2\n";
 
 /// The parts of the groups: (shape with its own transforms, material entry).
 const PARTS: &[&str] = &[
     "sphere { center <0, 0.5, 0> radius 0.4 }",
-    "box { min <-0.3, 0, -0.3> max <0.3, 0.6, 0.3> rotate <0, 20, 0> material tiles }",
+    "box { min <-0.3, 0.01, -0.3> max <0.3, 0.6, 0.3> rotate <0, 20, 0> material tiles }",
     "cylinder { base <0, 0, 0> top <0, 1, 0> radius 0.2 translate <0.5, 0, 0> }",
     "cone { base <0, 0, 0> top <0, 0.8, 0> base_radius 0.3 top_radius 0.05 material red }",
     "torus { major_radius 0.4 minor_radius 0.1 rotate <90, 0, 0> translate <0, 0.5, 0> }",
@@ -156,10 +156,10 @@ fn assert_images(a: &[[f32; 3]], b: &[[f32; 3]], what: &str) {
         (ma - mb).abs() <= 0.01 * ma.max(1e-3),
         "{what}: means {ma} vs {mb}"
     );
-    // Most cases are identical to the last bit; a surface lying on a
-    // texture's cell boundary costs a few tenths of a percent (0.22 % in
-    // the worst case found). Normals left in the group's frame cost 0.6 %
-    // to 5.6 % (checked by breaking them).
+    // Most cases are identical to the last bit; surfaces that meet exactly
+    // cost a few tenths of a percent (0.24 % in the worst case found, see
+    // below). Normals left in the group's frame cost 0.6 % to 5.6 %
+    // (checked by breaking them).
     let (mae, differing) = image_difference(a, b);
     assert!(
         mae <= 0.004,
@@ -308,11 +308,11 @@ fn four_placed_blobs_match_four_blobs() {
     assert_same_image(&pixels(&grouped), &pixels(&flat), "blobs");
 }
 
-/// A case the property test found: the box's faces at x = ±0.3 in its own
-/// frame lie exactly on the boundaries of its checker's cells (0.3 wide),
-/// so float rounding picks a cell's colour per sample there, differently
-/// for a transformed ray and for transformed geometry (73 pixels of 1,728,
-/// relative MAE 0.21 %; without the box the images are identical).
+/// A case the property test found while the box stood on y = 0, where the
+/// triangle's edge and the torus's lowest point also lie: where surfaces
+/// of a group meet exactly, float rounding decides which is hit,
+/// differently for a transformed ray and for transformed geometry (71
+/// pixels of 1,728, relative MAE 0.24 %; with the box 0.01 higher, none).
 #[test]
 fn grazing_placements_match_their_flat_scene() {
     let (grouped, flat) = scenes(

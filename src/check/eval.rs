@@ -570,21 +570,26 @@ impl Env {
         if n <= MAX_ITEMS && self.items <= 2 * MAX_ITEMS as u64 {
             return true;
         }
-        diags.push(
-            Diagnostic::error(
-                codes::VALUE_TOO_LARGE,
-                format!(
-                    "lists hold at most {} items, and all lists and strings of a scene together {}",
-                    super::group_digits(MAX_ITEMS as u64),
-                    super::group_digits(2 * MAX_ITEMS as u64)
-                ),
-                span,
-            )
-            .with_label(format!("this is {}", v.type_name()))
-            .with_help("large generated data belongs in a mesh file"),
-        );
+        diags.push(too_large(format!("this is {}", v.type_name()), span));
         false
     }
+}
+
+/// The error for a list or string past its bound ([`MAX_ITEMS`],
+/// [`MAX_STRING`], the items of all lists together), labelled `label`.
+fn too_large(label: String, span: Span) -> Diagnostic {
+    Diagnostic::error(
+        codes::VALUE_TOO_LARGE,
+        format!(
+            "lists hold at most {} items, all lists and strings of a scene together {}, a string {} bytes",
+            super::group_digits(MAX_ITEMS as u64),
+            super::group_digits(2 * MAX_ITEMS as u64),
+            super::group_digits(MAX_STRING as u64)
+        ),
+        span,
+    )
+    .with_label(label)
+    .with_help("large generated data belongs in a mesh file; strings name files and words")
 }
 
 /// Calls the user function `f` with `args` (evaluated here, in the
@@ -840,15 +845,8 @@ fn binary(op: BinOp, a: Value, b: Value, at: Operands, diags: &mut Diagnostics) 
         }
         (BinOp::Add, Str(x), Str(y)) => {
             if x.len() + y.len() > MAX_STRING {
-                diags.push(
-                    Diagnostic::error(
-                        codes::VALUE_TOO_LARGE,
-                        format!("strings hold at most {MAX_STRING} bytes"),
-                        a_span.join(b_span),
-                    )
-                    .with_label(format!("{} bytes", x.len() + y.len()))
-                    .with_help("strings name files and words; build shorter ones"),
-                );
+                let n = x.len() + y.len();
+                diags.push(too_large(format!("{n} bytes"), a_span.join(b_span)));
                 return None;
             }
             return Some(Str(format!("{x}{y}")));
@@ -869,18 +867,8 @@ fn binary(op: BinOp, a: Value, b: Value, at: Operands, diags: &mut Diagnostics) 
             // Counted against the items of all lists by the caller's
             // `new_list`; here only the length of one list is bounded.
             if x.len() + y.len() > MAX_ITEMS {
-                diags.push(
-                    Diagnostic::error(
-                        codes::VALUE_TOO_LARGE,
-                        format!(
-                            "lists hold at most {} items",
-                            super::group_digits(MAX_ITEMS as u64)
-                        ),
-                        a_span.join(b_span),
-                    )
-                    .with_label(format!("{} items", x.len() + y.len()))
-                    .with_help("large generated data belongs in a mesh file"),
-                );
+                let n = x.len() + y.len();
+                diags.push(too_large(format!("a list of {n}"), a_span.join(b_span)));
                 return None;
             }
             return Some(List(Arc::new(x.iter().chain(y.iter()).cloned().collect())));

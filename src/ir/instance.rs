@@ -17,7 +17,6 @@ use super::{Hit, Prim};
 use crate::accel::bvh4::{Bvh4, TreeHit};
 use crate::geometry::shape::Shape;
 use crate::geometry::{Aabb, Ray};
-use crate::span::Span;
 use glam::{Affine3A, Mat3, Vec2, Vec3};
 use std::sync::Arc;
 
@@ -97,13 +96,11 @@ pub struct Placement {
     pub velocity: Vec3,
     /// The material of the group's objects that name none.
     pub material: u32,
-    /// Where the (outermost) instance is written.
-    pub span: Span,
 }
 
 impl Placement {
     /// A placement of `prototype` by the group → world transform `m`.
-    pub fn new(prototype: u32, m: Affine3A, velocity: Vec3, material: u32, span: Span) -> Self {
+    pub fn new(prototype: u32, m: Affine3A, velocity: Vec3, material: u32) -> Self {
         Placement {
             prototype,
             world_from_group: m,
@@ -111,7 +108,6 @@ impl Placement {
             normal_to_world: m.matrix3.inverse().transpose().into(),
             velocity,
             material,
-            span,
         }
     }
 

@@ -195,12 +195,6 @@ impl Scene {
         self.area_lights.binary_search(&prim).ok().map(|i| i as u32)
     }
 
-    /// The ray moved into the frame of a (possibly moving) primitive.
-    #[inline]
-    fn local_ray(prim: &Prim, ray: &Ray) -> Ray {
-        instance::local_ray(prim, ray)
-    }
-
     /// The closest hit along `ray` beyond `t_min`: the scene's own
     /// primitives, then the placements of groups (if any).
     #[inline(always)]
@@ -237,12 +231,12 @@ impl Scene {
         ray_count::closest();
         let mut best = self.wide.closest(ray, t_min, t_max, |i, tmax| {
             let p = &self.prims[i as usize];
-            p.shape.intersect(&Self::local_ray(p, ray), t_min, tmax)
+            p.shape.intersect(&instance::local_ray(p, ray), t_min, tmax)
         });
         for &i in self.unbounded.iter() {
             let p = &self.prims[i as usize];
             let tmax = best.map_or(t_max, |b| b.hit.t);
-            if let Some(hit) = p.shape.intersect(&Self::local_ray(p, ray), t_min, tmax) {
+            if let Some(hit) = p.shape.intersect(&instance::local_ray(p, ray), t_min, tmax) {
                 best = Some(TreeHit {
                     prim: i,
                     hit,
@@ -270,7 +264,7 @@ impl Scene {
             }
             None => &self.prims[i as usize],
         };
-        let local = Self::local_ray(prim, ray);
+        let local = instance::local_ray(prim, ray);
         let p_local = prim.shape.surface_point(&local, &hit);
         let n_geo = prim.shape.normal_at(p_local);
         let mut n_shading = n_geo;
@@ -302,12 +296,12 @@ impl Scene {
         self.wide.any(ray, t_min, t_max, |i, tmax| {
             let p = &self.prims[i as usize];
             p.shape
-                .intersect(&Self::local_ray(p, ray), t_min, tmax)
+                .intersect(&instance::local_ray(p, ray), t_min, tmax)
                 .is_some()
         }) || self.unbounded.iter().any(|&i| {
             let p = &self.prims[i as usize];
             p.shape
-                .intersect(&Self::local_ray(p, ray), t_min, t_max)
+                .intersect(&instance::local_ray(p, ray), t_min, t_max)
                 .is_some()
         }) || (!self.instances.is_empty() && self.instances.any(ray, t_min, t_max))
     }

@@ -207,7 +207,6 @@ pub fn build(
             Affine3A::from_mat4(leaf.transform.as_mat4()),
             leaf.velocity.as_vec3(),
             leaf.material.unwrap_or(default) as u32,
-            leaf.span,
         );
         let bounds = placement.world_bounds(prototypes[prototype as usize].bounds, shutter);
         if !within_domain(bounds, glam::Vec3::ZERO, (0.0, 0.0)) {

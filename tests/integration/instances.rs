@@ -13,10 +13,16 @@ use std::sync::atomic::AtomicBool;
 
 /// The pixels of `text` rendered on one thread.
 fn pixels(text: &str) -> Vec<[f32; 3]> {
+    placed_pixels(text).1
+}
+
+/// Whether the scene `text` shares geometry (at least one prototype), and
+/// its pixels rendered on one thread: one compile for both.
+fn placed_pixels(text: &str) -> (bool, Vec<[f32; 3]>) {
     let c = compile_str(Path::new("instances.pts"), text, Options::default());
     let ir =
         c.ir.unwrap_or_else(|| panic!("{}\n{text}", c.diagnostics.render_human(&c.sources, false)));
-    render_pixels(&ir)
+    (!ir.instances.is_empty(), render_pixels(&ir))
 }
 
 /// The pixels of a compiled scene rendered on one thread.
@@ -29,12 +35,6 @@ fn render_pixels(ir: &ptsc::ir::Scene) -> Vec<[f32; 3]> {
     let cancel = AtomicBool::new(false);
     let r = pool.install(|| render(ir, integ.as_ref(), &cancel, &|_| {}, &mut |_, _| {}));
     r.film.pixels().iter().map(|p| p.to_array()).collect()
-}
-
-/// Whether the scene shares geometry (at least one prototype).
-fn shares(text: &str) -> bool {
-    let c = compile_str(Path::new("instances.pts"), text, Options::default());
-    !c.ir.expect("compiles").instances.is_empty()
 }
 
 const HEAD: &str = "render { resolution <48, 36> samples 16 max_depth 4 }\n\
@@ -195,8 +195,9 @@ proptest! {
         places in prop::collection::vec(place(), 2..4),
     ) {
         let (grouped, flat) = scenes(&parts_a, &parts_b, inner, &places);
-        prop_assert!(shares(&grouped), "the groups are placed several times: shared");
-        assert_same_image(&pixels(&grouped), &pixels(&flat), &grouped);
+        let (shared, grouped_pixels) = placed_pixels(&grouped);
+        prop_assert!(shared, "the groups are placed several times: shared");
+        assert_same_image(&grouped_pixels, &pixels(&flat), &grouped);
     }
 }
 
@@ -304,8 +305,9 @@ fn four_placed_blobs_match_four_blobs() {
         grouped += &format!("instance b {{ {p} }}\n");
         flat += &format!("mesh {{ file blob {p} }}\n");
     }
-    assert!(shares(&grouped));
-    assert_same_image(&pixels(&grouped), &pixels(&flat), "blobs");
+    let (shared, grouped_pixels) = placed_pixels(&grouped);
+    assert!(shared);
+    assert_same_image(&grouped_pixels, &pixels(&flat), "blobs");
 }
 
 /// A case the property test found while the box stood on y = 0, where the

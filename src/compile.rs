@@ -10,7 +10,7 @@
 //!        Compiled { sources, diagnostics (one list), ir, dependencies, output }
 //! ```
 
-use crate::check::{self, MAX_LOOP_STATEMENTS};
+use crate::check::{self, Animation, MAX_LOOP_STATEMENTS};
 use crate::diag::Diagnostics;
 use crate::ir::settings::Settings;
 use crate::lower::cache::LowerCache;
@@ -32,6 +32,11 @@ pub struct Options<'a> {
     /// The statements loops may run in all (a fuzzer keeps its inputs fast
     /// with a small budget; the rules are the same).
     pub loop_statements: u64,
+    /// The frame of an animation to compile (`frame` and `clock` in the
+    /// scene).
+    pub animation: Animation,
+    /// Whether to compute the scene's fingerprint (render states need it).
+    pub fingerprint: bool,
 }
 
 impl Default for Options<'_> {
@@ -42,6 +47,8 @@ impl Default for Options<'_> {
             adjust: &|_| {},
             cache: None,
             loop_statements: MAX_LOOP_STATEMENTS,
+            animation: Animation::default(),
+            fingerprint: false,
         }
     }
 }
@@ -62,6 +69,9 @@ pub struct Compiled {
     pub dependencies: Vec<PathBuf>,
     /// The image the scene's `render { output … }` names, if it does.
     pub output: Option<PathBuf>,
+    /// The scene's fingerprint ([`crate::lower::fingerprint`]), when asked
+    /// for and the scene checked.
+    pub fingerprint: Option<u64>,
     /// Seconds spent reading and checking.
     pub check_seconds: f64,
     /// Seconds spent lowering (mesh reading, BVH build).
@@ -95,7 +105,8 @@ pub fn compile_str(path: &Path, text: &str, options: Options) -> Compiled {
 }
 
 fn compile_from(path: &Path, bytes: Vec<u8>, options: Options, start: Instant) -> Compiled {
-    let checked = check::check_bytes_within(path, bytes, options.loop_statements);
+    let checked =
+        check::check_bytes_within(path, bytes, options.loop_statements, options.animation);
     let check_seconds = start.elapsed().as_secs_f64();
     let mut dependencies: Vec<PathBuf> = checked
         .sources
@@ -109,6 +120,7 @@ fn compile_from(path: &Path, bytes: Vec<u8>, options: Options, start: Instant) -
         ir: None,
         dependencies: Vec::new(),
         output: None,
+        fingerprint: None,
         check_seconds,
         lower_seconds: 0.0,
     };
@@ -116,6 +128,9 @@ fn compile_from(path: &Path, bytes: Vec<u8>, options: Options, start: Instant) -
         let (meshes, output) = crate::lower::named_files(&scene);
         dependencies.extend(meshes);
         compiled.output = output;
+        if options.fingerprint {
+            compiled.fingerprint = Some(crate::lower::fingerprint(&scene));
+        }
         if options.lower {
             let mut one_off = LowerCache::one_off();
             let cache = options.cache.unwrap_or(&mut one_off);

@@ -10,10 +10,7 @@ use crate::syntax::ast::BlockKind;
 use glam::DVec3;
 use std::path::Path;
 
-/// The largest image side accepted.
-pub const MAX_SIDE: f64 = 16384.0;
-/// The largest image area accepted, so a film always fits in memory.
-pub const MAX_PIXELS: f64 = 8192.0 * 8192.0;
+pub use crate::ir::settings::{MAX_PIXELS, MAX_SIDE};
 
 /// A whole-number setting and its range: the scene's `render { }` block
 /// and the command line's overrides check it by the same rule.

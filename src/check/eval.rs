@@ -105,6 +105,9 @@ pub struct Env {
     /// Declared textures (`texture name kind { … }`), with the span of
     /// each one's name.
     pub textures: HashMap<String, (super::scene::Texture, Span)>,
+    /// Names every scene sees unless it binds them itself (`frame`,
+    /// `clock`).
+    pub predefined: Vec<(&'static str, Value)>,
 }
 
 impl Env {
@@ -154,7 +157,10 @@ impl Env {
 
     /// Looks a name up, innermost first, marking it used.
     pub fn lookup(&mut self, name: &str) -> Option<Option<Value>> {
-        let b = self.visible().find_map(|f| f.get(name))?;
+        let Some(b) = self.visible().find_map(|f| f.get(name)) else {
+            let predefined = self.predefined.iter().find(|(n, _)| *n == name);
+            return predefined.map(|(_, v)| Some(v.clone()));
+        };
         let (decl, value) = (b.decl, b.value.clone());
         self.used.insert(decl);
         Some(value)
@@ -165,6 +171,7 @@ impl Env {
         (self.visible().flat_map(|f| f.keys()))
             .chain(self.textures.keys())
             .cloned()
+            .chain(self.predefined.iter().map(|(n, _)| n.to_string()))
             .collect()
     }
 }

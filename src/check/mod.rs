@@ -52,6 +52,18 @@ pub const MAX_PLACED_OBJECTS: u64 = 4_000_000;
 /// Deepest chain of includes.
 pub const MAX_INCLUDE_DEPTH: usize = 32;
 
+/// Where in an animation a scene is compiled: the values of the predefined
+/// names `frame` (the frame's number) and `clock` (0 at the animation's
+/// first frame to 1 at its last, as POV-Ray's). A still image is frame 0 at
+/// clock 0.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Animation {
+    /// The frame's number.
+    pub frame: u32,
+    /// Where the frame lies in the animation, 0 to 1.
+    pub clock: f64,
+}
+
 /// The result of compiling a scene file up to the checked scene.
 #[derive(Debug)]
 pub struct Checked {
@@ -87,13 +99,23 @@ pub fn read_scene_file(path: &Path) -> std::io::Result<Vec<u8>> {
 /// Checks a scene given as bytes, as if read from `path` (includes are
 /// resolved relative to it).
 pub fn check_bytes(path: &Path, bytes: Vec<u8>) -> Checked {
-    check_bytes_within(path, bytes, MAX_LOOP_STATEMENTS)
+    check_bytes_within(path, bytes, MAX_LOOP_STATEMENTS, Animation::default())
 }
 
 /// [`check_bytes`] with another budget of loop statements (a fuzzer keeps
-/// its inputs fast with a small one; the rules are the same).
-pub fn check_bytes_within(path: &Path, bytes: Vec<u8>, loop_statements: u64) -> Checked {
+/// its inputs fast with a small one; the rules are the same), at a frame of
+/// an animation.
+pub fn check_bytes_within(
+    path: &Path,
+    bytes: Vec<u8>,
+    loop_statements: u64,
+    animation: Animation,
+) -> Checked {
     let mut c = Checker::new(loop_statements);
+    c.env.predefined = vec![
+        ("frame", Value::Num(animation.frame as f64)),
+        ("clock", Value::Num(animation.clock)),
+    ];
     let (text, bad_utf8) = decode(bytes);
     let id = c.sources.add(path, text);
     if let Some(at) = bad_utf8 {

@@ -1,6 +1,7 @@
-//! The command line: `ptsc check`, `ptsc render`, `ptsc watch`.
+//! The command line: `ptsc check`, `ptsc render`, `ptsc merge`, `ptsc watch`.
 
 mod check;
+mod farm;
 mod render;
 mod signals;
 mod watch;
@@ -70,8 +71,17 @@ pub enum Command {
         #[arg(short, long)]
         quiet: bool,
     },
-    /// Render a scene to an image.
-    Render(render::RenderArgs),
+    /// Render a scene to an image (or a pass of it, or frames).
+    Render {
+        /// What to render.
+        #[command(flatten)]
+        args: render::RenderArgs,
+        /// Long renders and farms: state, resume, passes.
+        #[command(flatten)]
+        farm: farm::FarmArgs,
+    },
+    /// Add up the passes of a render made with `ptsc render --pass K/N`.
+    Merge(farm::MergeArgs),
     /// Re-render a scene every time it (or an included file or mesh) is saved.
     Watch(render::RenderArgs),
     /// Explain a diagnostic code: what it means, an example (as `rustc --explain`).
@@ -100,7 +110,8 @@ pub fn run() -> ExitCode {
             format,
             quiet,
         } => check::run(&file, format, Verbosity::from_flags(quiet, false)),
-        Command::Render(args) => render::run(&args),
+        Command::Render { args, farm } => render::run(&args, &farm),
+        Command::Merge(args) => farm::merge(&args),
         Command::Watch(args) => watch::run(&args),
         Command::Explain { code, all } => explain(code.as_deref(), all),
     };

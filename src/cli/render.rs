@@ -1,11 +1,16 @@
 //! `ptsc render FILE`: check, lower, render with progress, write atomically.
 
+use super::farm::{self, FarmArgs};
 use super::signals::Signals;
 use super::{check::report, Format, Verbosity, EXIT_OK, EXIT_SCENE_ERROR, EXIT_USAGE};
+use crate::check::Animation;
 use crate::compile::{compile_file, Compiled, Options};
 use crate::ir::settings::{IntegratorKind, LightSelection, Settings};
 use crate::lower::cache::LowerCache;
+use crate::render::film::Film;
+use crate::render::state::{self, Pass, StateInfo};
 use std::path::{Path, PathBuf};
+use std::sync::atomic::Ordering;
 use std::time::{Duration, Instant};
 
 /// Least time between two preview writes of a render's image.
@@ -37,6 +42,14 @@ pub struct RenderArgs {
     /// How shadow rays choose their light: auto, bvh, exhaustive, power or uniform.
     #[arg(long, value_parser = parse_light_selection)]
     pub light_selection: Option<LightSelection>,
+    /// Render only this frame of an animation (`frame` in the scene; with
+    /// --frames, `clock` runs from 0 at its first frame to 1 at its last).
+    #[arg(long, value_name = "F", value_parser = parse_frame)]
+    pub frame: Option<u32>,
+    /// The animation's frames, e.g. 1..240: each is rendered in turn (or
+    /// only --frame's); name the images with a # pattern (frame_####.png).
+    #[arg(long, value_name = "A..B", value_parser = parse_frames)]
+    pub frames: Option<(u32, u32)>,
     /// Only errors: no warnings, progress or figures.
     #[arg(short, long, conflicts_with = "verbose")]
     pub quiet: bool,
@@ -50,6 +63,54 @@ impl RenderArgs {
     pub fn verbosity(&self) -> Verbosity {
         Verbosity::from_flags(self.quiet, self.verbose)
     }
+
+    /// The frames to render, each with its `frame` and `clock`: --frame's
+    /// alone, else every frame of --frames, else frame 0 at clock 0.
+    pub fn animations(&self) -> Result<Vec<Animation>, String> {
+        let (a, b) = self.frames.unwrap_or_else(|| {
+            let f = self.frame.unwrap_or(0);
+            (f, f)
+        });
+        let at = |frame: u32| Animation {
+            frame,
+            clock: if b > a {
+                (frame - a) as f64 / (b - a) as f64
+            } else {
+                0.0
+            },
+        };
+        match self.frame {
+            Some(f) if !(a..=b).contains(&f) => {
+                Err(format!("--frame {f} is not one of --frames {a}..{b}"))
+            }
+            Some(f) => Ok(vec![at(f)]),
+            None => Ok((a..=b).map(at).collect()),
+        }
+    }
+}
+
+/// The most frames one `--frames` range holds.
+pub const MAX_FRAMES: u32 = 1_000_000;
+
+fn parse_frame(s: &str) -> Result<u32, String> {
+    let setting = crate::check::WholeSetting {
+        name: "frame",
+        min: 0,
+        max: 99_999_999,
+    };
+    setting.parse(s).map(|n| n as u32)
+}
+
+fn parse_frames(s: &str) -> Result<(u32, u32), String> {
+    let (a, b) = s.split_once("..").ok_or("expected A..B, e.g. 1..240")?;
+    let (a, b) = (parse_frame(a.trim())?, parse_frame(b.trim())?);
+    if a > b {
+        return Err(format!("the first frame ({a}) comes after the last ({b})"));
+    }
+    if b - a >= MAX_FRAMES {
+        return Err(format!("at most {MAX_FRAMES} frames at once"));
+    }
+    Ok((a, b))
 }
 
 /// The most worker threads `--threads` starts.
@@ -131,24 +192,61 @@ pub fn apply_overrides(settings: &mut Settings, args: &RenderArgs) {
     }
 }
 
-/// Compiles the scene with the command line's overrides.
-pub fn compile(args: &RenderArgs, cache: Option<&mut LowerCache>) -> std::io::Result<Compiled> {
+/// Compiles the scene at a frame with the command line's overrides (and
+/// its fingerprint, for a render's state, when `fingerprint`).
+pub fn compile(
+    args: &RenderArgs,
+    cache: Option<&mut LowerCache>,
+    animation: Animation,
+    fingerprint: bool,
+) -> std::io::Result<Compiled> {
     compile_file(
         &args.file,
         Options {
             adjust: &|s| apply_overrides(s, args),
             cache,
+            animation,
+            fingerprint,
             ..Options::default()
         },
     )
 }
 
-/// The output image: `-o`, else the scene's `output`, else FILE with `.png`.
-pub fn output_path(args: &RenderArgs, scene_output: Option<&Path>) -> PathBuf {
-    args.output
+/// The output image: `-o`, else the scene's `output`, else FILE with `.png`;
+/// each run of `#` in it becomes the frame's number, zero-padded to the
+/// run's length (`frame_####.png` → `frame_0012.png`).
+pub fn output_path(args: &RenderArgs, scene_output: Option<&Path>, frame: u32) -> PathBuf {
+    let path = args
+        .output
         .clone()
         .or_else(|| scene_output.map(Path::to_path_buf))
-        .unwrap_or_else(|| args.file.with_extension("png"))
+        .unwrap_or_else(|| args.file.with_extension("png"));
+    match path.to_str() {
+        Some(text) if text.contains('#') => PathBuf::from(number_frame(text, frame)),
+        _ => path,
+    }
+}
+
+/// Replaces each run of `#` with `frame`, zero-padded to the run's length.
+fn number_frame(pattern: &str, frame: u32) -> String {
+    let mut out = String::with_capacity(pattern.len() + 8);
+    let mut run = 0;
+    let flush = |out: &mut String, run: &mut usize| {
+        if *run > 0 {
+            out.push_str(&format!("{frame:0width$}", width = *run));
+            *run = 0;
+        }
+    };
+    for c in pattern.chars() {
+        if c == '#' {
+            run += 1;
+        } else {
+            flush(&mut out, &mut run);
+            out.push(c);
+        }
+    }
+    flush(&mut out, &mut run);
+    out
 }
 
 /// Why the image cannot be written at `output`, found before rendering: an
@@ -173,7 +271,7 @@ pub fn check_output(output: &Path, dependencies: &[PathBuf]) -> Result<(), Strin
 }
 
 /// Runs `render`; returns the exit code.
-pub fn run(args: &RenderArgs) -> u8 {
+pub fn run(args: &RenderArgs, farm: &FarmArgs) -> u8 {
     let pool = match rayon::ThreadPoolBuilder::new()
         .num_threads(args.threads.unwrap_or(0))
         .build()
@@ -186,13 +284,48 @@ pub fn run(args: &RenderArgs) -> u8 {
     };
     // Every parallel stage (parsing, the BVH build, the render) keeps to
     // `--threads`.
-    pool.install(|| run_on_pool(args))
+    pool.install(|| render_frames(args, farm))
 }
 
-fn run_on_pool(args: &RenderArgs) -> u8 {
+/// Renders each frame asked for in turn; stops at the first that fails or
+/// is interrupted.
+fn render_frames(args: &RenderArgs, farm: &FarmArgs) -> u8 {
+    let animations = match args.animations() {
+        Ok(a) => a,
+        Err(why) => {
+            eprintln!("error: {why}");
+            return EXIT_USAGE;
+        }
+    };
+    // Ctrl-C or SIGTERM: stop within a few samples and write every sample
+    // done, and the state; a second one ends the process at once.
+    let signals = Signals::install();
+    let mut written: Vec<(u32, PathBuf)> = Vec::new();
+    for animation in animations {
+        if signals.stopped() {
+            return signals.exit_code();
+        }
+        let code = render_frame(args, farm, animation, &signals, &mut written);
+        if code != EXIT_OK {
+            return code;
+        }
+    }
+    EXIT_OK
+}
+
+/// Renders one frame: compile, start from nothing or from the saved state,
+/// render with checkpoints, write the image (and the state where kept).
+/// `written` lists the frames rendered so far and their images.
+fn render_frame(
+    args: &RenderArgs,
+    farm: &FarmArgs,
+    animation: Animation,
+    signals: &Signals,
+    written: &mut Vec<(u32, PathBuf)>,
+) -> u8 {
     let verbosity = args.verbosity();
     let t0 = Instant::now();
-    let compiled = match compile(args, None) {
+    let compiled = match compile(args, None, animation, true) {
         Ok(c) => c,
         Err(e) => {
             eprintln!("error: cannot read {}: {e}", args.file.display());
@@ -208,11 +341,60 @@ fn run_on_pool(args: &RenderArgs) -> u8 {
     let Some(ir) = compiled.ir else {
         return EXIT_SCENE_ERROR;
     };
-    let output = output_path(args, compiled.output.as_deref());
+    let output = output_path(args, compiled.output.as_deref(), animation.frame);
+    if let Some((other, _)) = written.iter().find(|(_, p)| *p == output) {
+        eprintln!(
+            "error: frames {other} and {} would both write {}: name the images with a # pattern (-o frame_####.png)",
+            animation.frame,
+            output.display()
+        );
+        return EXIT_USAGE;
+    }
     if let Err(why) = check_output(&output, &compiled.dependencies) {
         eprintln!("error: cannot write {}: {why}", output.display());
         return EXIT_USAGE;
     }
+    let s = &ir.settings;
+    if let Some(pass) = farm.pass {
+        if crate::output::ImageFormat::of(&output) != Some(crate::output::ImageFormat::Exr) {
+            eprintln!(
+                "error: --pass {pass} writes a part file for `ptsc merge`: name an .exr output (-o part_{}.exr)",
+                pass.k
+            );
+            return EXIT_USAGE;
+        }
+        if pass.n > s.samples {
+            eprintln!(
+                "error: --pass {pass}: {} parts of {} samples per pixel would leave some empty; split into at most {} (or raise --spp)",
+                pass.n, s.samples, s.samples
+            );
+            return EXIT_USAGE;
+        }
+    }
+    let now = StateInfo {
+        ptsc: env!("CARGO_PKG_VERSION").to_string(),
+        scene: (args.file.file_name()).map_or_else(
+            || args.file.display().to_string(),
+            |n| n.to_string_lossy().into(),
+        ),
+        fingerprint: compiled.fingerprint.unwrap_or_default(),
+        settings: state::sample_settings(s),
+        samples: s.samples,
+        pass: farm.pass.unwrap_or(Pass::WHOLE),
+        exposure: s.exposure,
+    };
+    let state_path = farm::state_path(&output, farm.pass);
+    let start = match farm::start(&state_path, &now, (s.width, s.height), farm) {
+        Ok(start) => start,
+        Err(why) => {
+            eprintln!("error: {why}");
+            return EXIT_USAGE;
+        }
+    };
+    if let (Some(note), true) = (&start.note, verbosity != Verbosity::Quiet) {
+        eprintln!("{note}");
+    }
+    written.push((animation.frame, output.clone()));
     let load_s = t0.elapsed().as_secs_f64();
     if verbosity == Verbosity::Verbose {
         eprintln!(
@@ -223,50 +405,102 @@ fn run_on_pool(args: &RenderArgs) -> u8 {
             ir.lights.len()
         );
     }
-    // Ctrl-C or SIGTERM: stop within a few samples and write every sample
-    // done; a second one ends the process at once.
-    let signals = Signals::install();
-    let s = &ir.settings;
-    let total = s.width as u64 * s.height as u64 * s.samples as u64;
+    let target = now.pass.range(s.samples).len() as u32;
+    let samples_in = |film: &Film| film.count.iter().map(|&n| n as u64).sum::<u64>();
+    let samples_before = samples_in(&start.film);
+    let total = s.width as u64 * s.height as u64 * target as u64;
     let bar = progress_bar(total, verbosity);
+    bar.set_position(samples_before);
     let integrator = crate::integrator::make(s.integrator);
     let t1 = Instant::now();
     let exposure = s.exposure;
     let mut write_error = None;
     let mut last_write = Instant::now();
     let mut last_pass = Instant::now();
-    let crate::render::Rendered {
-        film,
-        outcome,
-        rays,
-    } = crate::render::render(
-        &ir,
-        integrator.as_ref(),
-        &signals.stop,
-        &|done| bar.set_position(done),
-        &mut |film, spp| {
-            bar.set_message(format!("{spp} spp"));
-            if verbosity == Verbosity::Verbose {
-                bar.suspend(|| {
-                    eprintln!(
-                        "pass to {spp} spp in {:.2} s",
-                        last_pass.elapsed().as_secs_f64()
-                    )
-                });
-                last_pass = Instant::now();
+    // A part file is written whole (image and state) at every write.
+    let write_image = |film: &Film| match farm.pass {
+        Some(_) => state::write_state(&output, film, &now),
+        None => film.write(&output, exposure),
+    };
+    let mut on_pass = |film: &Film, spp: u32| {
+        bar.set_message(format!("{spp} spp"));
+        if verbosity == Verbosity::Verbose {
+            bar.suspend(|| {
+                eprintln!(
+                    "pass to {spp} spp in {:.2} s",
+                    last_pass.elapsed().as_secs_f64()
+                )
+            });
+            last_pass = Instant::now();
+        }
+        // A long render replaces its image with the passes so far,
+        // a preview that refines. The final image is written once,
+        // below; writes in between are spaced (a ZIP-compressed EXR
+        // of a 512×512 render takes about 60 ms, time the render loses).
+        if spp < target && last_write.elapsed() >= PREVIEW_INTERVAL {
+            if let Err(e) = write_image(film) {
+                write_error = Some(e);
             }
-            // A long render replaces its image with the passes so far,
-            // a preview that refines. The final image is written once,
-            // below; writes in between are spaced (a ZIP-compressed EXR
-            // of a 512×512 render takes about 60 ms, time the render loses).
-            if spp < s.samples && last_write.elapsed() >= PREVIEW_INTERVAL {
-                if let Err(e) = film.write(&output, exposure) {
-                    write_error = Some(e);
+            last_write = Instant::now();
+        }
+    };
+    // Checkpoints: every `--checkpoint` seconds the render pauses, its
+    // state and image are saved, and it goes on from them (the same
+    // samples in the same order: the image is the uninterrupted one's).
+    let every = (farm.checkpoint > 0).then(|| Duration::from_secs(farm.checkpoint));
+    let mut keep_state = farm.keep_state || start.had_state;
+    let mut film = start.film;
+    let mut rays = crate::accel::ray_count::RayCounts::default();
+    let mut interrupted = false;
+    loop {
+        let deadline = every.map(|d| Instant::now() + d);
+        let offset = samples_in(&film);
+        let rendered = crate::render::render_from(
+            &ir,
+            integrator.as_ref(),
+            film,
+            target,
+            &signals.interrupt,
+            &|done| {
+                bar.set_position(offset + done);
+                if deadline.is_some_and(|d| Instant::now() >= d) {
+                    signals.interrupt.store(true, Ordering::Relaxed);
                 }
-                last_write = Instant::now();
-            }
-        },
-    );
+            },
+            &mut on_pass,
+        );
+        film = rendered.film;
+        rays = rays + rendered.rays;
+        if rendered.outcome == crate::render::Outcome::Complete {
+            break;
+        }
+        if signals.stopped() {
+            interrupted = true;
+            break;
+        }
+        signals.interrupt.store(false, Ordering::Relaxed);
+        let saved = write_image(&film).and_then(|()| match farm.pass {
+            Some(_) => Ok(()),
+            None => state::write_state(&state_path, &film, &now),
+        });
+        if let Err(e) = saved {
+            bar.finish_and_clear();
+            eprintln!(
+                "error: cannot save the state at {}: {e}",
+                state_path.display()
+            );
+            return EXIT_USAGE;
+        }
+        keep_state = true;
+        if verbosity == Verbosity::Verbose {
+            bar.suspend(|| eprintln!("checkpoint: state saved to {}", state_path.display()));
+        }
+        // A signal during the save: stop here.
+        if signals.stopped() {
+            interrupted = true;
+            break;
+        }
+    }
     bar.finish_and_clear();
     if let Some(e) = write_error {
         eprintln!("error: cannot write {}: {e}", output.display());
@@ -274,22 +508,45 @@ fn run_on_pool(args: &RenderArgs) -> u8 {
     }
     let secs = t1.elapsed().as_secs_f64();
     let (least, most, mean) = film.sample_counts();
-    if most > 0 {
-        if let Err(e) = film.write(&output, exposure) {
-            eprintln!("error: cannot write {}: {e}", output.display());
-            return EXIT_USAGE;
-        }
+    // The image, and the state where it is kept: always for a pass (its
+    // part file is both) and after an interruption.
+    let state_written = match farm.pass {
+        Some(_) => Some(&output),
+        None if keep_state || (interrupted && most > 0) => Some(&state_path),
+        None => None,
+    };
+    let result = match farm.pass {
+        Some(_) => state::write_state(&output, &film, &now),
+        None if most > 0 => film
+            .write(&output, exposure)
+            .and_then(|()| match state_written {
+                Some(path) => state::write_state(path, &film, &now),
+                None => Ok(()),
+            }),
+        None => Ok(()),
+    };
+    if let Err(e) = result {
+        eprintln!("error: cannot write {}: {e}", output.display());
+        return EXIT_USAGE;
     }
-    let interrupted = outcome == crate::render::Outcome::Cancelled;
     if verbosity != Verbosity::Quiet {
-        let paths = s.width as f64 * s.height as f64 * mean;
+        let done = samples_in(&film) - samples_before;
+        let paths = done as f64;
         let samples = if interrupted {
             format!("interrupted: {least} spp in every pixel, up to {most}, {mean:.1} on average")
         } else {
             format!("{least} spp")
         };
+        let of = match farm.pass {
+            Some(p) => format!(" (pass {p} of {} spp)", s.samples),
+            None => String::new(),
+        };
+        let state_note = match (state_written, farm.pass) {
+            (Some(path), None) if most > 0 => format!(" (state {})", path.display()),
+            _ => String::new(),
+        };
         eprintln!(
-            "{}: {}×{}, {samples} in {:.2} s ({:.2} M paths/s, {:.2} M rays/s: {:.2} closest-hit and {:.2} shadow rays per path; load {:.2} s{}) → {}",
+            "{}: {}×{}, {samples}{of} in {:.2} s ({:.2} M paths/s, {:.2} M rays/s: {:.2} closest-hit and {:.2} shadow rays per path; load {:.2} s{}) → {}{state_note}",
             args.file.display(),
             s.width,
             s.height,
@@ -302,14 +559,17 @@ fn run_on_pool(args: &RenderArgs) -> u8 {
             peak_memory()
                 .map(|mb| format!("; peak memory {mb:.0} MB"))
                 .unwrap_or_default(),
-            if most > 0 {
+            if most > 0 || farm.pass.is_some() {
                 output.display().to_string()
             } else {
                 "no sample, nothing written".to_string()
             }
         );
+        if interrupted && most > 0 {
+            eprintln!("add --resume to the same command to continue");
+        }
     }
-    if interrupted || signals.stopped() {
+    if interrupted {
         signals.exit_code()
     } else {
         EXIT_OK

@@ -19,6 +19,10 @@ pub struct Signals {
     pub stop: Arc<AtomicBool>,
     /// Set by SIGTERM.
     term: Arc<AtomicBool>,
+    /// Set by either signal, and by a render's checkpoint when one is due:
+    /// what a render that saves its state polls (it clears it after a
+    /// checkpoint and goes on; [`Signals::stopped`] tells the two apart).
+    pub interrupt: Arc<AtomicBool>,
 }
 
 impl Signals {
@@ -28,6 +32,7 @@ impl Signals {
         let signals = Signals {
             stop: Arc::new(AtomicBool::new(false)),
             term: Arc::new(AtomicBool::new(false)),
+            interrupt: Arc::new(AtomicBool::new(false)),
         };
         for (signal, code) in [(SIGINT, EXIT_SIGINT), (SIGTERM, EXIT_SIGTERM)] {
             // A second signal while the first is being answered: quit now.
@@ -38,6 +43,7 @@ impl Signals {
                 signals.stop.clone(),
             );
             let _ = signal_hook::flag::register(signal, signals.stop.clone());
+            let _ = signal_hook::flag::register(signal, signals.interrupt.clone());
         }
         let _ = signal_hook::flag::register(SIGTERM, signals.term.clone());
         signals

@@ -36,6 +36,14 @@ pub fn run(args: &RenderArgs) -> u8 {
         eprintln!("error: cannot watch {}: no such file", args.file.display());
         return super::EXIT_USAGE;
     }
+    // One frame: --frame's, else the first of --frames.
+    let animation = match args.animations() {
+        Ok(a) => a[0],
+        Err(why) => {
+            eprintln!("error: {why}");
+            return super::EXIT_USAGE;
+        }
+    };
     let pool = match rayon::ThreadPoolBuilder::new()
         .num_threads(args.threads.unwrap_or(0))
         .build()
@@ -71,6 +79,7 @@ pub fn run(args: &RenderArgs) -> u8 {
 
     let mut state = State {
         args: args.clone(),
+        animation,
         cache: LowerCache::default(),
         files: BTreeSet::new(),
         watched_dirs: BTreeSet::new(),
@@ -120,6 +129,8 @@ pub fn run(args: &RenderArgs) -> u8 {
 
 struct State {
     args: RenderArgs,
+    /// The frame watched.
+    animation: crate::check::Animation,
     cache: LowerCache,
     /// Absolute paths of the scene, its includes and its meshes.
     files: BTreeSet<PathBuf>,
@@ -139,7 +150,7 @@ impl State {
         // until this compile succeeds, and a job queued behind its tiles
         // would wait for them. Large files parse on rayon's global pool.
         let (loads, builds) = (self.cache.mesh_loads, self.cache.bvh_builds);
-        let compiled = match compile(&self.args, Some(&mut self.cache)) {
+        let compiled = match compile(&self.args, Some(&mut self.cache), self.animation, false) {
             Ok(c) => c,
             Err(e) => {
                 status(&format!(
@@ -166,7 +177,7 @@ impl State {
             status(&self.keeping());
             return;
         };
-        let output = output_path(&self.args, compiled.output.as_deref());
+        let output = output_path(&self.args, compiled.output.as_deref(), self.animation.frame);
         if let Err(why) = check_output(&output, &compiled.dependencies) {
             status(&format!(
                 "cannot write {}: {why}; keeping the last image",

@@ -59,6 +59,11 @@ impl IntegratorKind {
     }
 }
 
+/// The largest image side accepted.
+pub const MAX_SIDE: f64 = 16384.0;
+/// The largest image area accepted, so a film always fits in memory.
+pub const MAX_PIXELS: f64 = 8192.0 * 8192.0;
+
 /// The settings a render reads.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Settings {

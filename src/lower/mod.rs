@@ -7,11 +7,13 @@ pub mod cache;
 mod camera;
 mod collect;
 mod environment;
+pub mod fingerprint;
 pub mod image;
 mod instances;
 mod lights;
 mod material;
 pub mod mesh;
+pub use fingerprint::fingerprint;
 
 use crate::accel::bvh::Bvh;
 use crate::accel::bvh4::Bvh4;

@@ -1,53 +1,56 @@
-//! The film: linear float accumulation per pixel, with the sample counts of
-//! a pass that did not finish. [`crate::output`] encodes it.
+//! The film: per pixel, the sum of its samples (in f64) and how many it
+//! has. Each pixel's samples are a run of consecutive sample indices
+//! starting at the film's `first`, added one by one in index order, so a
+//! render stopped and continued from its film ([`crate::render::render_from`])
+//! sums exactly what an uninterrupted one sums, and films of disjoint runs
+//! add up to the film of their union (up to f64 rounding, far below what an
+//! f32 pixel shows). [`crate::output`] encodes the mean.
 
 use crate::output;
-use glam::Vec3;
+use glam::{DVec3, Vec3};
 use std::path::Path;
 
 /// Accumulated radiance.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct Film {
     /// Width in pixels.
     pub width: u32,
     /// Height in pixels.
     pub height: u32,
+    /// The sample index every pixel's run starts at (0, or the first
+    /// sample of a pass of a split render).
+    pub first: u32,
     /// Sum of samples per pixel, row-major.
-    pub sum: Vec<Vec3>,
-    /// Samples per pixel in every pixel (the passes that finished).
-    pub samples: u32,
-    /// Samples of a cancelled pass, per pixel, beyond `samples` (absent
-    /// while every pixel has `samples`).
-    pub extra: Option<Vec<u32>>,
+    pub sum: Vec<DVec3>,
+    /// Samples per pixel, row-major: pixel `i` holds samples
+    /// `first .. first + count[i]`.
+    pub count: Vec<u32>,
 }
 
 impl Film {
-    /// A black film.
-    pub fn new(width: u32, height: u32) -> Film {
+    /// A black film whose pixels' samples will start at index `first`.
+    pub fn new(width: u32, height: u32, first: u32) -> Film {
+        let n = width as usize * height as usize;
         Film {
             width,
             height,
-            sum: vec![Vec3::ZERO; (width * height) as usize],
-            samples: 0,
-            extra: None,
+            first,
+            sum: vec![DVec3::ZERO; n],
+            count: vec![0; n],
         }
     }
 
-    /// A film holding finished pixels (one sample each), e.g. to write an image read elsewhere.
+    /// A film holding finished pixels (one sample each), e.g. to write an
+    /// image made elsewhere.
     pub fn from_pixels(width: u32, height: u32, pixels: Vec<Vec3>) -> Film {
-        assert_eq!(pixels.len(), (width * height) as usize);
+        assert_eq!(pixels.len(), width as usize * height as usize);
         Film {
             width,
             height,
-            sum: pixels,
-            samples: 1,
-            extra: None,
+            first: 0,
+            count: vec![1; pixels.len()],
+            sum: pixels.iter().map(Vec3::as_dvec3).collect(),
         }
-    }
-
-    /// Adds to a pixel's sum.
-    pub fn add(&mut self, x: u32, y: u32, v: Vec3) {
-        self.sum[(y * self.width + x) as usize] += v;
     }
 
     /// The mean radiance of each pixel.
@@ -60,32 +63,26 @@ impl Film {
     /// 805 MB.
     #[inline]
     pub fn pixel(&self, i: usize) -> Vec3 {
-        let n = self.samples + self.extra.as_ref().map_or(0, |e| e[i]);
-        self.sum[i] * (1.0 / n.max(1) as f32)
-    }
-
-    /// Adds `samples` samples of a pass that did not finish to a pixel.
-    pub fn add_partial(&mut self, x: u32, y: u32, v: Vec3, samples: u32) {
-        let i = (y * self.width + x) as usize;
-        self.sum[i] += v;
-        let n = self.sum.len();
-        self.extra.get_or_insert_with(|| vec![0; n])[i] += samples;
+        (self.sum[i] / self.count[i].max(1) as f64).as_vec3()
     }
 
     /// Samples in every pixel, the most in any pixel, and the mean.
     pub fn sample_counts(&self) -> (u32, u32, f64) {
-        match &self.extra {
-            None => (self.samples, self.samples, self.samples as f64),
-            Some(e) => {
-                let min = e.iter().copied().min().unwrap_or(0);
-                let max = e.iter().copied().max().unwrap_or(0);
-                let mean = e.iter().map(|&n| n as f64).sum::<f64>() / e.len().max(1) as f64;
-                (
-                    self.samples + min,
-                    self.samples + max,
-                    self.samples as f64 + mean,
-                )
-            }
+        let min = self.count.iter().copied().min().unwrap_or(0);
+        let max = self.count.iter().copied().max().unwrap_or(0);
+        let total: u64 = self.count.iter().map(|&n| n as u64).sum();
+        (min, max, total as f64 / self.count.len().max(1) as f64)
+    }
+
+    /// Adds another film's samples, pixel by pixel (the parts of a split
+    /// render; the caller checks that their sample runs are disjoint).
+    pub fn add(&mut self, other: &Film) {
+        debug_assert_eq!((self.width, self.height), (other.width, other.height));
+        for (s, o) in self.sum.iter_mut().zip(&other.sum) {
+            *s += *o;
+        }
+        for (n, o) in self.count.iter_mut().zip(&other.count) {
+            *n = n.saturating_add(*o);
         }
     }
 
@@ -101,13 +98,23 @@ mod tests {
     use super::*;
 
     #[test]
-    fn a_pixel_is_the_mean_of_its_samples_cancelled_pass_included() {
-        let mut f = Film::new(2, 1);
-        f.samples = 2;
-        f.add(0, 0, Vec3::splat(4.0));
-        f.add_partial(1, 0, Vec3::splat(9.0), 1);
+    fn a_pixel_is_the_mean_of_its_samples() {
+        let mut f = Film::new(2, 1, 0);
+        f.sum[0] = DVec3::splat(4.0);
+        f.count[0] = 2;
+        f.sum[1] = DVec3::splat(9.0);
+        f.count[1] = 3;
         assert_eq!(f.pixel(0), Vec3::splat(2.0));
         assert_eq!(f.pixel(1), Vec3::splat(3.0));
         assert_eq!(f.sample_counts(), (2, 3, 2.5));
+        assert_eq!(Film::new(1, 1, 0).pixel(0), Vec3::ZERO, "no sample: black");
+    }
+
+    #[test]
+    fn films_of_disjoint_runs_add_up() {
+        let mut a = Film::from_pixels(1, 1, vec![Vec3::ONE]);
+        let b = Film::from_pixels(1, 1, vec![Vec3::splat(3.0)]);
+        a.add(&b);
+        assert_eq!((a.pixel(0), a.count[0]), (Vec3::splat(2.0), 2));
     }
 }

@@ -4,13 +4,14 @@
 //! (seed, pixel, sample index), so the image is the same for any thread count.
 
 pub mod film;
+pub mod state;
 
 use crate::accel::ray_count::{self, RayCounts};
 use crate::integrator::Integrator;
 use crate::ir::Scene;
 use crate::sampling::sampler::Sampler;
 use film::Film;
-use glam::{Vec2, Vec3};
+use glam::{DVec3, Vec2, Vec3};
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 
@@ -21,12 +22,13 @@ pub const TILE: u32 = 16;
 struct TileResult {
     /// Its top-left pixel.
     corner: (u32, u32),
-    /// The sample sums of its pixels, row-major: all of them, or (when the
-    /// pass was cancelled) those begun.
-    sums: Vec<Vec3>,
-    /// When cancelled: the samples the last pixel of `sums` got (the ones
-    /// before it got the whole pass).
-    cut: Option<u32>,
+    /// The new sample sums of its pixels, row-major: all of them, or (when
+    /// the pass was stopped) those begun.
+    sums: Vec<DVec3>,
+    /// The new sample counts of the same pixels.
+    counts: Vec<u32>,
+    /// Whether the pass was stopped in this tile.
+    stopped: bool,
     /// The rays traced for it.
     rays: RayCounts,
 }
@@ -37,7 +39,8 @@ pub enum Outcome {
     /// Every pass finished.
     Complete,
     /// Cancelled; the film holds every sample done (the passes that
-    /// finished, and the part of the last one that ran).
+    /// finished, and the part of the last one that ran): rendering on from
+    /// it ends with the film an uninterrupted render makes.
     Cancelled,
 }
 
@@ -76,9 +79,10 @@ const CANCEL_POLL: u32 = 4;
 /// by a vanishing pdf comes near it; it is scaled down, keeping its colour.
 pub const MAX_SAMPLE: f32 = 1e30;
 
-/// Renders `scene` into a new film. After each pass, `on_pass(film, samples)`
-/// is called (preview writes); `progress(done_pixel_samples)` is called as
-/// tiles finish. `cancel` is polled between tiles.
+/// Renders `scene` into a new film, the scene's samples per pixel. After
+/// each pass, `on_pass(film, samples)` is called (preview writes);
+/// `progress(done_pixel_samples)` is called as tiles finish. `cancel` is
+/// polled every few samples.
 pub fn render(
     scene: &Scene,
     integrator: &dyn Integrator,
@@ -87,13 +91,32 @@ pub fn render(
     on_pass: &mut dyn FnMut(&Film, u32),
 ) -> Rendered {
     let s = &scene.settings;
+    let film = Film::new(s.width, s.height, 0);
+    render_from(
+        scene, integrator, film, s.samples, cancel, progress, on_pass,
+    )
+}
+
+/// Renders on from `film` (a render's saved state, or a new film whose runs
+/// start at another sample index) until every pixel has `samples` samples:
+/// pixel (x, y) gets sample indices `film.first + film.count[i] ..
+/// film.first + samples`. The film must have the scene's size.
+pub fn render_from(
+    scene: &Scene,
+    integrator: &dyn Integrator,
+    film: Film,
+    samples: u32,
+    cancel: &AtomicBool,
+    progress: &(dyn Fn(u64) + Sync),
+    on_pass: &mut dyn FnMut(&Film, u32),
+) -> Rendered {
     let view = View {
-        width: s.width,
-        height: s.height,
-        samples: s.samples,
+        width: film.width,
+        height: film.height,
+        samples,
         scale: 1,
     };
-    render_view(scene, integrator, view, cancel, progress, on_pass)
+    render_view(scene, integrator, film, view, cancel, progress, on_pass)
 }
 
 /// A quick preview: one sample per pixel of an image `divisor` times smaller
@@ -111,7 +134,16 @@ pub fn render_preview(
         samples: 1,
         scale: divisor,
     };
-    let r = render_view(scene, integrator, view, cancel, &|_| {}, &mut |_, _| {});
+    let film = Film::new(view.width, view.height, 0);
+    let r = render_view(
+        scene,
+        integrator,
+        film,
+        view,
+        cancel,
+        &|_| {},
+        &mut |_, _| {},
+    );
     (r.outcome == Outcome::Complete).then_some(r.film)
 }
 
@@ -125,92 +157,94 @@ struct View {
     scale: u32,
 }
 
-/// The pixel loop: tiles over rayon, progressive passes.
+/// The pixel loop: tiles over rayon, progressive passes. Each pixel's
+/// samples are added to its sum one by one in sample-index order, from the
+/// sum `film` holds: however a render is stopped and continued, the same
+/// additions happen in the same order.
 fn render_view(
     scene: &Scene,
     integrator: &dyn Integrator,
+    mut film: Film,
     view: View,
     cancel: &AtomicBool,
     progress: &(dyn Fn(u64) + Sync),
     on_pass: &mut dyn FnMut(&Film, u32),
 ) -> Rendered {
     let (w, h) = (view.width, view.height);
+    debug_assert_eq!((film.width, film.height), (w, h));
     let scale = view.scale as f32;
-    let mut film = Film::new(w, h);
+    let first = film.first;
     let tiles: Vec<(u32, u32)> = (0..h.div_ceil(TILE))
         .flat_map(|ty| (0..w.div_ceil(TILE)).map(move |tx| (tx * TILE, ty * TILE)))
         .collect();
     let done = AtomicU64::new(0);
     let mut rays = RayCounts::default();
-    let mut start = 0;
-    for end in pass_ends(view.samples) {
+    // A resumed film skips the passes its every pixel has done.
+    let least = film.count.iter().copied().min().unwrap_or(0);
+    for end in pass_ends(view.samples).into_iter().filter(|&e| e > least) {
         let results: Vec<TileResult> = tiles
             .par_iter()
             .map(|&(x0, y0)| {
                 let (x1, y1) = ((x0 + TILE).min(w), (y0 + TILE).min(h));
                 let rays_before = ray_count::this_thread();
-                let mut sums = Vec::with_capacity(((x1 - x0) * (y1 - y0)) as usize);
-                let mut cut = None;
+                let pixels = ((x1 - x0) * (y1 - y0)) as usize;
+                let mut sums = Vec::with_capacity(pixels);
+                let mut counts = Vec::with_capacity(pixels);
+                let mut stopped = false;
+                let mut samples = 0u64;
                 'pixels: for y in y0..y1 {
                     for x in x0..x1 {
-                        let mut sum = Vec3::ZERO;
-                        for s in start..end {
-                            if (s - start).is_multiple_of(CANCEL_POLL)
+                        let i = (y * w + x) as usize;
+                        let (mut sum, from) = (film.sum[i], film.count[i]);
+                        for s in from..end {
+                            if (s - from).is_multiple_of(CANCEL_POLL)
                                 && cancel.load(Ordering::Relaxed)
                             {
                                 sums.push(sum);
-                                cut = Some(s - start);
+                                counts.push(s);
+                                samples += (s - from) as u64;
+                                stopped = true;
                                 break 'pixels;
                             }
-                            sum += sample(scene, integrator, x, y, s, scale);
+                            let l = sample(scene, integrator, x, y, first + s, scale);
+                            sum += l.as_dvec3();
                         }
                         sums.push(sum);
+                        counts.push(from.max(end));
+                        samples += end.saturating_sub(from) as u64;
                     }
                 }
-                if cut.is_none() {
-                    let samples = sums.len() as u64 * (end - start) as u64;
-                    progress(done.fetch_add(samples, Ordering::Relaxed) + samples);
-                }
+                progress(done.fetch_add(samples, Ordering::Relaxed) + samples);
                 TileResult {
                     corner: (x0, y0),
                     sums,
-                    cut,
+                    counts,
+                    stopped,
                     rays: ray_count::this_thread() - rays_before,
                 }
             })
             .collect();
-        // A cancelled pass keeps every sample done: its pixels count their
-        // own samples beyond the film's whole passes.
-        let cancelled = results.iter().any(|t| t.cut.is_some());
+        // A stopped pass keeps every sample done: each pixel counts its own.
+        let stopped = results.iter().any(|t| t.stopped);
         for t in results {
             rays = rays + t.rays;
             let (x0, y0) = t.corner;
             let x1 = (x0 + TILE).min(w);
-            let last = t.sums.len().saturating_sub(1);
-            for (i, v) in t.sums.into_iter().enumerate() {
-                let (x, y) = (x0 + i as u32 % (x1 - x0), y0 + i as u32 / (x1 - x0));
-                if cancelled {
-                    let n = if i == last {
-                        t.cut.unwrap_or(end - start)
-                    } else {
-                        end - start
-                    };
-                    film.add_partial(x, y, v, n);
-                } else {
-                    film.add(x, y, v);
-                }
+            for (k, (sum, count)) in t.sums.into_iter().zip(t.counts).enumerate() {
+                let (x, y) = (x0 + k as u32 % (x1 - x0), y0 + k as u32 / (x1 - x0));
+                let i = (y * w + x) as usize;
+                film.sum[i] = sum;
+                film.count[i] = count;
             }
         }
-        if cancelled {
+        if stopped {
             return Rendered {
                 film,
                 outcome: Outcome::Cancelled,
                 rays,
             };
         }
-        film.samples = end;
         on_pass(&film, end);
-        start = end;
     }
     Rendered {
         film,
@@ -223,6 +257,8 @@ fn render_view(
 /// time; `scale` > 1 for the pixels of a smaller preview image.
 #[inline]
 fn sample(scene: &Scene, integrator: &dyn Integrator, x: u32, y: u32, s: u32, scale: f32) -> Vec3 {
+    // Sample `s` of a pixel is the same wherever and whenever it is drawn:
+    // what lets a render stop, continue, and split across machines.
     let mut sampler = Sampler::new(scene.settings.seed, x, y, s);
     let film = (Vec2::new(x as f32, y as f32) + sampler.next_2d()) * scale;
     let lens = sampler.next_2d();

@@ -104,6 +104,9 @@ fn a_signal_writes_every_sample_done_and_sets_the_exit_code() {
         "the interrupted image holds only the finished passes"
     );
 
+    // Another image: the first one's saved state would refuse a fresh
+    // render there (without --resume or --restart).
+    let out = dir.path().join("terminated.exr");
     let (code, err) = interrupt(&scene, &out, "-TERM", Duration::from_millis(1500));
     assert_eq!(code, 143, "{err}");
     assert!(err.contains("interrupted:"), "{err}");

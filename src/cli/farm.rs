@@ -8,7 +8,7 @@ use crate::render::state::{read_state, read_state_info, Pass, StateInfo};
 use std::path::{Path, PathBuf};
 
 /// Default seconds between two saves of a long render's state.
-pub const CHECKPOINT_SECONDS: u64 = 300;
+pub const CHECKPOINT_SECONDS: f64 = 300.0;
 
 /// `ptsc render`'s options for long renders and farms.
 #[derive(Debug, Clone, Default, clap::Args)]
@@ -29,8 +29,15 @@ pub struct FarmArgs {
     #[arg(long)]
     pub keep_state: bool,
     /// Seconds between two saves of the state of a long render (0: never).
-    #[arg(long, value_name = "SECONDS", default_value_t = CHECKPOINT_SECONDS)]
-    pub checkpoint: u64,
+    #[arg(long, value_name = "SECONDS", default_value_t = CHECKPOINT_SECONDS, value_parser = parse_seconds)]
+    pub checkpoint: f64,
+}
+
+/// Seconds from 0 (never) to a year.
+fn parse_seconds(s: &str) -> Result<f64, String> {
+    (s.trim().parse::<f64>().ok())
+        .filter(|v| (0.0..=3.2e7).contains(v))
+        .ok_or_else(|| format!("`{s}` is not a number of seconds from 0 to 32000000"))
 }
 
 /// Where a render keeps its state: a pass's part file is its output; a

@@ -447,7 +447,7 @@ fn render_frame(
     // Checkpoints: every `--checkpoint` seconds the render pauses, its
     // state and image are saved, and it goes on from them (the same
     // samples in the same order: the image is the uninterrupted one's).
-    let every = (farm.checkpoint > 0).then(|| Duration::from_secs(farm.checkpoint));
+    let every = (farm.checkpoint > 0.0).then(|| Duration::from_secs_f64(farm.checkpoint));
     let mut keep_state = farm.keep_state || start.had_state;
     let mut film = start.film;
     let mut rays = crate::accel::ray_count::RayCounts::default();

@@ -6,6 +6,7 @@ mod diagnostics;
 mod editors;
 mod environment;
 mod examples;
+mod farm;
 mod golden;
 mod hostile;
 mod instances;

@@ -1,0 +1,417 @@
+//! Long renders and farms through the binary: passes merged equal one
+//! render, a stopped render resumed equals an uninterrupted one, samples
+//! added to a finished render equal a render of them all, foreign or
+//! duplicate states are refused, frames number their images, and the
+//! schedulers' files are well formed.
+
+use std::io::{BufRead, BufReader};
+use std::path::{Path, PathBuf};
+use std::process::{Command, Stdio};
+
+/// Runs the binary; returns its exit code and stderr.
+fn ptsc(args: &[&str]) -> (i32, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_ptsc"))
+        .args(args)
+        .output()
+        .unwrap();
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+/// Renders `scene` with `extra` arguments into `out`; panics on failure.
+fn render(scene: &Path, out: &Path, extra: &[&str]) -> String {
+    let mut args = vec![
+        "render",
+        scene.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+    ];
+    args.extend(extra);
+    let (code, err) = ptsc(&args);
+    assert_eq!(code, 0, "{args:?}: {err}");
+    err
+}
+
+/// A small scene with glossy reflection, a textured floor and an area
+/// light: several paths per sample, random numbers drawn at many depths.
+const SCENE: &str = "camera { position <0, 1, 4> look_at <0, 0.5, 0> }\n\
+    background rgb 0.3\n\
+    plane { normal <0, 1, 0> material { diffuse checker { even rgb 0.8 odd rgb 0.2 space world scale 0.5 } } }\n\
+    sphere { center <0, 0.5, 0> radius 0.5 material { reflection rgb 0.8 gloss 0.2 } }\n\
+    sphere { center <1, 2, 1> radius 0.3 material { emission rgb 8 } }\n\
+    render { resolution <24, 20> }\n";
+
+fn pixels(path: &Path) -> Vec<glam::Vec3> {
+    ptsc::output::read_exr(path).unwrap().2
+}
+
+/// The largest relative difference of two images, pixel by pixel.
+fn max_relative_difference(a: &[glam::Vec3], b: &[glam::Vec3]) -> f32 {
+    assert_eq!(a.len(), b.len());
+    (a.iter().zip(b))
+        .map(|(x, y)| {
+            ((*x - *y).abs() / x.abs().max(y.abs()).max(glam::Vec3::splat(1e-12))).max_element()
+        })
+        .fold(0.0, f32::max)
+}
+
+#[test]
+fn passes_merged_in_any_order_equal_one_render() {
+    let dir = crate::temp_dir_with(&[("s.pts", SCENE)]);
+    let scene = dir.path().join("s.pts");
+    let at = |name: &str| dir.path().join(name);
+    render(&scene, &at("one.exr"), &["--spp", "14"]);
+    render(&scene, &at("one.png"), &["--spp", "14"]);
+    let one = pixels(&at("one.exr"));
+    for n in [1u32, 3, 7] {
+        let parts: Vec<PathBuf> = (1..=n).map(|k| at(&format!("part{n}_{k}.exr"))).collect();
+        for (k, part) in (1..=n).zip(&parts) {
+            let pass = format!("{k}/{n}");
+            render(
+                &scene,
+                part,
+                &["--spp", "14", "--pass", &pass, "--threads", "1"],
+            );
+        }
+        // Given in reverse: merge adds passes in their order, not the arguments'.
+        let mut args: Vec<String> = vec!["merge".into()];
+        args.extend(parts.iter().rev().map(|p| p.display().to_string()));
+        for out in ["merged.exr", "merged.png"] {
+            let mut a = args.clone();
+            a.extend(["-o".into(), at(out).display().to_string()]);
+            let a: Vec<&str> = a.iter().map(String::as_str).collect();
+            let (code, err) = ptsc(&a);
+            assert_eq!(code, 0, "{err}");
+            assert!(err.contains(&format!("merged {n} of {n} passes")), "{err}");
+        }
+        let d = max_relative_difference(&one, &pixels(&at("merged.exr")));
+        assert!(d <= 1e-5, "N = {n}: max relative difference {d}");
+        assert_eq!(
+            std::fs::read(at("one.png")).unwrap(),
+            std::fs::read(at("merged.png")).unwrap(),
+            "N = {n}: the PNGs differ"
+        );
+    }
+}
+
+#[test]
+fn merge_refuses_duplicate_foreign_and_missing_parts_by_name() {
+    let dir = crate::temp_dir_with(&[("s.pts", SCENE)]);
+    let scene = dir.path().join("s.pts");
+    let at = |name: &str| dir.path().join(name).display().to_string();
+    for k in 1..=3 {
+        let pass = format!("{k}/3");
+        render(
+            &scene,
+            Path::new(&at(&format!("p{k}.exr"))),
+            &["--spp", "6", "--pass", &pass],
+        );
+    }
+    // Another seed: a part of another image.
+    render(
+        &scene,
+        Path::new(&at("seed.exr")),
+        &["--spp", "6", "--pass", "2/3", "--seed", "9"],
+    );
+    // Another split of the same render.
+    render(
+        &scene,
+        Path::new(&at("four.exr")),
+        &["--spp", "6", "--pass", "2/4"],
+    );
+    // An edited scene.
+    std::fs::write(
+        dir.path().join("t.pts"),
+        SCENE.replace("radius 0.5", "radius 0.45"),
+    )
+    .unwrap();
+    let edited = dir.path().join("t.pts");
+    render(
+        &edited,
+        Path::new(&at("edited.exr")),
+        &["--spp", "6", "--pass", "2/3"],
+    );
+    let out = at("m.png");
+    let merge = |parts: &[&str]| {
+        let mut args = vec!["merge".to_string()];
+        args.extend(parts.iter().map(|p| at(p)));
+        args.extend(["-o".to_string(), out.clone()]);
+        ptsc(&args.iter().map(String::as_str).collect::<Vec<_>>())
+    };
+    let cases: [(&[&str], &str, &[&str]); 5] = [
+        (
+            &["p1.exr", "p2.exr", "p3.exr", "p2.exr"],
+            "p2.exr",
+            &["both hold pass 2/3"],
+        ),
+        (
+            &["p1.exr", "seed.exr", "p3.exr"],
+            "seed.exr",
+            &["seed is 9", "seed is 0"],
+        ),
+        (&["p1.exr", "four.exr", "p3.exr"], "four.exr", &["2/4"]),
+        (
+            &["p1.exr", "edited.exr", "p3.exr"],
+            "edited.exr",
+            &["scene differs"],
+        ),
+        (
+            &["p1.exr", "p3.exr"],
+            "",
+            &["pass 2 of 3 is missing", "--partial"],
+        ),
+    ];
+    for (parts, named, words) in cases {
+        let (code, err) = merge(parts);
+        assert_eq!(code, 2, "{parts:?}: {err}");
+        assert!(err.contains(named), "{parts:?}: {err}");
+        assert!(words.iter().any(|w| err.contains(w)), "{parts:?}: {err}");
+        assert!(!Path::new(&out).exists(), "{parts:?}: nothing written");
+    }
+    // A plain image is no part.
+    render(&scene, Path::new(&at("plain.exr")), &["--spp", "2"]);
+    let (code, err) = merge(&["p1.exr", "plain.exr"]);
+    assert_eq!(code, 2);
+    assert!(
+        err.contains("plain.exr") && err.contains("no render state"),
+        "{err}"
+    );
+    // A partial set, asked for: a warning, each pixel the mean of its samples.
+    let mut args: Vec<String> = vec!["merge".into(), at("p1.exr"), at("p3.exr")];
+    args.extend(["--partial".into(), "-o".into(), at("partial.exr")]);
+    let (code, err) = ptsc(&args.iter().map(String::as_str).collect::<Vec<_>>());
+    assert_eq!(code, 0, "{err}");
+    assert!(err.contains("warning: pass 2 of 3 is missing"), "{err}");
+    let partial = pixels(Path::new(&at("partial.exr")));
+    let (p1, p3) = (
+        pixels(Path::new(&at("p1.exr"))),
+        pixels(Path::new(&at("p3.exr"))),
+    );
+    // Passes of 2 samples each: the mean of both parts' means.
+    let mean: Vec<glam::Vec3> = p1.iter().zip(&p3).map(|(a, b)| (*a + *b) * 0.5).collect();
+    assert!(max_relative_difference(&partial, &mean) < 1e-5);
+}
+
+#[test]
+fn a_render_stopped_by_a_signal_resumes_to_the_uninterrupted_image() {
+    let dir = crate::temp_dir_with(&[("s.pts", SCENE)]);
+    let scene = dir.path().join("s.pts");
+    let out = dir.path().join("stopped.exr");
+    let args = ["--spp", "2048"];
+    // Stop it once it has finished the 16-spp pass (its -v lines say so):
+    // the signal lands mid-render whatever the machine's speed.
+    let mut child = Command::new(env!("CARGO_BIN_EXE_ptsc"))
+        .args([
+            "render",
+            scene.to_str().unwrap(),
+            "-o",
+            out.to_str().unwrap(),
+            "-v",
+        ])
+        .args(args)
+        .args(["--threads", "2"])
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut lines = BufReader::new(child.stderr.take().unwrap()).lines();
+    let mut seen = String::new();
+    for line in lines.by_ref() {
+        let line = line.unwrap();
+        seen.push_str(&line);
+        seen.push('\n');
+        if line.contains("pass to 16 spp") {
+            break;
+        }
+    }
+    let kill = Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status();
+    assert!(kill.unwrap().success());
+    let rest: Vec<String> = lines.map(Result::unwrap).collect();
+    let status = child.wait().unwrap();
+    let err = seen + &rest.join("\n");
+    assert_eq!(status.code(), Some(130), "{err}");
+    assert!(
+        err.contains("interrupted:") && err.contains("--resume"),
+        "{err}"
+    );
+    let state = dir.path().join("stopped.exr.state.exr");
+    assert!(state.is_file(), "{err}");
+    // Without --resume the saved state is not overwritten.
+    let (code, err) = ptsc(&[
+        "render",
+        scene.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 2);
+    assert!(
+        err.contains("--resume") && err.contains("--restart"),
+        "{err}"
+    );
+    let err = render(
+        &scene,
+        &out,
+        &[&args[..], &["--resume", "--threads", "1"]].concat(),
+    );
+    assert!(err.contains("resuming from"), "{err}");
+    let whole = dir.path().join("whole.exr");
+    render(&scene, &whole, &args);
+    assert_eq!(
+        pixels(&out),
+        pixels(&whole),
+        "the same samples, added in the same order"
+    );
+}
+
+#[test]
+fn samples_added_to_a_finished_render_equal_a_render_of_them_all() {
+    let dir = crate::temp_dir_with(&[("s.pts", SCENE)]);
+    let scene = dir.path().join("s.pts");
+    let out = dir.path().join("more.png");
+    render(&scene, &out, &["--spp", "64", "--keep-state"]);
+    let err = render(&scene, &out, &["--spp", "256", "--resume"]);
+    assert!(err.contains("resuming from 64 spp"), "{err}");
+    let whole = dir.path().join("whole.png");
+    render(&scene, &whole, &["--spp", "256"]);
+    assert_eq!(std::fs::read(&out).unwrap(), std::fs::read(&whole).unwrap());
+    // Fewer samples than the state holds, another setting, another scene:
+    // refused, naming what differs; a comment changes nothing.
+    let text = |scene: &str| {
+        std::fs::write(dir.path().join("s.pts"), scene).unwrap();
+        let args = ["render", "s.pts", "-o", "more.png", "--resume"];
+        let mut full: Vec<String> = args.iter().map(|a| a.to_string()).collect();
+        full[1] = dir.path().join("s.pts").display().to_string();
+        full[3] = out.display().to_string();
+        full
+    };
+    let run = |args: Vec<String>, extra: &[&str]| {
+        let mut a: Vec<&str> = args.iter().map(String::as_str).collect();
+        a.extend(extra);
+        ptsc(&a)
+    };
+    let (code, err) = run(text(SCENE), &["--spp", "100"]);
+    assert_eq!(code, 2);
+    assert!(err.contains("already has 256 samples"), "{err}");
+    let (code, err) = run(text(SCENE), &["--spp", "512", "--integrator", "whitted"]);
+    assert_eq!(code, 2);
+    assert!(
+        err.contains("its integrator is path, this render's is whitted"),
+        "{err}"
+    );
+    let (code, err) = run(
+        text(&SCENE.replace("rgb 0.3", "rgb 0.31")),
+        &["--spp", "512"],
+    );
+    assert_eq!(code, 2);
+    assert!(err.contains("scene differs"), "{err}");
+    let commented =
+        format!("// lit from the top left\n{SCENE}").replace("<24, 20>", "<24, 20> samples 512");
+    let (code, err) = run(text(&commented), &[]);
+    assert_eq!(
+        code, 0,
+        "a comment and the samples in the file keep the state: {err}"
+    );
+    assert!(err.contains("resuming from 256 spp"), "{err}");
+}
+
+#[test]
+fn checkpoints_save_the_state_and_leave_the_image_unchanged() {
+    let dir = crate::temp_dir_with(&[("s.pts", SCENE)]);
+    let scene = dir.path().join("s.pts");
+    let out = dir.path().join("long.exr");
+    // A checkpoint every 0.2 s of a render of a second or so.
+    let err = render(
+        &scene,
+        &out,
+        &[
+            "--spp",
+            "3000",
+            "--checkpoint",
+            "0.2",
+            "-v",
+            "--threads",
+            "1",
+        ],
+    );
+    assert!(err.contains("checkpoint: state saved"), "{err}");
+    assert!(dir.path().join("long.exr.state.exr").is_file());
+    let whole = dir.path().join("whole.exr");
+    render(&scene, &whole, &["--spp", "3000", "--checkpoint", "0"]);
+    assert_eq!(pixels(&out), pixels(&whole));
+    assert!(
+        !dir.path().join("whole.exr.state.exr").exists(),
+        "no state without a checkpoint"
+    );
+}
+
+#[test]
+fn frames_see_their_number_and_clock_and_number_their_images() {
+    let moving = "let x = clock * 2 - 1;\n\
+        camera { position <0, 1, 4> look_at <0, 0.5, 0> }\n\
+        background rgb 0.5\n\
+        sphere { center <x, 0.5, 0> radius 0.4 material { diffuse rgb 0.2 } }\n\
+        render { resolution <16, 12> samples 2 output \"f_\" + str(frame, 3) + \".png\" }\n";
+    let dir = crate::temp_dir_with(&[("m.pts", moving)]);
+    let scene = dir.path().join("m.pts");
+    let pattern = dir.path().join("frame_##.png");
+    render(&scene, &pattern, &["--frames", "3..5"]);
+    let frame = |n: u32| std::fs::read(dir.path().join(format!("frame_0{n}.png"))).unwrap();
+    assert_ne!(frame(3), frame(4), "the clock moves the sphere");
+    assert_ne!(frame(4), frame(5));
+    // One frame of the animation, as a farm's task renders it.
+    let one = dir.path().join("one_####.png");
+    render(&scene, &one, &["--frames", "3..5", "--frame", "4"]);
+    assert_eq!(
+        std::fs::read(dir.path().join("one_0004.png")).unwrap(),
+        frame(4)
+    );
+    // The scene names its images itself.
+    let (code, err) = ptsc(&["render", scene.to_str().unwrap(), "--frame", "7"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(dir.path().join("f_007.png").is_file(), "{err}");
+    // Several frames into one file: refused before the second overwrites the first.
+    let same = dir.path().join("same.png");
+    let (code, err) = ptsc(&[
+        "render",
+        scene.to_str().unwrap(),
+        "-o",
+        same.to_str().unwrap(),
+        "--frames",
+        "1..2",
+    ]);
+    assert_eq!(code, 2);
+    assert!(err.contains("# pattern"), "{err}");
+    let (code, err) = ptsc(&[
+        "render",
+        scene.to_str().unwrap(),
+        "--frames",
+        "1..2",
+        "--frame",
+        "9",
+    ]);
+    assert_eq!(code, 2);
+    assert!(
+        err.contains("--frame 9 is not one of --frames 1..2"),
+        "{err}"
+    );
+}
+
+#[test]
+fn a_pass_needs_an_exr_and_at_least_a_sample() {
+    let dir = crate::temp_dir_with(&[("s.pts", SCENE)]);
+    let scene = dir.path().join("s.pts").display().to_string();
+    let png = dir.path().join("p.png").display().to_string();
+    let (code, err) = ptsc(&["render", &scene, "--pass", "1/2", "-o", &png]);
+    assert_eq!(code, 2);
+    assert!(err.contains(".exr"), "{err}");
+    let exr = dir.path().join("p.exr").display().to_string();
+    let (code, err) = ptsc(&["render", &scene, "--pass", "1/5", "--spp", "4", "-o", &exr]);
+    assert_eq!(code, 2);
+    assert!(err.contains("at most 4"), "{err}");
+    let (code, err) = ptsc(&["render", &scene, "--pass", "3/2", "-o", &exr]);
+    assert_eq!(code, 2);
+    assert!(err.contains("K must be at most N"), "{err}");
+}

@@ -129,7 +129,11 @@ fn compile_from(path: &Path, bytes: Vec<u8>, options: Options, start: Instant) -
         dependencies.extend(meshes);
         compiled.output = output;
         if options.fingerprint {
-            compiled.fingerprint = Some(crate::lower::fingerprint(&scene));
+            compiled.fingerprint = Some(crate::lower::fingerprint(
+                &compiled.sources,
+                &scene,
+                options.animation,
+            ));
         }
         if options.lower {
             let mut one_off = LowerCache::one_off();

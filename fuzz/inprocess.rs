@@ -6,7 +6,7 @@
 //! runs.
 //!
 //! ```text
-//! cargo run --release --example fuzz -- [--seconds N] [--seed S] scene|ply|obj|image|all
+//! cargo run --release --example fuzz -- [--seconds N] [--seed S] scene|ply|obj|image|state|all
 //! cargo run --release --example fuzz -- --time-seeds scene   # the cost of each seed
 //! ```
 //!
@@ -244,6 +244,7 @@ fn run(target: &str, seconds: f64, seed: u64, out: &Path) -> usize {
         "ply" => |b| ptsc::fuzz::ply(b),
         "obj" => |b| ptsc::fuzz::obj(b),
         "image" => |b| ptsc::fuzz::image(b),
+        "state" => |b| ptsc::fuzz::state(b),
         other => panic!("unknown target {other}"),
     };
     let current = out.join(format!("current-{target}"));
@@ -328,6 +329,7 @@ fn time_seeds(target: &str) {
             "scene" => ptsc::fuzz::scene(&bytes),
             "ply" => ptsc::fuzz::ply(&bytes),
             "image" => ptsc::fuzz::image(&bytes),
+            "state" => ptsc::fuzz::state(&bytes),
             _ => ptsc::fuzz::obj(&bytes),
         };
         println!(
@@ -352,12 +354,12 @@ fn main() {
                     .expect("--seconds N")
             }
             "--seed" => seed = args.next().and_then(|s| s.parse().ok()).expect("--seed N"),
-            "all" => targets.extend(["scene", "ply", "obj", "image"].map(String::from)),
+            "all" => targets.extend(["scene", "ply", "obj", "image", "state"].map(String::from)),
             t => targets.push(t.to_string()),
         }
     }
     if targets.is_empty() {
-        eprintln!("usage: fuzz [--seconds N] [--seed S] scene|ply|obj|image|all");
+        eprintln!("usage: fuzz [--seconds N] [--seed S] scene|ply|obj|image|state|all");
         std::process::exit(2);
     }
     // Relative paths in the corpus (meshes, includes) start at the root.

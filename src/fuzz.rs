@@ -79,6 +79,24 @@ pub fn obj(bytes: &[u8]) -> bool {
     mesh_invariants(mesh::parse(Path::new("fuzz.obj"), bytes))
 }
 
+/// A render state given as bytes (what `--resume` and `ptsc merge` read):
+/// when it reads, a film of a size ptsc renders whose every sum is finite,
+/// whose counts stay within its pass's share, and whose pixels are finite.
+/// Returns whether it read.
+pub fn state(bytes: &[u8]) -> bool {
+    let Ok((film, info)) = crate::render::state::read_state_bytes(bytes) else {
+        return false;
+    };
+    let share = info.pass.range(info.samples);
+    assert_eq!(film.first, share.start);
+    assert!(film.width > 0 && film.height > 0);
+    assert_eq!(film.sum.len(), (film.width * film.height) as usize);
+    assert!(film.count.iter().all(|&n| n <= share.end - share.start));
+    assert!(film.sum.iter().all(|s| s.is_finite()));
+    assert!(film.pixels().iter().all(|p| p.is_finite()));
+    true
+}
+
 /// An image file given as bytes, decoded as PNG, JPEG, Radiance HDR and
 /// OpenEXR in turn (the texture reader; 8-bit ones as colours and as
 /// data): when one decodes, an image of at least one

@@ -78,6 +78,9 @@ pub fn start(
         had_state,
         note,
     };
+    if farm.restart {
+        return Ok(fresh(state.is_file(), None));
+    }
     // Only a readable state file counts: an image at a part's path from
     // elsewhere is replaced like any output.
     let saved = state.is_file().then(|| read_state(state));
@@ -95,7 +98,6 @@ pub fn start(
             Err(format!("cannot resume from {}: {why}", state.display()))
         }
         Some(Err(_)) => Ok(fresh(false, None)),
-        Some(Ok(_)) if farm.restart => Ok(fresh(true, None)),
         Some(Ok((film, info))) if farm.resume => resumed(state, film, &info, now),
         Some(Ok((film, info))) => Err(format!(
             "{} holds the state of a render ({}); add --resume to continue it or --restart to start over",

@@ -517,17 +517,28 @@ fn render_frame(
     };
     let result = match farm.pass {
         Some(_) => state::write_state(&output, &film, &now),
-        None if most > 0 => film
-            .write(&output, exposure)
-            .and_then(|()| match state_written {
-                Some(path) => state::write_state(path, &film, &now),
-                None => Ok(()),
-            }),
+        // Both at once: each waits for its disk sync.
+        None if most > 0 => {
+            let (image, state) = rayon::join(
+                || film.write(&output, exposure),
+                || state_written.map_or(Ok(()), |path| state::write_state(path, &film, &now)),
+            );
+            image.and(state)
+        }
         None => Ok(()),
     };
     if let Err(e) = result {
         eprintln!("error: cannot write {}: {e}", output.display());
         return EXIT_USAGE;
+    }
+    if verbosity == Verbosity::Verbose {
+        let what = if state_written.is_some() && farm.pass.is_none() {
+            "image and state"
+        } else {
+            "image"
+        };
+        let write_s = t1.elapsed().as_secs_f64() - secs;
+        eprintln!("wrote the {what} in {write_s:.3} s");
     }
     if verbosity != Verbosity::Quiet {
         let done = samples_in(&film) - samples_before;

@@ -1,8 +1,8 @@
 //! A render's state file: what a stopped render continues from, and what
 //! `ptsc merge` adds up. An OpenEXR file of two parts (docs/farm.md):
 //!
-//! - `image`: R, G, B as float32 (ZIP), the mean so far, so any EXR
-//!   viewer shows how far the render got;
+//! - `image`: R, G, B as float32, the mean so far, so any EXR viewer
+//!   shows how far the render got;
 //! - `ptsc.state`: per pixel the sum of its samples as the bits of three
 //!   f64 (channels `sum.R.hi`, `sum.R.lo`, … as uint32, the high and low
 //!   halves) and its sample count (`count`, uint32), uncompressed; its
@@ -255,10 +255,12 @@ pub fn write_state(path: &Path, film: &Film, info: &StateInfo) -> std::io::Resul
     use exr::prelude::*;
     let (w, h) = (film.width as usize, film.height as usize);
     let size = Vec2(w, h);
+    // Uncompressed, as the state: a state is written at checkpoints and
+    // interruptions, when time counts more than its size.
     let image = Layer::new(
         size,
         LayerAttributes::named("image"),
-        Encoding::SMALL_LOSSLESS,
+        Encoding::UNCOMPRESSED,
         SpecificChannels::rgb(|p: Vec2<usize>| {
             let v = film.pixel(p.y() * w + p.x());
             (v.x, v.y, v.z)
@@ -303,15 +305,28 @@ pub fn write_state(path: &Path, film: &Film, info: &StateInfo) -> std::io::Resul
 
 /// Reads a state file's description alone (its headers, not its pixels).
 pub fn read_state_info(path: &Path) -> std::result::Result<StateInfo, String> {
-    read_header(path).map(|(info, _)| info)
+    read_header(open(path)?).map(|(info, _)| info)
+}
+
+/// A state file opened for reading, or why not.
+fn open(path: &Path) -> std::result::Result<std::io::BufReader<std::fs::File>, String> {
+    let file = std::fs::File::open(path).map_err(|e| e.to_string())?;
+    Ok(std::io::BufReader::new(file))
+}
+
+/// A state given as bytes (the fuzzer's entry).
+pub fn read_state_bytes(bytes: &[u8]) -> std::result::Result<(Film, StateInfo), String> {
+    read_state_from(|| Ok(std::io::Cursor::new(bytes)))
 }
 
 /// A state file's description and size, from its headers: a file that is
 /// no state (an image from elsewhere, a truncated or hostile file) is
 /// refused before its pixels are read.
-fn read_header(path: &Path) -> std::result::Result<(StateInfo, (usize, usize)), String> {
+fn read_header(
+    source: impl std::io::Read,
+) -> std::result::Result<(StateInfo, (usize, usize)), String> {
     use exr::prelude::*;
-    let meta = exr::meta::MetaData::read_from_file(path, false).map_err(|e| match e {
+    let meta = exr::meta::MetaData::read_from_buffered(source, false).map_err(|e| match e {
         exr::error::Error::Io(e) => e.to_string(),
         e => format!("it is not an OpenEXR file ({e})"),
     })?;
@@ -359,15 +374,23 @@ fn read_header(path: &Path) -> std::result::Result<(StateInfo, (usize, usize)), 
 /// Reads a state file: its film (the samples of pass `info.pass`) and its
 /// description. Errors say what is wrong with it.
 pub fn read_state(path: &Path) -> std::result::Result<(Film, StateInfo), String> {
+    read_state_from(|| open(path))
+}
+
+/// [`read_state`] from a source opened twice: once for the headers, once
+/// for the pixels.
+fn read_state_from<R: std::io::Read + std::io::Seek>(
+    open: impl Fn() -> std::result::Result<R, String>,
+) -> std::result::Result<(Film, StateInfo), String> {
     use exr::prelude::*;
-    let (info, (w, h)) = read_header(path)?;
+    let (info, (w, h)) = read_header(open()?)?;
     let image = read()
         .no_deep_data()
         .largest_resolution_level()
         .all_channels()
         .all_layers()
         .all_attributes()
-        .from_file(path)
+        .from_buffered(open()?)
         .map_err(|e| format!("its pixels cannot be read ({e})"))?;
     let layer = (image.layer_data.iter())
         .find(|l| {
@@ -406,6 +429,15 @@ pub fn read_state(path: &Path) -> std::result::Result<(Film, StateInfo), String>
         *s = DVec3::new(r[i], g[i], b[i]);
     }
     film.count.copy_from_slice(channel("count")?);
+    // Sums a render can make: at most its largest sample per sample
+    // (so every pixel's mean is a finite f32), nothing without samples.
+    let possible =
+        |(s, &n): (&DVec3, &u32)| s.abs().max_element() <= super::MAX_SAMPLE as f64 * n as f64;
+    if !film.sum.iter().zip(&film.count).all(possible) {
+        return Err(
+            "its state has a sum no render makes (beyond its samples' largest value)".into(),
+        );
+    }
     let most = range.end - range.start;
     if let Some(n) = film.count.iter().find(|&&n| n > most) {
         return Err(format!(
@@ -457,8 +489,8 @@ mod tests {
         let path = dir.path().join("s.exr");
         let mut film = Film::new(3, 2, 3);
         for (i, (s, n)) in film.sum.iter_mut().zip(&mut film.count).enumerate() {
-            *s = DVec3::new(0.1 * i as f64, 1.0 / 3.0, 1e300);
             *n = i as u32 % 4;
+            *s = DVec3::new(0.1 * i as f64, 1.0 / 3.0, 1e25) * *n as f64;
         }
         write_state(&path, &film, &info()).unwrap();
         let (back, back_info) = read_state(&path).unwrap();
@@ -467,6 +499,26 @@ mod tests {
         // The image part is what an EXR reader sees first.
         let (w, h, px) = crate::output::read_exr(&path).unwrap();
         assert_eq!((w, h, px[1]), (3, 2, film.pixel(1)));
+    }
+
+    #[test]
+    fn sums_no_render_makes_are_refused() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("s.exr");
+        let mut film = Film::new(1, 1, 0);
+        film.sum[0] = DVec3::splat(1.0);
+        write_state(&path, &film, &info()).unwrap();
+        assert!(
+            read_state(&path).unwrap_err().contains("no render makes"),
+            "a sum without samples"
+        );
+        film.count[0] = 1;
+        film.sum[0] = DVec3::splat(1e31);
+        write_state(&path, &film, &info()).unwrap();
+        assert!(read_state(&path).is_err(), "a sum past the largest sample");
+        film.sum[0] = DVec3::new(f64::NAN, 0.0, 0.0);
+        write_state(&path, &film, &info()).unwrap();
+        assert!(read_state(&path).unwrap_err().contains("not finite"));
     }
 
     #[test]

@@ -415,3 +415,174 @@ fn a_pass_needs_an_exr_and_at_least_a_sample() {
     assert_eq!(code, 2);
     assert!(err.contains("K must be at most N"), "{err}");
 }
+
+/// The Kubernetes manifest: its Indexed Job's completions, the pass its
+/// command renders and the merge's inputs agree, and every volume names
+/// the claim it declares. (The schemas are checked by kubernetes-validate
+/// where it is installed: docs/farm.md.)
+#[test]
+fn the_kubernetes_manifest_is_an_indexed_job_whose_pods_render_each_pass() {
+    let text =
+        std::fs::read_to_string(crate::root().join("deploy/kubernetes/render-job.yaml")).unwrap();
+    let docs: Vec<serde_json::Value> = (text.split("\n---\n"))
+        .map(|d| serde_yaml_ng::from_str(d).unwrap())
+        .collect();
+    assert_eq!(docs.len(), 3);
+    let kind = |k: &str, name: &str| {
+        docs.iter()
+            .find(|d| d["kind"] == k && d["metadata"]["name"] == name)
+            .unwrap_or_else(|| panic!("no {k} {name}"))
+            .clone()
+    };
+    let claim = kind("PersistentVolumeClaim", "ptsc-work");
+    assert!(
+        claim["spec"]["accessModes"][0] == "ReadWriteMany",
+        "shared by every pod"
+    );
+    let render = kind("Job", "ptsc-render");
+    assert_eq!(render["apiVersion"], "batch/v1");
+    let spec = &render["spec"];
+    assert_eq!(spec["completionMode"], "Indexed");
+    let n = spec["completions"].as_u64().unwrap();
+    assert!(spec["parallelism"].as_u64().unwrap() <= n);
+    let pod = &spec["template"]["spec"];
+    assert_eq!(
+        pod["restartPolicy"], "Never",
+        "an indexed job's retries are its own"
+    );
+    let script = pod["containers"][0]["args"][0].as_str().unwrap();
+    assert!(
+        script.contains("ptsc render") && script.contains("--resume"),
+        "{script}"
+    );
+    assert!(
+        script.contains(&format!("--pass $((JOB_COMPLETION_INDEX + 1))/{n}")),
+        "the pass counts from the 0-based index, out of `completions`: {script}"
+    );
+    let merge = kind("Job", "ptsc-merge");
+    let merge_script = merge["spec"]["template"]["spec"]["containers"][0]["args"][0]
+        .as_str()
+        .unwrap();
+    assert!(merge_script.contains("ptsc merge") && merge_script.contains("/work/out/part_*.exr"));
+    assert!(script.contains("-o /work/out/part_$((JOB_COMPLETION_INDEX + 1)).exr"));
+    for job in [&render, &merge] {
+        let pod = &job["spec"]["template"]["spec"];
+        assert_eq!(
+            pod["volumes"][0]["persistentVolumeClaim"]["claimName"],
+            "ptsc-work"
+        );
+        assert_eq!(
+            pod["containers"][0]["volumeMounts"][0]["name"],
+            pod["volumes"][0]["name"]
+        );
+    }
+    // The pod's shell arithmetic gives passes 1..=N for indexes 0..N.
+    for index in 0..n {
+        let out = Command::new("sh")
+            .args(["-c", "echo $((JOB_COMPLETION_INDEX + 1))"])
+            .env("JOB_COMPLETION_INDEX", index.to_string())
+            .output()
+            .unwrap();
+        assert_eq!(
+            String::from_utf8_lossy(&out.stdout).trim(),
+            (index + 1).to_string()
+        );
+    }
+}
+
+/// The Slurm script against a stand-in `sbatch` that records each job:
+/// running every array task's command with its SLURM_ARRAY_TASK_ID and
+/// then the merge's gives the single render's image.
+#[test]
+fn the_slurm_array_script_renders_passes_a_dependent_job_merges() {
+    let dir = crate::temp_dir_with(&[("s.pts", SCENE)]);
+    let bin = dir.path().join("bin");
+    std::fs::create_dir(&bin).unwrap();
+    let jobs = dir.path().join("jobs");
+    std::fs::create_dir(&jobs).unwrap();
+    // Each call saves its arguments and prints a job id.
+    let fake = format!(
+        "#!/usr/bin/env bash\nn=$(ls {jobs} | wc -l)\nprintf '%s\\n' \"$@\" > {jobs}/$n\necho $((100 + n))\n",
+        jobs = jobs.display()
+    );
+    std::fs::write(bin.join("sbatch"), fake).unwrap();
+    Command::new("chmod")
+        .args(["+x", bin.join("sbatch").to_str().unwrap()])
+        .status()
+        .unwrap();
+    let out = dir.path().join("out");
+    let path = format!(
+        "{}:{}",
+        bin.display(),
+        std::env::var("PATH").unwrap_or_default()
+    );
+    let script = crate::root().join("deploy/slurm/render-array.sh");
+    let status = Command::new("bash")
+        .arg(&script)
+        .args([
+            "--ptsc",
+            env!("CARGO_BIN_EXE_ptsc"),
+            "--spp",
+            "9",
+            "--passes",
+            "3",
+        ])
+        .arg(dir.path().join("s.pts"))
+        .arg(&out)
+        .env("PATH", &path)
+        .output()
+        .unwrap();
+    let said = String::from_utf8_lossy(&status.stdout);
+    assert!(
+        status.status.success(),
+        "{said}{}",
+        String::from_utf8_lossy(&status.stderr)
+    );
+    assert!(
+        said.contains("render job 100 (array 1-3)") && said.contains("merge job 101"),
+        "{said}"
+    );
+    let job = |n: usize| std::fs::read_to_string(jobs.join(n.to_string())).unwrap();
+    let (array, merge) = (job(0), job(1));
+    assert!(
+        array.lines().any(|l| l == "--array=1-3") && array.lines().any(|l| l == "--requeue"),
+        "{array}"
+    );
+    assert!(
+        merge.lines().any(|l| l == "--dependency=afterok:100"),
+        "{merge}"
+    );
+    let wrap = |job: &str| {
+        job.lines()
+            .find_map(|l| l.strip_prefix("--wrap="))
+            .unwrap()
+            .to_string()
+    };
+    for task in 1..=3 {
+        let run = Command::new("bash")
+            .args(["-c", &wrap(&array)])
+            .env("SLURM_ARRAY_TASK_ID", task.to_string())
+            .output()
+            .unwrap();
+        assert!(
+            run.status.success(),
+            "{}",
+            String::from_utf8_lossy(&run.stderr)
+        );
+    }
+    let run = Command::new("bash")
+        .args(["-c", &wrap(&merge)])
+        .output()
+        .unwrap();
+    assert!(
+        run.status.success(),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    let single = dir.path().join("single.png");
+    render(&dir.path().join("s.pts"), &single, &["--spp", "9"]);
+    assert_eq!(
+        std::fs::read(out.join("image.png")).unwrap(),
+        std::fs::read(single).unwrap()
+    );
+}

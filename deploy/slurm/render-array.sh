@@ -37,6 +37,7 @@ done
 [ $# -ge 2 ] || { sed -n 2,21p "$0" >&2; exit 2; }
 scene=$(realpath "$1") out=$(realpath -m "$2")
 shift 2
+[ "${1:-}" != "--" ] || shift
 [ $# -eq 0 ] || render_extra+=("$@")
 mkdir -p "$out/logs"
 spp_args=()
@@ -62,8 +63,9 @@ render_job=$(sbatch --parsable --job-name=ptsc-render --array="$array" \
 echo "render job $render_job (array $array)"
 
 if [ -z "$frames" ]; then
+  # A failed pass cancels the merge (rather than leaving it pending).
   # shellcheck disable=SC2086
-  merge_job=$(sbatch --parsable --job-name=ptsc-merge --dependency="afterok:$render_job" \
+  merge_job=$(sbatch --parsable --job-name=ptsc-merge --dependency="afterok:$render_job" --kill-on-invalid-dep=yes \
     --output="$out/logs/merge_%j.log" $sbatch_extra \
     --wrap="exec $(q "$ptsc" merge)$(qp "$out")/part_*.exr -o $(qp "$out/$image")")
   echo "merge job $merge_job → $out/$image"

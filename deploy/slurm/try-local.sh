@@ -20,7 +20,11 @@ echo "== submit"
 deploy/slurm/render-array.sh --ptsc "$ptsc" --spp "$spp" --passes "$n" "$scene" "$out" -- --resolution "$resolution" | tee "$out/jobs.txt"
 merge_job=$(awk '/^merge job/ { print $3 }' "$out/jobs.txt")
 t0=$(date +%s)
-while squeue -h -j "$merge_job" 2>/dev/null | grep -q .; do sleep 1; done
+# Until the merge leaves the queue (done, or cancelled by a failed pass).
+for _ in $(seq 600); do
+  squeue -h -j "$merge_job" 2>/dev/null | grep -q . || break
+  sleep 1
+done
 echo "== jobs done in $(( $(date +%s) - t0 )) s"
 scontrol show job "$merge_job" 2>/dev/null | grep -o 'JobState=[A-Z]*' || true
 for log in "$out"/logs/*.log; do echo "-- $(basename "$log")"; cat "$log"; done

@@ -64,6 +64,10 @@ pub struct Animation {
     pub clock: f64,
 }
 
+/// The names every scene sees unless it binds them itself, with the values
+/// of [`Animation`] (for the editors and docs too).
+pub const PREDEFINED: [&str; 2] = ["frame", "clock"];
+
 /// The result of compiling a scene file up to the checked scene.
 #[derive(Debug)]
 pub struct Checked {
@@ -112,9 +116,10 @@ pub fn check_bytes_within(
     animation: Animation,
 ) -> Checked {
     let mut c = Checker::new(loop_statements);
+    let [frame, clock] = PREDEFINED;
     c.env.predefined = vec![
-        ("frame", Value::Num(animation.frame as f64)),
-        ("clock", Value::Num(animation.clock)),
+        (frame, Value::Num(animation.frame as f64)),
+        (clock, Value::Num(animation.clock)),
     ];
     let (text, bad_utf8) = decode(bytes);
     let id = c.sources.add(path, text);

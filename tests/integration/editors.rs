@@ -40,7 +40,14 @@ fn vscode_grammar_knows_every_keyword() {
     {
         let m = p["match"].as_str().unwrap();
         let inner = m.trim_start_matches("\\b(").trim_end_matches(")\\b");
-        words.extend(inner.split('|').map(str::to_string));
+        let names = inner.split('|').map(str::to_string);
+        // The predefined names are names, not keywords.
+        if p["name"] == "variable.language.pts" {
+            let predefined: BTreeSet<String> = names.collect();
+            assert_eq!(predefined, ptsc::check::PREDEFINED.map(String::from).into());
+        } else {
+            words.extend(names);
+        }
     }
     assert_eq!(words, grammar_keywords());
 }
@@ -53,8 +60,12 @@ fn vim_syntax_knows_every_keyword() {
         if let Some(rest) = line.strip_prefix("syn keyword ") {
             let mut it = rest.split_whitespace();
             let group = it.next().unwrap();
-            // Keywords only: not functions, parameters or integrator words.
-            if !matches!(group, "ptsFunction" | "ptsParam" | "ptsWord") {
+            // Keywords only: not functions, parameters, integrator words
+            // or the predefined names (those are checked apart).
+            if group == "ptsPredefined" {
+                let predefined: BTreeSet<String> = it.map(str::to_string).collect();
+                assert_eq!(predefined, ptsc::check::PREDEFINED.map(String::from).into());
+            } else if !matches!(group, "ptsFunction" | "ptsParam" | "ptsWord") {
                 words.extend(it.map(str::to_string));
             }
         }

@@ -170,6 +170,12 @@ fn merge_refuses_duplicate_foreign_and_missing_parts_by_name() {
         assert!(words.iter().any(|w| err.contains(w)), "{parts:?}: {err}");
         assert!(!Path::new(&out).exists(), "{parts:?}: nothing written");
     }
+    // The image would replace a part.
+    let mut args: Vec<String> = vec!["merge".into(), at("p1.exr"), at("p2.exr"), at("p3.exr")];
+    args.extend(["-o".into(), at("p2.exr")]);
+    let (code, err) = ptsc(&args.iter().map(String::as_str).collect::<Vec<_>>());
+    assert_eq!(code, 2);
+    assert!(err.contains("one of the parts"), "{err}");
     // A plain image is no part.
     render(&scene, Path::new(&at("plain.exr")), &["--spp", "2"]);
     let (code, err) = merge(&["p1.exr", "plain.exr"]);

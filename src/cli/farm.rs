@@ -33,11 +33,14 @@ pub struct FarmArgs {
     pub checkpoint: f64,
 }
 
-/// Seconds from 0 (never) to a year.
+/// 0 (never), or seconds from 0.1 (a render that saved its state more
+/// often would spend its time saving) to a year.
 fn parse_seconds(s: &str) -> Result<f64, String> {
     (s.trim().parse::<f64>().ok())
-        .filter(|v| (0.0..=3.2e7).contains(v))
-        .ok_or_else(|| format!("`{s}` is not a number of seconds from 0 to 32000000"))
+        .filter(|v| *v == 0.0 || (0.1..=3.2e7).contains(v))
+        .ok_or_else(|| {
+            format!("`{s}` is not 0 (never) or a number of seconds from 0.1 to 32000000")
+        })
 }
 
 /// Where a render keeps its state: a pass's part file is its output; a

@@ -1,5 +1,6 @@
 //! The command line: `ptsc check`, `ptsc render`, `ptsc merge`, `ptsc watch`.
 
+mod args;
 mod check;
 mod farm;
 mod render;

@@ -303,6 +303,11 @@ pub fn write_state(path: &Path, film: &Film, info: &StateInfo) -> std::io::Resul
     crate::output::write_atomically(path, &cur.into_inner())
 }
 
+/// Whether a part of an EXR file is a render state's.
+fn is_state_part(attributes: &exr::meta::header::LayerAttributes) -> bool {
+    (attributes.layer_name.as_ref()).is_some_and(|n| n.eq(STATE_PART))
+}
+
 /// Reads a state file's description alone (its headers, not its pixels).
 pub fn read_state_info(path: &Path) -> std::result::Result<StateInfo, String> {
     read_header(open(path)?).map(|(info, _)| info)
@@ -331,12 +336,7 @@ fn read_header(
         e => format!("it is not an OpenEXR file ({e})"),
     })?;
     let state_header = (meta.headers.iter())
-        .find(|h| {
-            h.own_attributes
-                .layer_name
-                .as_ref()
-                .is_some_and(|n| n.eq(STATE_PART))
-        })
+        .find(|h| is_state_part(&h.own_attributes))
         .ok_or("it holds no render state (an image without the ptsc.state part)")?;
     let json = match state_header
         .own_attributes
@@ -393,12 +393,7 @@ fn read_state_from<R: std::io::Read + std::io::Seek>(
         .from_buffered(open()?)
         .map_err(|e| format!("its pixels cannot be read ({e})"))?;
     let layer = (image.layer_data.iter())
-        .find(|l| {
-            l.attributes
-                .layer_name
-                .as_ref()
-                .is_some_and(|n| n.eq(STATE_PART))
-        })
+        .find(|l| is_state_part(&l.attributes))
         .ok_or("it holds no render state")?;
     let channel = |name: &str| -> std::result::Result<&[u32], String> {
         let c = (layer.channel_data.list.iter())

@@ -10,14 +10,8 @@ use std::process::{Command, Stdio};
 
 /// Runs the binary; returns its exit code and stderr.
 fn ptsc(args: &[&str]) -> (i32, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_ptsc"))
-        .args(args)
-        .output()
-        .unwrap();
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
+    let (code, _, err) = crate::ptsc(args);
+    (code, err)
 }
 
 /// Renders `scene` with `extra` arguments into `out`; panics on failure.
@@ -564,27 +558,24 @@ fn the_slurm_array_script_renders_passes_a_dependent_job_merges() {
             .unwrap()
             .to_string()
     };
-    for task in 1..=3 {
-        let run = Command::new("bash")
-            .args(["-c", &wrap(&array)])
-            .env("SLURM_ARRAY_TASK_ID", task.to_string())
-            .output()
-            .unwrap();
+    // Each array task, then the merge, as Slurm would run them.
+    let run = |job: &str, task: Option<u32>| {
+        let mut command = Command::new("bash");
+        command.args(["-c", &wrap(job)]);
+        if let Some(id) = task {
+            command.env("SLURM_ARRAY_TASK_ID", id.to_string());
+        }
+        let out = command.output().unwrap();
         assert!(
-            run.status.success(),
+            out.status.success(),
             "{}",
-            String::from_utf8_lossy(&run.stderr)
+            String::from_utf8_lossy(&out.stderr)
         );
+    };
+    for task in 1..=3 {
+        run(&array, Some(task));
     }
-    let run = Command::new("bash")
-        .args(["-c", &wrap(&merge)])
-        .output()
-        .unwrap();
-    assert!(
-        run.status.success(),
-        "{}",
-        String::from_utf8_lossy(&run.stderr)
-    );
+    run(&merge, None);
     let single = dir.path().join("single.png");
     render(&dir.path().join("s.pts"), &single, &["--spp", "9"]);
     assert_eq!(

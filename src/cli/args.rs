@@ -1,0 +1,272 @@
+//! `ptsc render`'s and `ptsc watch`'s arguments: the overrides of the
+//! scene's `render` block, the frames of an animation, and the output path
+//! they give.
+
+use super::Verbosity;
+use crate::check::Animation;
+use crate::ir::settings::{IntegratorKind, LightSelection, Settings};
+use std::path::{Path, PathBuf};
+
+/// Command-line overrides of the scene's `render` block.
+#[derive(Debug, Clone, clap::Args)]
+pub struct RenderArgs {
+    /// The scene file.
+    pub file: PathBuf,
+    /// Output image (.png, .exr or .pfm); default: the scene's `output`, else FILE with .png.
+    #[arg(short, long)]
+    pub output: Option<PathBuf>,
+    /// Samples per pixel (1 to 1000000, as the scene's `samples`).
+    #[arg(long, value_parser = parse_spp)]
+    pub spp: Option<u32>,
+    /// Worker threads (default: all cores).
+    #[arg(long, value_parser = parse_threads)]
+    pub threads: Option<usize>,
+    /// Random seed (0 to 4294967295, as the scene's `seed`).
+    #[arg(long, value_parser = parse_seed)]
+    pub seed: Option<u64>,
+    /// Image size as WxH, e.g. 640x480.
+    #[arg(long, value_parser = parse_resolution)]
+    pub resolution: Option<(u32, u32)>,
+    /// Integrator: path, whitted, hybrid, normals, albedo, depth or uv.
+    #[arg(long, value_parser = parse_integrator)]
+    pub integrator: Option<IntegratorKind>,
+    /// How shadow rays choose their light: auto, bvh, exhaustive, power or uniform.
+    #[arg(long, value_parser = parse_light_selection)]
+    pub light_selection: Option<LightSelection>,
+    /// Render only this frame of an animation (`frame` in the scene; with
+    /// --frames, `clock` runs from 0 at its first frame to 1 at its last).
+    #[arg(long, value_name = "F", value_parser = parse_frame)]
+    pub frame: Option<u32>,
+    /// The animation's frames, e.g. 1..240: each is rendered in turn (or
+    /// only --frame's); name the images with a # pattern (frame_####.png).
+    #[arg(long, value_name = "A..B", value_parser = parse_frames)]
+    pub frames: Option<(u32, u32)>,
+    /// Only errors: no warnings, progress or figures.
+    #[arg(short, long, conflicts_with = "verbose")]
+    pub quiet: bool,
+    /// Also the time of each stage and of each pass, and the scene's size.
+    #[arg(short, long)]
+    pub verbose: bool,
+}
+
+impl RenderArgs {
+    /// How much to print.
+    pub fn verbosity(&self) -> Verbosity {
+        Verbosity::from_flags(self.quiet, self.verbose)
+    }
+
+    /// The frames to render, each with its `frame` and `clock`: --frame's
+    /// alone, else every frame of --frames, else frame 0 at clock 0.
+    pub fn animations(&self) -> Result<Vec<Animation>, String> {
+        let (a, b) = self.frames.unwrap_or_else(|| {
+            let f = self.frame.unwrap_or(0);
+            (f, f)
+        });
+        let at = |frame: u32| Animation {
+            frame,
+            clock: if b > a {
+                (frame - a) as f64 / (b - a) as f64
+            } else {
+                0.0
+            },
+        };
+        match self.frame {
+            Some(f) if !(a..=b).contains(&f) => {
+                Err(format!("--frame {f} is not one of --frames {a}..{b}"))
+            }
+            Some(f) => Ok(vec![at(f)]),
+            None => Ok((a..=b).map(at).collect()),
+        }
+    }
+}
+
+/// The most frames one `--frames` range holds.
+pub const MAX_FRAMES: u32 = 1_000_000;
+
+fn parse_frame(s: &str) -> Result<u32, String> {
+    let setting = crate::check::WholeSetting {
+        name: "frame",
+        min: 0,
+        max: 99_999_999,
+    };
+    setting.parse(s).map(|n| n as u32)
+}
+
+fn parse_frames(s: &str) -> Result<(u32, u32), String> {
+    let (a, b) = s.split_once("..").ok_or("expected A..B, e.g. 1..240")?;
+    let (a, b) = (parse_frame(a.trim())?, parse_frame(b.trim())?);
+    if a > b {
+        return Err(format!("the first frame ({a}) comes after the last ({b})"));
+    }
+    if b - a >= MAX_FRAMES {
+        return Err(format!("at most {MAX_FRAMES} frames at once"));
+    }
+    Ok((a, b))
+}
+
+/// The most worker threads `--threads` starts.
+pub const MAX_THREADS: usize = 1024;
+
+fn parse_spp(s: &str) -> Result<u32, String> {
+    crate::check::SAMPLES.parse(s).map(|n| n as u32)
+}
+
+fn parse_seed(s: &str) -> Result<u64, String> {
+    crate::check::SEED.parse(s)
+}
+
+fn parse_threads(s: &str) -> Result<usize, String> {
+    let setting = crate::check::WholeSetting {
+        name: "threads",
+        min: 1,
+        max: MAX_THREADS as u64,
+    };
+    setting.parse(s).map(|n| n as usize)
+}
+
+fn parse_resolution(s: &str) -> Result<(u32, u32), String> {
+    let (w, h) = s
+        .split_once(['x', 'X'])
+        .ok_or("expected WxH, e.g. 640x480")?;
+    let w: u32 = w
+        .trim()
+        .parse()
+        .map_err(|_| format!("`{w}` is not a width"))?;
+    let h: u32 = h
+        .trim()
+        .parse()
+        .map_err(|_| format!("`{h}` is not a height"))?;
+    use crate::check::{MAX_PIXELS, MAX_SIDE};
+    let side = 1.0..=MAX_SIDE;
+    if !side.contains(&(w as f64))
+        || !side.contains(&(h as f64))
+        || w as f64 * h as f64 > MAX_PIXELS
+    {
+        return Err("each side must be 1..=16384 and the image at most 8192×8192 pixels".into());
+    }
+    Ok((w, h))
+}
+
+fn parse_integrator(s: &str) -> Result<IntegratorKind, String> {
+    IntegratorKind::from_name(s).ok_or_else(|| expected_one_of(&IntegratorKind::WORDS))
+}
+
+fn parse_light_selection(s: &str) -> Result<LightSelection, String> {
+    LightSelection::from_name(s).ok_or_else(|| expected_one_of(&LightSelection::WORDS))
+}
+
+/// "expected a, b or c".
+fn expected_one_of(words: &[&str]) -> String {
+    match words.split_last() {
+        Some((last, rest)) if !rest.is_empty() => format!("expected {} or {last}", rest.join(", ")),
+        _ => format!("expected {}", words.join("")),
+    }
+}
+
+/// Applies the command line's overrides to the scene's settings.
+pub fn apply_overrides(settings: &mut Settings, args: &RenderArgs) {
+    if let Some(n) = args.spp {
+        settings.samples = n;
+    }
+    if let Some(s) = args.seed {
+        settings.seed = s;
+    }
+    if let Some((w, h)) = args.resolution {
+        settings.width = w;
+        settings.height = h;
+    }
+    if let Some(k) = args.integrator {
+        settings.integrator = k;
+    }
+    if let Some(rule) = args.light_selection {
+        settings.light_selection = rule;
+    }
+}
+
+/// The output image: `-o`, else the scene's `output`, else FILE with `.png`;
+/// each run of `#` in it becomes the frame's number, zero-padded to the
+/// run's length (`frame_####.png` → `frame_0012.png`).
+pub fn output_path(args: &RenderArgs, scene_output: Option<&Path>, frame: u32) -> PathBuf {
+    let path = args
+        .output
+        .clone()
+        .or_else(|| scene_output.map(Path::to_path_buf))
+        .unwrap_or_else(|| args.file.with_extension("png"));
+    match path.to_str() {
+        Some(text) if text.contains('#') => PathBuf::from(number_frame(text, frame)),
+        _ => path,
+    }
+}
+
+/// Replaces each run of `#` with `frame`, zero-padded to the run's length.
+fn number_frame(pattern: &str, frame: u32) -> String {
+    let mut out = String::with_capacity(pattern.len() + 8);
+    let mut run = 0;
+    let flush = |out: &mut String, run: &mut usize| {
+        if *run > 0 {
+            out.push_str(&format!("{frame:0width$}", width = *run));
+            *run = 0;
+        }
+    };
+    for c in pattern.chars() {
+        if c == '#' {
+            run += 1;
+        } else {
+            flush(&mut out, &mut run);
+            out.push(c);
+        }
+    }
+    flush(&mut out, &mut run);
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn runs_of_hashes_become_the_frame_number_padded_to_their_length() {
+        assert_eq!(number_frame("frame_####.png", 12), "frame_0012.png");
+        assert_eq!(number_frame("a#/b_##.exr", 7), "a7/b_07.exr");
+        // A number longer than its run is written whole.
+        assert_eq!(number_frame("f_##.png", 12345), "f_12345.png");
+        assert_eq!(number_frame("plain.png", 3), "plain.png");
+    }
+
+    #[test]
+    fn the_clock_runs_from_0_at_the_first_frame_to_1_at_the_last() {
+        use clap::Parser;
+        #[derive(Parser)]
+        struct Cli {
+            #[command(flatten)]
+            args: RenderArgs,
+        }
+        let frames = |argv: &[&str]| {
+            let cli = Cli::try_parse_from([&["ptsc", "s.pts"], argv].concat()).unwrap();
+            cli.args.animations()
+        };
+        let all = frames(&["--frames", "10..14"]).unwrap();
+        let clocks: Vec<f64> = all.iter().map(|a| a.clock).collect();
+        assert_eq!(clocks, vec![0.0, 0.25, 0.5, 0.75, 1.0]);
+        assert_eq!(all[4].frame, 14);
+        let one = frames(&["--frames", "10..14", "--frame", "12"]).unwrap();
+        assert_eq!(
+            one,
+            vec![Animation {
+                frame: 12,
+                clock: 0.5
+            }]
+        );
+        let still = frames(&["--frame", "5"]).unwrap();
+        assert_eq!(
+            still,
+            vec![Animation {
+                frame: 5,
+                clock: 0.0
+            }]
+        );
+        assert_eq!(frames(&[]).unwrap(), vec![Animation::default()]);
+        assert!(frames(&["--frames", "1..3", "--frame", "4"]).is_err());
+        assert!(Cli::try_parse_from(["ptsc", "s.pts", "--frames", "5..2"]).is_err());
+    }
+}

@@ -11,7 +11,7 @@ use std::path::{Path, PathBuf};
 pub const CHECKPOINT_SECONDS: f64 = 300.0;
 
 /// `ptsc render`'s options for long renders and farms.
-#[derive(Debug, Clone, Default, clap::Args)]
+#[derive(Debug, Clone, clap::Args)]
 pub struct FarmArgs {
     /// Render only the K-th of N disjoint parts of every pixel's samples
     /// (1 ≤ K ≤ N ≤ spp) into an EXR part file; `ptsc merge` adds the parts up.

@@ -194,14 +194,15 @@ fn merge_refuses_duplicate_foreign_and_missing_parts_by_name() {
     assert!(max_relative_difference(&partial, &mean) < 1e-5);
 }
 
-#[test]
-fn a_render_stopped_by_a_signal_resumes_to_the_uninterrupted_image() {
-    let dir = crate::temp_dir_with(&[("s.pts", SCENE)]);
-    let scene = dir.path().join("s.pts");
-    let out = dir.path().join("stopped.exr");
-    let args = ["--spp", "2048"];
-    // Stop it once it has finished the 16-spp pass (its -v lines say so):
-    // the signal lands mid-render whatever the machine's speed.
+/// Renders `scene` into `out` with `args` and SIGINT once its `-v` output
+/// says the `after`-spp pass finished: the signal lands mid-render whatever
+/// the machine's speed. Returns the exit code and stderr.
+fn render_and_interrupt(
+    scene: &Path,
+    out: &Path,
+    args: &[&str],
+    after: u32,
+) -> (Option<i32>, String) {
     let mut child = Command::new(env!("CARGO_BIN_EXE_ptsc"))
         .args([
             "render",
@@ -221,7 +222,7 @@ fn a_render_stopped_by_a_signal_resumes_to_the_uninterrupted_image() {
         let line = line.unwrap();
         seen.push_str(&line);
         seen.push('\n');
-        if line.contains("pass to 16 spp") {
+        if line.contains(&format!("pass to {after} spp")) {
             break;
         }
     }
@@ -231,8 +232,17 @@ fn a_render_stopped_by_a_signal_resumes_to_the_uninterrupted_image() {
     assert!(kill.unwrap().success());
     let rest: Vec<String> = lines.map(Result::unwrap).collect();
     let status = child.wait().unwrap();
-    let err = seen + &rest.join("\n");
-    assert_eq!(status.code(), Some(130), "{err}");
+    (status.code(), seen + &rest.join("\n"))
+}
+
+#[test]
+fn a_render_stopped_by_a_signal_resumes_to_the_uninterrupted_image() {
+    let dir = crate::temp_dir_with(&[("s.pts", SCENE)]);
+    let scene = dir.path().join("s.pts");
+    let out = dir.path().join("stopped.exr");
+    let args = ["--spp", "2048"];
+    let (code, err) = render_and_interrupt(&scene, &out, &args, 16);
+    assert_eq!(code, Some(130), "{err}");
     assert!(
         err.contains("interrupted:") && err.contains("--resume"),
         "{err}"
@@ -264,6 +274,50 @@ fn a_render_stopped_by_a_signal_resumes_to_the_uninterrupted_image() {
         pixels(&whole),
         "the same samples, added in the same order"
     );
+}
+
+#[test]
+fn an_interrupted_pass_is_refused_by_merge_until_resumed() {
+    let dir = crate::temp_dir_with(&[("s.pts", SCENE)]);
+    let scene = dir.path().join("s.pts");
+    let at = |name: &str| dir.path().join(name);
+    let spp = ["--spp", "1000"];
+    render(
+        &scene,
+        &at("p1.exr"),
+        &[&spp[..], &["--pass", "1/2"]].concat(),
+    );
+    // Pass 2 of 500 samples a pixel, stopped after its 16th.
+    let pass2 = [&spp[..], &["--pass", "2/2"]].concat();
+    let (code, err) = render_and_interrupt(&scene, &at("p2.exr"), &pass2, 16);
+    assert_eq!(code, Some(130), "{err}");
+    let merge = |extra: &[&str]| {
+        let (p1, p2, out) = (at("p1.exr"), at("p2.exr"), at("m.exr"));
+        let mut args = vec!["merge", p1.to_str().unwrap(), p2.to_str().unwrap()];
+        args.extend(["-o", out.to_str().unwrap()]);
+        args.extend(extra);
+        ptsc(&args)
+    };
+    let (code, err) = merge(&[]);
+    assert_eq!(code, 2);
+    assert!(
+        err.contains("p2.exr is unfinished") && err.contains("--resume"),
+        "{err}"
+    );
+    let (code, err) = merge(&["--partial"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(
+        err.contains("warning: ") && err.contains("unfinished"),
+        "{err}"
+    );
+    // The pass resumed from its part file, then merged: the single render.
+    let resumed = render(&scene, &at("p2.exr"), &[&pass2[..], &["--resume"]].concat());
+    assert!(resumed.contains("resuming from pass 2/2"), "{resumed}");
+    let (code, err) = merge(&[]);
+    assert_eq!(code, 0, "{err}");
+    render(&scene, &at("one.exr"), &spp);
+    let d = max_relative_difference(&pixels(&at("one.exr")), &pixels(&at("m.exr")));
+    assert!(d <= 1e-5, "max relative difference {d}");
 }
 
 #[test]

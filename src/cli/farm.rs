@@ -218,11 +218,8 @@ pub fn merge(args: &MergeArgs) -> u8 {
 fn merge_parts(args: &MergeArgs) -> Result<String, String> {
     crate::output::check_writable(&args.output)
         .map_err(|why| format!("cannot write {}: {why}", args.output.display()))?;
-    let same = |a: &Path, b: &Path| match (a.canonicalize(), b.canonicalize()) {
-        (Ok(a), Ok(b)) => a == b,
-        _ => false,
-    };
-    if let Some(part) = args.parts.iter().find(|p| same(p, &args.output)) {
+    let output = &args.output;
+    if let Some(part) = (args.parts.iter()).find(|p| crate::output::same_file(p, output)) {
         return Err(format!(
             "cannot write {}: it is one of the parts (name another image with -o)",
             part.display()

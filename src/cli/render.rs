@@ -43,13 +43,9 @@ pub fn compile(
 /// scene reads (the scene itself, an include, a mesh), which the image would
 /// replace.
 pub fn check_output(output: &Path, dependencies: &[PathBuf]) -> Result<(), String> {
-    let same = |a: &Path, b: &Path| match (std::fs::canonicalize(a), std::fs::canonicalize(b)) {
-        (Ok(a), Ok(b)) => a == b,
-        _ => false,
-    };
     let inputs = dependencies.iter();
     for input in inputs {
-        if same(output, input) {
+        if crate::output::same_file(output, input) {
             return Err(format!(
                 "{} is a file of the scene; the image would replace it (name another with -o)",
                 input.display()

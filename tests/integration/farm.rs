@@ -8,11 +8,7 @@ use std::io::{BufRead, BufReader};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 
-/// Runs the binary; returns its exit code and stderr.
-fn ptsc(args: &[&str]) -> (i32, String) {
-    let (code, _, err) = crate::ptsc(args);
-    (code, err)
-}
+use crate::ptsc_stderr as ptsc;
 
 /// Renders `scene` with `extra` arguments into `out`; panics on failure.
 fn render(scene: &Path, out: &Path, extra: &[&str]) -> String {
@@ -493,9 +489,9 @@ fn the_kubernetes_manifest_is_an_indexed_job_whose_pods_render_each_pass() {
         claim["spec"]["accessModes"][0] == "ReadWriteMany",
         "shared by every pod"
     );
-    let render = kind("Job", "ptsc-render");
-    assert_eq!(render["apiVersion"], "batch/v1");
-    let spec = &render["spec"];
+    let render_job = kind("Job", "ptsc-render");
+    assert_eq!(render_job["apiVersion"], "batch/v1");
+    let spec = &render_job["spec"];
     assert_eq!(spec["completionMode"], "Indexed");
     let n = spec["completions"].as_u64().unwrap();
     assert!(spec["parallelism"].as_u64().unwrap() <= n);
@@ -519,7 +515,7 @@ fn the_kubernetes_manifest_is_an_indexed_job_whose_pods_render_each_pass() {
         .unwrap();
     assert!(merge_script.contains("ptsc merge") && merge_script.contains("/work/out/part_*.exr"));
     assert!(script.contains("-o /work/out/part_$((JOB_COMPLETION_INDEX + 1)).exr"));
-    for job in [&render, &merge] {
+    for job in [&render_job, &merge] {
         let pod = &job["spec"]["template"]["spec"];
         assert_eq!(
             pod["volumes"][0]["persistentVolumeClaim"]["claimName"],
@@ -530,18 +526,53 @@ fn the_kubernetes_manifest_is_an_indexed_job_whose_pods_render_each_pass() {
             pod["volumes"][0]["name"]
         );
     }
-    // The pod's shell arithmetic gives passes 1..=N for indexes 0..N.
-    for index in 0..n {
-        let out = Command::new("sh")
-            .args(["-c", "echo $((JOB_COMPLETION_INDEX + 1))"])
-            .env("JOB_COMPLETION_INDEX", index.to_string())
-            .output()
-            .unwrap();
-        assert_eq!(
-            String::from_utf8_lossy(&out.stdout).trim(),
-            (index + 1).to_string()
+    // The pods' commands as written, with the volume at a folder here and
+    // the binary on PATH as `ptsc`: each index renders its pass, then the
+    // merge's loop ends at once with the single render's image.
+    let dir = crate::temp_dir_with(&[]);
+    let work = dir.path().join("work");
+    std::fs::create_dir_all(work.join("scene")).unwrap();
+    std::fs::write(work.join("scene/scene.pts"), SCENE).unwrap();
+    let bin = dir.path().join("bin");
+    std::fs::create_dir(&bin).unwrap();
+    std::os::unix::fs::symlink(env!("CARGO_BIN_EXE_ptsc"), bin.join("ptsc")).unwrap();
+    let path = format!(
+        "{}:{}",
+        bin.display(),
+        std::env::var("PATH").unwrap_or_default()
+    );
+    let here = |script: &str| script.replace("/work", work.to_str().unwrap());
+    let sh = |script: &str, index: Option<u64>| {
+        let mut command = Command::new("sh");
+        command.args(["-c", &here(script)]).env("PATH", &path);
+        if let Some(i) = index {
+            command.env("JOB_COMPLETION_INDEX", i.to_string());
+        }
+        let out = command.output().unwrap();
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
         );
+    };
+    for index in 0..n {
+        sh(script, Some(index));
+        assert!(work.join(format!("out/part_{}.exr", index + 1)).is_file());
     }
+    sh(merge_script, None);
+    let spp = script
+        .split("--spp ")
+        .nth(1)
+        .unwrap()
+        .split_whitespace()
+        .next()
+        .unwrap();
+    let single = dir.path().join("single.png");
+    render(&work.join("scene/scene.pts"), &single, &["--spp", spp]);
+    assert_eq!(
+        std::fs::read(work.join("out/image.png")).unwrap(),
+        std::fs::read(&single).unwrap()
+    );
 }
 
 /// The Slurm script against a stand-in `sbatch` that records each job:

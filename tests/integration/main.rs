@@ -35,6 +35,12 @@ pub fn ptsc(args: &[&str]) -> (i32, String, String) {
     )
 }
 
+/// Runs the ptsc binary; returns its exit code and stderr.
+pub fn ptsc_stderr(args: &[&str]) -> (i32, String) {
+    let (code, _, err) = ptsc(args);
+    (code, err)
+}
+
 /// The package root.
 pub fn root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))

@@ -187,16 +187,7 @@ point_light { position <1, 1.5, 1> intensity rgb 2 }
     }
 }
 
-fn ptsc(args: &[&str]) -> (i32, String) {
-    let out = std::process::Command::new(env!("CARGO_BIN_EXE_ptsc"))
-        .args(args)
-        .output()
-        .unwrap();
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
-}
+use crate::ptsc_stderr as ptsc;
 
 #[test]
 fn exit_codes() {

@@ -503,13 +503,19 @@ pub(crate) mod tests {
             || (-2.0f32..2.0, -2.0f32..2.0, -2.0f32..2.0).prop_map(|(x, y, z)| Vec3::new(x, y, z));
         prop_oneof![
             (v(), 0.05f32..2.0).prop_map(|(center, radius)| Shape::Sphere { center, radius }),
-            (v(), e(), e()).prop_map(|(p0, e1, e2)| Shape::Triangle {
+            (v(), e(), e(), any::<bool>()).prop_map(|(p0, e1, e2, swapped)| Shape::Triangle {
                 p0,
                 e1,
                 e2,
-                attributes: u32::MAX
+                attributes: u32::MAX,
+                swapped,
             }),
-            (v(), e(), e()).prop_map(|(p, e1, e2)| Shape::Quad { p, e1, e2 }),
+            (v(), e(), e(), any::<bool>()).prop_map(|(p, e1, e2, swapped)| Shape::Quad {
+                p,
+                e1,
+                e2,
+                swapped
+            }),
         ]
     }
 

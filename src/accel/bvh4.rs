@@ -9,7 +9,7 @@
 //! hit children are visited nearest first.
 
 use super::bvh::Bvh;
-use super::tri4::{PackedTriangle, Tri4, PLAIN, QUAD};
+use super::tri4::{PackedTriangle, Tri4, FLAGS, MAX_PACKED, PLAIN};
 use crate::geometry::shape::Shape;
 use crate::geometry::shape::ShapeHit;
 use crate::geometry::{Aabb, Ray};
@@ -73,9 +73,9 @@ pub struct TreeHit {
     pub prim: u32,
     /// Where.
     pub hit: ShapeHit,
-    /// `[p0, e1, e2]` when the primitive is a plain triangle of a block
-    /// (see [`PLAIN`]): all its hit needs, without the primitive's record.
-    pub plain: Option<[Vec3; 3]>,
+    /// The primitive when it is a plain triangle or quad of a block (see
+    /// [`PLAIN`]): all its hit needs, without the primitive's record.
+    pub plain: Option<PackedTriangle>,
 }
 
 /// The wide BVH. Leaves index primitives directly: a leaf's primitives have
@@ -87,6 +87,13 @@ pub struct Bvh4 {
     /// Blocks of up to four static triangles or quads, tested together; a
     /// leaf holds up to [`MAX_BLOCKS`] consecutive ones.
     pub tris: Vec<Tri4>,
+    /// The first plain primitive's number: plain lanes are numbered from it
+    /// in block order (see [`Bvh4::renumber`]).
+    pub plain_from: u32,
+    /// Per block, the plain lanes in the blocks before it: the block of a
+    /// plain primitive by binary search ([`Bvh4::plain_lane`]), 4 bytes a
+    /// block (1 a triangle).
+    plain_before: Vec<u32>,
 }
 
 impl Bvh4 {
@@ -142,6 +149,7 @@ impl Bvh4 {
             vertices: [Vec3::ZERO; 3],
             plain: false,
             quad: false,
+            swapped: false,
         };
         for lane in 0..4 {
             let n = &self.nodes[node];
@@ -152,9 +160,8 @@ impl Bvh4 {
                 }
                 continue;
             }
-            // (Primitive numbers from QUAD up cannot be packed: 2^30
-            // records would take 64 GiB.)
-            if !packable_count(count) || first + count >= QUAD {
+            // (Primitive numbers from MAX_PACKED up cannot be packed.)
+            if !packable_count(count) || first + count >= MAX_PACKED {
                 continue;
             }
             let mut tris = [(0, unused); 4 * MAX_BLOCKS as usize];
@@ -175,24 +182,60 @@ impl Bvh4 {
         }
     }
 
-    /// Gives every primitive the number `new(old)`: in the blocks' lanes and
-    /// as the first primitive of the other leaves, whose primitives must keep
-    /// consecutive numbers (`new(old + k) == new(old) + k`).
-    pub fn renumber(&mut self, new: impl Fn(u32) -> u32) {
+    /// Gives every primitive its final number: `record(old)` for the
+    /// primitives with records (as the first primitive of a leaf, whose
+    /// primitives must keep consecutive numbers: `record(old + k) ==
+    /// record(old) + k`, and in the blocks' other lanes), and `plain_from`,
+    /// `plain_from + 1`, … to the plain lanes in block order, each
+    /// reported as `plain(old, new)`. Numbered in block order, a plain
+    /// primitive's lane is found again from its number alone
+    /// ([`Bvh4::plain_lane`]).
+    pub fn renumber(
+        &mut self,
+        record: impl Fn(u32) -> u32,
+        plain_from: u32,
+        mut plain: impl FnMut(u32, u32),
+    ) {
         for n in &mut self.nodes {
             for lane in 0..4 {
                 if n.count[lane] != 0 && blocks(n.count[lane]) == 0 {
-                    n.child[lane] = new(n.child[lane]);
+                    n.child[lane] = record(n.child[lane]);
                 }
             }
         }
+        self.plain_from = plain_from;
+        self.plain_before = Vec::with_capacity(self.tris.len());
+        let mut next = plain_from;
         for block in &mut self.tris {
+            self.plain_before.push(next - plain_from);
             for p in block.prim.iter_mut().filter(|p| **p != u32::MAX) {
-                let id = new(*p & !(PLAIN | QUAD));
-                debug_assert!(id < QUAD);
-                *p = id | (*p & (PLAIN | QUAD));
+                let old = *p & !FLAGS;
+                let id = if *p & PLAIN != 0 {
+                    next += 1;
+                    plain(old, next - 1);
+                    next - 1
+                } else {
+                    record(old)
+                };
+                debug_assert!(id < MAX_PACKED);
+                *p = id | (*p & FLAGS);
             }
         }
+    }
+
+    /// The plain triangle or quad numbered `prim` (`None`: not a plain
+    /// primitive), as its block holds it.
+    pub fn plain_lane(&self, prim: u32) -> Option<PackedTriangle> {
+        let k = prim.checked_sub(self.plain_from)?;
+        let b = self.plain_before.partition_point(|&before| before <= k);
+        let b = b.checked_sub(1)?;
+        let block = &self.tris[b];
+        let nth = (k - self.plain_before[b]) as usize;
+        let lane = (0..4)
+            .filter(|&lane| block.prim[lane] != u32::MAX && block.prim(lane).1)
+            .nth(nth)?;
+        debug_assert_eq!(block.prim(lane).0, prim);
+        Some(block.packed(lane))
     }
 
     /// The blocks' lanes that hold plain triangles and parallelograms (see
@@ -213,16 +256,8 @@ impl Bvh4 {
 
     /// The primitives of the plain lanes (as `plain_prims`) and their shapes.
     pub fn plain_shapes(&self) -> impl Iterator<Item = (u32, Shape)> + '_ {
-        self.plain_lanes().map(|(block, lane)| {
-            let vertices = block.vertices(lane);
-            let shape = if block.is_quad(lane) {
-                let [p, e1, e2] = vertices;
-                Shape::Quad { p, e1, e2 }
-            } else {
-                Shape::flat_triangle(vertices)
-            };
-            (block.prim(lane).0, shape)
-        })
+        self.plain_lanes()
+            .map(|(block, lane)| (block.prim(lane).0, block.packed(lane).shape()))
     }
 
     /// The closest hit beyond `t_min` and before `t_max`: `hit(prim, t_max)`
@@ -320,7 +355,7 @@ impl Bvh4 {
         // The hit block was read last or recently: still in the cache.
         if let (Some(hit), Some((block, lane))) = (&mut best, best_lane) {
             if block.prim(lane).1 {
-                hit.plain = Some(block.vertices(lane));
+                hit.plain = Some(block.packed(lane));
             }
         }
         best
@@ -544,18 +579,11 @@ mod tests {
         *shapes = bvh.order.iter().map(|&i| shapes[i as usize]).collect();
         bvh.order = (0..shapes.len() as u32).collect();
         let mut w = Bvh4::from_binary(&bvh);
-        w.pack_triangles(|p| match shapes[p as usize] {
-            Shape::Triangle { p0, e1, e2, .. } => Some(PackedTriangle {
-                vertices: [p0, e1, e2],
+        w.pack_triangles(|p| {
+            PackedTriangle::of(&shapes[p as usize]).map(|t| PackedTriangle {
                 plain: p % 2 == 0,
-                quad: false,
-            }),
-            Shape::Quad { p: p0, e1, e2 } => Some(PackedTriangle {
-                vertices: [p0, e1, e2],
-                plain: p % 2 == 0,
-                quad: true,
-            }),
-            _ => None,
+                ..t
+            })
         });
         w
     }
@@ -611,15 +639,12 @@ mod tests {
                 });
                 let want = brute(&shapes, &ray);
                 prop_assert_eq!(got.map(|g| g.hit.t), want.map(|w| w.1));
-                if let Some(TreeHit { prim, plain: Some(v), .. }) = got {
+                if let Some(TreeHit { prim, plain: Some(lane), .. }) = got {
                     // Only even triangles and quads are packed as plain, and
-                    // the block hands back their own vertices.
-                    let (Shape::Triangle { p0, e1, e2, .. } | Shape::Quad { p: p0, e1, e2 }) =
-                        shapes[prim as usize]
-                    else {
-                        panic!("a plain hit on a sphere");
-                    };
-                    prop_assert!(prim % 2 == 0 && v == [p0, e1, e2]);
+                    // the block hands back the primitive itself.
+                    let own = PackedTriangle::of(&shapes[prim as usize]);
+                    prop_assert!(prim % 2 == 0);
+                    prop_assert_eq!(Some(PackedTriangle { plain: true, ..lane }), own.map(|t| PackedTriangle { plain: true, ..t }));
                 }
                 let any = w.any(&ray, 1e-4, f32::INFINITY, |i, tmax| {
                     shapes[i as usize].intersect(&ray, 1e-4, tmax).is_some()
@@ -670,12 +695,7 @@ mod tests {
         // Two triangles far apart in one block; `wide` packs the even one
         // (in leaf order) as plain: it comes back with its vertices, the
         // odd one without.
-        let tri = |x: f32| Shape::Triangle {
-            p0: Vec3::new(x, 0.0, 0.0),
-            e1: Vec3::X,
-            e2: Vec3::Y,
-            attributes: u32::MAX,
-        };
+        let tri = |x: f32| Shape::flat_triangle([Vec3::new(x, 0.0, 0.0), Vec3::X, Vec3::Y]);
         let mut shapes = vec![tri(0.0), tri(5.0)];
         let w = wide(&mut shapes);
         assert_eq!(w.tris.len(), 1);
@@ -684,11 +704,9 @@ mod tests {
             let ray = Ray::new(Vec3::new(x, 0.2, 1.0), -Vec3::Z, 0.0);
             let not_alone = |_, _| panic!("a block's triangle tested alone");
             let hit = w.closest(&ray, 1e-4, f32::INFINITY, not_alone).unwrap();
-            let Shape::Triangle { p0, e1, e2, .. } = shapes[hit.prim as usize] else {
-                unreachable!()
-            };
             let plain = hit.prim.is_multiple_of(2);
-            assert_eq!(hit.plain, plain.then_some([p0, e1, e2]), "{x}");
+            let own = PackedTriangle::of(&shapes[hit.prim as usize]);
+            assert_eq!(hit.plain, own.filter(|_| plain), "{x}");
             seen.push(plain);
         }
         seen.sort();

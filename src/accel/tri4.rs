@@ -10,6 +10,7 @@
 //! lines instead of four scattered primitive records. Every lane repeats the scalar test's
 //! operations in the scalar test's order, so both give bit-identical hits.
 
+use crate::geometry::shape::Shape;
 use glam::{Vec3, Vec4};
 
 /// Up to four triangles `p0, p0 + e1, p0 + e2` or parallelograms spanned by
@@ -25,8 +26,9 @@ pub struct Tri4 {
     /// Edge to the third vertex, per axis.
     pub e2: [[f32; 4]; 3],
     /// The primitive each lane is, with [`PLAIN`] set when the triangle
-    /// alone describes its surface and [`QUAD`] when it is a parallelogram
-    /// (`u32::MAX` for an unused lane).
+    /// alone describes its surface, [`QUAD`] when it is a parallelogram and
+    /// [`SWAPPED`] when its edges are stored swapped (`u32::MAX` for an
+    /// unused lane).
     pub prim: [u32; 4],
 }
 
@@ -40,8 +42,21 @@ pub const PLAIN: u32 = 1 << 31;
 /// `v <= 1` in place of `u + v <= 1`. Walls and floors of rooms are quads.
 pub const QUAD: u32 = 1 << 30;
 
+/// The bit of [`Tri4::prim`] that marks a primitive stored with its edges
+/// swapped, to keep its outward side under a mirroring transform (see
+/// [`Shape::own_uv`]).
+pub const SWAPPED: u32 = 1 << 29;
+
+/// The flag bits of [`Tri4::prim`]; primitive numbers lie below them.
+pub const FLAGS: u32 = PLAIN | QUAD | SWAPPED;
+
+/// The first primitive number a block cannot hold (2^29 records would take
+/// 32 GiB).
+pub const MAX_PACKED: u32 = SWAPPED;
+
 /// A triangle (or parallelogram) to pack: its vertex and edges `[p0, e1,
-/// e2]`, and whether it is plain (see [`PLAIN`]) and a parallelogram.
+/// e2]`, whether it is plain (see [`PLAIN`]), a parallelogram, and stored
+/// with its edges swapped.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct PackedTriangle {
     /// `[p0, e1, e2]`.
@@ -50,6 +65,58 @@ pub struct PackedTriangle {
     pub plain: bool,
     /// Whether it is the parallelogram `p0 + u·e1 + v·e2`, u, v in [0, 1].
     pub quad: bool,
+    /// Whether the edges are stored swapped ([`Shape::own_uv`]).
+    pub swapped: bool,
+}
+
+impl PackedTriangle {
+    /// A static triangle or quad `shape` to pack (`None` for other shapes),
+    /// plain when it has no vertex attributes.
+    pub fn of(shape: &Shape) -> Option<PackedTriangle> {
+        match *shape {
+            Shape::Triangle {
+                p0,
+                e1,
+                e2,
+                attributes,
+                swapped,
+            } => Some(PackedTriangle {
+                vertices: [p0, e1, e2],
+                plain: attributes == u32::MAX,
+                quad: false,
+                swapped,
+            }),
+            Shape::Quad { p, e1, e2, swapped } => Some(PackedTriangle {
+                vertices: [p, e1, e2],
+                plain: true,
+                quad: true,
+                swapped,
+            }),
+            _ => None,
+        }
+    }
+
+    /// The shape a plain lane describes: exactly the primitive's, without
+    /// vertex attributes.
+    pub fn shape(&self) -> Shape {
+        let [p0, e1, e2] = self.vertices;
+        if self.quad {
+            Shape::Quad {
+                p: p0,
+                e1,
+                e2,
+                swapped: self.swapped,
+            }
+        } else {
+            Shape::Triangle {
+                p0,
+                e1,
+                e2,
+                attributes: u32::MAX,
+                swapped: self.swapped,
+            }
+        }
+    }
 }
 
 const _: () = assert!(std::mem::size_of::<Tri4>() == 160);
@@ -69,7 +136,7 @@ pub struct LaneHit {
 
 impl Tri4 {
     /// Packs up to four `(prim, triangle)` pairs; `prim` must be below
-    /// [`QUAD`].
+    /// [`MAX_PACKED`].
     pub fn new(tris: &[(u32, PackedTriangle)]) -> Tri4 {
         assert!(tris.len() <= 4, "a Tri4 holds at most four triangles");
         let mut block = Tri4 {
@@ -79,7 +146,7 @@ impl Tri4 {
             prim: [u32::MAX; 4],
         };
         for (lane, &(prim, tri)) in tris.iter().enumerate() {
-            debug_assert!(prim < QUAD);
+            debug_assert!(prim < MAX_PACKED);
             let [p0, e1, e2] = tri.vertices;
             for axis in 0..3 {
                 block.p0[axis][lane] = p0[axis];
@@ -88,7 +155,8 @@ impl Tri4 {
             }
             let plain = if tri.plain { PLAIN } else { 0 };
             let quad = if tri.quad { QUAD } else { 0 };
-            block.prim[lane] = prim | plain | quad;
+            let swapped = if tri.swapped { SWAPPED } else { 0 };
+            block.prim[lane] = prim | plain | quad | swapped;
         }
         block
     }
@@ -96,15 +164,18 @@ impl Tri4 {
     /// The primitive in `lane`, and whether it is plain.
     #[inline]
     pub fn prim(&self, lane: usize) -> (u32, bool) {
-        (
-            self.prim[lane] & !(PLAIN | QUAD),
-            self.prim[lane] & PLAIN != 0,
-        )
+        (self.prim[lane] & !FLAGS, self.prim[lane] & PLAIN != 0)
     }
 
-    /// Whether `lane` holds a parallelogram.
-    pub fn is_quad(&self, lane: usize) -> bool {
-        self.prim[lane] & QUAD != 0
+    /// The primitive packed in `lane` (a used lane).
+    pub fn packed(&self, lane: usize) -> PackedTriangle {
+        let bits = self.prim[lane];
+        PackedTriangle {
+            vertices: self.vertices(lane),
+            plain: bits & PLAIN != 0,
+            quad: bits & QUAD != 0,
+            swapped: bits & SWAPPED != 0,
+        }
     }
 
     /// The triangle `[p0, e1, e2]` in `lane`.
@@ -220,6 +291,7 @@ mod tests {
                         vertices: [p, e1, e2],
                         plain: i % 2 == 0,
                         quad: i % 3 == 1,
+                        swapped: i % 4 == 3,
                     };
                     (i as u32 + 10, tri)
                 })
@@ -231,7 +303,7 @@ mod tests {
                 prop_assert_eq!(block.prim(lane), (prim, tri.plain));
                 prop_assert_eq!(block.vertices(lane), tri.vertices);
                 let [p, e1, e2] = tri.vertices;
-                prop_assert_eq!(block.is_quad(lane), tri.quad);
+                prop_assert_eq!(block.packed(lane), tri);
                 let scalar = if tri.quad { quad::intersect } else { triangle::intersect };
                 if let Some(h) = scalar(p, e1, e2, &ray, 1e-4, t_best) {
                     t_best = h.t;
@@ -257,6 +329,7 @@ mod tests {
                 vertices,
                 plain: false,
                 quad: false,
+                swapped: false,
             },
         )]);
         let hit = one.closest(Vec3::Z, -Vec3::Z, 0.0, f32::INFINITY).unwrap();

@@ -28,6 +28,8 @@ pub enum Shape {
         e1: Vec3,
         /// Second edge.
         e2: Vec3,
+        /// Whether the edges are stored swapped (see [`Shape::own_uv`]).
+        swapped: bool,
     },
     /// Disk.
     Disk {
@@ -47,8 +49,12 @@ pub enum Shape {
         /// Edge to the third vertex.
         e2: Vec3,
         /// Index into the scene's vertex-attribute tables (vertex normals,
-        /// texture coordinates); `u32::MAX`: none (flat, barycentric UVs).
+        /// texture coordinates, in the triangle's own vertex order);
+        /// `u32::MAX`: none (flat, barycentric UVs).
         attributes: u32,
+        /// Whether the second and third vertex are stored swapped (see
+        /// [`Shape::own_uv`]).
+        swapped: bool,
     },
     /// Infinite plane.
     Plane {
@@ -81,6 +87,62 @@ impl Shape {
             e1,
             e2,
             attributes: u32::MAX,
+            swapped: false,
+        }
+    }
+
+    /// The quad `p + s·e1 + t·e2` as given (not swapped).
+    pub fn quad(p: Vec3, e1: Vec3, e2: Vec3) -> Shape {
+        Shape::Quad {
+            p,
+            e1,
+            e2,
+            swapped: false,
+        }
+    }
+
+    /// Whether the shape's two edges are stored swapped.
+    #[inline(always)]
+    fn is_swapped(&self) -> bool {
+        matches!(
+            self,
+            Shape::Quad { swapped: true, .. } | Shape::Triangle { swapped: true, .. }
+        )
+    }
+
+    /// The shape's own surface parameters from those of its stored form.
+    ///
+    /// A mirroring transform turns `e1 × e2` inwards. Lowering keeps every
+    /// surface's outward side (as meshes, boxes and placed groups keep it,
+    /// and as Mitsuba 3 transforms a shape's normal) by storing a mirrored
+    /// quad or triangle with its edges swapped; the intersection then gives
+    /// its parameters swapped too. Everything after the hit (texture
+    /// coordinates, vertex attributes, tangents) reads the shape's own
+    /// parameters, along the edges the scene gave: a quad's (s, t) along
+    /// `edge1` and `edge2`, a triangle's barycentrics of its second and
+    /// third vertex in the file's order.
+    #[inline(always)]
+    pub fn own_uv(&self, uv: Vec2) -> Vec2 {
+        if self.is_swapped() {
+            Vec2::new(uv.y, uv.x)
+        } else {
+            uv
+        }
+    }
+
+    /// A quad's or triangle's own edges (`edge1`, `edge2`, or the edges to
+    /// the second and third vertex in the file's order): see
+    /// [`Shape::own_uv`].
+    pub fn own_edges(&self) -> Option<(Vec3, Vec3)> {
+        match *self {
+            Shape::Quad { e1, e2, .. } | Shape::Triangle { e1, e2, .. } => {
+                Some(if self.is_swapped() {
+                    (e2, e1)
+                } else {
+                    (e1, e2)
+                })
+            }
+            _ => None,
         }
     }
 
@@ -91,7 +153,7 @@ impl Shape {
                 min: center - Vec3::splat(radius),
                 max: center + Vec3::splat(radius),
             },
-            Shape::Quad { p, e1, e2 } => Aabb::EMPTY
+            Shape::Quad { p, e1, e2, .. } => Aabb::EMPTY
                 .grow(p)
                 .grow(p + e1)
                 .grow(p + e2)
@@ -125,7 +187,7 @@ impl Shape {
             Shape::Sphere { center, radius } => {
                 sphere::intersect(center, radius, ray, t_min, t_max)
             }
-            Shape::Quad { p, e1, e2 } => quad::intersect(p, e1, e2, ray, t_min, t_max),
+            Shape::Quad { p, e1, e2, .. } => quad::intersect(p, e1, e2, ray, t_min, t_max),
             Shape::Triangle { p0, e1, e2, .. } => {
                 triangle::intersect(p0, e1, e2, ray, t_min, t_max)
             }
@@ -165,7 +227,7 @@ impl Shape {
                 let d = ray.at(hit.t) - center;
                 center + d * (radius / d.length())
             }
-            Shape::Quad { p, e1, e2 } | Shape::Triangle { p0: p, e1, e2, .. } => {
+            Shape::Quad { p, e1, e2, .. } | Shape::Triangle { p0: p, e1, e2, .. } => {
                 p + hit.uv.x * e1 + hit.uv.y * e2
             }
             Shape::Disk {
@@ -209,15 +271,22 @@ impl Shape {
     }
 
     /// A point sampled uniformly by area from `u` in [0,1)², with its normal
-    /// and its surface parameters (as a hit there has them: a quad's (s, t),
-    /// a triangle's barycentrics, zero for the others).
+    /// and its own surface parameters (as a finished hit there has them: a
+    /// quad's (s, t), a triangle's barycentrics, zero for the others; see
+    /// [`Shape::own_uv`]).
     pub fn sample_area(&self, u: Vec2) -> (Vec3, Vec3, Vec2) {
+        let (p, n, uv) = self.sample_stored(u);
+        (p, n, self.own_uv(uv))
+    }
+
+    /// [`Shape::sample_area`] with the stored form's parameters.
+    fn sample_stored(&self, u: Vec2) -> (Vec3, Vec3, Vec2) {
         match *self {
             Shape::Sphere { center, radius } => {
                 let n = crate::sampling::warp::uniform_sphere(u);
                 (center + radius * n, n, Vec2::ZERO)
             }
-            Shape::Quad { p, e1, e2 } => (p + u.x * e1 + u.y * e2, e1.cross(e2).normalize(), u),
+            Shape::Quad { p, e1, e2, .. } => (p + u.x * e1 + u.y * e2, e1.cross(e2).normalize(), u),
             Shape::Triangle { p0, e1, e2, .. } => {
                 let b = crate::sampling::warp::uniform_triangle(u);
                 (p0 + b.x * e1 + b.y * e2, e1.cross(e2).normalize(), b)
@@ -255,22 +324,13 @@ mod tests {
                 center: Vec3::ONE,
                 radius: 2.0,
             },
-            Shape::Quad {
-                p: Vec3::ZERO,
-                e1: Vec3::X,
-                e2: Vec3::Z,
-            },
+            Shape::quad(Vec3::ZERO, Vec3::X, Vec3::Z),
             Shape::Disk {
                 center: Vec3::ZERO,
                 normal: Vec3::Y,
                 radius: 1.0,
             },
-            Shape::Triangle {
-                p0: Vec3::ZERO,
-                e1: Vec3::X,
-                e2: Vec3::Y,
-                attributes: u32::MAX,
-            },
+            Shape::flat_triangle([Vec3::ZERO, Vec3::X, Vec3::Y]),
             Shape::Cone(Cone {
                 base: Vec3::new(0.0, -1.0, 0.5),
                 axis: Vec3::new(0.6, 0.0, 0.8),

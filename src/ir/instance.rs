@@ -201,9 +201,9 @@ impl Instances {
         let prototype = &self.prototypes[placement.prototype as usize];
         let record;
         let prim = match tree_hit.plain {
-            Some(vertices) => {
+            Some(lane) => {
                 record = Prim {
-                    shape: Shape::flat_triangle(vertices),
+                    shape: lane.shape(),
                     velocity: Vec3::ZERO,
                 };
                 &record
@@ -213,10 +213,10 @@ impl Instances {
         let moved = local_ray(prim, &local);
         let p_local = prim.shape.surface_point(&moved, &tree_hit.hit);
         let n_local = prim.shape.normal_at(p_local);
+        let uv = prim.shape.own_uv(tree_hit.hit.uv);
         let mut ns_local = n_local;
         if let Shape::Triangle { attributes, .. } = prim.shape {
             if let Some(ns) = prototype.normals.get(attributes as usize) {
-                let uv = tree_hit.hit.uv;
                 let n =
                     ((1.0 - uv.x - uv.y) * ns[0] + uv.x * ns[1] + uv.y * ns[2]).normalize_or_zero();
                 if n != Vec3::ZERO {
@@ -244,7 +244,7 @@ impl Instances {
             bent: false,
             prim: tree_hit.prim,
             instance: k,
-            uv: tree_hit.hit.uv,
+            uv,
         })
     }
 

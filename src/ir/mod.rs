@@ -9,7 +9,7 @@ mod surface;
 use crate::accel::bvh4::{Bvh4, TreeHit};
 use crate::accel::ray_count;
 use crate::camera::Camera;
-use crate::geometry::shape::{Shape, ShapeHit};
+use crate::geometry::shape::Shape;
 use crate::geometry::{Aabb, Ray};
 use crate::light::selection::LightSampler;
 use crate::light::Light;
@@ -53,9 +53,10 @@ pub struct Hit {
     /// The placement hit ([`instance::NO_INSTANCE`]: the scene's own
     /// primitives).
     pub instance: u32,
-    /// The shape's surface parameters at the hit: (s, t) along a quad's
-    /// edges, a triangle's barycentrics (b1, b2); zero for the others
-    /// (see [`Scene::texcoords`]).
+    /// The shape's own surface parameters at the hit: (s, t) along a
+    /// quad's edges, a triangle's barycentrics (b1, b2), as the scene gave
+    /// them (see [`Shape::own_uv`]); zero for the others (see
+    /// [`Scene::texcoords`]).
     pub uv: Vec2,
 }
 
@@ -249,15 +250,15 @@ impl Scene {
             hit,
             plain,
         } = best?;
-        let ShapeHit { t, uv } = hit;
-        // A plain triangle's hit is finished from the block the traversal
-        // just read: it has no record (and reading one cost a cache miss).
-        // A plain quad's too: its point and normal have a triangle's formulas.
+        let t = hit.t;
+        // A plain triangle's or quad's hit is finished from the block the
+        // traversal just read: it has no record (and reading one cost a
+        // cache miss).
         let record;
         let prim = match plain {
-            Some(vertices) => {
+            Some(lane) => {
                 record = Prim {
-                    shape: Shape::flat_triangle(vertices),
+                    shape: lane.shape(),
                     velocity: Vec3::ZERO,
                 };
                 &record
@@ -267,6 +268,7 @@ impl Scene {
         let local = instance::local_ray(prim, ray);
         let p_local = prim.shape.surface_point(&local, &hit);
         let n_geo = prim.shape.normal_at(p_local);
+        let uv = prim.shape.own_uv(hit.uv);
         let mut n_shading = n_geo;
         if let Shape::Triangle { attributes, .. } = prim.shape {
             if attributes != u32::MAX {

@@ -229,6 +229,18 @@ impl Scene {
         self.textured_material(t, &mut hit, wo, time).emitted(wo, n)
     }
 
+    /// The shape of the plain triangle or quad a hit is on, from the block
+    /// of the BVH (the scene's or the placed prototype's) that holds it.
+    fn plain_shape(&self, hit: &Hit) -> Option<Shape> {
+        let wide = if hit.instance == NO_INSTANCE {
+            &self.wide
+        } else {
+            let placement = &self.instances.placements[hit.instance as usize];
+            &self.instances.prototypes[placement.prototype as usize].wide
+        };
+        Some(wide.plain_lane(hit.prim)?.shape())
+    }
+
     /// The world → object transform of primitive `prim`'s object (`None`:
     /// the identity).
     pub fn from_world(&self, prim: u32) -> Option<&Affine3A> {
@@ -291,10 +303,13 @@ impl Scene {
     /// are laid along.
     pub fn derivatives(&self, hit: &Hit, time: f32) -> (Vec3, Vec3) {
         let frame = self.frame(hit, time);
-        let Some(record) = frame.record else {
-            // A plain triangle (no UVs, no record): any tangents of its
-            // plane serve solid patterns, the only ones it can carry well.
-            return crate::geometry::orthonormal_basis(hit.n_geo);
+        let shape = match frame.record {
+            Some(record) => record.shape,
+            // A plain triangle or quad: its block holds it.
+            None => match self.plain_shape(hit) {
+                Some(shape) => shape,
+                None => return crate::geometry::orthonormal_basis(hit.n_geo),
+            },
         };
         let p = frame.p;
         let direction = |v: Vec3| frame.object_vector(v);
@@ -308,10 +323,9 @@ impl Scene {
         };
         // Vectors of the record's frame to the world.
         let space_to_world = |v: Vec3| frame.world_vector(v);
-        match record.shape {
-            Shape::Triangle {
-                e1, e2, attributes, ..
-            } => {
+        match shape {
+            Shape::Triangle { attributes, .. } => {
+                let (e1, e2) = shape.own_edges().expect("a triangle's edges");
                 let (du, dv) = frame
                     .uvs
                     .get(attributes as usize)
@@ -319,7 +333,10 @@ impl Scene {
                     .unwrap_or((e1, e2));
                 (space_to_world(du), space_to_world(dv))
             }
-            Shape::Quad { e1, e2, .. } => (space_to_world(e1), space_to_world(e2)),
+            Shape::Quad { .. } => {
+                let (e1, e2) = shape.own_edges().expect("a quad's edges");
+                (space_to_world(e1), space_to_world(e2))
+            }
             Shape::Sphere { center, .. } => {
                 let (dpdu, dpdv) = texcoord::sphere_derivatives(direction(p - center));
                 (to_world(dpdu), to_world(dpdv))

@@ -25,6 +25,9 @@ pub struct PlainMesh {
     /// Triangles as indices into `positions`, wound as rendered (a
     /// mirroring transform already flipped), none degenerate.
     pub triangles: Vec<[u32; 3]>,
+    /// Whether a mirroring transform flipped the triangles (their edges
+    /// are stored swapped: see [`Shape::own_uv`]).
+    pub swapped: bool,
     /// The object the mesh came from.
     pub object: u32,
 }
@@ -69,7 +72,7 @@ impl Collected {
     }
 
     /// Mesh triangle `i` (a number at or after the records): its mesh and
-    /// `[p0, e1, e2]`, computed exactly as a record of it would be.
+    /// `[p0, e1, e2]` (as stored), computed exactly as a record of it would be.
     fn mesh_triangle(&self, i: u32) -> (&PlainMesh, [Vec3; 3]) {
         let i = i - self.records.len() as u32;
         let m = self.mesh_first.partition_point(|&f| f <= i) - 1;
@@ -86,7 +89,7 @@ impl Collected {
         match self.records.get(i as usize) {
             Some(p) => p.clone(),
             None => Prim {
-                shape: Shape::flat_triangle(self.mesh_triangle(i).1),
+                shape: self.packed(i).expect("a mesh triangle").shape(),
                 velocity: Vec3::ZERO,
             },
         }
@@ -105,11 +108,15 @@ impl Collected {
     pub fn packed(&self, i: u32) -> Option<PackedTriangle> {
         match self.records.get(i as usize) {
             Some(p) => packed_record(p),
-            None => Some(PackedTriangle {
-                vertices: self.mesh_triangle(i).1,
-                plain: true,
-                quad: false,
-            }),
+            None => {
+                let (mesh, vertices) = self.mesh_triangle(i);
+                Some(PackedTriangle {
+                    vertices,
+                    plain: true,
+                    quad: false,
+                    swapped: mesh.swapped,
+                })
+            }
         }
     }
 
@@ -169,24 +176,7 @@ fn packed_record(p: &Prim) -> Option<PackedTriangle> {
     if p.velocity != Vec3::ZERO {
         return None;
     }
-    match p.shape {
-        Shape::Triangle {
-            p0,
-            e1,
-            e2,
-            attributes,
-        } => Some(PackedTriangle {
-            vertices: [p0, e1, e2],
-            plain: attributes == u32::MAX,
-            quad: false,
-        }),
-        Shape::Quad { p, e1, e2 } => Some(PackedTriangle {
-            vertices: [p, e1, e2],
-            plain: true,
-            quad: true,
-        }),
-        _ => None,
-    }
+    PackedTriangle::of(&p.shape)
 }
 
 #[cfg(test)]
@@ -224,6 +214,7 @@ mod tests {
             ],
             triangles: vec![[0, 1, 2], [0, 2, 3]],
             object,
+            swapped: false,
         };
         c.push_mesh(square(2, 5.0));
         c.push_mesh(square(3, 7.0));

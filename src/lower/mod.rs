@@ -280,6 +280,10 @@ fn build_objects(
         let pt = |p: DVec3| v3(m.transform_point3(p));
         let vec = |v: DVec3| v3(m.transform_vector3(v));
         let velocity = v3(obj.velocity);
+        // A mirroring transform turns `e1 × e2` inwards: quads and
+        // triangles keep their outward side with their edges swapped
+        // (`Shape::own_uv`).
+        let flip = m.determinant() < 0.0;
         let mut push = |shape: Shape| {
             match representable(&shape, velocity, shutter) {
                 Representable::Yes => {}
@@ -356,18 +360,18 @@ fn build_objects(
                 corner,
                 edge1,
                 edge2,
-            } => push(Shape::Quad {
-                p: pt(*corner),
-                e1: vec(*edge1),
-                e2: vec(*edge2),
-            }),
+            } => push(parallelogram(pt(*corner), vec(*edge1), vec(*edge2), flip)),
             check::Shape::Triangle { v } => {
                 let p0 = pt(v[0]);
+                let (e1, e2) = (pt(v[1]) - p0, pt(v[2]) - p0);
+                // As a parallelogram: swapped under a mirror (see `flip`).
+                let (e1, e2) = if flip { (e2, e1) } else { (e1, e2) };
                 push(Shape::Triangle {
                     p0,
-                    e1: pt(v[1]) - p0,
-                    e2: pt(v[2]) - p0,
+                    e1,
+                    e2,
                     attributes: u32::MAX,
+                    swapped: flip,
                 })
             }
             check::Shape::Box { min, max } => {
@@ -390,15 +394,8 @@ fn build_objects(
                     (lo + ex, -ex, ey),      // −z
                     (lo + ez, ex, ey),       // +z
                 ];
-                // A mirroring transform flips the winding; keep normals outward.
-                let flip = m.determinant() < 0.0;
                 for (c, a, b) in faces {
-                    let (a, b) = if flip { (b, a) } else { (a, b) };
-                    push(Shape::Quad {
-                        p: pt(c),
-                        e1: vec(a),
-                        e2: vec(b),
-                    });
+                    push(parallelogram(pt(c), vec(a), vec(b), flip));
                 }
             }
             check::Shape::Mesh {
@@ -421,7 +418,6 @@ fn build_objects(
                         continue;
                     }
                 };
-                let flip = m.determinant() < 0.0;
                 let pos: Vec<Vec3> = data.positions.iter().map(|p| pt(p.as_dvec3())).collect();
                 // The vertices' box, where the motion takes it: as the other shapes.
                 let reach = pos.iter().fold(Aabb::EMPTY, |b, p| b.grow(*p));
@@ -453,6 +449,8 @@ fn build_objects(
                 }
                 let mut degenerate = 0usize;
                 for t in &data.triangles {
+                    // Stored wound as rendered; vertex attributes stay in
+                    // the file's order (`Shape::own_uv` reads them so).
                     let [a, b, c] = if flip { [t[0], t[2], t[1]] } else { *t };
                     let p0 = pos[a as usize];
                     let (e1, e2) = (pos[b as usize] - p0, pos[c as usize] - p0);
@@ -468,14 +466,14 @@ fn build_objects(
                     let nidx = if use_normals || use_uvs {
                         // A zero normal is flat shading.
                         normals.push(if use_normals {
-                            [a, b, c].map(|i| vnormals[i as usize])
+                            t.map(|i| vnormals[i as usize])
                         } else {
                             [Vec3::ZERO; 3]
                         });
                         if use_uvs {
                             // Earlier triangles without UVs keep their barycentrics.
                             uvs.resize(normals.len() - 1, texcoord::TRIANGLE_DEFAULT);
-                            uvs.push([a, b, c].map(|i| data.uvs[i as usize]));
+                            uvs.push(t.map(|i| data.uvs[i as usize]));
                         }
                         normals.len() as u32 - 1
                     } else {
@@ -486,6 +484,7 @@ fn build_objects(
                         e1,
                         e2,
                         attributes: nidx,
+                        swapped: flip,
                     };
                     prims.push(Prim { shape, velocity }, o as u32);
                 }
@@ -507,6 +506,7 @@ fn build_objects(
                         positions: pos,
                         triangles: kept,
                         object: o as u32,
+                        swapped: flip,
                     });
                 }
             }
@@ -557,12 +557,11 @@ fn build_objects(
     wide.pack_triangles(|place| prims.packed(order[place as usize]));
     let planes = std::mem::take(&mut prims.planes);
     let numbering = Numbering::new(&wide, n, planes.len());
-    wide.renumber(|place| numbering.id(place));
     // Records in leaf order, so that a leaf's are contiguous in memory; the
     // planes after them; then the plain triangles, which have none.
     let mut records = Vec::with_capacity(numbering.plain_from as usize);
     for (place, &u) in order.iter().enumerate() {
-        if numbering.id(place as u32) < numbering.plain_from {
+        if !numbering.is_plain(place as u32) {
             records.push(prims.record(u));
         }
     }
@@ -570,8 +569,15 @@ fn build_objects(
     let objects = prims.into_objects();
     let mut prim_object = vec![0u32; (numbering.plain_from + numbering.plain) as usize];
     for (place, &u) in order.iter().enumerate() {
-        prim_object[numbering.id(place as u32) as usize] = objects.of(u);
+        if !numbering.is_plain(place as u32) {
+            prim_object[numbering.record_id(place as u32) as usize] = objects.of(u);
+        }
     }
+    wide.renumber(
+        |place| numbering.record_id(place),
+        numbering.plain_from,
+        |place, id| prim_object[id as usize] = objects.of(order[place as usize]),
+    );
     for (plane, o) in planes {
         prim_object[records.len()] = o;
         records.push(plane);
@@ -779,6 +785,18 @@ fn round_solid(base: Vec3, top: Vec3, radii: [f64; 2], open: bool, push: &mut im
     }
 }
 
+/// The parallelogram `p + s·e1 + t·e2`, stored with its edges swapped when
+/// `flip` (a mirroring transform: see [`Shape::own_uv`]).
+fn parallelogram(p: Vec3, e1: Vec3, e2: Vec3, flip: bool) -> Shape {
+    let (e1, e2) = if flip { (e2, e1) } else { (e1, e2) };
+    Shape::Quad {
+        p,
+        e1,
+        e2,
+        swapped: flip,
+    }
+}
+
 fn non_uniform(span: crate::span::Span, what: &str) -> Diagnostic {
     Diagnostic::error(
         codes::NON_UNIFORM_SCALE,
@@ -811,11 +829,11 @@ mod tests {
             representable(&unit, Vec3::new(2e9, 0.0, 0.0), (0.0, 1.0)),
             Representable::OutOfRange
         ));
-        let tiny = Shape::Quad {
-            p: Vec3::ZERO,
-            e1: Vec3::new(1e-30, 0.0, 0.0),
-            e2: Vec3::new(0.0, 1e-30, 0.0),
-        };
+        let tiny = Shape::quad(
+            Vec3::ZERO,
+            Vec3::new(1e-30, 0.0, 0.0),
+            Vec3::new(0.0, 1e-30, 0.0),
+        );
         assert!(matches!(
             representable(&tiny, Vec3::ZERO, still),
             Representable::TooSmall

@@ -34,10 +34,13 @@ pub fn mapped_normal(texel: Vec3, n: Vec3, dpdu: Vec3) -> Vec3 {
 /// derivatives along the surface's parameters are `dh_du` and `dh_dv`
 /// (Blinn 1978, "Simulation of wrinkled surfaces"; pbrt-v4's `BumpMap`
 /// without its small dn/du term): the cross product of the displaced
-/// surface's tangents, on the side of `n`.
+/// surface's tangents, on the side of `n`. The tangents are first made
+/// perpendicular to `n` (which differs from the geometric normal on a
+/// smooth-shaded mesh), as Mitsuba 3's `bumpmap` does:
+/// ∂p/∂u' = ∂p/∂u − n (n · ∂p/∂u) + (∂h/∂u) n.
 pub fn bumped_normal(n: Vec3, dpdu: Vec3, dpdv: Vec3, dh_du: f32, dh_dv: f32) -> Vec3 {
-    let pu = dpdu + dh_du * n;
-    let pv = dpdv + dh_dv * n;
+    let pu = dpdu + (dh_du - n.dot(dpdu)) * n;
+    let pv = dpdv + (dh_dv - n.dot(dpdv)) * n;
     let ns = pu.cross(pv).normalize_or_zero();
     if ns == Vec3::ZERO {
         n

@@ -7,6 +7,7 @@ mod editors;
 mod environment;
 mod examples;
 mod farm;
+mod frames;
 mod golden;
 mod hostile;
 mod instances;

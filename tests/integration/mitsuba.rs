@@ -273,6 +273,25 @@ fn mitsuba_reference_normal_map_region() {
     );
 }
 
+/// Normal maps (Mitsuba's `normalmap`) and bump maps (`bumpmap`) on quads
+/// turned to four orientations in their plane, with edges 0.5, 1 and 8
+/// long (`scripts/mitsuba_bumps.py`): the maps follow each quad's `edge1`
+/// and `edge2` and a bump's slope their lengths, whether or not the BVH
+/// packs the quad into a block.
+#[test]
+fn mitsuba_reference_bumps_on_quads() {
+    for name in ["bumps_05", "bumps_1", "bumps_8"] {
+        check_scene(name);
+    }
+}
+
+/// Both maps on a curved, smooth-shaded mesh whose texture coordinates run
+/// at 30° to its edges, turned and scaled unevenly.
+#[test]
+fn mitsuba_reference_bumps_on_a_mesh() {
+    check_scene("bump_mesh");
+}
+
 /// Light selection with a point, a spot and a directional light in an
 /// open room (Mitsuba 3 picks lights uniformly: its noise is the bar).
 #[test]

@@ -96,6 +96,17 @@ impl PackedTriangle {
         }
     }
 
+    /// The primitive's own surface parameters from those of a hit on its
+    /// lane (see [`Shape::own_uv`]).
+    #[inline(always)]
+    pub fn own_uv(&self, uv: glam::Vec2) -> glam::Vec2 {
+        if self.swapped {
+            glam::Vec2::new(uv.y, uv.x)
+        } else {
+            uv
+        }
+    }
+
     /// The shape a plain lane describes: exactly the primitive's, without
     /// vertex attributes.
     pub fn shape(&self) -> Shape {

@@ -275,21 +275,30 @@ impl Shape {
     /// quad's (s, t), a triangle's barycentrics, zero for the others; see
     /// [`Shape::own_uv`]).
     pub fn sample_area(&self, u: Vec2) -> (Vec3, Vec3, Vec2) {
-        let (p, n, uv) = self.sample_stored(u);
-        (p, n, self.own_uv(uv))
-    }
-
-    /// [`Shape::sample_area`] with the stored form's parameters.
-    fn sample_stored(&self, u: Vec2) -> (Vec3, Vec3, Vec2) {
+        let own = |uv: Vec2, swapped: bool| if swapped { Vec2::new(uv.y, uv.x) } else { uv };
         match *self {
             Shape::Sphere { center, radius } => {
                 let n = crate::sampling::warp::uniform_sphere(u);
                 (center + radius * n, n, Vec2::ZERO)
             }
-            Shape::Quad { p, e1, e2, .. } => (p + u.x * e1 + u.y * e2, e1.cross(e2).normalize(), u),
-            Shape::Triangle { p0, e1, e2, .. } => {
+            Shape::Quad { p, e1, e2, swapped } => (
+                p + u.x * e1 + u.y * e2,
+                e1.cross(e2).normalize(),
+                own(u, swapped),
+            ),
+            Shape::Triangle {
+                p0,
+                e1,
+                e2,
+                swapped,
+                ..
+            } => {
                 let b = crate::sampling::warp::uniform_triangle(u);
-                (p0 + b.x * e1 + b.y * e2, e1.cross(e2).normalize(), b)
+                (
+                    p0 + b.x * e1 + b.y * e2,
+                    e1.cross(e2).normalize(),
+                    own(b, swapped),
+                )
             }
             Shape::Disk {
                 center,

@@ -253,22 +253,24 @@ impl Scene {
         let t = hit.t;
         // A plain triangle's or quad's hit is finished from the block the
         // traversal just read: it has no record (and reading one cost a
-        // cache miss).
+        // cache miss). Its point and normal have a triangle's formulas.
         let record;
-        let prim = match plain {
+        let (prim, uv) = match plain {
             Some(lane) => {
                 record = Prim {
-                    shape: lane.shape(),
+                    shape: Shape::flat_triangle(lane.vertices),
                     velocity: Vec3::ZERO,
                 };
-                &record
+                (&record, lane.own_uv(hit.uv))
             }
-            None => &self.prims[i as usize],
+            None => {
+                let prim = &self.prims[i as usize];
+                (prim, prim.shape.own_uv(hit.uv))
+            }
         };
         let local = instance::local_ray(prim, ray);
         let p_local = prim.shape.surface_point(&local, &hit);
         let n_geo = prim.shape.normal_at(p_local);
-        let uv = prim.shape.own_uv(hit.uv);
         let mut n_shading = n_geo;
         if let Shape::Triangle { attributes, .. } = prim.shape {
             if attributes != u32::MAX {

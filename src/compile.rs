@@ -11,7 +11,7 @@
 //! ```
 
 use crate::check::{self, Animation, MAX_LOOP_STATEMENTS};
-use crate::diag::Diagnostics;
+use crate::diag::{codes, Diagnostic, Diagnostics};
 use crate::ir::settings::Settings;
 use crate::lower::cache::LowerCache;
 use crate::source::SourceMap;
@@ -21,7 +21,8 @@ use std::time::Instant;
 /// How far to compile, and what to change on the way.
 pub struct Options<'a> {
     /// Whether to lower the checked scene into the IR (`false`: check
-    /// only, as `ptsc check` and an editor do).
+    /// only, as `ptsc check` and an editor do; everything lowering would
+    /// refuse is still found, images and meshes read, nothing built).
     pub lower: bool,
     /// Edits the settings before lowering uses them (the command line's
     /// `--spp`, `--resolution`, `--seed`, `--integrator`).
@@ -37,6 +38,9 @@ pub struct Options<'a> {
     pub animation: Animation,
     /// Whether to compute the scene's fingerprint (render states need it).
     pub fingerprint: bool,
+    /// Whether the image goes elsewhere than the scene's `render { output
+    /// … }` (the command line's `-o`): then that is not checked.
+    pub output_elsewhere: bool,
 }
 
 impl Default for Options<'_> {
@@ -49,6 +53,7 @@ impl Default for Options<'_> {
             loop_statements: MAX_LOOP_STATEMENTS,
             animation: Animation::default(),
             fingerprint: false,
+            output_elsewhere: false,
         }
     }
 }
@@ -135,18 +140,58 @@ fn compile_from(path: &Path, bytes: Vec<u8>, options: Options, start: Instant) -
                 options.animation,
             ));
         }
+        let mut one_off = LowerCache::one_off();
+        let cache = options.cache.unwrap_or(&mut one_off);
+        let mut warnings = crate::diag::Diagnostics::new();
         if options.lower {
-            let mut one_off = LowerCache::one_off();
-            let cache = options.cache.unwrap_or(&mut one_off);
-            let mut warnings = crate::diag::Diagnostics::new();
             match crate::lower::lower(&scene, options.adjust, cache, &mut warnings) {
                 Ok(ir) => compiled.ir = Some(ir),
-                Err(d) => compiled.diagnostics.items.extend(d.items),
+                Err(d) => compiled.diagnostics.extend(d),
             }
-            compiled.diagnostics.items.extend(warnings.items);
-            compiled.lower_seconds = start.elapsed().as_secs_f64() - check_seconds;
+        } else {
+            compiled
+                .diagnostics
+                .extend(crate::lower::validate(&scene, cache, &mut warnings));
         }
+        compiled.diagnostics.extend(warnings);
+        if !options.output_elsewhere {
+            let output = check_scene_output(&scene.render, options.animation.frame, &dependencies);
+            if let Some(d) = output {
+                compiled.diagnostics.push(d);
+                // No image without the place to write it.
+                compiled.ir = None;
+            }
+        }
+        // A group placed several times, or a mesh named in a loop, meets
+        // the same problem more than once: it is one mistake.
+        compiled.diagnostics.dedup();
+        compiled.lower_seconds = start.elapsed().as_secs_f64() - check_seconds;
     }
     compiled.dependencies = dependencies;
     compiled
+}
+
+/// The error of an output image the scene names that a render could not
+/// write (`frame` numbering a `#` pattern; `inputs` the scene's files).
+fn check_scene_output(
+    render: &check::RenderSettings,
+    frame: u32,
+    inputs: &[PathBuf],
+) -> Option<Diagnostic> {
+    let (Some(output), Some(span)) = (&render.output, render.output_span) else {
+        return None;
+    };
+    let path = crate::output::frame_path(output, frame);
+    let why = crate::output::check_output(&path, inputs).err()?;
+    Some(
+        Diagnostic::error(
+            codes::OUTPUT_FILE,
+            format!("cannot write the image `{}`", path.display()),
+            span,
+        )
+        .with_label(why)
+        .with_help(
+            "name a .png, .exr or .pfm file in a folder that exists (or give another with `-o`)",
+        ),
+    )
 }

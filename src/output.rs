@@ -153,6 +153,53 @@ pub fn check_writable(path: &Path) -> Result<(), String> {
     Ok(())
 }
 
+/// An output path with each run of `#` replaced by `frame`, zero-padded to
+/// the run's length (`frame_####.png` → `frame_0012.png`).
+pub fn frame_path(path: &Path, frame: u32) -> PathBuf {
+    match path.to_str() {
+        Some(text) if text.contains('#') => PathBuf::from(number_frame(text, frame)),
+        _ => path.to_path_buf(),
+    }
+}
+
+/// Replaces each run of `#` with `frame`, zero-padded to the run's length.
+fn number_frame(pattern: &str, frame: u32) -> String {
+    let mut out = String::with_capacity(pattern.len() + 8);
+    let mut run = 0;
+    let flush = |out: &mut String, run: &mut usize| {
+        if *run > 0 {
+            out.push_str(&format!("{frame:0width$}", width = *run));
+            *run = 0;
+        }
+    };
+    for c in pattern.chars() {
+        if c == '#' {
+            run += 1;
+        } else {
+            flush(&mut out, &mut run);
+            out.push(c);
+        }
+    }
+    flush(&mut out, &mut run);
+    out
+}
+
+/// Why an image cannot be written at `output`, found before rendering: an
+/// unknown format, a folder, a missing or read-only folder, or a file the
+/// scene reads (`inputs`: the scene itself, an include, a mesh), which the
+/// image would replace.
+pub fn check_output(output: &Path, inputs: &[PathBuf]) -> Result<(), String> {
+    for input in inputs {
+        if same_file(output, input) {
+            return Err(format!(
+                "{} is a file of the scene; the image would replace it (name another image)",
+                input.display()
+            ));
+        }
+    }
+    check_writable(output)
+}
+
 /// Whether two paths name one existing file (through links and `..`).
 pub fn same_file(a: &Path, b: &Path) -> bool {
     match (std::fs::canonicalize(a), std::fs::canonicalize(b)) {
@@ -236,6 +283,16 @@ pub fn read_pfm(bytes: &[u8]) -> Option<(u32, u32, Vec<Vec3>)> {
 
 #[cfg(test)]
 mod tests {
+    #[test]
+    fn runs_of_hashes_become_the_frame_number_padded_to_their_length() {
+        use super::number_frame;
+        assert_eq!(number_frame("frame_####.png", 12), "frame_0012.png");
+        assert_eq!(number_frame("a#/b_##.exr", 7), "a7/b_07.exr");
+        // A number longer than its run is written whole.
+        assert_eq!(number_frame("f_##.png", 12345), "f_12345.png");
+        assert_eq!(number_frame("plain.png", 3), "plain.png");
+    }
+
     use super::*;
 
     #[test]

@@ -295,11 +295,15 @@ pub fn render_settings(p: &Params, base_dir: &Path, diags: &mut Diagnostics) -> 
         light_samples: r.num_in("light_samples", 0.0, 1024.0, false, d.light_samples as f64) as u32,
         exposure: r.num_in("exposure", -32.0, 32.0, false, 0.0) as f32,
     };
-    let output = match p.get("output") {
-        Some((Val::Str(s), _)) => Some(base_dir.join(s)),
-        _ => None,
+    let (output, output_span) = match p.get("output") {
+        Some((Val::Str(s), span)) => (Some(base_dir.join(s)), Some(*span)),
+        _ => (None, None),
     };
-    RenderSettings { settings, output }
+    RenderSettings {
+        settings,
+        output,
+        output_span,
+    }
 }
 
 /// `camera { }` → camera.

@@ -19,6 +19,8 @@ pub struct RenderSettings {
     pub settings: Settings,
     /// Output file named in the scene, relative to the scene file.
     pub output: Option<PathBuf>,
+    /// Where the scene names it.
+    pub output_span: Option<crate::span::Span>,
 }
 
 /// A texture, checked: its pattern's colours, the space it reads and its

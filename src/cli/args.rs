@@ -192,46 +192,12 @@ pub fn output_path(args: &RenderArgs, scene_output: Option<&Path>, frame: u32) -
         .clone()
         .or_else(|| scene_output.map(Path::to_path_buf))
         .unwrap_or_else(|| args.file.with_extension("png"));
-    match path.to_str() {
-        Some(text) if text.contains('#') => PathBuf::from(number_frame(text, frame)),
-        _ => path,
-    }
-}
-
-/// Replaces each run of `#` with `frame`, zero-padded to the run's length.
-fn number_frame(pattern: &str, frame: u32) -> String {
-    let mut out = String::with_capacity(pattern.len() + 8);
-    let mut run = 0;
-    let flush = |out: &mut String, run: &mut usize| {
-        if *run > 0 {
-            out.push_str(&format!("{frame:0width$}", width = *run));
-            *run = 0;
-        }
-    };
-    for c in pattern.chars() {
-        if c == '#' {
-            run += 1;
-        } else {
-            flush(&mut out, &mut run);
-            out.push(c);
-        }
-    }
-    flush(&mut out, &mut run);
-    out
+    crate::output::frame_path(&path, frame)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn runs_of_hashes_become_the_frame_number_padded_to_their_length() {
-        assert_eq!(number_frame("frame_####.png", 12), "frame_0012.png");
-        assert_eq!(number_frame("a#/b_##.exr", 7), "a7/b_07.exr");
-        // A number longer than its run is written whole.
-        assert_eq!(number_frame("f_##.png", 12345), "f_12345.png");
-        assert_eq!(number_frame("plain.png", 3), "plain.png");
-    }
 
     #[test]
     fn the_clock_runs_from_0_at_the_first_frame_to_1_at_the_last() {

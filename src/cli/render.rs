@@ -11,7 +11,7 @@ use crate::compile::{compile_file, Compiled, Options};
 use crate::lower::cache::LowerCache;
 use crate::render::film::Film;
 use crate::render::state::{self, Pass, StateInfo};
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::sync::atomic::Ordering;
 use std::time::{Duration, Instant};
 
@@ -33,26 +33,10 @@ pub fn compile(
             cache,
             animation,
             fingerprint,
+            output_elsewhere: args.output.is_some(),
             ..Options::default()
         },
     )
-}
-
-/// Why the image cannot be written at `output`, found before rendering: an
-/// unknown format, a folder, a missing or read-only folder, or a file the
-/// scene reads (the scene itself, an include, a mesh), which the image would
-/// replace.
-pub fn check_output(output: &Path, dependencies: &[PathBuf]) -> Result<(), String> {
-    let inputs = dependencies.iter();
-    for input in inputs {
-        if crate::output::same_file(output, input) {
-            return Err(format!(
-                "{} is a file of the scene; the image would replace it (name another with -o)",
-                input.display()
-            ));
-        }
-    }
-    crate::output::check_writable(output)
 }
 
 /// Runs `render`; returns the exit code.
@@ -135,7 +119,7 @@ fn render_frame(
         );
         return EXIT_USAGE;
     }
-    if let Err(why) = check_output(&output, &compiled.dependencies) {
+    if let Err(why) = crate::output::check_output(&output, &compiled.dependencies) {
         eprintln!("error: cannot write {}: {why}", output.display());
         return EXIT_USAGE;
     }

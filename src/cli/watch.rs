@@ -11,7 +11,7 @@
 //! editor's atomic save (write a temporary file, rename it over) counts as one
 //! change and the output file's own writes are ignored.
 
-use super::render::{check_output, compile, output_path, RenderArgs};
+use super::render::{compile, output_path, RenderArgs};
 use crate::ir::Scene;
 use crate::lower::cache::LowerCache;
 use crate::render::film::Film;
@@ -178,7 +178,7 @@ impl State {
             return;
         };
         let output = output_path(&self.args, compiled.output.as_deref(), self.animation.frame);
-        if let Err(why) = check_output(&output, &compiled.dependencies) {
+        if let Err(why) = crate::output::check_output(&output, &compiled.dependencies) {
             status(&format!(
                 "cannot write {}: {why}; keeping the last image",
                 output.display()

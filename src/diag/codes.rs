@@ -108,6 +108,8 @@ pub const MISSING_CAMERA: &str = "pts::check::missing_camera";
 pub const LOOP_TOO_LONG: &str = "pts::check::loop_too_long";
 /// A mesh file that is missing, unreadable or of an unknown format.
 pub const MESH_FILE: &str = "pts::check::mesh_file";
+/// An output image the render could not write.
+pub const OUTPUT_FILE: &str = "pts::check::output_file";
 /// A transform that cannot be inverted.
 pub const SINGULAR_TRANSFORM: &str = "pts::check::singular_transform";
 /// A sphere, disk, cylinder, cone or torus under a non-uniform scale.
@@ -376,6 +378,12 @@ pub const CATALOGUE: &[Entry] = &[
         title: "Loops that run too many statements",
         explanation: "Loops and repeated includes run at most 4,000,000 statements in all, counted by their text, so that every scene checks in bounded time and memory. Use fewer iterations, or a mesh for very many triangles.",
         example: "for i in 0..100000000 { sphere { center <i, 0, 0> radius 0.5 } }",
+    },
+    Entry {
+        code: OUTPUT_FILE,
+        title: "An output image that cannot be written",
+        explanation: "`render { output … }` names the image a render writes (unless `-o` names another): a `.png`, `.exr` or `.pfm` file in a folder that exists and takes new files, and not a file the scene reads (the scene itself, an include, a mesh), which the image would replace. A `#` in the name is the frame's number. `check` tests it as `render` does, before the first sample.",
+        example: "render { output \"renders/final.jpg\" }",
     },
     Entry {
         code: MESH_FILE,

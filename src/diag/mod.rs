@@ -12,7 +12,7 @@ use crate::source::{FileId, SourceMap};
 use crate::span::Span;
 
 /// How bad a diagnostic is.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
 pub enum Severity {
     /// Worth knowing; the scene still renders.
     Warning,
@@ -21,7 +21,7 @@ pub enum Severity {
 }
 
 /// One problem found in a scene, pointing at its source.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, Eq, Hash)]
 pub struct Diagnostic {
     /// Error or warning.
     pub severity: Severity,
@@ -106,6 +106,16 @@ impl Diagnostics {
     /// Adds all of `other`.
     pub fn extend(&mut self, other: Diagnostics) {
         self.items.extend(other.items);
+    }
+
+    /// Drops each diagnostic equal to an earlier one (the same problem met
+    /// again), keeping the first's place in the list.
+    pub fn dedup(&mut self) {
+        let mut seen = std::collections::HashSet::new();
+        let items = std::mem::take(&mut self.items);
+        self.items = (items.into_iter())
+            .filter(|d| seen.insert(d.clone()))
+            .collect();
     }
 
     /// Whether any is an error.

@@ -11,7 +11,8 @@
 //! or holds an object emissive under it (lights are sampled as the scene's
 //! primitives; a lamp's bulb is small).
 
-use super::{build_objects, non_uniform, uniform_scale, within_domain, LowerCache};
+use super::shapes::{self, non_uniform, uniform_scale, within_domain};
+use super::{geometry, LowerCache};
 use crate::accel::bvh::Bvh;
 use crate::accel::bvh4::Bvh4;
 use crate::check::{self, Instance, Object};
@@ -132,70 +133,74 @@ pub fn split(scene: &check::Scene) -> Split {
     }
 }
 
-/// The prototypes of the shared groups and their placements, with the BVH
-/// over the placements.
-pub fn build(
+/// The material of each object of a prototype ([`INHERITED`]: the
+/// placement's) and the frames of its objects not at the identity.
+type Parts = (Vec<u32>, Vec<(u32, Affine3A)>);
+
+/// The shared groups' primitives (one prototype each) and their
+/// placements, gathered: every problem found, nothing built.
+pub struct Gathered {
+    /// Each prototype's primitives and what its objects are.
+    prototypes: Vec<(shapes::Gathered, Parts)>,
+    /// Each prototype's bounds over the shutter, in its frame.
+    bounds: Vec<Aabb>,
+    /// The placements, with the world bounds of each.
+    placements: Vec<(Placement, Aabb)>,
+}
+
+/// Gathers the prototypes of the shared groups placed by `shared` and
+/// their placements. A problem of a group's own is reported once however
+/// often it is placed; an object that only a placement's transform makes
+/// unrenderable (a round shape scaled unevenly) once, at its first such
+/// placement, with a note at the second.
+pub fn gather(
     scene: &check::Scene,
     shared: &[Leaf],
     cache: &mut LowerCache,
-) -> Result<Instances, Diagnostics> {
+) -> Result<Gathered, Diagnostics> {
     let mut diags = Diagnostics::new();
     let shutter = (scene.camera.shutter.0 as f32, scene.camera.shutter.1 as f32);
-    let mut prototype_of: HashMap<usize, u32> = HashMap::new();
-    let mut prototypes: Vec<Prototype> = Vec::new();
-    let mut placements: Vec<Placement> = Vec::new();
-    let mut boxes: Vec<Aabb> = Vec::new();
+    // Each group's prototype, or `None` when its objects have errors.
+    let mut prototype_of: HashMap<usize, Option<u32>> = HashMap::new();
+    let mut out = Gathered {
+        prototypes: Vec::new(),
+        bounds: Vec::new(),
+        placements: Vec::new(),
+    };
+    // The placements under which each (group, object) is scaled unevenly.
+    let mut uneven: Vec<((usize, usize), Vec<Span>)> = Vec::new();
     for leaf in shared {
         let group = &scene.groups[leaf.group];
-        // Round shapes take similarity transforms only, placed or not (the
-        // flat scene could not hold an ellipsoid either).
-        for object in &group.objects {
-            if let Some(what) = object.shape.round_kind() {
-                if uniform_scale(&(leaf.transform * object.transform)).is_none() {
-                    diags.push(
-                        non_uniform(object.span, what).with_secondary(leaf.span, "placed here"),
-                    );
+        for (k, object) in group.objects.iter().enumerate() {
+            // Round shapes take similarity transforms only, placed or not
+            // (the flat scene could not hold an ellipsoid either); an
+            // object uneven by itself is the group's own problem.
+            let round = object.shape.round_kind().is_some();
+            if round
+                && uniform_scale(&object.transform).is_some()
+                && uniform_scale(&(leaf.transform * object.transform)).is_none()
+            {
+                match uneven.iter_mut().find(|(at, _)| *at == (leaf.group, k)) {
+                    Some((_, spans)) => spans.push(leaf.span),
+                    None => uneven.push(((leaf.group, k), vec![leaf.span])),
                 }
             }
         }
-        let prototype = match prototype_of.get(&leaf.group) {
-            Some(&p) => p,
-            None => {
-                let geometry = match build_objects(&group.objects, scene.camera.shutter, cache) {
-                    Ok(g) => g,
-                    Err(d) => {
-                        diags.extend(d);
-                        continue;
-                    }
-                };
-                let object_material = (group.objects.iter())
-                    .zip(&group.unmaterialled)
-                    .map(|(o, &u)| if u { INHERITED } else { o.material as u32 })
-                    .collect();
-                let object_from_group = (group.objects.iter().enumerate())
-                    .filter(|(_, o)| o.transform != DMat4::IDENTITY)
-                    .map(|(i, o)| {
-                        (
-                            i as u32,
-                            Affine3A::from_mat4(o.transform.inverse().as_mat4()),
-                        )
-                    })
-                    .collect();
-                prototypes.push(Prototype {
-                    prims: geometry.prims,
-                    prim_object: geometry.prim_object,
-                    wide: geometry.wide,
-                    normals: geometry.normals,
-                    uvs: geometry.uvs,
-                    bounds: geometry.bounds,
-                    object_material,
-                    object_from_group,
-                });
-                let p = prototypes.len() as u32 - 1;
-                prototype_of.insert(leaf.group, p);
-                p
+        let prototype = *prototype_of.entry(leaf.group).or_insert_with(|| {
+            match shapes::gather(&group.objects, scene.camera.shutter, cache) {
+                Ok(g) => {
+                    out.bounds.push(g.bounds());
+                    let parts = (object_materials(group), object_frames(group));
+                    out.prototypes.push((g, parts));
+                    Some(out.prototypes.len() as u32 - 1)
+                }
+                Err(d) => {
+                    diags.extend(d);
+                    None
+                }
             }
-        };
+        });
+        let Some(prototype) = prototype else { continue };
         // Objects that name no material take the default one (each such
         // object's index is it) unless the placement gives one.
         let default = (group.objects.iter())
@@ -208,7 +213,7 @@ pub fn build(
             leaf.velocity.as_vec3(),
             leaf.material.unwrap_or(default) as u32,
         );
-        let bounds = placement.world_bounds(prototypes[prototype as usize].bounds, shutter);
+        let bounds = placement.world_bounds(out.bounds[prototype as usize], shutter);
         if !within_domain(bounds, glam::Vec3::ZERO, (0.0, 0.0)) {
             diags.push(
                 Diagnostic::error(
@@ -224,11 +229,71 @@ pub fn build(
             );
             continue;
         }
-        boxes.push(bounds);
-        placements.push(placement);
+        out.placements.push((placement, bounds));
+    }
+    for ((group, k), spans) in uneven {
+        let object = &scene.groups[group].objects[k];
+        let what = object.shape.round_kind().unwrap_or("shape");
+        let mut d = non_uniform(object.span, what).with_secondary(spans[0], "placed here");
+        if let Some(&second) = spans.get(1) {
+            let label = match spans.len() {
+                2 => "and here".to_string(),
+                n => format!("and here ({n} placements scale it unevenly)"),
+            };
+            d = d.with_secondary(second, label);
+        }
+        diags.push(d);
     }
     if diags.has_errors() {
         return Err(diags);
+    }
+    Ok(out)
+}
+
+/// Each object's material in a group's prototype: its own, or
+/// [`INHERITED`] when it names none.
+fn object_materials(group: &check::Group) -> Vec<u32> {
+    (group.objects.iter())
+        .zip(&group.unmaterialled)
+        .map(|(o, &u)| if u { INHERITED } else { o.material as u32 })
+        .collect()
+}
+
+/// The object ← group transforms of a group's objects that have one.
+fn object_frames(group: &check::Group) -> Vec<(u32, Affine3A)> {
+    (group.objects.iter().enumerate())
+        .filter(|(_, o)| o.transform != DMat4::IDENTITY)
+        .map(|(i, o)| {
+            (
+                i as u32,
+                Affine3A::from_mat4(o.transform.inverse().as_mat4()),
+            )
+        })
+        .collect()
+}
+
+/// Builds the prototypes' BVHs and the BVH over the placements.
+pub fn build(gathered: Gathered, cache: &mut LowerCache) -> Instances {
+    let prototypes: Vec<Prototype> = (gathered.prototypes.into_iter())
+        .map(|(shapes, (object_material, object_from_group))| {
+            let geometry = geometry::build(shapes);
+            cache.bvh_builds += 1;
+            Prototype {
+                prims: geometry.prims,
+                prim_object: geometry.prim_object,
+                wide: geometry.wide,
+                normals: geometry.normals,
+                uvs: geometry.uvs,
+                bounds: geometry.bounds,
+                object_material,
+                object_from_group,
+            }
+        })
+        .collect();
+    let (mut placements, boxes): (Vec<Placement>, Vec<Aabb>) =
+        gathered.placements.into_iter().unzip();
+    if placements.is_empty() {
+        return Instances::default();
     }
     // The tree numbers placements in its leaves' order.
     let mut bvh = Bvh::build(&boxes, &|_| false);
@@ -238,11 +303,11 @@ pub fn build(
     bvh.order = (0..placements.len() as u32).collect();
     let mut tree = Bvh4::from_binary(&bvh);
     tree.pack_triangles(|_| None);
-    Ok(Instances {
+    Instances {
         prototypes,
         placements,
         tree,
-    })
+    }
 }
 
 /// The bounds of every placement over the shutter.

@@ -19,6 +19,7 @@ mod render;
 mod shapes;
 mod texture_inputs;
 mod textures;
+mod verdict;
 mod watch;
 
 use std::path::{Path, PathBuf};

@@ -1,0 +1,526 @@
+//! Checked objects → the renderer's primitives, with every problem a shape
+//! can have once its transforms are applied: a round shape under an uneven
+//! scale, a mesh file that cannot be read or has no area, an object beyond
+//! f32's range or too small for it. Gathering finds them all and builds
+//! nothing: `check` runs it as `render` does (the BVH is built after, by
+//! [`super::geometry`]).
+
+use super::cache::LowerCache;
+use super::collect::{Collected, PlainMesh};
+use crate::check;
+use crate::check::domain::{self, unit_f32, MAX_MAGNITUDE, MIN_SIZE};
+use crate::diag::codes;
+use crate::diag::{Diagnostic, Diagnostics};
+use crate::geometry::cone::Cone;
+use crate::geometry::shape::Shape;
+use crate::geometry::texcoord;
+use crate::geometry::torus::Torus;
+use crate::geometry::Aabb;
+use crate::ir::Prim;
+use glam::{DMat4, DVec3, Vec2, Vec3};
+
+/// The primitives of a list of objects (the scene's, or a group's in its
+/// frame), before the BVH orders them.
+#[derive(Debug, Default)]
+pub struct Gathered {
+    /// The primitives.
+    pub prims: Collected,
+    /// Vertex normals of mesh triangles with attributes (zero: flat).
+    pub normals: Vec<[Vec3; 3]>,
+    /// Their vertex texture coordinates, by the same index.
+    pub uvs: Vec<[Vec2; 3]>,
+    /// The mesh objects whose files have no texture coordinates.
+    pub meshes_without_uvs: Vec<u32>,
+    /// The shutter interval the primitives are bounded over.
+    pub shutter: (f32, f32),
+}
+
+impl Gathered {
+    /// The bounds of every bounded primitive over the shutter.
+    pub fn bounds(&self) -> Aabb {
+        (0..self.prims.len() as u32)
+            .map(|i| self.prims.bounds(i, self.shutter))
+            .fold(Aabb::EMPTY, Aabb::union)
+    }
+}
+
+/// What one object's shapes make: where they go and the objects out of
+/// range or too small so far (one diagnostic each, for the first).
+struct Gathering<'a> {
+    out: Gathered,
+    out_of_range: Option<usize>,
+    too_small: Option<usize>,
+    diags: Diagnostics,
+    cache: &'a mut LowerCache,
+}
+
+/// The primitives of `objects` over the shutter interval, or every problem
+/// they have.
+pub fn gather(
+    objects: &[check::Object],
+    (t0, t1): (f64, f64),
+    cache: &mut LowerCache,
+) -> Result<Gathered, Diagnostics> {
+    let mut g = Gathering {
+        out: Gathered {
+            shutter: (t0 as f32, t1 as f32),
+            ..Gathered::default()
+        },
+        out_of_range: None,
+        too_small: None,
+        diags: Diagnostics::new(),
+        cache,
+    };
+    for (o, obj) in objects.iter().enumerate() {
+        g.object(o, obj);
+    }
+    if let Some(o) = g.out_of_range {
+        g.diags.push(out_of_range(objects[o].span));
+    }
+    if let Some(o) = g.too_small {
+        g.diags.push(
+            Diagnostic::error(
+                codes::DEGENERATE,
+                "this object is too small for the renderer's 32-bit floats",
+                objects[o].span,
+            )
+            .with_label("its area rounds to zero")
+            .with_help(format!(
+                "give it sizes of at least {} after its transforms",
+                domain::number(MIN_SIZE)
+            )),
+        );
+    }
+    if g.diags.has_errors() {
+        return Err(g.diags);
+    }
+    Ok(g.out)
+}
+
+/// The error of an object that leaves f32's range after its transforms.
+fn out_of_range(span: crate::span::Span) -> Diagnostic {
+    Diagnostic::error(
+        codes::OUT_OF_RANGE,
+        format!(
+            "this object reaches beyond ±{} after its transforms and motion",
+            domain::number(MAX_MAGNITUDE)
+        ),
+        span,
+    )
+    .with_label(format!("coordinates beyond ±{}", domain::number(MAX_MAGNITUDE)))
+    .with_help("the renderer computes in 32-bit floats; check the sizes, transforms and velocity (times the shutter) for overflow")
+}
+
+impl Gathering<'_> {
+    /// Adds primitive `shape` of object `o`, moving at `velocity`.
+    fn push(&mut self, o: usize, shape: Shape, velocity: Vec3) {
+        match representable(&shape, velocity, self.out.shutter) {
+            Representable::Yes => {}
+            Representable::OutOfRange => {
+                self.out_of_range.get_or_insert(o);
+            }
+            Representable::TooSmall => {
+                self.too_small.get_or_insert(o);
+            }
+        }
+        self.out.prims.push(Prim { shape, velocity }, o as u32);
+    }
+
+    /// Adds the primitives of object `o`.
+    fn object(&mut self, o: usize, obj: &check::Object) {
+        let m = obj.transform;
+        let pt = |p: DVec3| m.transform_point3(p).as_vec3();
+        let vec = |v: DVec3| m.transform_vector3(v).as_vec3();
+        let velocity = obj.velocity.as_vec3();
+        // A mirroring transform turns `e1 × e2` inwards: quads and
+        // triangles keep their outward side with their edges swapped
+        // (`Shape::own_uv`).
+        let flip = m.determinant() < 0.0;
+        let mut shapes: Vec<Shape> = Vec::new();
+        match &obj.shape {
+            check::Shape::Mesh {
+                path,
+                path_span,
+                smooth,
+            } => return self.mesh(o, obj, (path, *path_span), *smooth),
+            check::Shape::Plane { point, normal } => shapes.push(Shape::Plane {
+                point: pt(*point),
+                normal: unit_f32(m.inverse().transpose().transform_vector3(*normal)),
+            }),
+            check::Shape::Quad {
+                corner,
+                edge1,
+                edge2,
+            } => shapes.push(parallelogram(pt(*corner), vec(*edge1), vec(*edge2), flip)),
+            check::Shape::Triangle { v } => {
+                let p0 = pt(v[0]);
+                let (e1, e2) = (pt(v[1]) - p0, pt(v[2]) - p0);
+                // As a parallelogram: swapped under a mirror (see `flip`).
+                let (e1, e2) = if flip { (e2, e1) } else { (e1, e2) };
+                shapes.push(Shape::Triangle {
+                    p0,
+                    e1,
+                    e2,
+                    attributes: u32::MAX,
+                    swapped: flip,
+                })
+            }
+            check::Shape::Box { min, max } => {
+                for (c, a, b) in box_faces(*min, *max) {
+                    shapes.push(parallelogram(pt(c), vec(a), vec(b), flip));
+                }
+            }
+            round => match uniform_scale(&m) {
+                Some(s) => round_shapes(round, &m, s, &mut shapes),
+                None => {
+                    let what = obj.shape.round_kind().unwrap_or("shape");
+                    self.diags.push(non_uniform(obj.span, what));
+                }
+            },
+        }
+        for shape in shapes {
+            self.push(o, shape, velocity);
+        }
+    }
+
+    /// Adds the triangles of mesh object `o` read from `path` (named at
+    /// `path_span`), with their vertex normals when `smooth`.
+    fn mesh(
+        &mut self,
+        o: usize,
+        obj: &check::Object,
+        (path, path_span): (&std::path::Path, crate::span::Span),
+        smooth: bool,
+    ) {
+        let data = match self.cache.mesh(path) {
+            Ok(d) => d,
+            Err(e) => {
+                self.diags.push(
+                    Diagnostic::error(
+                        codes::MESH_FILE,
+                        format!("cannot load mesh `{}`", path.display()),
+                        path_span,
+                    )
+                    .with_label(e)
+                    .with_help("meshes are OBJ or PLY files with at least one triangle"),
+                );
+                return;
+            }
+        };
+        let m = obj.transform;
+        let velocity = obj.velocity.as_vec3();
+        let flip = m.determinant() < 0.0;
+        let pos: Vec<Vec3> = (data.positions.iter())
+            .map(|p| m.transform_point3(p.as_dvec3()).as_vec3())
+            .collect();
+        // The vertices' box, where the motion takes it: as the other shapes.
+        let reach = pos.iter().fold(Aabb::EMPTY, |b, p| b.grow(*p));
+        if !within_domain(reach, velocity, self.out.shutter) {
+            self.out_of_range.get_or_insert(o);
+        }
+        let nm = m.inverse().transpose();
+        let use_normals = smooth && !data.normals.is_empty();
+        let vnormals: Vec<Vec3> = match use_normals {
+            true => (data.normals.iter())
+                .map(|n| unit_f32(nm.transform_vector3(n.as_dvec3())))
+                .collect(),
+            false => Vec::new(),
+        };
+        let use_uvs = !data.uvs.is_empty();
+        if !use_uvs {
+            self.out.meshes_without_uvs.push(o as u32);
+        }
+        // A static mesh without vertex attributes keeps its triangles
+        // as vertex indices: most of them will never need a record.
+        let plain = !use_normals && !use_uvs && velocity == Vec3::ZERO;
+        let mut kept: Vec<[u32; 3]> = Vec::new();
+        if plain {
+            kept.reserve_exact(data.triangles.len());
+        } else {
+            self.out.prims.records.reserve(data.triangles.len());
+        }
+        let mut degenerate = 0usize;
+        for t in &data.triangles {
+            // Stored wound as rendered; vertex attributes stay in the
+            // file's order (`Shape::own_uv` reads them so).
+            let [a, b, c] = if flip { [t[0], t[2], t[1]] } else { *t };
+            let p0 = pos[a as usize];
+            let (e1, e2) = (pos[b as usize] - p0, pos[c as usize] - p0);
+            if e1.cross(e2).length_squared() == 0.0 {
+                degenerate += 1;
+                continue;
+            }
+            if plain {
+                kept.push([a, b, c]);
+                continue;
+            }
+            let attributes = if use_normals || use_uvs {
+                let out = &mut self.out;
+                // A zero normal is flat shading.
+                out.normals.push(match use_normals {
+                    true => t.map(|i| vnormals[i as usize]),
+                    false => [Vec3::ZERO; 3],
+                });
+                if use_uvs {
+                    // Earlier triangles without UVs keep their barycentrics.
+                    out.uvs
+                        .resize(out.normals.len() - 1, texcoord::TRIANGLE_DEFAULT);
+                    out.uvs.push(t.map(|i| data.uvs[i as usize]));
+                }
+                out.normals.len() as u32 - 1
+            } else {
+                u32::MAX
+            };
+            let shape = Shape::Triangle {
+                p0,
+                e1,
+                e2,
+                attributes,
+                swapped: flip,
+            };
+            self.out.prims.push(Prim { shape, velocity }, o as u32);
+        }
+        if degenerate == data.triangles.len() {
+            self.diags.push(
+                Diagnostic::error(
+                    codes::DEGENERATE,
+                    "every triangle of this mesh has zero area",
+                    path_span,
+                )
+                .with_label(format!("{degenerate} degenerate triangles"))
+                .with_help("check the mesh file and the transform's scale"),
+            );
+        } else if plain {
+            // The file's data is dropped here (a one-off compile keeps no
+            // copy): only the world-space vertices and the kept triangles
+            // stay.
+            self.out.prims.push_mesh(PlainMesh {
+                positions: pos,
+                triangles: kept,
+                object: o as u32,
+                swapped: flip,
+            });
+        }
+    }
+}
+
+/// The primitives of a sphere, cylinder, cone, torus or disk under the
+/// similarity `m` of scale `s`.
+fn round_shapes(shape: &check::Shape, m: &DMat4, s: f64, out: &mut Vec<Shape>) {
+    let pt = |p: DVec3| m.transform_point3(p).as_vec3();
+    match shape {
+        check::Shape::Sphere { center, radius } => out.push(Shape::Sphere {
+            center: pt(*center),
+            radius: (radius * s) as f32,
+        }),
+        check::Shape::Cone {
+            base,
+            top,
+            base_radius,
+            top_radius,
+            open,
+        } => round_solid(
+            pt(*base),
+            pt(*top),
+            [base_radius * s, top_radius * s],
+            *open,
+            out,
+        ),
+        check::Shape::Torus {
+            center,
+            axis,
+            major,
+            minor,
+        } => out.push(Shape::Torus(Torus {
+            center: pt(*center),
+            axis: unit_f32(m.transform_vector3(*axis)),
+            major: (major * s) as f32,
+            minor: (minor * s) as f32,
+        })),
+        check::Shape::Disk {
+            center,
+            normal,
+            radius,
+        } => out.push(Shape::Disk {
+            center: pt(*center),
+            normal: unit_f32(m.transform_vector3(*normal)),
+            radius: (radius * s) as f32,
+        }),
+        // Not round: gathered by `Gathering::object`.
+        _ => {}
+    }
+}
+
+/// A box's six faces `(corner, e1, e2)` with outward normals (e1 × e2
+/// points out), each seen upright from outside: e1 to the right, e2 up
+/// (the top's up is −z, the bottom's +z), so that a texture's (u, v) runs
+/// along them (see geometry::texcoord).
+fn box_faces(lo: DVec3, hi: DVec3) -> [(DVec3, DVec3, DVec3); 6] {
+    let d = hi - lo;
+    let (ex, ey, ez) = (
+        DVec3::new(d.x, 0.0, 0.0),
+        DVec3::new(0.0, d.y, 0.0),
+        DVec3::new(0.0, 0.0, d.z),
+    );
+    [
+        (lo, ez, ey),            // −x
+        (lo + ex + ez, -ez, ey), // +x
+        (lo, ex, ez),            // −y
+        (lo + ey + ez, ex, -ez), // +y
+        (lo + ex, -ex, ey),      // −z
+        (lo + ez, ex, ey),       // +z
+    ]
+}
+
+/// The uniform scale factor of a similarity transform, or `None` if the
+/// linear part shears or scales unevenly.
+pub(super) fn uniform_scale(m: &DMat4) -> Option<f64> {
+    let (x, y, z) = (
+        m.x_axis.truncate(),
+        m.y_axis.truncate(),
+        m.z_axis.truncate(),
+    );
+    let s = x.length();
+    let ok = (y.length() - s).abs() <= 1e-9 * s.max(1.0)
+        && (z.length() - s).abs() <= 1e-9 * s.max(1.0)
+        && x.dot(y).abs() <= 1e-9 * s * s
+        && y.dot(z).abs() <= 1e-9 * s * s
+        && x.dot(z).abs() <= 1e-9 * s * s;
+    ok.then_some(s)
+}
+
+/// Whether a primitive survives f32 ([`representable`]).
+enum Representable {
+    Yes,
+    /// Beyond ±[`MAX_MAGNITUDE`] (or not finite) somewhere in the shutter interval.
+    OutOfRange,
+    /// An area that rounds to zero.
+    TooSmall,
+}
+
+/// Checks a primitive against the numeric domain the checker enforces on
+/// the file's numbers, after transforms and motion: every coordinate within
+/// ±[`MAX_MAGNITUDE`] over the shutter interval, an area above zero.
+fn representable(shape: &Shape, velocity: Vec3, shutter: (f32, f32)) -> Representable {
+    if let Shape::Plane { point, normal } = *shape {
+        let ok = normal.is_finite()
+            && normal != Vec3::ZERO
+            && within_domain(
+                Aabb {
+                    min: point,
+                    max: point,
+                },
+                velocity,
+                shutter,
+            );
+        return if ok {
+            Representable::Yes
+        } else {
+            Representable::OutOfRange
+        };
+    }
+    if !within_domain(shape.bounds(), velocity, shutter) {
+        return Representable::OutOfRange;
+    }
+    let area = shape.area();
+    if area > 0.0 && area.is_finite() {
+        Representable::Yes
+    } else {
+        Representable::TooSmall
+    }
+}
+
+/// Whether `b`, moved by `velocity` over the shutter interval, stays within
+/// ±[`MAX_MAGNITUDE`] (a hair more: the limit itself rounds in f32).
+pub(super) fn within_domain(b: Aabb, velocity: Vec3, (t0, t1): (f32, f32)) -> bool {
+    let limit = (MAX_MAGNITUDE * (1.0 + 1e-6)) as f32;
+    [t0, t1].iter().all(|&t| {
+        let (lo, hi) = (b.min + velocity * t, b.max + velocity * t);
+        lo.is_finite() && hi.is_finite() && lo.abs().max(hi.abs()).max_element() <= limit
+    })
+}
+
+/// A cylinder or cone from `base` to `top` (world space) with the radii at
+/// each end: its lateral surface and, unless `open`, the disks that close
+/// it (a radius of 0 closes itself).
+fn round_solid(base: Vec3, top: Vec3, radii: [f64; 2], open: bool, out: &mut Vec<Shape>) {
+    let along = top - base;
+    let height = along.length();
+    let axis = along / height;
+    let [r0, r1] = radii.map(|r| r as f32);
+    out.push(Shape::Cone(Cone {
+        base,
+        axis,
+        height,
+        r0,
+        r1,
+    }));
+    if open {
+        return;
+    }
+    for (center, normal, radius) in [(base, -axis, r0), (top, axis, r1)] {
+        if radius > 0.0 {
+            out.push(Shape::Disk {
+                center,
+                normal,
+                radius,
+            });
+        }
+    }
+}
+
+/// The parallelogram `p + s·e1 + t·e2`, stored with its edges swapped when
+/// `flip` (a mirroring transform: see [`Shape::own_uv`]).
+fn parallelogram(p: Vec3, e1: Vec3, e2: Vec3, flip: bool) -> Shape {
+    let (e1, e2) = if flip { (e2, e1) } else { (e1, e2) };
+    Shape::Quad {
+        p,
+        e1,
+        e2,
+        swapped: flip,
+    }
+}
+
+pub(super) fn non_uniform(span: crate::span::Span, what: &str) -> Diagnostic {
+    Diagnostic::error(
+        codes::NON_UNIFORM_SCALE,
+        format!("a {what} takes only uniform scaling"),
+        span,
+    )
+    .with_label("this object is scaled unevenly or sheared")
+    .with_help(format!(
+        "scale the {what} by a single number, or use a mesh for ellipsoids"
+    ))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn geometry_is_checked_in_f32_over_the_shutter() {
+        let unit = Shape::Sphere {
+            center: Vec3::ZERO,
+            radius: 1.0,
+        };
+        let still = (0.0, 0.0);
+        assert!(matches!(
+            representable(&unit, Vec3::ZERO, still),
+            Representable::Yes
+        ));
+        // Moving out of range by the end of the shutter interval.
+        assert!(matches!(
+            representable(&unit, Vec3::new(2e9, 0.0, 0.0), (0.0, 1.0)),
+            Representable::OutOfRange
+        ));
+        let tiny = Shape::quad(
+            Vec3::ZERO,
+            Vec3::new(1e-30, 0.0, 0.0),
+            Vec3::new(0.0, 1e-30, 0.0),
+        );
+        assert!(matches!(
+            representable(&tiny, Vec3::ZERO, still),
+            Representable::TooSmall
+        ));
+    }
+}

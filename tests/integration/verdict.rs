@@ -1,0 +1,102 @@
+//! One verdict: `ptsc check` and `ptsc render` agree on every scene the
+//! project keeps (tests, examples, the diagnostic and hostile cases): both
+//! accept it, or both refuse it before the first sample with the same
+//! diagnostics. Everything `render` can refuse comes from the compile path
+//! `check` runs (`compile::compile_file`, `lower::validate`).
+
+use std::path::{Path, PathBuf};
+
+/// The diagnostics a command printed: its stderr up to and including the
+/// "N errors, M warnings" line (nothing when it printed none).
+fn diagnostics(stderr: &str) -> String {
+    let lines: Vec<&str> = stderr.lines().collect();
+    let summary = lines.iter().position(|l| {
+        let words: Vec<&str> = l.split_whitespace().collect();
+        matches!(words.as_slice(), [_, e, _, w] if e.starts_with("error") && w.starts_with("warning"))
+    });
+    match summary {
+        Some(end) => lines[..=end].join("\n"),
+        None => String::new(),
+    }
+}
+
+/// Every scene below the tests and the examples.
+fn scenes() -> Vec<PathBuf> {
+    let root = crate::root();
+    let mut all = crate::files_below(&root.join("tests"), "pts");
+    all.extend(crate::files_below(&root.join("examples"), "pts"));
+    all.sort();
+    all
+}
+
+/// A scene naming the image it renders to (`render { output … }`).
+fn names_an_output(scene: &Path) -> bool {
+    std::fs::read_to_string(scene).is_ok_and(|t| t.contains("output \""))
+}
+
+/// Runs `check` and a tiny `render` of `scene` from the package root;
+/// `None` when they agree, else what differs.
+fn disagreement(scene: &Path, out: &Path) -> Option<String> {
+    let rel = crate::relative(scene);
+    let rel = rel.to_str().unwrap();
+    let (check_code, _, check_err) = crate::ptsc(&["check", rel]);
+    let check = diagnostics(&check_err);
+    // The image goes to a temporary file, unless the scene's own output is
+    // what `check` refused: then `render` must refuse it too (it writes
+    // nothing).
+    let out = out.to_str().unwrap();
+    let mut args = vec!["render", rel, "--spp", "1", "--resolution", "4x4"];
+    let refused_output = check.contains("pts::check::output_file");
+    if !(names_an_output(scene) && refused_output) {
+        args.extend(["-o", out]);
+    }
+    let (render_code, _, render_err) = crate::ptsc(&args);
+    let render = diagnostics(&render_err);
+    let verdicts = (check_code, render_code);
+    if !matches!(verdicts, (0, 0) | (1, 1)) || check != render {
+        return Some(format!(
+            "{rel}: check exit {check_code}, render exit {render_code}\n--- check:\n{check_err}\n--- render:\n{render_err}"
+        ));
+    }
+    None
+}
+
+#[test]
+fn check_and_render_give_one_verdict_on_every_scene() {
+    let root = crate::root();
+    std::env::set_current_dir(&root).unwrap();
+    let all = scenes();
+    assert!(all.len() > 150, "only {} scenes", all.len());
+    let dir = tempfile::tempdir().unwrap();
+    let next = std::sync::atomic::AtomicUsize::new(0);
+    let failures = std::sync::Mutex::new(Vec::new());
+    std::thread::scope(|s| {
+        for worker in 0..2 {
+            let (all, next, failures, dir) = (&all, &next, &failures, dir.path());
+            s.spawn(move || loop {
+                let i = next.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+                let Some(scene) = all.get(i) else { break };
+                let out = dir.join(format!("out{worker}.png"));
+                if let Some(why) = disagreement(scene, &out) {
+                    failures.lock().unwrap().push(why);
+                }
+            });
+        }
+    });
+    let failures = failures.into_inner().unwrap();
+    assert!(
+        failures.is_empty(),
+        "{} of {} scenes:\n{}",
+        failures.len(),
+        all.len(),
+        failures.join("\n\n")
+    );
+}
+
+#[test]
+fn a_group_placed_twice_reports_its_broken_mesh_once() {
+    let scene = crate::root().join("tests/diagnostics/lower_broken_mesh_placed_twice.pts");
+    let (code, _, err) = crate::ptsc(&["check", scene.to_str().unwrap()]);
+    assert_eq!(code, 1);
+    assert_eq!(err.matches("cannot load mesh").count(), 1, "{err}");
+}

@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """Mitsuba 3 references and noise baselines for the light-selection scenes
-tests/mitsuba/lights_mixed.pts, lamp_and_sky.pts and area_sizes.pts.
+tests/mitsuba/lights_mixed.pts, lamp_and_sky.pts, area_sizes.pts and
+lights_textured.pts (which also writes its lamp's image, hotspot_lamp.exr).
 
   python3 scripts/mitsuba_lights.py SCENE [--res 64] [--ref-spp 16384] [--spp 64] [--seeds 16]
 
@@ -17,7 +18,9 @@ import mitsuba as mi
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from mitsuba_sky import m, sun_direction  # noqa: E402
-from mitsuba_textures import rgb, rectangle, reference_and_baseline, sensor  # noqa: E402
+from mitsuba_textures import OUT, rgb, rectangle, reference_and_baseline, sensor  # noqa: E402
+
+ROOT = Path(__file__).resolve().parent.parent
 
 
 def diffuse(v):
@@ -85,13 +88,52 @@ def area_sizes(res, spp):
     }
 
 
-SCENES = {"lights_mixed": lights_mixed, "lamp_and_sky": lamp_and_sky, "area_sizes": area_sizes}
+def hotspot_lamp_image(path, size=16, base=2.0, hot=100.0):
+    """A lamp's radiance: `base` everywhere but a 2 x 2 hot spot of `hot`
+    off centre (mean 3.5, brightest 100: a light weighed by its brightest
+    texel looks 28 times brighter than it is)."""
+    import numpy as np
+    img = np.full((size, size, 3), base, np.float32)
+    img[4:6, 10:12] = hot
+    mi.Bitmap(img).write(str(path))
+
+
+def lights_textured(res, spp):
+    """A textured lamp with a hot spot, a dim environment map, a sun and two
+    small lamps: the light-selection case of issue 34."""
+    from mitsuba_textures import flip
+    grey = diffuse([0.6] * 3)
+    lamp_shape = rectangle([-0.4, 2.2, -0.6], [0.8, 0, 0], [0, 0, 0.8], diffuse([0, 0, 0]))
+    lamp_shape["emitter"] = {"type": "area", "radiance": {
+        "type": "bitmap", "filename": str(OUT / "hotspot_lamp.exr"), "filter_type": "bilinear",
+        "wrap_mode": "repeat", "to_uv": flip(1, -1)}}
+    small = {"type": "sphere", "center": [1.3, 0.3, 0.6], "radius": 0.05, "bsdf": diffuse([0, 0, 0]),
+             "emitter": {"type": "area", "radiance": rgb([80, 70, 60])}}
+    return {
+        "type": "scene",
+        "integrator": {"type": "path", "max_depth": 4},
+        "sensor": sensor(res, spp, [0, 1.4, 4.5], [0, 0.7, 0], 45.0),
+        "sky": {"type": "envmap", "filename": str(ROOT / "examples" / "images" / "studio.exr"), "scale": 0.05},
+        "sun": {"type": "directional", "direction": [0.4, -0.6, -0.7], "irradiance": rgb([1.0, 0.95, 0.85])},
+        "floor": rectangle([-3, 0, 3], [6, 0, 0], [0, 0, -6], grey),
+        "wall": rectangle([-3, 0, -1.5], [6, 0, 0], [0, 3, 0], grey),
+        "ball": {"type": "sphere", "center": [-0.6, 0.45, 0.1], "radius": 0.45, "bsdf": diffuse([0.7] * 3)},
+        "lamp": lamp_shape,
+        "spot": lamp([0.9, 1.2, -1.0], [0.1, 0, 0], [0, 0, 0.1], [120, 100, 80]),
+        "small": small,
+    }
+
+
+SCENES = {"lights_mixed": lights_mixed, "lamp_and_sky": lamp_and_sky, "area_sizes": area_sizes,
+          "lights_textured": lights_textured}
 
 
 def main():
     mi.set_variant("scalar_rgb")
     mi.set_log_level(mi.LogLevel.Error)
     name = sys.argv.pop(1)
+    if name == "lights_textured":
+        hotspot_lamp_image(OUT / "hotspot_lamp.exr")
     reference_and_baseline(name, SCENES[name], 16)
 
 

@@ -201,6 +201,36 @@ impl Scene {
         }
     }
 
+    /// The mean luminance of the radiance emissive primitive `prim` (of
+    /// shape `shape`) sends from its front over its surface: its
+    /// material's emission, or for a textured emitter the average of
+    /// `samples` stratified points (jittered by a fixed hash, so that the
+    /// estimate is deterministic), floored at a thousandth of its brightest
+    /// colour so that a light never weighs nothing.
+    pub fn mean_emission(&self, prim: u32, shape: &Shape, samples: u32) -> f64 {
+        let m = self.material_of(prim);
+        let lum = |c: Vec3| crate::light::luminance(c) as f64;
+        if m.textured.is_none() {
+            return lum(m.emission);
+        }
+        let side = (samples as f64).sqrt().ceil().max(1.0) as u32;
+        let mut sum = 0.0;
+        for k in 0..side * side {
+            let jitter = |salt: u32| {
+                let h = (k ^ salt.wrapping_mul(0x9e37_79b9)).wrapping_mul(0x85eb_ca6b);
+                let h = (h ^ (h >> 13)).wrapping_mul(0xc2b2_ae35);
+                (h ^ (h >> 16)) as f32 / 4_294_967_296.0
+            };
+            let u = Vec2::new(
+                ((k % side) as f32 + jitter(1)) / side as f32,
+                ((k / side) as f32 + jitter(2)) / side as f32,
+            );
+            let (p, n, uv) = shape.sample_area(u.min(Vec2::splat(1.0 - f32::EPSILON)));
+            sum += lum(self.emitted_at(prim, p, uv, n, n, 0.0));
+        }
+        (sum / (side * side) as f64).max(1e-3 * lum(m.emission))
+    }
+
     /// [`Scene::emitted_at`] for a material with textures: `[p, n, wo]` are
     /// the point, its normal and the direction of the light.
     #[inline(never)]

@@ -12,7 +12,6 @@ pub mod tree;
 
 use crate::geometry::shape::Shape;
 use crate::geometry::Aabb;
-use crate::material::Material;
 use bounds::LightBounds;
 use glam::{Vec2, Vec3};
 use selection::Selectable;
@@ -101,22 +100,45 @@ pub fn spot_falloff(cos: f32, cos_total: f32, cos_falloff: f32) -> f32 {
     t * t * (3.0 - 2.0 * t)
 }
 
+/// What an emissive primitive sends, as light selection weighs it: the
+/// luminance of its radiance averaged over its surface (a textured
+/// emitter's texture's mean there, not its brightest texel) and whether it
+/// emits on both sides.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Emitter {
+    /// Mean luminance of the emitted radiance over the surface.
+    pub radiance: f64,
+    /// Whether it emits on both sides.
+    pub two_sided: bool,
+}
+
+/// The luminance of a colour, in f64.
+fn luminance64(c: Vec3) -> f64 {
+    luminance_of(c.as_dvec3())
+}
+
+/// The luminance of a colour given in f64 (a bright map times a large
+/// intensity overflows f32).
+fn luminance_of(c: glam::DVec3) -> f64 {
+    0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z
+}
+
 impl Light {
     /// Power used by the `power` rule to choose among lights, and to find
     /// the lights that emit at all (any positive value keeps the estimate
     /// unbiased). In f64: products of large accepted values (an
     /// emission of 1e12 over an area of 4e18) and their sum over many
-    /// lights stay finite.
-    /// `material_of` gives the material of an emissive primitive.
-    pub fn power<'m>(&self, material_of: impl Fn(u32) -> &'m Material, bounds: Aabb) -> f64 {
+    /// lights stay finite. `emitter` is what an area light emits (see
+    /// [`Emitter`]); lights at infinity are measured over the sphere
+    /// bounding `bounds`.
+    pub fn power(&self, emitter: Emitter, bounds: Aabb) -> f64 {
         let radius = 0.5 * ((bounds.max - bounds.min).length() as f64).min(1e6);
-        let lum = |c: Vec3| luminance(c) as f64;
+        let lum = luminance64;
         let pi = std::f64::consts::PI;
         match self {
-            Light::Area { prim, shape, .. } => {
-                let m = material_of(*prim);
-                let sides = if m.two_sided { 2.0 } else { 1.0 };
-                lum(m.emission) * shape.area() as f64 * pi * sides
+            Light::Area { shape, .. } => {
+                let sides = if emitter.two_sided { 2.0 } else { 1.0 };
+                emitter.radiance * shape.area() as f64 * pi * sides
             }
             Light::Point { intensity, .. } => 4.0 * pi * lum(*intensity),
             Light::Spot {
@@ -128,31 +150,30 @@ impl Light {
                 2.0 * pi * lum(*intensity) * (1.0 - 0.5 * (*cos_total as f64 + *cos_falloff as f64))
             }
             Light::Directional { irradiance, .. } => pi * radius * radius * lum(*irradiance),
-            Light::Environment { radiance, map } => {
-                let mean = map.as_ref().map_or(Vec3::ONE, |m| m.mean());
-                // In f64: a bright map times a large intensity overflows f32.
-                let c = radiance.as_dvec3() * mean.as_dvec3();
-                let lum64 = 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z;
-                4.0 * pi * pi * radius * radius * lum64
-            }
-            Light::Sky { sky } => {
-                let c = sky.mean().as_dvec3();
-                let lum64 = 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z;
-                4.0 * pi * pi * radius * radius * lum64
+            Light::Environment { .. } | Light::Sky { .. } => {
+                4.0 * pi * pi * radius * radius * self.mean_radiance()
             }
         }
     }
 
+    /// The luminance of a light at infinity's radiance averaged over the
+    /// sphere of directions (0 for the others).
+    fn mean_radiance(&self) -> f64 {
+        match self {
+            Light::Environment { radiance, map } => {
+                let mean = map.as_ref().map_or(Vec3::ONE, |m| m.mean());
+                luminance_of(radiance.as_dvec3() * mean.as_dvec3())
+            }
+            Light::Sky { sky } => luminance64(sky.mean()),
+            _ => 0.0,
+        }
+    }
+
     /// What the light selection needs to know of the light: its
-    /// [`LightBounds`] over the shutter interval `(t0, t1)`, or that it is
-    /// at infinity. `material_of` gives the material of an emissive
-    /// primitive.
-    pub fn selectable<'m>(
-        &self,
-        material_of: impl Fn(u32) -> &'m Material,
-        (t0, t1): (f32, f32),
-    ) -> Selectable {
-        let lum = |c: Vec3| luminance(c) as f64;
+    /// [`LightBounds`] over the shutter interval `(t0, t1)`, or its weight
+    /// at infinity. `emitter` is what an area light emits.
+    pub fn selectable(&self, emitter: Emitter, (t0, t1): (f32, f32)) -> Selectable {
+        let lum = luminance64;
         let four_pi = 4.0 * std::f64::consts::PI;
         let at = |p: Vec3| Aabb { min: p, max: p };
         let everywhere = |bounds, phi| LightBounds {
@@ -165,19 +186,15 @@ impl Light {
         };
         Selectable::Bounded(match self {
             Light::Area {
-                prim,
-                shape,
-                velocity,
+                shape, velocity, ..
             } => {
-                let m = material_of(*prim);
                 let b = shape.bounds();
                 let moved = |t: f32| Aabb {
                     min: b.min + *velocity * t,
                     max: b.max + *velocity * t,
                 };
                 let bounds = moved(t0).union(moved(t1));
-                let sides = if m.two_sided { 2.0 } else { 1.0 };
-                let phi = lum(m.emission) * shape.area() as f64 * std::f64::consts::PI * sides;
+                let phi = self.power(emitter, b);
                 match shape {
                     // Round shapes face every way.
                     Shape::Sphere { .. } | Shape::Cone(_) | Shape::Torus(_) => {
@@ -190,7 +207,7 @@ impl Light {
                         phi,
                         cos_o: 1.0,
                         cos_e: 0.0,
-                        two_sided: m.two_sided,
+                        two_sided: emitter.two_sided,
                     },
                 }
             }
@@ -219,8 +236,26 @@ impl Light {
                     two_sided: false,
                 }
             }
-            Light::Directional { .. } | Light::Environment { .. } | Light::Sky { .. } => {
-                return Selectable::Infinite
+            // At infinity: an estimate of the irradiance it brings, in
+            // the units of a bounded light's importance (power ÷ squared
+            // distance, which for a diffuse area light is π × its
+            // irradiance): π E for a directional light (on a surface
+            // facing it), π · π L̄ for light from every direction of mean
+            // radiance L̄ (a hemisphere's irradiance).
+            Light::Directional {
+                direction,
+                irradiance,
+            } => {
+                return Selectable::Infinite {
+                    weight: std::f64::consts::PI * lum(*irradiance),
+                    axis: *direction,
+                }
+            }
+            Light::Environment { .. } | Light::Sky { .. } => {
+                return Selectable::Infinite {
+                    weight: std::f64::consts::PI.powi(2) * self.mean_radiance(),
+                    axis: Vec3::ZERO,
+                }
             }
         })
     }
@@ -417,7 +452,7 @@ mod tests {
         // A sphere of radiance 1 wholly above a point's horizon: E = π (r/D)²
         // cos θ (the sphere subtends a cone of sin² = (r/D)²), close to the
         // point and far from it.
-        let material = Material::new(&crate::material::Params {
+        let material = crate::material::Material::new(&crate::material::Params {
             emission: Vec3::ONE,
             ..Default::default()
         });

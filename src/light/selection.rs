@@ -1,16 +1,23 @@
 //! Choosing the light a shadow ray goes to (next-event estimation), and the
 //! probability of that choice for multiple importance sampling.
 //!
-//! The default rule (`auto`, as pbrt-v4's `BVHLightSampler`): lights at
-//! infinity (background, environment map, sky, directional lights) and the
-//! set of bounded lights each get an equal share, whatever the scene's
-//! extent; within the bounded set a light is chosen by its estimated
-//! contribution at the shading point ([`LightBounds::importance`]): exactly,
-//! by evaluating every light, up to [`EXHAUSTIVE_UP_TO`] lights, and by a
-//! light tree above. `power` is the earlier rule (in proportion to power,
-//! the power of lights at infinity growing with the scene's extent) and
-//! `uniform` is Mitsuba 3's; both are kept for comparison. The measurements
-//! behind the choice are in docs/performance.md ("Light selection").
+//! The default rule (`auto`): every light by its estimated contribution at
+//! the shading point. A bounded light's is [`LightBounds::importance`]
+//! (pbrt-v4's `BVHLightSampler`): its power, from a textured emitter's mean
+//! emission over its surface, over the squared distance and by the angles
+//! between its emission, the direction and the surface; a light at infinity
+//! (background, environment map, sky, directional light) brings an
+//! estimate of its irradiance in the same units ([`Selectable::Infinite`]).
+//! The lights at infinity and the bounded set as a whole share the choices
+//! by those estimates; within the bounded set a light is chosen exactly, by
+//! evaluating every light, up to [`EXHAUSTIVE_UP_TO`] lights, and by a
+//! light tree above. An estimate can be wrong (a sun whose map is dim on
+//! average, a lamp behind a wall): a [`FLOOR`] of the choices is spread
+//! evenly over the shares, so that none is starved; every bounded light that
+//! can reach a point has a positive estimate there. `power` is the earlier rule (in proportion to power, the power
+//! of lights at infinity growing with the scene's extent) and `uniform` is
+//! Mitsuba 3's; both are kept for comparison. The measurements behind the
+//! choice are in docs/performance.md ("Light selection").
 
 use super::bounds::{CompactLightBounds, LightBounds};
 use super::tree::LightTree;
@@ -48,11 +55,28 @@ named_values!(LightSelection {
 /// at 256, 2.8× at 512); docs/performance.md, "Light selection".
 pub const EXHAUSTIVE_UP_TO: usize = 128;
 
+/// The fraction of the choices spread evenly between the shares (a
+/// defensive mixture, Hesterberg 1995): each light at infinity and the
+/// bounded set keep at least `FLOOR / k` of the choices (k shares that can
+/// reach the point), however small their estimates. Within the bounded set
+/// no floor is needed, and one costs much: every light that can reach a
+/// point has a positive estimate there (its bounds are conservative), and
+/// spreading even 1 % of the choices over a grid of 64 lamps raised the
+/// noise by 6 % (docs/performance.md, "Light selection").
+pub const FLOOR: f64 = 0.1;
+
 /// What a light is for the selection.
 #[derive(Debug, Clone, Copy)]
 pub enum Selectable {
-    /// At infinity (or directional): its own share.
-    Infinite,
+    /// At infinity: its estimated contribution at any point is `weight`,
+    /// times |n · axis| at a surface of normal n for light arriving along
+    /// one direction (`axis` zero: from every direction).
+    Infinite {
+        /// The estimate (in the units of [`LightBounds::importance`]).
+        weight: f64,
+        /// The direction its light travels, or zero.
+        axis: Vec3,
+    },
     /// Bounded, with its bounds.
     Bounded(LightBounds),
 }
@@ -85,8 +109,9 @@ enum Kind {
     Table { pmf: Vec<f32>, cdf: Vec<f64> },
     /// Shares for the lights at infinity and the bounded set.
     Importance {
-        /// The lights at infinity (indices into the scene's lights).
-        infinite: Vec<u32>,
+        /// The lights at infinity (indices into the scene's lights), with
+        /// their weight and axis (see [`Selectable::Infinite`]).
+        infinite: Vec<(u32, f64, Vec3)>,
         /// The bounded lights' indices, in the order of `bounded`.
         bounded_lights: Vec<u32>,
         /// Each light's place in `infinite` or `bounded_lights`.
@@ -132,21 +157,28 @@ impl LightSampler {
                     if weights[i] == 0.0 {
                         continue;
                     }
-                    match s {
-                        Selectable::Infinite => {
+                    match *s {
+                        Selectable::Infinite { weight, axis } => {
                             slot[i] = infinite.len() as u32;
-                            infinite.push(i as u32);
+                            // A light that emits but is estimated at nothing
+                            // still gets a share (as at infinity, below).
+                            let weight = if weight > 0.0 && weight.is_finite() {
+                                weight
+                            } else {
+                                f64::MIN_POSITIVE
+                            };
+                            infinite.push((i as u32, weight, axis));
                         }
                         Selectable::Bounded(b) if b.phi > 0.0 && b.phi.is_finite() => {
                             slot[i] = bounded_lights.len() as u32;
                             bounded_lights.push(i as u32);
-                            bounds.push(*b);
+                            bounds.push(b);
                         }
                         // A light with power but no estimate: treated as at
-                        // infinity so that it keeps a share.
+                        // infinity, with its share of the floor.
                         Selectable::Bounded(_) => {
                             slot[i] = infinite.len() as u32;
-                            infinite.push(i as u32);
+                            infinite.push((i as u32, f64::MIN_POSITIVE, Vec3::ZERO));
                         }
                     }
                 }
@@ -211,16 +243,31 @@ impl LightSampler {
                 bounded,
                 ..
             } => {
-                let shares = shares(infinite.len(), bounded);
-                let k = ((u * shares as f64) as usize).min(shares - 1);
-                let share = 1.0 / shares as f64;
-                if k < infinite.len() {
-                    return Some((infinite[k], share as f32));
+                let weight = bounded_weight(bounded, p, n);
+                let split = Split::of(infinite, weight, n)?;
+                // The shares in turn: the lights at infinity, then the
+                // bounded set; rounding past the last goes to the last.
+                let mut acc = 0.0;
+                let mut chosen = None;
+                for (k, &(light, weight, axis)) in infinite.iter().enumerate() {
+                    let share = split.probability(at_infinity(weight, axis, n));
+                    if share > 0.0 {
+                        chosen = Some((k, share));
+                        if u < acc + share {
+                            return Some((light, share as f32));
+                        }
+                        acc += share;
+                    }
                 }
-                let u = (u * shares as f64 - k as f64).clamp(0.0, 1.0 - f64::EPSILON / 2.0);
+                let share = split.probability(weight);
+                if share <= 0.0 {
+                    let (k, share) = chosen?;
+                    return Some((infinite[k].0, share as f32));
+                }
+                let u = ((u - acc) / share).clamp(0.0, 1.0 - f64::EPSILON / 2.0);
                 let (i, pmf) = match bounded {
                     Bounded::Empty => return None,
-                    Bounded::Exhaustive(bounds) => sample_exhaustive(bounds, p, n, u)?,
+                    Bounded::Exhaustive(bounds) => sample_exhaustive(bounds, weight, p, n, u)?,
                     Bounded::Tree(tree) => tree.sample(p, n, u)?,
                 };
                 Some((bounded_lights[i as usize], (pmf * share) as f32))
@@ -255,48 +302,108 @@ impl LightSampler {
                 if s == u32::MAX {
                     return 0.0;
                 }
-                let shares = shares(infinite.len(), bounded);
-                let share = 1.0 / shares as f64;
-                if infinite.get(s as usize) == Some(&light) {
-                    return share as f32;
+                let weight = bounded_weight(bounded, p, n);
+                let Some(split) = Split::of(infinite, weight, n) else {
+                    return 0.0;
+                };
+                if let Some(&(l, weight, axis)) = infinite.get(s as usize) {
+                    if l == light {
+                        return split.probability(at_infinity(weight, axis, n)) as f32;
+                    }
                 }
                 debug_assert_eq!(bounded_lights[s as usize], light);
                 let pmf = match bounded {
                     Bounded::Empty => 0.0,
-                    Bounded::Exhaustive(bounds) => pmf_exhaustive(bounds, p, n, s),
+                    Bounded::Exhaustive(bounds) => pmf_exhaustive(bounds, weight, p, n, s),
                     Bounded::Tree(tree) => tree.pmf(p, n, s),
                 };
-                (pmf * share) as f32
+                (pmf * split.probability(weight)) as f32
             }
         }
     }
 }
 
-/// Number of equal shares: one per light at infinity, one for the bounded set.
-fn shares(infinite: usize, bounded: &Bounded) -> usize {
-    infinite + usize::from(!matches!(bounded, Bounded::Empty))
+/// The estimate of a light at infinity at a surface of normal `n` (zero:
+/// none): see [`Selectable::Infinite`].
+#[inline]
+fn at_infinity(weight: f64, axis: Vec3, n: Vec3) -> f64 {
+    if axis == Vec3::ZERO || n == Vec3::ZERO {
+        weight
+    } else {
+        weight * n.dot(axis).abs() as f64
+    }
 }
 
-/// Chooses among `bounds` in proportion to importance at `p`.
+/// The bounded set's estimate at `p`, `n`: the sum of its lights' (every
+/// one evaluated), or the tree's at its root.
+fn bounded_weight(bounded: &Bounded, p: Vec3, n: Vec3) -> f64 {
+    match bounded {
+        Bounded::Empty => 0.0,
+        Bounded::Exhaustive(bounds) => bounds.iter().map(|b| b.importance(p, n)).sum(),
+        Bounded::Tree(tree) => tree.weight(p, n),
+    }
+}
+
+/// How the choices split between the shares at a point: the sum of their
+/// estimates and how many have one.
+struct Split {
+    total: f64,
+    shares: f64,
+}
+
+impl Split {
+    /// The split between the lights at infinity and the bounded set at a
+    /// surface of normal `n`; `None` when no share can reach it.
+    fn of(infinite: &[(u32, f64, Vec3)], bounded: f64, n: Vec3) -> Option<Split> {
+        let mut split = Split {
+            total: 0.0,
+            shares: 0.0,
+        };
+        let weights = (infinite.iter())
+            .map(|&(_, w, axis)| at_infinity(w, axis, n))
+            .chain([bounded]);
+        for w in weights {
+            if w > 0.0 {
+                split.total += w;
+                split.shares += 1.0;
+            }
+        }
+        (split.shares > 0.0 && split.total.is_finite()).then_some(split)
+    }
+
+    /// The probability of the share of estimate `weight`: in proportion to
+    /// it, but at least its part of the [`FLOOR`].
+    #[inline]
+    fn probability(&self, weight: f64) -> f64 {
+        if weight > 0.0 {
+            (1.0 - FLOOR) * weight / self.total + FLOOR / self.shares
+        } else {
+            0.0
+        }
+    }
+}
+
+/// Chooses among `bounds` in proportion to importance at `p` (summing to
+/// `total` there).
 fn sample_exhaustive(
     bounds: &[CompactLightBounds],
+    total: f64,
     p: Vec3,
     n: Vec3,
     u: f64,
 ) -> Option<(u32, f64)> {
-    let total: f64 = bounds.iter().map(|b| b.importance(p, n)).sum();
     if !(total > 0.0 && total.is_finite()) {
         return None;
     }
-    let target = u * total;
     let mut acc = 0.0;
     let mut last = None;
     for (i, b) in bounds.iter().enumerate() {
         let w = b.importance(p, n);
         if w > 0.0 {
-            acc += w;
-            last = Some((i as u32, w / total));
-            if target < acc {
+            let pmf = w / total;
+            acc += pmf;
+            last = Some((i as u32, pmf));
+            if u < acc {
                 break;
             }
         }
@@ -305,8 +412,7 @@ fn sample_exhaustive(
 }
 
 /// The probability of `light` in [`sample_exhaustive`].
-fn pmf_exhaustive(bounds: &[CompactLightBounds], p: Vec3, n: Vec3, light: u32) -> f64 {
-    let total: f64 = bounds.iter().map(|b| b.importance(p, n)).sum();
+fn pmf_exhaustive(bounds: &[CompactLightBounds], total: f64, p: Vec3, n: Vec3, light: u32) -> f64 {
     if !(total > 0.0 && total.is_finite()) {
         return 0.0;
     }
@@ -381,7 +487,12 @@ mod tests {
                 two_sided: kind == 3,
             };
             selectable.push(if kind == 4 && k % 4 == 0 {
-                Selectable::Infinite
+                // Some from one direction, some from every direction.
+                let axis = if k % 8 == 0 { w } else { Vec3::ZERO };
+                Selectable::Infinite {
+                    weight: b.phi * 0.01,
+                    axis,
+                }
             } else {
                 Selectable::Bounded(b)
             });
@@ -446,18 +557,64 @@ mod tests {
     }
 
     #[test]
-    fn lights_at_infinity_keep_their_share_whatever_the_bounded_ones() {
-        let (mut selectable, mut power) = mixed_lights(300, 4);
-        selectable.push(Selectable::Infinite);
-        power.push(1e-6);
+    fn every_share_keeps_its_floor_and_weights_split_the_rest() {
+        // A dim light at infinity beside 300 bounded lights (tree) and
+        // beside 9 (every one evaluated): however small its estimate, it
+        // keeps its part of the floor, and a bright one takes most.
+        for n in [9, 300] {
+            let (mut selectable, mut power) = mixed_lights(n, 4);
+            let infinite = |selectable: &[Selectable], power: &[f64]| {
+                (selectable.iter().zip(power))
+                    .filter(|(s, &p)| matches!(s, Selectable::Infinite { .. }) && p > 0.0)
+                    .count()
+            };
+            let shares = infinite(&selectable, &power) + 2;
+            selectable.push(Selectable::Infinite {
+                weight: 1e-9,
+                axis: Vec3::ZERO,
+            });
+            power.push(1e-6);
+            let sampler = LightSampler::new(LightSelection::Auto, &selectable, &power).unwrap();
+            let share = sampler.pmf(Vec3::ZERO, Vec3::Y, n as u32) as f64;
+            assert!(share >= FLOOR / shares as f64 * 0.999, "{n}: {share}");
+            assert!(share < FLOOR / shares as f64 * 1.01, "{n}: {share}");
+            *selectable.last_mut().unwrap() = Selectable::Infinite {
+                weight: 1e12,
+                axis: Vec3::ZERO,
+            };
+            let sampler = LightSampler::new(LightSelection::Auto, &selectable, &power).unwrap();
+            let share = sampler.pmf(Vec3::ZERO, Vec3::Y, n as u32) as f64;
+            assert!(share > 1.0 - FLOOR, "{n}: {share}");
+        }
+    }
+
+    #[test]
+    fn every_light_that_reaches_a_point_can_be_chosen() {
+        // Nine evaluated lights, one a thousand million times dimmer than
+        // the others: it is still chosen, in proportion to its estimate.
+        let quad = |x: f32, phi: f64| {
+            Selectable::Bounded(LightBounds {
+                bounds: crate::geometry::Aabb {
+                    min: Vec3::new(x - 0.1, 2.0, -0.1),
+                    max: Vec3::new(x + 0.1, 2.0, 0.1),
+                },
+                w: -Vec3::Y,
+                phi,
+                cos_o: 1.0,
+                cos_e: 0.0,
+                two_sided: false,
+            })
+        };
+        let mut selectable: Vec<Selectable> = (0..8).map(|k| quad(k as f32, 1e3)).collect();
+        selectable.push(quad(8.0, 1e-6));
+        let power = vec![1.0; 9];
         let sampler = LightSampler::new(LightSelection::Auto, &selectable, &power).unwrap();
-        let infinite = selectable
-            .iter()
-            .zip(&power)
-            .filter(|(s, &p)| matches!(s, Selectable::Infinite) && p > 0.0)
-            .count();
-        let share = sampler.pmf(Vec3::ZERO, Vec3::Y, 300);
-        assert_eq!(share, 1.0 / (infinite + 1) as f32);
+        let dim = sampler.pmf(Vec3::new(4.0, 0.0, 0.0), Vec3::Y, 8);
+        assert!(dim > 0.0 && dim < 1e-6, "{dim}");
+        // Above the lights' plane none can reach: no choice at all.
+        assert!(sampler
+            .sample(Vec3::new(4.0, 3.0, 0.0), Vec3::Y, 0.5)
+            .is_none());
     }
 
     #[test]

@@ -90,6 +90,20 @@ impl LightTree {
         bounds
     }
 
+    /// The tree's estimate of its lights' contribution at `p` (normal `n`):
+    /// the sum its root's choice is made in proportion to (its one light's
+    /// estimate when it holds one).
+    pub fn weight(&self, p: Vec3, n: Vec3) -> f64 {
+        match self.nodes.first() {
+            None => 0.0,
+            Some(root) if root.leaf => root.bounds.importance(p, n),
+            Some(root) => {
+                let first = self.nodes[1].bounds.importance(p, n);
+                first + self.nodes[root.index as usize].bounds.importance(p, n)
+            }
+        }
+    }
+
     /// Chooses a light for the point `p` with normal `n` (zero: none) from
     /// `u` in [0, 1): its index and probability; `None` when no light can
     /// reach `p`.

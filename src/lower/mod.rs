@@ -27,7 +27,7 @@ use crate::ir::settings::Settings;
 use crate::ir::Scene;
 use crate::light::environment::EnvironmentMap;
 use crate::light::selection::{LightSampler, Selectable};
-use crate::light::Light;
+use crate::light::{Emitter, Light};
 use crate::material::Material;
 use crate::texture::Texture;
 use cache::LowerCache;
@@ -362,16 +362,13 @@ fn finish(
             max: Vec3::ONE,
         }
     };
-    let powers: Vec<f64> = ir
-        .lights
-        .iter()
-        .map(|l| l.power(|prim| ir.material_of(prim), scene_bounds))
+    let emitters = emitters(&ir);
+    let powers: Vec<f64> = (ir.lights.iter().zip(&emitters))
+        .map(|(l, &e)| l.power(e, scene_bounds))
         .collect();
     let shutter = ir.camera.shutter();
-    let selectable: Vec<Selectable> = ir
-        .lights
-        .iter()
-        .map(|l| l.selectable(|prim| ir.material_of(prim), shutter))
+    let selectable: Vec<Selectable> = (ir.lights.iter().zip(&emitters))
+        .map(|(l, &e)| l.selectable(e, shutter))
         .collect();
     match LightSampler::new(ir.settings.light_selection, &selectable, &powers) {
         Some(sampler) => ir.light_sampler = sampler,
@@ -383,6 +380,31 @@ fn finish(
         }
     }
     ir
+}
+
+/// Points at which all textured emitters' mean emission is read in all
+/// (each reads at least 16 and at most 1,024).
+const EMISSION_SAMPLES: u32 = 1 << 20;
+
+/// What each light emits as light selection weighs it (see [`Emitter`]):
+/// an area light's mean emission over its surface, read from its texture
+/// when it has one.
+fn emitters(ir: &Scene) -> Vec<Emitter> {
+    let textured = (ir.lights.iter())
+        .filter(
+            |l| matches!(l, Light::Area { prim, .. } if ir.material_of(*prim).textured.is_some()),
+        )
+        .count() as u32;
+    let samples = (EMISSION_SAMPLES / textured.max(1)).clamp(16, 1024);
+    (ir.lights.iter())
+        .map(|l| match l {
+            Light::Area { prim, shape, .. } => Emitter {
+                radiance: ir.mean_emission(*prim, shape, samples),
+                two_sided: ir.material_of(*prim).two_sided,
+            },
+            _ => Emitter::default(),
+        })
+        .collect()
 }
 
 fn rgb(c: &[f64; 3]) -> Vec3 {

@@ -25,6 +25,8 @@ pub fn material(p: &Params, name: Option<String>, span: Span, diags: &mut Diagno
         gloss: r.num_in("gloss", 0.0, 1.0, false, 0.0),
         transmission: r.num_in("transmission", 0.0, 1.0, false, 0.0),
         ior: r.num_in("ior", 1.0, 10.0, false, 1.5),
+        ior_outside: r.num_in("ior_outside", 1.0, 10.0, false, 1.0),
+        roughness: roughness(&mut r),
         absorption: r.color("absorption", [0.0; 3]),
         emission: r.color("emission", [0.0; 3]),
         two_sided: r.boolean("two_sided", false),
@@ -131,6 +133,25 @@ fn mix_checks(p: &Params, m: &mut Material, diags: &mut Diagnostics) {
             );
         }
     }
+    if let Some((_, s)) = p.get("ior_outside") {
+        if m.transmission == 0.0 {
+            diags.push(no_effect(
+                "ior_outside",
+                "a material without `transmission`",
+                *s,
+                "`ior_outside` is the index of the medium around glass: add `transmission 1`, or `type dielectric`",
+            ));
+        }
+    }
+    if let Some((_, s)) = p.get("roughness") {
+        diags.push(no_effect(
+            "roughness",
+            "the mix of lobes",
+            *s,
+            "`roughness <u, v>` roughens a metal (`type conductor`); here, roughen the reflection with `gloss`",
+        ));
+        m.roughness = None;
+    }
     // (After an unknown `type`, the words of the type meant are no news.)
     for name in ["preset", "eta", "k"] {
         if let Some((_, s)) = p.get(name).filter(|_| !p.given("type")) {
@@ -142,6 +163,27 @@ fn mix_checks(p: &Params, m: &mut Material, diags: &mut Diagnostics) {
             ));
         }
     }
+}
+
+/// A metal's `roughness`: GGX α along ∂p/∂u and ∂p/∂v, each in [0, 1]
+/// (0 for both: a mirror).
+fn roughness(r: &mut Reader) -> Option<[f64; 2]> {
+    let (Val::Vector(v), s) = r.p.get("roughness")? else {
+        return None;
+    };
+    if v.len() != 2 || v.iter().any(|a| !(0.0..=1.0).contains(a)) {
+        r.diags.push(
+            Diagnostic::error(
+                codes::OUT_OF_RANGE,
+                "`roughness` must be between 0 and 1",
+                *s,
+            )
+            .with_label("GGX α along u and v")
+            .with_help("give one α (`roughness 0.2`) or one along u and one along v (`roughness <0.05, 0.4>`), each from 0 (smooth) to 1"),
+        );
+        return None;
+    }
+    Some([v[0], v[1]])
 }
 
 /// The scattering model a material's `type` names; a conductor's
@@ -226,12 +268,12 @@ fn model_checks(p: &Params, m: &mut Material, diags: &mut Diagnostics) {
         ),
         MaterialKind::Plastic => (
             "a plastic",
-            &["transmission", "absorption", "preset", "eta", "k", "multiscatter"],
+            &["transmission", "absorption", "preset", "eta", "k", "multiscatter", "roughness"],
             "a plastic is its `diffuse` base under a coat of index `ior`, roughened by `gloss`",
         ),
         MaterialKind::Dielectric => (
             "a dielectric",
-            &["diffuse", "reflection", "transmission", "preset", "eta", "k", "multiscatter"],
+            &["diffuse", "reflection", "transmission", "preset", "eta", "k", "multiscatter", "roughness"],
             "glass is its `ior`, `gloss` (frosting) and `absorption` inside",
         ),
         MaterialKind::Mix => return,
@@ -247,13 +289,46 @@ fn model_checks(p: &Params, m: &mut Material, diags: &mut Diagnostics) {
                 "eta",
                 "k",
                 "multiscatter",
+                "roughness",
             ],
-            "a thin pane is its `ior` alone",
+            "a thin pane is its `ior` (and `ior_outside`) alone",
         ),
     };
     for &name in ignored {
         if let Some((_, s)) = p.get(name) {
             diags.push(no_effect(name, model, *s, help));
+        }
+    }
+    if ignored.contains(&"roughness") {
+        m.roughness = None;
+    }
+    if let (Some((_, s)), true) = (p.get("roughness"), p.given("gloss")) {
+        if m.roughness.is_some() {
+            diags.push(
+                Diagnostic::error(
+                    codes::CONFLICTING_PARAMS,
+                    "`roughness` and `gloss` both roughen the metal",
+                    *s,
+                )
+                .with_label("GGX α, as Mitsuba's `alpha_u` and `alpha_v`")
+                .with_help("keep `gloss` (α = gloss²) or `roughness` (α itself, or `<α along u, α along v>`)"),
+            );
+        }
+    }
+    if m.kind == MaterialKind::Plastic && m.ior < m.ior_outside {
+        if let Some((_, s)) = p.get("ior_outside") {
+            diags.push(
+                Diagnostic::error(
+                    codes::OUT_OF_RANGE,
+                    "a plastic's coat is less dense than the medium outside it",
+                    *s,
+                )
+                .with_label(format!(
+                    "`ior` {} is below `ior_outside` {}",
+                    m.ior, m.ior_outside
+                ))
+                .with_help("give the coat an `ior` at least `ior_outside`"),
+            );
         }
     }
     // A metal's or a coat's tint is white unless given; a plastic's base
@@ -263,21 +338,6 @@ fn model_checks(p: &Params, m: &mut Material, diags: &mut Diagnostics) {
     }
     if m.kind == MaterialKind::Plastic && !p.given("diffuse") {
         m.diffuse = [0.5; 3];
-    }
-    if m.kind == MaterialKind::Plastic {
-        if let Some((Val::Texture(_), s)) = p.get("gloss") {
-            diags.push(
-                Diagnostic::error(
-                    codes::TEXTURE_NOT_ALLOWED,
-                    "a plastic's `gloss` takes one value, not a texture",
-                    *s,
-                )
-                .with_label("a texture")
-                .with_help("how much light the coat lets through is computed once per plastic: give `gloss` a number"),
-            );
-            m.textures
-                .retain(|(input, _)| *input != TextureInput::Gloss);
-        }
     }
     for name in ["diffuse", "reflection"] {
         if let Some((_, s)) = p.get(name) {

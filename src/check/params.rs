@@ -31,6 +31,8 @@ pub enum Ty {
     Word(&'static [&'static str]),
     /// A number (uniform) or a vector of 3.
     NumOrVec3,
+    /// A number (the same for both) or a vector of 2.
+    NumOrVec2,
     /// 12 or 16 numbers, row-major.
     Matrix,
     /// Only a texture (`kind { … }` or a texture's name).
@@ -50,6 +52,7 @@ impl Ty {
             Ty::Bool => "a boolean".into(),
             Ty::Word(ws) => format!("one of {}", ws.join(", ")),
             Ty::NumOrVec3 => "a number or a vector of 3".into(),
+            Ty::NumOrVec2 => "a number or a vector of 2".into(),
             Ty::Matrix => "a vector of 12 or 16 numbers".into(),
             Ty::Texture => "a texture such as `image { file \"normal.png\" }`".into(),
         }
@@ -181,6 +184,8 @@ pub const MATERIAL: &[ParamSpec] = &[
     p("gloss", Ty::Num, "0.3").textured(),
     p("transmission", Ty::Num, "1").textured(),
     p("ior", Ty::Num, "1.5"),
+    p("ior_outside", Ty::Num, "1.33"),
+    p("roughness", Ty::NumOrVec2, "<0.05, 0.3>"),
     p("absorption", Ty::Color, "rgb <0.5, 0.1, 0.1>")
         .of(Magnitude)
         .textured(),
@@ -256,7 +261,11 @@ pub const IMAGE: &[ParamSpec] = &[
     p("file", Ty::Str, "\"wood.png\""),
     p("wrap", Ty::Word(WRAPS), "clamp"),
     p("space", Ty::Word(TEXTURE_SPACES), "object"),
+    p("color_space", Ty::Word(COLOR_SPACES), "linear"),
 ];
+
+/// How an image's values are encoded (`image { color_space … }`).
+pub const COLOR_SPACES: &[&str] = &super::scene::ColorSpace::WORDS;
 
 /// The spaces a texture's pattern can live in.
 pub const TEXTURE_SPACES: &[&str] = &["uv", "object", "world"];
@@ -275,6 +284,32 @@ pub const TEXTURE_TRANSFORMS: &[ParamSpec] = &[
     t("rotate", Ty::Vec3, "<0, 0, 45>"),
     t("scale", Ty::NumOrVec3, "0.25").of(Quantity::Scale),
 ];
+
+/// The error of a transform given to what lies at infinity (an
+/// environment or a sky): only turning means anything there.
+fn at_infinity(what: &str, name: &str, span: Span) -> Option<Diagnostic> {
+    if !matches!(what, "environment" | "sky") || !matches!(name, "translate" | "scale" | "matrix") {
+        return None;
+    }
+    let why = match name {
+        "translate" => "it is infinitely far: moving it changes nothing",
+        "scale" => "it has no size: every direction keeps its light",
+        _ => "a matrix could move, scale or shear it",
+    };
+    let help = match what {
+        "environment" => "turn it with `rotate <x, y, z>` (degrees); to move the scene against it, move the camera and the objects",
+        _ => "turn the sun with `sun_direction` or `sun_azimuth`; to move the scene against it, move the camera and the objects",
+    };
+    Some(
+        Diagnostic::error(
+            codes::UNKNOWN_PARAM,
+            format!("`{name}` has no meaning for the {what}"),
+            span,
+        )
+        .with_label(why)
+        .with_help(help),
+    )
+}
 
 /// Every parameter name of every block and of materials, sorted (editors
 /// highlight them; their grammars are tested against this list).
@@ -546,6 +581,10 @@ impl Params {
                 .flat_map(|s| s.iter())
                 .find(|s| s.name == name.name)
             else {
+                if let Some(d) = at_infinity(&what, &name.name, name.span) {
+                    diags.push(d);
+                    continue;
+                }
                 let all: Vec<&str> = schemas
                     .iter()
                     .flat_map(|s| s.iter().map(|p| p.name))
@@ -752,6 +791,8 @@ fn typed_value(
         (Ty::Vec3, Value::Vector(v)) if v.len() == 3 => Some(Val::Vector(v)),
         (Ty::NumOrVec3, Value::Num(x)) => Some(Val::Vector(vec![x; 3])),
         (Ty::NumOrVec3, Value::Vector(v)) if v.len() == 3 => Some(Val::Vector(v)),
+        (Ty::NumOrVec2, Value::Num(x)) => Some(Val::Vector(vec![x; 2])),
+        (Ty::NumOrVec2, Value::Vector(v)) if v.len() == 2 => Some(Val::Vector(v)),
         (Ty::Matrix, Value::Vector(v)) if v.len() == 12 || v.len() == 16 => Some(Val::Vector(v)),
         (Ty::Color, Value::Color(c)) => Some(Val::Color(c)),
         (Ty::Str, Value::Str(s)) => Some(Val::Str(s)),

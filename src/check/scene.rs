@@ -64,10 +64,27 @@ pub enum TextureKind {
         path_span: Span,
         /// `repeat`, `clamp` or `mirror`.
         wrap: String,
+        /// How its values are encoded, when the scene says (`None`: by the
+        /// file and the parameter: 8-bit colours sRGB, the rest linear).
+        color_space: Option<ColorSpace>,
         /// Whether `path` is relative to the scene file's folder yet.
         resolved: bool,
     },
 }
+
+/// How an image's values are encoded (`image { color_space … }`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum ColorSpace {
+    /// The sRGB curve: values are decoded to linear light.
+    Srgb,
+    /// Linear: values are read as they are.
+    Linear,
+}
+
+named_values!(ColorSpace {
+    "srgb" => Srgb,
+    "linear" => Linear,
+});
 
 impl Texture {
     /// Resolves the file an image texture reads against the folder of the
@@ -217,6 +234,11 @@ pub struct Material {
     pub transmission: f64,
     /// Index of refraction inside.
     pub ior: f64,
+    /// Index of refraction of the medium outside (1: air).
+    pub ior_outside: f64,
+    /// A metal's GGX roughness along ∂p/∂u and ∂p/∂v, when given as such
+    /// (`roughness`) rather than through `gloss`.
+    pub roughness: Option<[f64; 2]>,
     /// Beer's-law absorption coefficient per unit length inside.
     pub absorption: Rgb,
     /// Emitted radiance.
@@ -241,6 +263,8 @@ impl Material {
             gloss: 0.0,
             transmission: 0.0,
             ior: 1.5,
+            ior_outside: 1.0,
+            roughness: None,
             absorption: [0.0; 3],
             emission: [0.0; 3],
             two_sided: false,

@@ -7,7 +7,7 @@ use super::eval::{eval, Env, Value};
 use super::params::{
     Params, Val, CHECKER, COLOR_MAP, GRADIENT, IMAGE, NOISE, TEXTURE_KINDS, TEXTURE_TRANSFORMS,
 };
-use super::scene::{Rgb, Texture, TextureKind, TextureSpace};
+use super::scene::{ColorSpace, Rgb, Texture, TextureKind, TextureSpace};
 use crate::diag::{codes, did_you_mean, Diagnostic, Diagnostics};
 use crate::span::Span;
 use crate::syntax::ast::{Block, Entry, Ident};
@@ -74,6 +74,7 @@ pub fn check_texture(
                 path: file.into(),
                 path_span,
                 wrap: word("wrap").unwrap_or_else(|| "repeat".into()),
+                color_space: word("color_space").and_then(|w| ColorSpace::from_name(&w)),
                 resolved: false,
             }
         }

@@ -7,7 +7,7 @@ use super::instance::{Placement, NO_INSTANCE};
 use super::{Hit, Prim, Scene};
 use crate::geometry::shape::Shape;
 use crate::geometry::texcoord;
-use crate::material::{Input, Material, NormalInput, Textured};
+use crate::material::{Input, Kind, Material, NormalInput, Textured};
 use crate::texture::shading_normal;
 use crate::texture::ShadingPoint;
 use glam::{Affine3A, Vec2, Vec3};
@@ -94,12 +94,19 @@ impl Scene {
                 }
             }
         }
+        if let Some(coats) = &t.coats {
+            params.kind = Kind::Plastic(coats.at(params.gloss));
+        }
         if let Some(normal) = t.normal {
             let ns = self.bent_normal(normal, hit, &at, time);
             hit.n_shading = shading_normal::facing(ns, hit.n_geo, wo);
             hit.bent = true;
         }
-        Material::new(&params)
+        let mut material = Material::new(&params);
+        if t.tangent {
+            material.tangent = self.derivatives(hit, time).0;
+        }
+        material
     }
 
     /// The shading normal a normal or bump map gives at a hit.

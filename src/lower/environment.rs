@@ -7,7 +7,7 @@ use crate::diag::{codes, Diagnostic, Diagnostics};
 use crate::light::environment::EnvironmentMap;
 use crate::light::sky::{SkyParameters, SunSky, SUN_APERTURE_DEGREES};
 use crate::light::Light;
-use crate::lower::image::Images;
+use crate::lower::image::{Encoding, Images};
 use glam::{DMat3, DVec3, Mat3, Vec3};
 use std::sync::Arc;
 
@@ -20,7 +20,7 @@ pub fn lower_environment(
     diags: &mut Diagnostics,
     warnings: &mut Diagnostics,
 ) -> Option<Arc<EnvironmentMap>> {
-    let image = match images.get(&e.path, false) {
+    let image = match images.get(&e.path, Encoding::ByFile) {
         Ok(image) if image.height >= 2 => image,
         Ok(_) => {
             diags.push(

@@ -20,9 +20,20 @@ pub const MAX_IMAGE_SIDE: u32 = 32_768;
 /// The most texels an image may have (16,384²: 3 GiB as linear f32 RGB).
 pub const MAX_IMAGE_TEXELS: u64 = 1 << 28;
 
-/// An image file as a texture reads it: its path, and whether its 8-bit
-/// values are data (read linearly) rather than sRGB colours.
-type ImageKey = (PathBuf, bool);
+/// How an image's values become linear ones.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Encoding {
+    /// By the file: 8-bit values through the sRGB curve, floating-point
+    /// ones (HDR, EXR) as they are (colours, by default).
+    ByFile,
+    /// Every value as it is (data maps by default; `color_space linear`).
+    Linear,
+    /// Every value through the sRGB curve (`color_space srgb`).
+    Srgb,
+}
+
+/// An image file as a texture reads it: its path and encoding.
+type ImageKey = (PathBuf, Encoding);
 
 /// The images read so far, each file read once per compile; kept between
 /// compiles (`watch`) while the file's length, modification time and bytes
@@ -48,10 +59,10 @@ fn stamp(path: &Path) -> (u64, Option<SystemTime>) {
 }
 
 impl Images {
-    /// The image at `path` (its 8-bit values read linearly when `data`),
-    /// read on first use; the error is a sentence for a diagnostic.
-    pub fn get(&mut self, path: &Path, data: bool) -> Result<Arc<Image>, String> {
-        let key = (path.to_path_buf(), data);
+    /// The image at `path` read with `encoding`, on first use; the error
+    /// is a sentence for a diagnostic.
+    pub fn get(&mut self, path: &Path, encoding: Encoding) -> Result<Arc<Image>, String> {
+        let key = (path.to_path_buf(), encoding);
         let now = stamp(path);
         if let Some(c) = self.loaded.get(&key) {
             if self.used.contains(&key) || (c.stamp == now && now.1.is_some()) {
@@ -73,7 +84,7 @@ impl Images {
                 return Ok(c.image.clone());
             }
         }
-        let image = Arc::new(decode_file(path, &bytes, data)?);
+        let image = Arc::new(decode_encoded(path, &bytes, encoding)?);
         self.decodes += 1;
         self.used.insert(key.clone());
         self.loaded.insert(
@@ -104,6 +115,29 @@ pub fn load(path: &Path, data: bool) -> Result<Image, String> {
 }
 
 /// Decodes the bytes of the file at `path` by its extension.
+/// [`decode_file`] with an encoding: 8-bit values read linearly unless
+/// sRGB, floating-point ones put through the sRGB curve when `Srgb`.
+fn decode_encoded(path: &Path, bytes: &[u8], encoding: Encoding) -> Result<Image, String> {
+    let mut image = decode_file(path, bytes, encoding == Encoding::Linear)?;
+    if encoding == Encoding::Srgb && is_floating_point(path) {
+        for t in &mut image.texels {
+            *t = Vec3::new(
+                srgb_to_linear(t.x),
+                srgb_to_linear(t.y),
+                srgb_to_linear(t.z),
+            );
+        }
+        image = finite(image)?;
+    }
+    Ok(image)
+}
+
+/// Whether the file holds floating-point values (HDR, EXR), by its name.
+pub fn is_floating_point(path: &Path) -> bool {
+    let ext = path.extension().and_then(|e| e.to_str());
+    ext.is_some_and(|e| e.eq_ignore_ascii_case("hdr") || e.eq_ignore_ascii_case("exr"))
+}
+
 fn decode_file(path: &Path, bytes: &[u8], data: bool) -> Result<Image, String> {
     let ext = path
         .extension()

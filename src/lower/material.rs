@@ -4,8 +4,9 @@
 use crate::check;
 use crate::check::scene::TextureInput;
 use crate::diag::{codes, Diagnostic, Diagnostics};
-use crate::lower::image::Images;
-use crate::material::conductor::Conductor;
+use crate::lower::image::{Encoding, Images};
+use crate::material::conductor::{Conductor, PRESETS};
+use crate::material::plastic::CoatFamily;
 use crate::material::plastic::Plastic;
 use crate::material::{self, microfacet, Input, Material, NormalInput, Textured};
 use crate::texture::image::Wrap;
@@ -13,6 +14,7 @@ use crate::texture::noise::NoiseKind;
 use crate::texture::{ColorMap, Pattern, Space, Texture};
 use glam::{Affine3A, DVec3, Vec3};
 use std::collections::HashMap;
+use std::sync::Arc;
 
 /// The plastics' coats of one compile by (index, α) bits: a rough coat's
 /// tables take about 4 ms to compute, and a loop of inline materials
@@ -45,21 +47,38 @@ pub fn lower_material(
         reflection: DVec3::from_array(m.reflection).as_vec3(),
         gloss: m.gloss as f32,
         transmission: m.transmission as f32,
-        ior: m.ior as f32,
+        // Every interface is between the inside and the medium outside:
+        // its relative index is what refracts and reflects (as Mitsuba's
+        // int_ior / ext_ior).
+        ior: (m.ior / m.ior_outside) as f32,
         absorption: DVec3::from_array(m.absorption).as_vec3(),
         emission: DVec3::from_array(m.emission).as_vec3(),
         two_sided: m.two_sided,
         kind: material::Kind::Lobes,
         multiscatter: m.multiscatter,
+        roughness: m.roughness.map(|[u, v]| glam::DVec2::new(u, v).as_vec2()),
     };
     params.kind = kind(m, &mut params, coats);
-    if m.textures.is_empty() {
+    // A metal rough unevenly lays its roughness along each hit's tangent.
+    let uneven = params.roughness.is_some_and(|r| r.x != r.y);
+    if m.textures.is_empty() && !uneven {
         return Material::new(&params);
     }
+    let textured_gloss = m.textures.iter().any(|(i, _)| *i == TextureInput::Gloss);
+    let coats = match params.kind {
+        material::Kind::Plastic(_) if textured_gloss => {
+            Some(Arc::new(CoatFamily::new(params.ior, |eta, alpha| {
+                coats.get(eta, alpha)
+            })))
+        }
+        _ => None,
+    };
     let mut textured = Textured {
         params: params.clone(),
         inputs: Vec::new(),
         normal: None,
+        coats,
+        tangent: uneven,
     };
     for (input, t) in &m.textures {
         let Some(texture) = lower_texture(t, input.is_data(), images, diags) else {
@@ -112,12 +131,16 @@ fn kind(m: &check::Material, params: &mut material::Params, coats: &mut Coats) -
     match m.kind {
         check::MaterialKind::Mix => material::Kind::Lobes,
         check::MaterialKind::Conductor { preset, eta, k } => {
-            material::Kind::Conductor(preset.and_then(Conductor::preset).unwrap_or_else(|| {
-                Conductor::new(
+            // A metal's complex index relative to the medium outside.
+            let (eta, k) = match preset.and_then(|name| PRESETS.iter().find(|p| p.0 == name)) {
+                Some(&(_, eta, k)) => (Vec3::from_array(eta), Vec3::from_array(k)),
+                None => (
                     DVec3::from_array(eta).as_vec3(),
                     DVec3::from_array(k).as_vec3(),
-                )
-            }))
+                ),
+            };
+            let outside = m.ior_outside as f32;
+            material::Kind::Conductor(Conductor::new(eta / outside, k / outside))
         }
         check::MaterialKind::Plastic => {
             let alpha = if m.gloss > 0.0 {
@@ -125,11 +148,11 @@ fn kind(m: &check::Material, params: &mut material::Params, coats: &mut Coats) -
             } else {
                 0.0
             };
-            material::Kind::Plastic(coats.get(m.ior as f32, alpha))
+            material::Kind::Plastic(coats.get(params.ior, alpha))
         }
         check::MaterialKind::Dielectric => {
             let textured_gloss = (m.textures.iter()).any(|(i, _)| *i == TextureInput::Gloss);
-            if (m.gloss == 0.0 && !textured_gloss) || m.ior == 1.0 {
+            if (m.gloss == 0.0 && !textured_gloss) || params.ior == 1.0 {
                 params.transmission = 1.0;
                 material::Kind::Lobes
             } else {
@@ -137,6 +160,16 @@ fn kind(m: &check::Material, params: &mut material::Params, coats: &mut Coats) -
             }
         }
         check::MaterialKind::ThinDielectric => material::Kind::ThinDielectric,
+    }
+}
+
+/// How an image is read: as the scene says, else data maps linearly and
+/// colours by their file (8-bit sRGB, floating-point linear).
+fn encoding(color_space: Option<check::scene::ColorSpace>, data: bool) -> Encoding {
+    match (color_space, data) {
+        (Some(check::scene::ColorSpace::Srgb), _) => Encoding::Srgb,
+        (Some(check::scene::ColorSpace::Linear), _) | (None, true) => Encoding::Linear,
+        (None, false) => Encoding::ByFile,
     }
 }
 
@@ -163,8 +196,9 @@ fn lower_texture(
             path,
             path_span,
             wrap,
+            color_space,
             ..
-        } => match images.get(path, data) {
+        } => match images.get(path, encoding(*color_space, data)) {
             Ok(image) => Pattern::Image {
                 image,
                 wrap: (Wrap::NAMES.iter())

@@ -86,6 +86,30 @@ fn model(kind: Kind, gloss: f32) -> Material {
     })
 }
 
+/// A metal rough unevenly (α 0.05 along its tangent, 0.5 across), in a
+/// frame with a tangent as a hit gives it.
+fn uneven_gold() -> Material {
+    let mut m = Material::new(&Params {
+        kind: gold(),
+        reflection: Vec3::ONE,
+        roughness: Some(glam::Vec2::new(0.05, 0.5)),
+        ..Params::default()
+    });
+    m.tangent = Vec3::new(1.0, 1.0, 0.3);
+    m
+}
+
+/// Frosted glass of relative index `ior` (below 1: less dense than the
+/// medium outside, an air bubble in water).
+fn frosted(ior: f32, gloss: f32) -> Material {
+    Material::new(&Params {
+        kind: Kind::RoughDielectric,
+        gloss,
+        ior,
+        ..Params::default()
+    })
+}
+
 fn gold() -> Kind {
     Kind::Conductor(Conductor::preset("gold").unwrap())
 }
@@ -109,6 +133,16 @@ fn every_model_samples_its_pdf() {
         ("rough plastic 0.7", model(plastic(0.7), 0.7), false),
         ("frosted glass 0.3", model(Kind::RoughDielectric, 0.3), true),
         ("frosted glass 0.7", model(Kind::RoughDielectric, 0.7), true),
+        ("gold rough unevenly", uneven_gold(), false),
+        ("frosted bubble 0.4 (η 0.75)", frosted(0.75, 0.4), true),
+        (
+            "plastic of a textured gloss 0.41",
+            model(
+                Kind::Plastic(super::plastic::CoatFamily::new(1.5, Plastic::new).at(0.41)),
+                0.41,
+            ),
+            false,
+        ),
     ];
     let views = [0.95f32, 0.5, 0.1, -0.3, -0.8];
     let tests = (cases.len() * views.len()) as f64;
@@ -135,6 +169,7 @@ fn the_models_are_reciprocal_and_keep_energy() {
         (model(gold(), 0.4), "gold"),
         (model(plastic(0.0), 0.0), "plastic"),
         (model(plastic(0.5), 0.5), "rough plastic"),
+        (uneven_gold(), "gold rough unevenly"),
     ] {
         assert_reciprocal_and_bounded(&m, name, &mut s, &[0.05, 0.5, 1.0], 50_000);
     }

@@ -11,7 +11,7 @@
 //! Directions are local: the normal is +z, on the side of `wo`.
 
 use super::fresnel;
-use super::microfacet::{reflection_brdf, reflection_pdf, sample_visible_normal};
+use super::microfacet::{anisotropic, reflection_brdf, reflection_pdf, sample_visible_normal};
 use super::multiscatter;
 use super::reflect;
 use crate::sampling::warp::{cosine_hemisphere, cosine_hemisphere_pdf};
@@ -92,15 +92,28 @@ impl Conductor {
         self.f_avg * self.f_avg * e_avg / (Vec3::ONE - self.f_avg * (1.0 - e_avg))
     }
 
-    /// BRDF value (without the tint) and pdf of the rough metal for local
-    /// `wo` → `wi`, with the compensation lobe when `multiscatter`; zero
-    /// when either is below the surface.
-    pub fn eval(&self, wo: Vec3, wi: Vec3, alpha: f32, multiscatter: bool) -> (Vec3, f32) {
-        if wo.z <= 0.0 || wi.z <= 0.0 || alpha == 0.0 {
+    /// BRDF value (without the tint) and pdf of the rough metal of GGX
+    /// roughness `a` (along the local x and y axes: anisotropic when they
+    /// differ) for local `wo` → `wi`, with the compensation lobe when
+    /// `multiscatter`; zero when either is below the surface.
+    pub fn eval(&self, wo: Vec3, wi: Vec3, a: Vec2, multiscatter: bool) -> (Vec3, f32) {
+        if wo.z <= 0.0 || wi.z <= 0.0 || a.x == 0.0 {
             return (Vec3::ZERO, 0.0);
         }
         let m = (wo + wi).normalize();
-        let single = self.fresnel(wo.dot(m)) * reflection_brdf(wo, wi, alpha);
+        let (brdf, pdf) = if a.x == a.y {
+            (reflection_brdf(wo, wi, a.x), reflection_pdf(wo, wi, a.x))
+        } else {
+            (
+                anisotropic::reflection_brdf(wo, wi, a),
+                anisotropic::reflection_pdf(wo, wi, a),
+            )
+        };
+        // The compensation of an anisotropic surface takes the isotropic
+        // one of the same mean slope, √(αu αv) (an approximation: Mitsuba's
+        // `roughconductor` has none; `multiscatter false` matches it).
+        let alpha = if a.x == a.y { a.x } else { (a.x * a.y).sqrt() };
+        let single = self.fresnel(wo.dot(m)) * brdf;
         let (multi, k) = if multiscatter {
             let f_ms = self.multiscatter_fresnel(alpha);
             (
@@ -110,7 +123,7 @@ impl Conductor {
         } else {
             (Vec3::ZERO, 0.0)
         };
-        let pdf = (1.0 - k) * reflection_pdf(wo, wi, alpha) + k * cosine_hemisphere_pdf(wi.z);
+        let pdf = (1.0 - k) * pdf + k * cosine_hemisphere_pdf(wi.z);
         (single + multi, pdf)
     }
 
@@ -121,7 +134,7 @@ impl Conductor {
     pub fn sample(
         &self,
         wo: Vec3,
-        alpha: f32,
+        a: Vec2,
         multiscatter: bool,
         u_lobe: f32,
         u: Vec2,
@@ -129,15 +142,18 @@ impl Conductor {
         if wo.z <= 0.0 {
             return None;
         }
-        if alpha == 0.0 {
+        if a.x == 0.0 {
             return Some((Vec3::new(-wo.x, -wo.y, wo.z), self.fresnel(wo.z), 0.0));
         }
+        let alpha = if a.x == a.y { a.x } else { (a.x * a.y).sqrt() };
         let wi = if multiscatter && u_lobe < multiscatter_fraction(wo.z, alpha) {
             cosine_hemisphere(u)
+        } else if a.x == a.y {
+            reflect(wo, sample_visible_normal(wo, a.x, u))
         } else {
-            reflect(wo, sample_visible_normal(wo, alpha, u))
+            reflect(wo, anisotropic::sample_visible_normal(wo, a, u))
         };
-        let (f, pdf) = self.eval(wo, wi, alpha, multiscatter);
+        let (f, pdf) = self.eval(wo, wi, a, multiscatter);
         (pdf > 0.0).then(|| (wi, f * wi.z / pdf, pdf))
     }
 }
@@ -189,7 +205,8 @@ mod tests {
                 let n = 40_000;
                 let mut sum = 0.0f64;
                 for _ in 0..n {
-                    if let Some((_, w, _)) = c.sample(wo, alpha, true, s.next_f32(), s.next_2d()) {
+                    let a = Vec2::splat(alpha);
+                    if let Some((_, w, _)) = c.sample(wo, a, true, s.next_f32(), s.next_2d()) {
                         sum += w.x as f64;
                     }
                 }

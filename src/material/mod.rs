@@ -58,8 +58,14 @@ pub struct Material {
     pub diffuse: Vec3,
     /// Specular reflectance (after weight normalisation).
     pub reflection: Vec3,
-    /// GGX roughness; 0 = perfect mirror.
+    /// GGX roughness (along the tangent, for a metal rough unevenly);
+    /// 0 = perfect mirror.
     pub alpha: f32,
+    /// A metal's GGX roughness along the bitangent (`alpha` when even).
+    pub alpha_v: f32,
+    /// The hit's tangent (∂p/∂u) for a metal rough unevenly (zero
+    /// otherwise: its frame is any about the normal).
+    pub tangent: Vec3,
     /// Weight of the dielectric lobe (after weight normalisation).
     pub transmission: f32,
     /// Index of refraction inside.
@@ -87,6 +93,11 @@ pub struct Textured {
     pub inputs: Vec<(Input, u32)>,
     /// How a texture bends the shading normal, if one does.
     pub normal: Option<NormalInput>,
+    /// A plastic's coats when a texture gives its gloss (each hit's coat
+    /// is blended from them).
+    pub coats: Option<std::sync::Arc<plastic::CoatFamily>>,
+    /// Whether each hit's tangent is needed (a metal rough unevenly).
+    pub tangent: bool,
 }
 
 /// A material parameter a texture can give.
@@ -147,6 +158,9 @@ pub struct Params {
     pub kind: Kind,
     /// Whether glossy reflection gets the multiple-scattering compensation.
     pub multiscatter: bool,
+    /// A metal's GGX roughness along the tangent and the bitangent, when
+    /// given as such (`gloss` is then unused).
+    pub roughness: Option<Vec2>,
 }
 
 impl Default for Params {
@@ -163,6 +177,7 @@ impl Default for Params {
             absorption: Vec3::ZERO,
             emission: Vec3::ZERO,
             two_sided: false,
+            roughness: None,
         }
     }
 }
@@ -215,6 +230,13 @@ impl Material {
             microfacet::gloss_to_alpha(p.gloss)
         } else {
             0.0
+        };
+        // A metal's roughness given as α along u and v (both 0: a mirror;
+        // one alone 0 is floored as `gloss_to_alpha` floors).
+        let (alpha, alpha_v) = match p.roughness {
+            Some(r) if r.max_element() > 0.0 => (r.x.max(1e-3), r.y.max(1e-3)),
+            Some(_) => (0.0, 0.0),
+            None => (alpha, alpha),
         };
         let lobe_pdf = match p.kind {
             Kind::Lobes => {
@@ -269,6 +291,8 @@ impl Material {
             diffuse,
             reflection,
             alpha,
+            alpha_v,
+            tangent: Vec3::ZERO,
             transmission,
             ior: p.ior,
             absorption: p.absorption,
@@ -443,6 +467,20 @@ impl Material {
         }
     }
 
+    /// The tangent and bitangent of the local frame about the normal `nf`:
+    /// along the hit's ∂p/∂u (made perpendicular to `nf`) for a metal rough
+    /// unevenly, any pair otherwise.
+    #[inline]
+    fn frame(&self, nf: Vec3) -> (Vec3, Vec3) {
+        if self.tangent != Vec3::ZERO {
+            let t = (self.tangent - nf * nf.dot(self.tangent)).normalize_or_zero();
+            if t != Vec3::ZERO {
+                return (t, nf.cross(t));
+            }
+        }
+        orthonormal_basis(nf)
+    }
+
     /// [`Material::eval`] for the models other than the mix, in the local
     /// frame of the normal (turned towards `wo` for the opaque ones).
     #[inline(never)]
@@ -452,12 +490,13 @@ impl Material {
             _ if wo.dot(n) < 0.0 => -n,
             _ => n,
         };
-        let (t, b) = orthonormal_basis(nf);
+        let (t, b) = self.frame(nf);
         let local = |w: Vec3| Vec3::new(w.dot(t), w.dot(b), w.dot(nf));
         let (lo, li) = (local(wo), local(wi));
         match self.kind {
             Kind::Conductor(c) => {
-                let (f, pdf) = c.eval(lo, li, self.alpha, self.multiscatter);
+                let a = Vec2::new(self.alpha, self.alpha_v);
+                let (f, pdf) = c.eval(lo, li, a, self.multiscatter);
                 (self.reflection * f, pdf)
             }
             Kind::Plastic(coat) => coat.eval(self.diffuse, self.reflection, lo, li),
@@ -477,7 +516,7 @@ impl Material {
             _ if wo.dot(n) < 0.0 => -n,
             _ => n,
         };
-        let (t, b) = orthonormal_basis(nf);
+        let (t, b) = self.frame(nf);
         let lo = Vec3::new(wo.dot(t), wo.dot(b), wo.dot(nf));
         let world = |l: Vec3| l.x * t + l.y * b + l.z * nf;
         let smooth = |wi: Vec3, weight: Vec3, pdf: f32, transmitted: bool| BsdfSample {
@@ -496,7 +535,8 @@ impl Material {
         };
         match self.kind {
             Kind::Conductor(c) => {
-                let (li, w, pdf) = c.sample(lo, self.alpha, self.multiscatter, u_lobe, u)?;
+                let a = Vec2::new(self.alpha, self.alpha_v);
+                let (li, w, pdf) = c.sample(lo, a, self.multiscatter, u_lobe, u)?;
                 let w = self.reflection * w;
                 Some(if pdf == 0.0 {
                     delta(world(li), w, false)

@@ -133,15 +133,58 @@ fn mitsuba_reference_materials() {
     // Mitsuba's own 4,096-spp image is within 2 % of its reference on
     // every ball (the gold mirror, which shows the sun, the furthest).
     let (ours, reference) = check_scene("materials");
+    check_balls(
+        &ours,
+        &reference,
+        [
+            "gold (conductor)",
+            "rough copper (roughconductor α 0.1)",
+            "frosted glass (roughdielectric α 0.2)",
+            "red plastic (plastic)",
+            "blue rough plastic (roughplastic α 0.2)",
+            "bubble (thindielectric)",
+        ],
+        BALL_TOLERANCE,
+    );
+}
+
+/// What users tried to say (issue 34), ball by ball as the materials: a
+/// metal's roughness from a texture, a metal rough unevenly (`alpha_u`,
+/// `alpha_v`), glass and a bubble in water (`ext_ior`), a metal in water,
+/// an 8-bit image read linearly (`raw`). The balls here show the sun
+/// through smooth and rough glass and in smooth metal cells: the 16,384-spp
+/// reference itself carries up to 2 % of noise on some, and 4,096 of
+/// Mitsuba's own samples are within 5 % of it on every ball.
+#[test]
+fn mitsuba_reference_material_options() {
+    let (ours, reference) = check_scene("material_options");
+    check_balls(
+        &ours,
+        &reference,
+        [
+            "gold rough by a checker (roughconductor, alpha a checkerboard)",
+            "copper rough unevenly (roughconductor, alpha_u 0.05, alpha_v 0.4)",
+            "frosted glass in water (roughdielectric, ext_ior 1.33)",
+            "an air bubble in water (dielectric, int_ior 1, ext_ior 1.33)",
+            "aluminium in water (conductor, eta and k over 1.33)",
+            "an 8-bit image read linearly (bitmap, raw)",
+        ],
+        0.05,
+    );
+}
+
+/// The mean of each ball of the materials' layout (`materials.pts`, six
+/// balls in two rows) within `tolerance` of the reference's.
+fn check_balls(ours: &[Vec3], reference: &[Vec3], names: [&str; 6], tolerance: f32) {
     let balls = [
-        ("gold (conductor)", 14.53, 28.25, 4.99),
-        ("rough copper (roughconductor α 0.1)", 32.0, 28.25, 5.09),
-        ("frosted glass (roughdielectric α 0.2)", 49.47, 28.25, 4.99),
-        ("red plastic (plastic)", 9.61, 35.6, 6.32),
-        ("blue rough plastic (roughplastic α 0.2)", 32.0, 35.6, 6.52),
-        ("bubble (thindielectric)", 54.39, 35.6, 6.32),
+        (14.53, 28.25, 4.99),
+        (32.0, 28.25, 5.09),
+        (49.47, 28.25, 4.99),
+        (9.61, 35.6, 6.32),
+        (32.0, 35.6, 6.52),
+        (54.39, 35.6, 6.32),
     ];
-    for (name, cx, cy, r) in balls {
+    for (name, (cx, cy, r)) in names.into_iter().zip(balls) {
         let (mut a, mut b) = (Vec3::ZERO, Vec3::ZERO);
         for y in 0..64 {
             for x in 0..64 {
@@ -155,7 +198,7 @@ fn mitsuba_reference_materials() {
         let ratio = a / b;
         eprintln!("{name}: mean ratio {ratio:.4}");
         assert!(
-            (ratio - Vec3::ONE).abs().max_element() < BALL_TOLERANCE,
+            (ratio - Vec3::ONE).abs().max_element() < tolerance,
             "{name}: mean / Mitsuba's = {ratio}"
         );
     }

@@ -15,9 +15,9 @@
 //! | torus | the angle around the axis / 2π, as a cylinder's | the angle around the tube / 2π, 0 on the outer equator, ¼ on top | Mitsuba has no torus |
 //!
 //! A disk's and a plane's frame has their normal as y and x, z from
-//! [`super::orthonormal_basis`] of it, in the object's own frame: for a
-//! normal +y (a floor), u runs along +x and v along −z, away from a camera
-//! on +z, so an image on the floor is seen upright.
+//! [`axis_frame`] of it, in the object's own frame: for a normal +y (a
+//! floor), u runs along +x and v along −z, away from a camera on +z, so an
+//! image on the floor is seen upright.
 //!
 //! Sphere, disk and plane take a point already moved into their frame;
 //! quads and triangles are parametric, so their intersection's (s, t) or
@@ -25,6 +25,23 @@
 
 use glam::{Vec2, Vec3};
 use std::f32::consts::{FRAC_1_PI, TAU};
+
+/// The frame (x, z) about a unit axis `n` that the texture coordinates of
+/// disks, planes, cylinders, cones and tori are laid in: x is world +x made
+/// perpendicular to `n` (−z instead when `n` lies within 26° of ±x), and
+/// z = n × x. For an axis +y, x is +x and z is −z (a floor's image is
+/// upright seen from +z). The frame turns continuously with the axis except
+/// across that 26° cone around ±x, where no axis an author writes lies:
+/// the axis of an object turned or placed by a rotation, recovered in its
+/// own frame with rounding errors, keeps its frame (an orthonormal basis
+/// that branches on the sign of n.z, as the renderer's local frames do,
+/// would flip for every axis in the plane z = 0, a vertical cylinder's
+/// among them).
+pub fn axis_frame(n: Vec3) -> (Vec3, Vec3) {
+    let reference = if n.x.abs() < 0.9 { Vec3::X } else { -Vec3::Z };
+    let x = (reference - n * n.dot(reference)).normalize();
+    (x, n.cross(x))
+}
 
 /// Texture coordinates of the point of a sphere in direction `dir` (unit)
 /// from its centre, in the sphere's frame: u is the longitude, 0 (the seam)
@@ -211,6 +228,30 @@ mod tests {
         ));
         let b = Vec2::new(0.3, 0.6);
         assert!(close(triangle(b, TRIANGLE_DEFAULT), b));
+    }
+
+    #[test]
+    fn the_axis_frame_is_orthonormal_documented_and_continuous_across_z_0() {
+        let (x, z) = axis_frame(Vec3::Y);
+        assert!((x - Vec3::X).length() < 1e-6 && (z + Vec3::Z).length() < 1e-6);
+        for n in [
+            Vec3::X,
+            -Vec3::X,
+            Vec3::Z,
+            Vec3::new(0.3, 0.9, -0.2).normalize(),
+        ] {
+            let (x, z) = axis_frame(n);
+            assert!(x.is_normalized() && z.is_normalized());
+            assert!(x.dot(z).abs() < 1e-6 && x.dot(n).abs() < 1e-6 && z.dot(n).abs() < 1e-6);
+            assert!((n.cross(x) - z).length() < 1e-5, "z = n × x");
+        }
+        // An axis in the plane z = 0 and its neighbours a rounding error
+        // away on either side keep one frame.
+        let n = Vec3::new(0.1, 1.1, 0.0).normalize();
+        for dz in [1e-7f32, -1e-7] {
+            let (a, b) = (axis_frame(n), axis_frame((n + Vec3::Z * dz).normalize()));
+            assert!((a.0 - b.0).length() < 1e-5 && (a.1 - b.1).length() < 1e-5);
+        }
     }
 
     /// A derivative checked against a finite difference of the mapping.

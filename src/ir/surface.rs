@@ -13,11 +13,11 @@ use crate::texture::ShadingPoint;
 use glam::{Affine3A, Vec2, Vec3};
 
 /// `d` in the frame of a plane with normal `n` (any length): x and z from
-/// [`crate::geometry::orthonormal_basis`] of the unit normal (for +y, x
-/// along +x and z along −z), y along the normal; and the length of `n`.
+/// [`texcoord::axis_frame`] of the unit normal (for +y, x along +x and z
+/// along −z), y along the normal; and the length of `n`.
 fn in_plane(d: Vec3, n: Vec3) -> (Vec3, f32) {
     let scale = n.length();
-    let (x, z) = crate::geometry::orthonormal_basis(n / scale);
+    let (x, z) = texcoord::axis_frame(n / scale);
     (Vec3::new(d.dot(x), d.dot(n) / scale, d.dot(z)), scale)
 }
 
@@ -57,7 +57,7 @@ impl Frame<'_> {
 /// Vectors given in the frame of [`in_plane`] for the unit axis `n` (x, y
 /// along `n`, z), back in the frame `n` is given in.
 fn from_axis_frame(n: Vec3) -> impl Fn(Vec3) -> Vec3 {
-    let (x, z) = crate::geometry::orthonormal_basis(n);
+    let (x, z) = texcoord::axis_frame(n);
     move |v: Vec3| v.x * x + v.y * n + v.z * z
 }
 
@@ -381,13 +381,13 @@ impl Scene {
             Shape::Disk { normal, radius, .. } => {
                 let n = direction(normal);
                 let scale = n.length();
-                let (x, z) = crate::geometry::orthonormal_basis(n / scale);
+                let (x, z) = texcoord::axis_frame(n / scale);
                 let d = 2.0 * radius * scale;
                 (to_world(d * x), to_world(d * z))
             }
             Shape::Plane { normal, .. } => {
                 let n = direction(normal);
-                let (x, z) = crate::geometry::orthonormal_basis(n / n.length());
+                let (x, z) = texcoord::axis_frame(n / n.length());
                 (to_world(x), to_world(z))
             }
             Shape::Cone(c) => {

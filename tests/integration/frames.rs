@@ -12,6 +12,7 @@ use ptsc::compile::{compile_str, Options};
 use ptsc::geometry::Ray;
 use ptsc::ir::Scene;
 use std::fmt::Write as _;
+use std::path::Path;
 
 /// What is defined: a quad, a triangle, or a one-triangle mesh with or
 /// without texture coordinates and vertex normals.
@@ -407,15 +408,33 @@ fn a_normal_map_turns_with_edge1_alone_and_packed() {
         .write_to(&mut std::io::Cursor::new(&mut png), image::ImageFormat::Png)
         .unwrap();
     std::fs::write(dir.path().join("tilt20.png"), png).unwrap();
-    let quad = "quad { corner <0.5, -0.5, 0> edge1 <0, 1, 0> edge2 <-1, 0, 0>\n\
-                material { diffuse rgb 0.5 normal_map image { file \"tilt20.png\" } } }\n";
-    let expected = Vec3::new(0.0, tilt.sin(), tilt.cos());
+    for turn in 0..4 {
+        let a = turn as f32 * std::f32::consts::FRAC_PI_2;
+        let e1 = Vec3::new(-a.sin(), a.cos(), 0.0);
+        let e2 = Vec3::new(-a.cos(), -a.sin(), 0.0);
+        let corner = -0.5 * (e1 + e2);
+        let v = |p: Vec3| format!("<{}, {}, {}>", p.x, p.y, p.z);
+        let quad = format!(
+            "quad {{ corner {} edge1 {} edge2 {}\n\
+             material {{ diffuse rgb 0.5 normal_map image {{ file \"tilt20.png\" }} }} }}\n",
+            v(corner),
+            v(e1),
+            v(e2)
+        );
+        let expected = tilt.sin() * e1 + tilt.cos() * Vec3::Z;
+        normal_leans(dir.path(), &quad, expected);
+    }
+}
+
+/// The shading normal at the centre of `quad` (facing +z), alone and with a
+/// small quad beside it, is `expected`; only the second is packed.
+fn normal_leans(dir: &std::path::Path, quad: &str, expected: Vec3) {
     for extra in [
         "",
         "quad { corner <3, 3, -5> edge1 <0.1, 0, 0> edge2 <0, 0.1, 0> }\n",
     ] {
         let text = format!("camera {{ position <0, 0, 5> look_at <0, 0, 0> }}\n{quad}{extra}");
-        let c = compile_str(&dir.path().join("s.pts"), &text, Options::default());
+        let c = compile_str(&dir.join("s.pts"), &text, Options::default());
         let ir = c.ir.expect("compiles");
         let ray = Ray::new(Vec3::new(0.1, 0.1, 5.0), -Vec3::Z, 0.0);
         let mut hit = ir.intersect(&ray, 0.0, f32::INFINITY).unwrap();
@@ -431,5 +450,86 @@ fn a_normal_map_turns_with_edge1_alone_and_packed() {
             "{extra}: {} vs {expected}",
             hit.n_shading
         );
+    }
+}
+
+/// The round shapes (never packed into blocks), written with their
+/// transform or placed through a group by it: the same hit frame.
+const ROUND: &[&str] = &[
+    "sphere { center <0.2, 0.1, -0.3> radius 0.8",
+    "disk { center <0, 0, 0> normal <0.3, 1, 0.2> radius 1",
+    "cylinder { base <0, -0.5, 0> top <0, 0.7, 0.2> radius 0.5 open true",
+    "cone { base <0, -0.5, 0> top <0.1, 0.6, 0> base_radius 0.7 top_radius 0.2 open true",
+    "torus { major_radius 1 minor_radius 0.3 axis <0.2, 1, 0.1>",
+];
+
+/// The hit of `ray` in `ir`: point, normals, texture coordinates and tangents.
+fn frame_of(ir: &Scene, ray: &Ray) -> Option<[Vec3; 5]> {
+    let hit = ir.intersect(ray, 0.0, f32::INFINITY)?;
+    let uv = ir.texcoords(&hit, 0.0);
+    let (dpdu, dpdv) = ir.derivatives(&hit, 0.0);
+    Some([hit.p, hit.n_geo, uv.extend(0.0), dpdu, dpdv])
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig {
+        cases: std::env::var("PROPTEST_CASES").ok().and_then(|c| c.parse().ok()).unwrap_or(256),
+        ..ProptestConfig::default()
+    })]
+
+    /// A sphere, disk, cylinder, cone or torus under a random similarity
+    /// (turned, scaled, moved, sometimes mirrored) has at every hit the
+    /// frame of the same shape placed through a group by that transform.
+    #[test]
+    fn round_shapes_placed_or_not_share_their_frame(
+        shape in 0..ROUND.len(),
+        turn in vector(-180.0, 180.0),
+        scale in exact(0.3, 3.0),
+        mirror in any::<bool>(),
+        offset in vector(-3.0, 3.0),
+        towards in prop::collection::vec((vector(-1.0, 1.0), vector(-0.4, 0.4)), 12),
+    ) {
+        let s = if mirror { -scale } else { scale };
+        let transform = format!("rotate {} scale {s} translate {}", v(turn), v(offset));
+        let head = "camera { position <0, 0, 50> look_at <0, 0, 0> }\n";
+        let flat = format!("{head}{} {transform} }}\n", ROUND[shape]);
+        let placed = format!(
+            "{head}group g {{ {} }} }}\ninstance g {{ {transform} }}\ninstance g {{ translate <500, 0, 0> }}\n",
+            ROUND[shape]
+        );
+        let compile = |text: &str| {
+            let c = compile_str(Path::new("round.pts"), text, Options::default());
+            c.ir.unwrap_or_else(|| panic!("{}\n{text}", c.diagnostics.render_human(&c.sources, false)))
+        };
+        let (a, b) = (compile(&flat), compile(&placed));
+        prop_assert!(!b.instances.is_empty(), "the group is shared");
+        let mut hits = 0;
+        for (dir, aim) in towards {
+            if dir.length() < 0.1 {
+                continue;
+            }
+            let d = dir.normalize();
+            let target = offset + aim * scale;
+            let ray = Ray::new((target - d * 20.0 * scale).as_vec3(), d.as_vec3(), 0.0);
+            let (Some(fa), Some(fb)) = (frame_of(&a, &ray), frame_of(&b, &ray)) else {
+                prop_assert_eq!(frame_of(&a, &ray).is_some(), frame_of(&b, &ray).is_some());
+                continue;
+            };
+            hits += 1;
+            let size = scale as f32;
+            let names = ["p", "n", "uv", "dp/du", "dp/dv"];
+            for (k, name) in names.iter().enumerate() {
+                // Lengths scale with the shape; a seam of u (0 against 1)
+                // is the same point.
+                let tolerance = match k {
+                    0 | 3 | 4 => 2e-3 * size.max(1.0) * (1.0 + fa[k].length()),
+                    _ => 2e-3,
+                };
+                let same = (fa[k] - fb[k]).length() <= tolerance
+                    || (k == 2 && ((fa[k] - fb[k]).abs() - Vec3::X).abs().max_element() < 2e-3);
+                prop_assert!(same, "{}: {} flat, {} placed\n{}", name, fa[k], fb[k], flat);
+            }
+        }
+        let _ = hits;
     }
 }

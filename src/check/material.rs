@@ -299,38 +299,7 @@ fn model_checks(p: &Params, m: &mut Material, diags: &mut Diagnostics) {
             diags.push(no_effect(name, model, *s, help));
         }
     }
-    if ignored.contains(&"roughness") {
-        m.roughness = None;
-    }
-    if let (Some((_, s)), true) = (p.get("roughness"), p.given("gloss")) {
-        if m.roughness.is_some() {
-            diags.push(
-                Diagnostic::error(
-                    codes::CONFLICTING_PARAMS,
-                    "`roughness` and `gloss` both roughen the metal",
-                    *s,
-                )
-                .with_label("GGX α, as Mitsuba's `alpha_u` and `alpha_v`")
-                .with_help("keep `gloss` (α = gloss²) or `roughness` (α itself, or `<α along u, α along v>`)"),
-            );
-        }
-    }
-    if m.kind == MaterialKind::Plastic && m.ior < m.ior_outside {
-        if let Some((_, s)) = p.get("ior_outside") {
-            diags.push(
-                Diagnostic::error(
-                    codes::OUT_OF_RANGE,
-                    "a plastic's coat is less dense than the medium outside it",
-                    *s,
-                )
-                .with_label(format!(
-                    "`ior` {} is below `ior_outside` {}",
-                    m.ior, m.ior_outside
-                ))
-                .with_help("give the coat an `ior` at least `ior_outside`"),
-            );
-        }
-    }
+    options_checks(p, m, ignored, diags);
     // A metal's or a coat's tint is white unless given; a plastic's base
     // is grey unless given.
     if !p.given("reflection") {
@@ -370,6 +339,43 @@ fn model_checks(p: &Params, m: &mut Material, diags: &mut Diagnostics) {
     m.textures.retain(|(input, _)| {
         !(TextureInput::ALL.iter()).any(|(name, i)| i == input && ignored.contains(name))
     });
+}
+
+/// The checks of `roughness` and `ior_outside` beside a model's
+/// parameters (`ignored`: those it does not use).
+fn options_checks(p: &Params, m: &mut Material, ignored: &[&str], diags: &mut Diagnostics) {
+    if ignored.contains(&"roughness") {
+        m.roughness = None;
+    }
+    if let (Some((_, s)), true) = (p.get("roughness"), p.given("gloss")) {
+        if m.roughness.is_some() {
+            diags.push(
+                Diagnostic::error(
+                    codes::CONFLICTING_PARAMS,
+                    "`roughness` and `gloss` both roughen the metal",
+                    *s,
+                )
+                .with_label("GGX α, as Mitsuba's `alpha_u` and `alpha_v`")
+                .with_help("keep `gloss` (α = gloss²) or `roughness` (α itself, or `<α along u, α along v>`)"),
+            );
+        }
+    }
+    if m.kind == MaterialKind::Plastic && m.ior < m.ior_outside {
+        if let Some((_, s)) = p.get("ior_outside") {
+            diags.push(
+                Diagnostic::error(
+                    codes::OUT_OF_RANGE,
+                    "a plastic's coat is less dense than the medium outside it",
+                    *s,
+                )
+                .with_label(format!(
+                    "`ior` {} is below `ior_outside` {}",
+                    m.ior, m.ior_outside
+                ))
+                .with_help("give the coat an `ior` at least `ior_outside`"),
+            );
+        }
+    }
 }
 
 /// The material schema (for inline and named materials).

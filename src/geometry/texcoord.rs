@@ -28,9 +28,10 @@ use std::f32::consts::{FRAC_1_PI, TAU};
 
 /// The frame (x, z) about a unit axis `n` that the texture coordinates of
 /// disks, planes, cylinders, cones and tori are laid in: x is world +x made
-/// perpendicular to `n` (−z instead when `n` lies within 26° of ±x), and
+/// perpendicular to `n` (∓z instead when `n` lies within 26° of ±x), and
 /// z = n × x. For an axis +y, x is +x and z is −z (a floor's image is
-/// upright seen from +z). The frame turns continuously with the axis except
+/// upright seen from +z); for ±x, z is +y (a wall's image is upright seen
+/// from the side it faces). The frame turns continuously with the axis except
 /// across that 26° cone around ±x, where no axis an author writes lies:
 /// the axis of an object turned or placed by a rotation, recovered in its
 /// own frame with rounding errors, keeps its frame (an orthonormal basis
@@ -38,7 +39,11 @@ use std::f32::consts::{FRAC_1_PI, TAU};
 /// would flip for every axis in the plane z = 0, a vertical cylinder's
 /// among them).
 pub fn axis_frame(n: Vec3) -> (Vec3, Vec3) {
-    let reference = if n.x.abs() < 0.9 { Vec3::X } else { -Vec3::Z };
+    let reference = if n.x.abs() < 0.9 {
+        Vec3::X
+    } else {
+        -n.x.signum() * Vec3::Z
+    };
     let x = (reference - n * n.dot(reference)).normalize();
     (x, n.cross(x))
 }
@@ -234,6 +239,10 @@ mod tests {
     fn the_axis_frame_is_orthonormal_documented_and_continuous_across_z_0() {
         let (x, z) = axis_frame(Vec3::Y);
         assert!((x - Vec3::X).length() < 1e-6 && (z + Vec3::Z).length() < 1e-6);
+        // Walls facing ±x see their images upright (v up).
+        for n in [Vec3::X, -Vec3::X] {
+            assert!((axis_frame(n).1 - Vec3::Y).length() < 1e-6, "{n}");
+        }
         for n in [
             Vec3::X,
             -Vec3::X,

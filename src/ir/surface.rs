@@ -217,7 +217,8 @@ impl Scene {
     pub fn mean_emission(&self, prim: u32, shape: &Shape, samples: u32) -> f64 {
         let m = self.material_of(prim);
         let lum = |c: Vec3| crate::light::luminance(c) as f64;
-        if m.textured.is_none() {
+        let textured = m.textured.as_ref();
+        if !textured.is_some_and(|t| t.inputs.iter().any(|(i, _)| *i == Input::Emission)) {
             return lum(m.emission);
         }
         let side = (samples as f64).sqrt().ceil().max(1.0) as u32;

@@ -6,6 +6,7 @@ use super::shapes::Gathered;
 use crate::accel::bvh::Bvh;
 use crate::accel::bvh4::Bvh4;
 use crate::accel::numbering::Numbering;
+use crate::accel::tri4::MAX_PACKED;
 use crate::geometry::Aabb;
 use crate::ir::Prim;
 use glam::{Vec2, Vec3};
@@ -54,7 +55,11 @@ pub fn build(gathered: Gathered) -> Geometry {
     let bounds = bvh.bounds();
     let order = std::mem::take(&mut bvh.order);
     drop(bvh);
-    wide.pack_triangles(|place| prims.packed(order[place as usize]));
+    // Blocks number their lanes below the flag bits: a scene of more
+    // primitives keeps every one as a record.
+    if n < MAX_PACKED as usize {
+        wide.pack_triangles(|place| prims.packed(order[place as usize]));
+    }
     let planes = std::mem::take(&mut prims.planes);
     let numbering = Numbering::new(&wide, n, planes.len());
     // Records in leaf order, so that a leaf's are contiguous in memory; the

@@ -114,7 +114,6 @@ pub fn load(path: &Path, data: bool) -> Result<Image, String> {
     decode_file(path, &bytes, data)
 }
 
-/// Decodes the bytes of the file at `path` by its extension.
 /// [`decode_file`] with an encoding: 8-bit values read linearly unless
 /// sRGB, floating-point ones put through the sRGB curve when `Srgb`.
 fn decode_encoded(path: &Path, bytes: &[u8], encoding: Encoding) -> Result<Image, String> {
@@ -138,6 +137,8 @@ pub fn is_floating_point(path: &Path) -> bool {
     ext.is_some_and(|e| e.eq_ignore_ascii_case("hdr") || e.eq_ignore_ascii_case("exr"))
 }
 
+/// Decodes the bytes of the file at `path` by its extension (`data`: 8-bit
+/// values read linearly).
 fn decode_file(path: &Path, bytes: &[u8], data: bool) -> Result<Image, String> {
     let ext = path
         .extension()

@@ -167,8 +167,11 @@ pub fn gather(
         bounds: Vec::new(),
         placements: Vec::new(),
     };
-    // The placements under which each (group, object) is scaled unevenly.
+    // The placements under which each (group, object) is scaled unevenly,
+    // in the order first met.
     let mut uneven: Vec<((usize, usize), Vec<Span>)> = Vec::new();
+    let mut uneven_at: HashMap<(usize, usize), usize> = HashMap::new();
+    let mut uneven_count: HashMap<(usize, usize), usize> = HashMap::new();
     for leaf in shared {
         let group = &scene.groups[leaf.group];
         for (k, object) in group.objects.iter().enumerate() {
@@ -180,10 +183,16 @@ pub fn gather(
                 && uniform_scale(&object.transform).is_some()
                 && uniform_scale(&(leaf.transform * object.transform)).is_none()
             {
-                match uneven.iter_mut().find(|(at, _)| *at == (leaf.group, k)) {
-                    Some((_, spans)) => spans.push(leaf.span),
-                    None => uneven.push(((leaf.group, k), vec![leaf.span])),
+                let at = *uneven_at.entry((leaf.group, k)).or_insert_with(|| {
+                    uneven.push(((leaf.group, k), Vec::new()));
+                    uneven.len() - 1
+                });
+                // Two spans are all the diagnostic shows; the count says the rest.
+                let spans = &mut uneven[at].1;
+                if spans.len() < 2 {
+                    spans.push(leaf.span);
                 }
+                *uneven_count.entry((leaf.group, k)).or_default() += 1;
             }
         }
         let prototype = *prototype_of.entry(leaf.group).or_insert_with(|| {
@@ -236,7 +245,7 @@ pub fn gather(
         let what = object.shape.round_kind().unwrap_or("shape");
         let mut d = non_uniform(object.span, what).with_secondary(spans[0], "placed here");
         if let Some(&second) = spans.get(1) {
-            let label = match spans.len() {
+            let label = match uneven_count[&(group, k)] {
                 2 => "and here".to_string(),
                 n => format!("and here ({n} placements scale it unevenly)"),
             };

@@ -20,12 +20,26 @@ use std::sync::Arc;
 /// tables take about 4 ms to compute, and a loop of inline materials
 /// repeats the same coat thousands of times.
 #[derive(Default)]
-pub struct Coats(HashMap<(u32, u32), Plastic>);
+pub struct Coats {
+    coats: HashMap<(u32, u32), Plastic>,
+    /// A check without a render: the coats' tables can find no problem, so
+    /// none is computed (every coat is the smooth one).
+    checking: bool,
+}
 
 impl Coats {
+    /// Coats for a check that renders nothing.
+    pub fn for_checking() -> Coats {
+        Coats {
+            checking: true,
+            ..Coats::default()
+        }
+    }
+
     /// The coat of index `eta` and roughness `alpha`, computed once.
     fn get(&mut self, eta: f32, alpha: f32) -> Plastic {
-        *(self.0)
+        let alpha = if self.checking { 0.0 } else { alpha };
+        *(self.coats)
             .entry((eta.to_bits(), alpha.to_bits()))
             .or_insert_with(|| Plastic::new(eta, alpha))
     }

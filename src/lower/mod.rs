@@ -65,7 +65,8 @@ pub fn lower(
     // others share their group's prototype.
     let split = instances::split(scene);
     let flat = split.scene.as_ref().unwrap_or(scene);
-    let prepared = prepare(scene, flat, &split.shared, adjust, cache, warnings)?;
+    let coats = material::Coats::default();
+    let prepared = prepare(scene, flat, &split.shared, adjust, (cache, coats), warnings)?;
     Ok(prepared.build(flat, cache))
 }
 
@@ -80,7 +81,15 @@ pub fn validate(
 ) -> Diagnostics {
     let split = instances::split(scene);
     let flat = split.scene.as_ref().unwrap_or(scene);
-    match prepare(scene, flat, &split.shared, &|_| {}, cache, warnings) {
+    let coats = material::Coats::for_checking();
+    match prepare(
+        scene,
+        flat,
+        &split.shared,
+        &|_| {},
+        (cache, coats),
+        warnings,
+    ) {
         Ok(_) => Diagnostics::new(),
         Err(errors) => errors,
     }
@@ -108,15 +117,15 @@ struct Prepared {
 
 /// Reads and checks everything `flat` (the scene with its placements
 /// sorted out of `original`; `shared` the placements of shared groups)
-/// needs: materials and their images, the environment, every primitive of
-/// the scene and of the shared groups. Every problem of all of them, or
-/// what the build needs.
+/// needs: materials and their images (plastics' coats from `coats`), the
+/// environment, every primitive of the scene and of the shared groups.
+/// Every problem of all of them, or what the build needs.
 fn prepare(
     original: &check::Scene,
     flat: &check::Scene,
     shared: &[instances::Leaf],
     adjust: &dyn Fn(&mut Settings),
-    cache: &mut LowerCache,
+    (cache, mut coats): (&mut LowerCache, material::Coats),
     warnings: &mut Diagnostics,
 ) -> Result<Prepared, Diagnostics> {
     let mut settings = flat.render.settings.clone();
@@ -128,7 +137,6 @@ fn prepare(
     } else {
         &mut cache.images
     };
-    let mut coats = material::Coats::default();
     let materials: Vec<Material> = (flat.materials.iter())
         .map(|m| lower_material(m, &mut textures, images, &mut coats, &mut diags))
         .collect();
@@ -383,7 +391,7 @@ fn finish(
 }
 
 /// Points at which all textured emitters' mean emission is read in all
-/// (each reads at least 16 and at most 1,024).
+/// (each reads at most 1,024, and one when there are more than 2²⁰).
 const EMISSION_SAMPLES: u32 = 1 << 20;
 
 /// What each light emits as light selection weighs it (see [`Emitter`]):
@@ -395,7 +403,7 @@ fn emitters(ir: &Scene) -> Vec<Emitter> {
             |l| matches!(l, Light::Area { prim, .. } if ir.material_of(*prim).textured.is_some()),
         )
         .count() as u32;
-    let samples = (EMISSION_SAMPLES / textured.max(1)).clamp(16, 1024);
+    let samples = (EMISSION_SAMPLES / textured.max(1)).clamp(1, 1024);
     (ir.lights.iter())
         .map(|l| match l {
             Light::Area { prim, shape, .. } => Emitter {

@@ -36,6 +36,26 @@ pub struct Gathered {
 }
 
 impl Gathered {
+    /// Adds the vertex attributes of a mesh triangle of vertices `t` (in
+    /// the file's order) from its mesh's `normals` and `uvs` (either may be
+    /// empty); returns their index, or `u32::MAX` when the mesh has none.
+    fn attributes(&mut self, t: [u32; 3], normals: &[Vec3], uvs: &[glam::Vec2]) -> u32 {
+        if normals.is_empty() && uvs.is_empty() {
+            return u32::MAX;
+        }
+        // A zero normal is flat shading.
+        self.normals.push(match normals.is_empty() {
+            false => t.map(|i| normals[i as usize]),
+            true => [Vec3::ZERO; 3],
+        });
+        if !uvs.is_empty() {
+            // Earlier triangles without UVs keep their barycentrics.
+            (self.uvs).resize(self.normals.len() - 1, texcoord::TRIANGLE_DEFAULT);
+            self.uvs.push(t.map(|i| uvs[i as usize]));
+        }
+        self.normals.len() as u32 - 1
+    }
+
     /// The bounds of every bounded primitive over the shutter.
     pub fn bounds(&self) -> Aabb {
         (0..self.prims.len() as u32)
@@ -254,23 +274,7 @@ impl Gathering<'_> {
                 kept.push([a, b, c]);
                 continue;
             }
-            let attributes = if use_normals || use_uvs {
-                let out = &mut self.out;
-                // A zero normal is flat shading.
-                out.normals.push(match use_normals {
-                    true => t.map(|i| vnormals[i as usize]),
-                    false => [Vec3::ZERO; 3],
-                });
-                if use_uvs {
-                    // Earlier triangles without UVs keep their barycentrics.
-                    out.uvs
-                        .resize(out.normals.len() - 1, texcoord::TRIANGLE_DEFAULT);
-                    out.uvs.push(t.map(|i| data.uvs[i as usize]));
-                }
-                out.normals.len() as u32 - 1
-            } else {
-                u32::MAX
-            };
+            let attributes = self.out.attributes(*t, &vnormals, &data.uvs);
             let shape = Shape::Triangle {
                 p0,
                 e1,
@@ -481,6 +485,8 @@ fn parallelogram(p: Vec3, e1: Vec3, e2: Vec3, flip: bool) -> Shape {
     }
 }
 
+/// The error of a round shape (`what`) at `span` under an uneven scale or
+/// a shear.
 pub(super) fn non_uniform(span: crate::span::Span, what: &str) -> Diagnostic {
     Diagnostic::error(
         codes::NON_UNIFORM_SCALE,

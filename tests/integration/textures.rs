@@ -232,3 +232,36 @@ fn noise_patterns_blend_their_colours_by_the_pattern_in_its_space() {
         }
     }
 }
+
+/// A textured lamp weighs in light selection by its texture's mean over its
+/// surface, in the units of a plain lamp of that colour: the hot-spot lamp
+/// of `tests/mitsuba/lights_textured.pts` (16 × 16 texels of 2 but a
+/// 2 × 2 spot of 100: mean 3.53, brightest 100) on a quad, where bilinear
+/// filtering with `repeat` keeps the texels' mean.
+#[test]
+fn a_textured_emitter_weighs_its_mean_emission() {
+    let lamp = crate::root().join("tests/mitsuba/hotspot_lamp.exr");
+    let text = format!(
+        "camera {{ position <0, 0, 9> look_at <0, 0, 0> }}\n\
+         quad {{ corner <0, 2, 0> edge1 <1, 0, 0> edge2 <0, 0, 1>\n\
+                material {{ diffuse rgb 0 emission image {{ file \"{}\" }} }} }}\n\
+         quad {{ corner <5, 2, 0> edge1 <1, 0, 0> edge2 <0, 0, 1> material {{ emission rgb 2 }} }}\n",
+        lamp.display()
+    );
+    let c = compile_str(Path::new("t.pts"), &text, Options::default());
+    let ir = c.ir.expect("compiles");
+    let mut seen = 0;
+    for light in &ir.lights {
+        let ptsc::light::Light::Area { prim, shape, .. } = light else {
+            continue;
+        };
+        let weighed = ir.mean_emission(*prim, shape, 1024);
+        let want = match ir.material_of(*prim).textured {
+            Some(_) => (252.0 * 2.0 + 4.0 * 100.0) / 256.0,
+            None => 2.0,
+        };
+        assert!((weighed / want - 1.0).abs() < 0.02, "{weighed} vs {want}");
+        seen += 1;
+    }
+    assert_eq!(seen, 2);
+}

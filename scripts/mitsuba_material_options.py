@@ -33,9 +33,8 @@ from pathlib import Path
 import mitsuba as mi
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from mitsuba_textures import OUT, flip, rectangle, reference_and_baseline, rgb, sensor, turned_sphere  # noqa: E402
-
-ROOT = Path(__file__).resolve().parent.parent
+from mitsuba_materials import stage  # noqa: E402
+from mitsuba_textures import OUT, flip, reference_and_baseline, rgb, turned_sphere  # noqa: E402
 
 GOLD = ([0.143036, 0.375307, 1.44205], [3.983, 2.38556, 1.60336])
 COPPER = ([0.201005, 0.92375, 1.10222], [3.91326, 2.45305, 2.14209])
@@ -51,11 +50,7 @@ def scene(res, spp):
     alpha = {"type": "checkerboard", "color0": rgb([0.2 ** 2] * 3), "color1": rgb([0.7 ** 2] * 3),
              "to_uv": mi.ScalarTransform4f().scale([8.0, 8.0, 1.0])}
     return {
-        "type": "scene",
-        "integrator": {"type": "path", "max_depth": 8},
-        "sensor": sensor(res, spp, [0, 2.2, 5], [0, 0.5, 0], 40.0, [0, 1, 0]),
-        "sky": {"type": "envmap", "filename": str(ROOT / "examples" / "images" / "studio.exr"), "scale": 0.8},
-        "floor": rectangle([-4, 0, 3], [8, 0, 0], [0, 0, -7], {"type": "diffuse", "reflectance": rgb([0.5] * 3)}),
+        **stage(res, spp),
         "gold": ball(-1.2, -0.8, {"type": "roughconductor", "distribution": "ggx", "alpha": alpha,
                                   "eta": rgb(GOLD[0]), "k": rgb(GOLD[1])}),
         "copper": ball(0, -0.8, {"type": "roughconductor", "distribution": "ggx", "alpha_u": 0.05,

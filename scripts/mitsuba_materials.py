@@ -29,14 +29,22 @@ def ball(x, z, bsdf):
     return {"type": "sphere", "center": [x, 0.5, z], "radius": 0.5, "bsdf": bsdf}
 
 
-def scene(res, spp):
-    ior = {"int_ior": 1.5, "ext_ior": 1.0}
+def stage(res, spp):
+    """The scene around the six balls: camera, studio map, floor (shared
+    with mitsuba_material_options.py)."""
     return {
         "type": "scene",
         "integrator": {"type": "path", "max_depth": 8},
         "sensor": sensor(res, spp, [0, 2.2, 5], [0, 0.5, 0], 40.0, [0, 1, 0]),
         "sky": {"type": "envmap", "filename": str(ROOT / "examples" / "images" / "studio.exr"), "scale": 0.8},
         "floor": rectangle([-4, 0, 3], [8, 0, 0], [0, 0, -7], {"type": "diffuse", "reflectance": rgb([0.5] * 3)}),
+    }
+
+
+def scene(res, spp):
+    ior = {"int_ior": 1.5, "ext_ior": 1.0}
+    return {
+        **stage(res, spp),
         "gold": ball(-1.2, -0.8, {"type": "conductor", "eta": rgb(GOLD[0]), "k": rgb(GOLD[1])}),
         "copper": ball(0, -0.8, {"type": "roughconductor", "distribution": "ggx", "alpha": 0.1,
                                  "eta": rgb(COPPER[0]), "k": rgb(COPPER[1])}),

@@ -10,10 +10,12 @@ tried to say"), with the conventions of mitsuba_materials.py and
 mitsuba_textures.py:
   gold, its roughness a checker -> `roughconductor` whose `alpha` is a
             `checkerboard` of gloss² (on the turned sphere of
-            mitsuba_textures.py, so that ptsc's (u, v) maps onto Mitsuba's;
-            Mitsuba's color0 is ptsc's `even` here: measured on a close-up
-            of the ball, 4.9 % MAE/mean at 256 spp against 35 % with the
-            cells swapped);
+            mitsuba_textures.py, so that ptsc's (u, v) maps onto Mitsuba's,
+            which swaps the cells; but Mitsuba 3.9.1's checkerboard swaps
+            its colours once more when read as a number (`eval_1` gives
+            color1 where `eval` gives color0: checked at three points), so
+            color0 is ptsc's `even` here; a close-up of the ball: MAE/mean
+            4.9 % at 256 spp, 35 % with the colours the other way);
   copper rough unevenly -> `roughconductor` with `alpha_u`, `alpha_v` (on
             the turned sphere: Mitsuba's tangent is its dp/du, along the
             parallels, as ptsc's);

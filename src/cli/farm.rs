@@ -216,7 +216,7 @@ pub fn merge(args: &MergeArgs) -> u8 {
 /// order given changes nothing) and writes the image; returns the summary
 /// line, or why not.
 fn merge_parts(args: &MergeArgs) -> Result<String, String> {
-    crate::output::check_writable(&args.output)
+    crate::output::check_image_writable(&args.output)
         .map_err(|why| format!("cannot write {}: {why}", args.output.display()))?;
     let output = &args.output;
     if let Some(part) = (args.parts.iter()).find(|p| crate::output::same_file(p, output)) {

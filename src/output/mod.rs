@@ -3,65 +3,78 @@
 //! same folder, then renamed over the target, so a failed or interrupted run
 //! never leaves a broken image), and the readers the tests compare with.
 
+mod files;
+
+pub use files::{
+    check_writable, frame_path, same_file, write_atomically, write_atomically_with, MAX_FILE_NAME,
+};
 use glam::Vec3;
-use image::ImageEncoder;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
 /// Writes an image of `width` × `height` whose pixel `i` (row-major, top
 /// to bottom) is `pixel(i)`, atomically; the format follows the extension
-/// (.png, .exr, .pfm). Pixels are read one by one: a copy of an
-/// 8192 × 8192 image would be 805 MB.
+/// (.png, .exr, .pfm). Pixels are read one by one and streamed to the
+/// file: an 8192 × 8192 image is written in a few MB beyond its film.
 pub fn write_image(
     path: &Path,
     (width, height): (u32, u32),
     pixel: impl Fn(usize) -> Vec3 + Sync,
     exposure: f32,
 ) -> std::io::Result<()> {
-    let bytes = match ImageFormat::of(path) {
-        Some(ImageFormat::Png) => png((width, height), &pixel, exposure)?,
-        Some(ImageFormat::Exr) => exr((width, height), &pixel)?,
-        Some(ImageFormat::Pfm) => pfm((width, height), &pixel),
-        None => {
-            return Err(std::io::Error::new(
-                std::io::ErrorKind::InvalidInput,
-                format!(
-                    "unknown image format for {} (use .png, .exr or .pfm)",
-                    path.display()
-                ),
-            ))
-        }
-    };
-    write_atomically(path, &bytes)
+    let size = (width, height);
+    match ImageFormat::of(path) {
+        Some(ImageFormat::Png) => write_atomically_with(path, |out| png(out, size, &pixel, exposure)),
+        Some(ImageFormat::Exr) => write_atomically_with(path, |out| exr(out, size, &pixel)),
+        Some(ImageFormat::Pfm) => write_atomically_with(path, |out| pfm(out, size, &pixel)),
+        None => Err(std::io::Error::new(
+            std::io::ErrorKind::InvalidInput,
+            format!(
+                "unknown image format for {} (use .png, .exr or .pfm)",
+                path.display()
+            ),
+        )),
+    }
 }
 
-/// 8-bit sRGB PNG, exposure applied.
+/// 8-bit sRGB PNG, exposure applied, row by row (the `image` crate's
+/// encoder wants the whole image in memory).
 fn png(
+    out: impl Write,
     (width, height): (u32, u32),
     pixel: &(impl Fn(usize) -> Vec3 + Sync),
     exposure: f32,
-) -> std::io::Result<Vec<u8>> {
+) -> std::io::Result<()> {
     let scale = 2f32.powf(exposure);
-    let n = width as usize * height as usize;
-    let mut rgb = Vec::with_capacity(n * 3);
-    for i in 0..n {
-        let p = pixel(i);
-        for c in [p.x, p.y, p.z] {
-            rgb.push((srgb_encode(c * scale) * 255.0 + 0.5) as u8);
+    let mut encoder = png::Encoder::new(out, width, height);
+    encoder.set_color(png::ColorType::Rgb);
+    encoder.set_depth(png::BitDepth::Eight);
+    encoder.set_compression(png::Compression::Balanced);
+    encoder.set_filter(png::Filter::Adaptive);
+    let mut writer = encoder.write_header().map_err(std::io::Error::other)?;
+    let mut stream = writer.stream_writer().map_err(std::io::Error::other)?;
+    let w = width as usize;
+    let mut row = Vec::with_capacity(w * 3);
+    for y in 0..height as usize {
+        row.clear();
+        for i in y * w..(y + 1) * w {
+            let p = pixel(i);
+            for c in [p.x, p.y, p.z] {
+                row.push((srgb_encode(c * scale) * 255.0 + 0.5) as u8);
+            }
         }
+        stream.write_all(&row)?;
     }
-    let mut out = Vec::new();
-    image::codecs::png::PngEncoder::new(&mut out)
-        .write_image(&rgb, width, height, image::ExtendedColorType::Rgb8)
-        .map_err(std::io::Error::other)?;
-    Ok(out)
+    stream.finish().map_err(std::io::Error::other)
 }
 
-/// Linear float32 OpenEXR, ZIP-compressed.
+/// Linear float32 OpenEXR, ZIP-compressed, written as its blocks are
+/// compressed.
 fn exr(
+    out: &mut (impl Write + std::io::Seek),
     (width, height): (u32, u32),
     pixel: &(impl Fn(usize) -> Vec3 + Sync),
-) -> std::io::Result<Vec<u8>> {
+) -> std::io::Result<()> {
     use exr::prelude::*;
     let w = width as usize;
     // ZIP compression: lossless and deterministic, and small references.
@@ -73,26 +86,29 @@ fn exr(
             (v.x, v.y, v.z)
         }),
     );
-    let mut cur = std::io::Cursor::new(Vec::new());
-    img.write()
-        .to_buffered(&mut cur)
-        .map_err(std::io::Error::other)?;
-    Ok(cur.into_inner())
+    img.write().to_buffered(out).map_err(std::io::Error::other)
 }
 
 /// Linear float32 PFM (rows bottom to top).
-fn pfm((width, height): (u32, u32), pixel: &(impl Fn(usize) -> Vec3 + Sync)) -> Vec<u8> {
-    let mut out = format!("PF\n{} {}\n-1.0\n", width, height).into_bytes();
+fn pfm(
+    out: &mut impl Write,
+    (width, height): (u32, u32),
+    pixel: &(impl Fn(usize) -> Vec3 + Sync),
+) -> std::io::Result<()> {
+    write!(out, "PF\n{} {}\n-1.0\n", width, height)?;
+    let mut row = Vec::with_capacity(width as usize * 12);
     // PFM rows go bottom to top.
     for y in (0..height).rev() {
+        row.clear();
         for x in 0..width {
             let v = pixel((y * width + x) as usize);
             for c in [v.x, v.y, v.z] {
-                out.extend(c.to_le_bytes());
+                row.extend(c.to_le_bytes());
             }
         }
+        out.write_all(&row)?;
     }
-    out
+    Ok(())
 }
 
 /// Linear → sRGB transfer function, clamped to [0, 1].
@@ -130,58 +146,13 @@ impl ImageFormat {
 }
 
 /// Whether an image can be written at `path`, found before a render starts
-/// rather than after it: a known format, not a folder, a folder that exists
-/// and takes a new file (a temporary one is created and removed).
-pub fn check_writable(path: &Path) -> Result<(), String> {
-    if path.is_dir() {
-        return Err("it is a folder; name an image file in it".into());
-    }
-    if ImageFormat::of(path).is_none() {
+/// rather than after it: a known format, and a path a file can be written
+/// at ([`check_writable`]).
+pub fn check_image_writable(path: &Path) -> Result<(), String> {
+    if ImageFormat::of(path).is_none() && !path.is_dir() {
         return Err("unknown image format (use .png, .exr or .pfm)".into());
     }
-    let dir = path
-        .parent()
-        .filter(|p| !p.as_os_str().is_empty())
-        .unwrap_or(Path::new("."));
-    if !dir.is_dir() {
-        return Err(format!("the folder {} does not exist", dir.display()));
-    }
-    let probe = temporary_beside(path).map_err(|e| e.to_string())?;
-    std::fs::File::create(&probe)
-        .map_err(|e| format!("the folder {} does not take new files: {e}", dir.display()))?;
-    let _ = std::fs::remove_file(&probe);
-    Ok(())
-}
-
-/// An output path with each run of `#` replaced by `frame`, zero-padded to
-/// the run's length (`frame_####.png` → `frame_0012.png`).
-pub fn frame_path(path: &Path, frame: u32) -> PathBuf {
-    match path.to_str() {
-        Some(text) if text.contains('#') => PathBuf::from(number_frame(text, frame)),
-        _ => path.to_path_buf(),
-    }
-}
-
-/// Replaces each run of `#` with `frame`, zero-padded to the run's length.
-fn number_frame(pattern: &str, frame: u32) -> String {
-    let mut out = String::with_capacity(pattern.len() + 8);
-    let mut run = 0;
-    let flush = |out: &mut String, run: &mut usize| {
-        if *run > 0 {
-            out.push_str(&format!("{frame:0width$}", width = *run));
-            *run = 0;
-        }
-    };
-    for c in pattern.chars() {
-        if c == '#' {
-            run += 1;
-        } else {
-            flush(&mut out, &mut run);
-            out.push(c);
-        }
-    }
-    flush(&mut out, &mut run);
-    out
+    check_writable(path)
 }
 
 /// Why an image cannot be written at `output`, found before rendering: an
@@ -197,46 +168,7 @@ pub fn check_output(output: &Path, inputs: &[PathBuf]) -> Result<(), String> {
             ));
         }
     }
-    check_writable(output)
-}
-
-/// Whether two paths name one existing file (through links and `..`).
-pub fn same_file(a: &Path, b: &Path) -> bool {
-    match (std::fs::canonicalize(a), std::fs::canonicalize(b)) {
-        (Ok(a), Ok(b)) => a == b,
-        _ => false,
-    }
-}
-
-/// The temporary file an atomic write of `path` goes through.
-fn temporary_beside(path: &Path) -> std::io::Result<PathBuf> {
-    let dir = path
-        .parent()
-        .filter(|p| !p.as_os_str().is_empty())
-        .unwrap_or(Path::new("."));
-    let name = path
-        .file_name()
-        .ok_or_else(|| std::io::Error::new(std::io::ErrorKind::InvalidInput, "no file name"))?;
-    Ok(dir.join(format!(
-        ".{}.{}.tmp",
-        name.to_string_lossy(),
-        std::process::id()
-    )))
-}
-
-/// Writes `bytes` to a temporary file beside `path`, then renames it over `path`.
-pub fn write_atomically(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
-    let tmp = temporary_beside(path)?;
-    let result = (|| {
-        let mut f = std::fs::File::create(&tmp)?;
-        f.write_all(bytes)?;
-        f.sync_all()?;
-        std::fs::rename(&tmp, path)
-    })();
-    if result.is_err() {
-        let _ = std::fs::remove_file(&tmp);
-    }
-    result
+    check_image_writable(output)
 }
 
 /// Reads the RGB channels of an OpenEXR file (ours or another renderer's):
@@ -283,16 +215,6 @@ pub fn read_pfm(bytes: &[u8]) -> Option<(u32, u32, Vec<Vec3>)> {
 
 #[cfg(test)]
 mod tests {
-    #[test]
-    fn runs_of_hashes_become_the_frame_number_padded_to_their_length() {
-        use super::number_frame;
-        assert_eq!(number_frame("frame_####.png", 12), "frame_0012.png");
-        assert_eq!(number_frame("a#/b_##.exr", 7), "a7/b_07.exr");
-        // A number longer than its run is written whole.
-        assert_eq!(number_frame("f_##.png", 12345), "f_12345.png");
-        assert_eq!(number_frame("plain.png", 3), "plain.png");
-    }
-
     use super::*;
 
     #[test]
@@ -331,7 +253,8 @@ mod tests {
     #[test]
     fn pfm_round_trip() {
         let v = Vec3::new(1.0, 2.0, 3.0);
-        let bytes = pfm((3, 2), &|i| if i == 2 { v } else { Vec3::ZERO });
+        let mut bytes = Vec::new();
+        pfm(&mut bytes, (3, 2), &|i| if i == 2 { v } else { Vec3::ZERO }).unwrap();
         let (w, h, px) = read_pfm(&bytes).unwrap();
         assert_eq!((w, h), (3, 2));
         assert_eq!(px[2], Vec3::new(1.0, 2.0, 3.0));

@@ -1,0 +1,238 @@
+//! Where outputs go: every path a run will write is checked before its
+//! first sample ([`check_writable`]); files are written atomically through
+//! a temporary file beside the target (a failed or interrupted run never
+//! leaves a broken file), and temporary files that a killed run left
+//! behind are removed by the next run of the same output.
+
+use std::io::{BufWriter, Write};
+use std::path::{Path, PathBuf};
+
+/// The longest file name (one path component) ptsc writes, in bytes: what
+/// Linux, macOS and Windows file systems hold.
+pub const MAX_FILE_NAME: usize = 255;
+
+/// Names longer than this get a temporary file named by their hash, so
+/// that the temporary name (name, host, process) still fits a file name.
+const LONG_NAME: usize = 160;
+
+/// Why nothing can be written at `path`, found before a run starts rather
+/// than after it: a path that names a folder (a trailing `/`) or something
+/// other than a file, a file name longer than a file system holds, a
+/// folder that is missing or takes no new file. Temporary files of dead
+/// runs writing the same path are removed first.
+pub fn check_writable(path: &Path) -> Result<(), String> {
+    let text = path.as_os_str().to_string_lossy();
+    if text.ends_with(std::path::is_separator) || text.ends_with("/.") || text.ends_with("/..") {
+        return Err("it names a folder (it ends with a separator); name a file".into());
+    }
+    let name = path.file_name().ok_or("it names no file")?;
+    if name.len() > MAX_FILE_NAME {
+        return Err(format!(
+            "its file name is {} bytes long; a file name holds at most {MAX_FILE_NAME}",
+            name.len()
+        ));
+    }
+    if let Ok(meta) = std::fs::metadata(path) {
+        if meta.is_dir() {
+            return Err("it is a folder; name a file in it".into());
+        }
+        if !meta.is_file() {
+            return Err(format!("it is {}, not a file", kind_of(&meta)));
+        }
+    }
+    let dir = folder_of(path);
+    if !dir.is_dir() {
+        return Err(format!("the folder {} does not exist", dir.display()));
+    }
+    remove_stale_temporaries(path);
+    let probe = temporary_beside(path).map_err(|e| e.to_string())?;
+    std::fs::File::create(&probe)
+        .map_err(|e| format!("the folder {} does not take new files: {e}", dir.display()))?;
+    // Where nothing is at the path yet, the probe takes its place as the
+    // real write will (a rename), then goes.
+    let renamed = match std::fs::symlink_metadata(path) {
+        Err(_) => std::fs::rename(&probe, path).map(|()| std::fs::remove_file(path)),
+        Ok(_) => Ok(Ok(())),
+    };
+    let _ = std::fs::remove_file(&probe);
+    match renamed {
+        Err(e) => Err(format!("a file cannot take its place: {e}")),
+        Ok(_) => Ok(()),
+    }
+}
+
+/// What a non-file is, in words.
+fn kind_of(meta: &std::fs::Metadata) -> &'static str {
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::FileTypeExt;
+        let t = meta.file_type();
+        if t.is_fifo() {
+            return "a FIFO";
+        }
+        if t.is_socket() {
+            return "a socket";
+        }
+        if t.is_block_device() || t.is_char_device() {
+            return "a device";
+        }
+    }
+    let _ = meta;
+    "not a regular file"
+}
+
+/// The folder a file goes in (`.` for a bare name).
+fn folder_of(path: &Path) -> &Path {
+    path.parent()
+        .filter(|p| !p.as_os_str().is_empty())
+        .unwrap_or(Path::new("."))
+}
+
+/// The start of every temporary file name of writes to `path`:
+/// `.NAME.` (or `.ptsc-HASH.` for a long name).
+fn temporary_prefix(path: &Path) -> std::io::Result<String> {
+    let name = path
+        .file_name()
+        .ok_or_else(|| std::io::Error::new(std::io::ErrorKind::InvalidInput, "no file name"))?
+        .to_string_lossy();
+    if name.len() > LONG_NAME {
+        // FNV-1a: stable from run to run, so the next run finds them.
+        let hash = (name.bytes()).fold(0xcbf2_9ce4_8422_2325_u64, |h, b| {
+            (h ^ b as u64).wrapping_mul(0x100_0000_01b3)
+        });
+        return Ok(format!(".ptsc-{hash:016x}."));
+    }
+    Ok(format!(".{name}."))
+}
+
+/// This machine's name as temporary file names carry it (letters, digits
+/// and `-`): a folder shared by machines (a farm's network disk) holds
+/// temporary files of processes this one cannot see.
+fn host() -> String {
+    let name = std::fs::read_to_string("/proc/sys/kernel/hostname")
+        .or_else(|_| std::fs::read_to_string("/etc/hostname"))
+        .unwrap_or_default();
+    let clean: String = (name.trim().chars())
+        .filter(|c| c.is_ascii_alphanumeric() || *c == '-')
+        .take(64)
+        .collect();
+    if clean.is_empty() {
+        "host".into()
+    } else {
+        clean
+    }
+}
+
+/// The temporary file an atomic write of `path` goes through:
+/// `.NAME.HOST.PID.tmp` beside it.
+fn temporary_beside(path: &Path) -> std::io::Result<PathBuf> {
+    let prefix = temporary_prefix(path)?;
+    let file = format!("{prefix}{}.{}.tmp", host(), std::process::id());
+    Ok(folder_of(path).join(file))
+}
+
+/// Removes the temporary files of writes to `path` whose process is gone
+/// (killed before it could clean up): those of this machine (`.NAME.HOST.
+/// PID.tmp`, and `.NAME.PID.tmp` of earlier versions) whose process no
+/// longer runs. Where processes cannot be seen (no /proc), nothing goes.
+fn remove_stale_temporaries(path: &Path) {
+    let (Ok(prefix), true) = (temporary_prefix(path), Path::new("/proc/self").exists()) else {
+        return;
+    };
+    let Ok(entries) = std::fs::read_dir(folder_of(path)) else {
+        return;
+    };
+    let (host, me) = (host(), std::process::id());
+    for entry in entries.flatten() {
+        let name = entry.file_name().to_string_lossy().into_owned();
+        let Some(middle) = (name.strip_prefix(&prefix)).and_then(|m| m.strip_suffix(".tmp")) else {
+            continue;
+        };
+        let (writer_host, pid) = match middle.rsplit_once('.') {
+            Some((h, pid)) => (h, pid),
+            None => (host.as_str(), middle),
+        };
+        let Ok(pid) = pid.parse::<u32>() else {
+            continue;
+        };
+        let gone = !Path::new(&format!("/proc/{pid}")).exists();
+        if writer_host == host && pid != me && gone && entry.path().is_file() {
+            let _ = std::fs::remove_file(entry.path());
+        }
+    }
+}
+
+/// Writes a file atomically: `write` fills a temporary file beside `path`
+/// (buffered, so it may stream any size in bounded memory), which is
+/// synced and renamed over `path`; on failure the temporary file goes and
+/// `path` is untouched.
+pub fn write_atomically_with(
+    path: &Path,
+    write: impl FnOnce(&mut BufWriter<std::fs::File>) -> std::io::Result<()>,
+) -> std::io::Result<()> {
+    let tmp = temporary_beside(path)?;
+    let result = (|| {
+        let mut out = BufWriter::with_capacity(1 << 20, std::fs::File::create(&tmp)?);
+        write(&mut out)?;
+        let file = out.into_inner().map_err(|e| e.into_error())?;
+        file.sync_all()?;
+        std::fs::rename(&tmp, path)
+    })();
+    if result.is_err() {
+        let _ = std::fs::remove_file(&tmp);
+    }
+    result
+}
+
+/// Writes `bytes` to `path` atomically ([`write_atomically_with`]).
+pub fn write_atomically(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
+    write_atomically_with(path, |out| out.write_all(bytes))
+}
+
+/// Whether two paths name one existing file (through links and `..`).
+pub fn same_file(a: &Path, b: &Path) -> bool {
+    match (std::fs::canonicalize(a), std::fs::canonicalize(b)) {
+        (Ok(a), Ok(b)) => a == b,
+        _ => false,
+    }
+}
+
+/// An output path with each run of `#` replaced by `frame`, zero-padded to
+/// the run's length (`frame_####.png` → `frame_0012.png`). A run longer
+/// than a file name is refused by [`check_writable`] afterwards, as the
+/// name it makes.
+pub fn frame_path(path: &Path, frame: u32) -> PathBuf {
+    match path.to_str() {
+        Some(text) if text.contains('#') => PathBuf::from(number_frame(text, frame)),
+        _ => path.to_path_buf(),
+    }
+}
+
+/// Replaces each run of `#` with `frame`, zero-padded to the run's length
+/// (padded by hand: `format!`'s width stops at 65,535).
+fn number_frame(pattern: &str, frame: u32) -> String {
+    let digits = frame.to_string();
+    let mut out = String::with_capacity(pattern.len() + digits.len());
+    let mut run = 0;
+    let flush = |out: &mut String, run: &mut usize| {
+        if *run > 0 {
+            out.extend(std::iter::repeat_n('0', run.saturating_sub(digits.len())));
+            out.push_str(&digits);
+            *run = 0;
+        }
+    };
+    for c in pattern.chars() {
+        if c == '#' {
+            run += 1;
+        } else {
+            flush(&mut out, &mut run);
+            out.push(c);
+        }
+    }
+    flush(&mut out, &mut run);
+    out
+}
+
+#[cfg(test)]
+#[path = "files_tests.rs"]
+mod tests;

@@ -1,0 +1,87 @@
+use super::*;
+
+#[test]
+fn runs_of_hashes_become_the_frame_number_padded_to_their_length() {
+    assert_eq!(number_frame("frame_####.png", 12), "frame_0012.png");
+    assert_eq!(number_frame("a#/b_##.exr", 7), "a7/b_07.exr");
+    // A number longer than its run is written whole.
+    assert_eq!(number_frame("f_##.png", 12345), "f_12345.png");
+    assert_eq!(number_frame("plain.png", 3), "plain.png");
+}
+
+#[test]
+fn a_run_wider_than_any_format_width_makes_a_name_that_is_refused() {
+    // `format!` panics on widths past 65,535.
+    let pattern = format!("{}.png", "#".repeat(70_000));
+    let name = number_frame(&pattern, 7);
+    assert_eq!(name.len(), 70_004);
+    assert!(name.ends_with("0007.png"));
+    let why = check_writable(Path::new(&name)).unwrap_err();
+    assert!(why.contains("70004 bytes long"), "{why}");
+}
+
+#[test]
+fn paths_that_name_folders_or_other_things_are_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let at = |name: &str| dir.path().join(name);
+    let slash = format!("{}/", at("out.png").display());
+    assert!(check_writable(Path::new(&slash))
+        .unwrap_err()
+        .contains("names a folder"));
+    std::fs::create_dir(at("sub")).unwrap();
+    assert!(check_writable(&at("sub")).unwrap_err().contains("is a folder"));
+    assert!(check_writable(&at("missing/out.png"))
+        .unwrap_err()
+        .contains("does not exist"));
+    let fifo = at("pipe.png");
+    let made = std::process::Command::new("mkfifo").arg(&fifo).status();
+    if made.is_ok_and(|s| s.success()) {
+        assert!(check_writable(&fifo).unwrap_err().contains("FIFO"));
+    }
+    let long = at(&format!("{}.png", "a".repeat(300)));
+    assert!(check_writable(&long).unwrap_err().contains("at most 255"));
+    // A fine path is left as it was: nothing created, nothing left over.
+    assert_eq!(check_writable(&at("out.png")), Ok(()));
+    let left: Vec<_> = std::fs::read_dir(dir.path()).unwrap().flatten().collect();
+    assert_eq!(left.len(), 2, "only the folder and the FIFO: {left:?}");
+}
+
+#[test]
+fn long_names_write_through_a_temporary_file_that_fits() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join(format!("{}.png", "b".repeat(MAX_FILE_NAME - 4)));
+    assert_eq!(check_writable(&path), Ok(()));
+    write_atomically(&path, b"x").unwrap();
+    assert_eq!(std::fs::read(&path).unwrap(), b"x");
+}
+
+#[test]
+fn temporary_files_of_dead_runs_are_removed_by_the_next_run() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out.png");
+    // A process that has ended: its PID names no running process (PIDs are
+    // not reused this quickly).
+    let mut child = std::process::Command::new("true").spawn().unwrap();
+    let dead = child.id();
+    child.wait().unwrap();
+    let host = host();
+    let stale = [
+        format!(".out.png.{host}.{dead}.tmp"),
+        format!(".out.png.{dead}.tmp"),
+    ];
+    let kept = [
+        // Another machine's, another output's.
+        format!(".out.png.elsewhere.{dead}.tmp"),
+        format!(".other.png.{host}.{dead}.tmp"),
+    ];
+    for name in stale.iter().chain(&kept) {
+        std::fs::write(dir.path().join(name), b"samples").unwrap();
+    }
+    check_writable(&out).unwrap();
+    for name in &stale {
+        assert!(!dir.path().join(name).exists(), "{name} stays");
+    }
+    for name in &kept {
+        assert!(dir.path().join(name).exists(), "{name} went");
+    }
+}

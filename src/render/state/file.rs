@@ -1,0 +1,311 @@
+//! Reading and writing state files (the format is the parent module's),
+//! in bounded memory: pixels go straight between the film and the file's
+//! blocks, and a file is checked from its headers and its length before a
+//! pixel is read.
+
+use super::info::StateInfo;
+use crate::ir::settings::{MAX_PIXELS, MAX_SIDE};
+use crate::render::film::Film;
+use glam::DVec3;
+use std::io::{Read, Seek};
+use std::path::Path;
+
+/// The name of the state part and of its JSON attribute.
+pub const STATE_PART: &str = "ptsc.state";
+/// The state part's channels, in the order a file lists them (by name).
+const CHANNELS: [&str; 7] = [
+    "count", "sum.B.hi", "sum.B.lo", "sum.G.hi", "sum.G.lo", "sum.R.hi", "sum.R.lo",
+];
+/// Bytes a pixel takes in a state file: the image part's three float32,
+/// the state part's seven uint32.
+const BYTES_PER_PIXEL: u64 = 12 + 28;
+
+/// Writes `film` and its description as a state file, atomically,
+/// streaming the pixels block by block.
+pub fn write_state(path: &Path, film: &Film, info: &StateInfo) -> std::io::Result<()> {
+    write_state_encoded(path, film, info, exr::prelude::Encoding::UNCOMPRESSED)
+}
+
+/// [`write_state`] with another encoding of the state part (the tests'
+/// compressed states, which readers refuse).
+fn write_state_encoded(
+    path: &Path,
+    film: &Film,
+    info: &StateInfo,
+    encoding: exr::prelude::Encoding,
+) -> std::io::Result<()> {
+    use exr::prelude::*;
+    let (w, h) = (film.width as usize, film.height as usize);
+    let size = Vec2(w, h);
+    // Uncompressed, as the state: a state is written at checkpoints and
+    // interruptions, when time counts more than its size.
+    let image = Layer::new(
+        size,
+        LayerAttributes::named("image"),
+        Encoding::UNCOMPRESSED,
+        SpecificChannels::rgb(|p: Vec2<usize>| {
+            let v = film.pixel(p.y() * w + p.x());
+            (v.x, v.y, v.z)
+        }),
+    );
+    let [c0, c1, c2, c3, c4, c5, c6] = CHANNELS;
+    let halves = |v: f64| ((v.to_bits() >> 32) as u32, v.to_bits() as u32);
+    let channels = SpecificChannels::build()
+        .with_channel(c0)
+        .with_channel(c1)
+        .with_channel(c2)
+        .with_channel(c3)
+        .with_channel(c4)
+        .with_channel(c5)
+        .with_channel(c6)
+        .with_pixel_fn(|p: Vec2<usize>| {
+            let i = p.y() * w + p.x();
+            let s = film.sum[i];
+            let ((bh, bl), (gh, gl), (rh, rl)) = (halves(s.z), halves(s.y), halves(s.x));
+            (film.count[i], bh, bl, gh, gl, rh, rl)
+        });
+    let mut attributes = LayerAttributes::named(STATE_PART);
+    attributes.other.insert(
+        Text::from(STATE_PART),
+        AttributeValue::Text(Text::from(info.to_json().as_str())),
+    );
+    // Uncompressed: 28 bytes a pixel written in a blink, where ZIP would
+    // spend longer on f64 bits than the render saves.
+    let state = Layer::new(size, attributes, encoding, channels);
+    let attrs = ImageAttributes::new(IntegerBounds::from_dimensions(size));
+    // The image part first: readers that take the first RGB part show it.
+    let file = Image::empty(attrs).with_layer(image).with_layer(state);
+    crate::output::write_atomically_with(path, |out| {
+        // One block at a time: nothing to compress, so nothing to gain
+        // from blocks in flight.
+        (file.write().non_parallel().to_buffered(out)).map_err(std::io::Error::other)
+    })
+}
+
+/// Whether the file at `path` holds a render state (its headers name a
+/// state part), read from its headers only.
+pub fn is_state_file(path: &Path) -> bool {
+    let Ok((file, _)) = open(path) else {
+        return false;
+    };
+    let meta = exr::meta::MetaData::read_from_buffered(file, false);
+    meta.is_ok_and(|m| m.headers.iter().any(|h| is_state_part(&h.own_attributes)))
+}
+
+/// Whether a part of an EXR file is a render state's.
+fn is_state_part(attributes: &exr::meta::header::LayerAttributes) -> bool {
+    (attributes.layer_name.as_ref()).is_some_and(|n| n.eq(STATE_PART))
+}
+
+/// Reads a state file's description alone (its headers, not its pixels).
+pub fn read_state_info(path: &Path) -> Result<StateInfo, String> {
+    let (file, len) = open(path)?;
+    read_header(file, len).map(|(info, _)| info)
+}
+
+/// A state file opened for reading and its length, or why not: only a
+/// regular file is opened (a FIFO would block, a device never end).
+fn open(path: &Path) -> Result<(std::io::BufReader<std::fs::File>, u64), String> {
+    let meta = std::fs::metadata(path).map_err(|e| e.to_string())?;
+    if !meta.is_file() {
+        return Err("it is not a regular file".into());
+    }
+    let file = std::fs::File::open(path).map_err(|e| e.to_string())?;
+    Ok((std::io::BufReader::new(file), meta.len()))
+}
+
+/// A state given as bytes (the fuzzer's entry).
+pub fn read_state_bytes(bytes: &[u8]) -> Result<(Film, StateInfo), String> {
+    let source = || std::io::Cursor::new(bytes);
+    let (info, size) = read_header(source(), bytes.len() as u64)?;
+    read_film(source(), info, size)
+}
+
+/// A state file's description and size, from its headers and length: a
+/// file that is no state (an image from elsewhere, a truncated, compressed
+/// or hostile file) is refused before its pixels are read.
+fn read_header(source: impl Read, len: u64) -> Result<(StateInfo, (usize, usize)), String> {
+    use exr::prelude::*;
+    let meta = exr::meta::MetaData::read_from_buffered(source, false).map_err(|e| match e {
+        exr::error::Error::Io(e) => e.to_string(),
+        e => format!("it is not an OpenEXR file ({e})"),
+    })?;
+    let state_header = (meta.headers.iter())
+        .find(|h| is_state_part(&h.own_attributes))
+        .ok_or("it holds no render state (an image without the ptsc.state part)")?;
+    let json = match state_header
+        .own_attributes
+        .other
+        .get(&Text::from(STATE_PART))
+    {
+        Some(AttributeValue::Text(t)) => t.to_string(),
+        _ => return Err("its ptsc.state part has no description".into()),
+    };
+    let info = StateInfo::from_json(&json)?;
+    let size = state_header.layer_size;
+    let (w, h) = (size.width(), size.height());
+    let pixels = w as f64 * h as f64;
+    if w == 0 || h == 0 || pixels > MAX_PIXELS || w.max(h) as f64 > MAX_SIDE {
+        return Err(format!("its size {w}×{h} is not an image ptsc renders"));
+    }
+    let names: Vec<String> = (state_header.channels.list.iter())
+        .map(|c| c.name.to_string())
+        .collect();
+    // Two parts of the same size (the image and the state), nothing else.
+    if names != CHANNELS
+        || meta.headers.len() != 2
+        || (meta.headers.iter())
+            .any(|h| h.layer_size != size || h.deep || h.channels.list.len() > CHANNELS.len())
+        || (state_header.channels.list.iter()).any(|c| c.sample_type != SampleType::U32)
+    {
+        return Err("its ptsc.state part does not have the channels of a render state".into());
+    }
+    // ptsc writes states uncompressed: the declared size must then be in
+    // the file, which a lying header's is not.
+    if (meta.headers.iter()).any(|h| h.compression != Compression::Uncompressed) {
+        return Err("it is compressed; ptsc writes states uncompressed".into());
+    }
+    let needed = BYTES_PER_PIXEL * w as u64 * h as u64;
+    if len < needed {
+        return Err(format!(
+            "it is {len} bytes long, too short for the {w}×{h} pixels its header declares ({needed} bytes): a truncated file"
+        ));
+    }
+    Ok((info, (w, h)))
+}
+
+/// Reads a state file: its film (the samples of pass `info.pass`) and its
+/// description. Errors say what is wrong with it.
+pub fn read_state(path: &Path) -> Result<(Film, StateInfo), String> {
+    let (file, len) = open(path)?;
+    let (info, size) = read_header(file, len)?;
+    read_film(open(path)?.0, info, size)
+}
+
+/// Adds the samples of the state file at `path` to `total` (a film of the
+/// same size), pixel by pixel as they are read; returns its description.
+/// On an error `total` holds part of the file's samples.
+pub fn add_state(path: &Path, total: &mut Film) -> Result<StateInfo, String> {
+    let (file, len) = open(path)?;
+    let (info, (w, h)) = read_header(file, len)?;
+    if (w as u32, h as u32) != (total.width, total.height) {
+        return Err("its image size differs".into());
+    }
+    read_pixels(open(path)?.0, &info, (w, h), &mut |i, sum, count| {
+        total.sum[i] += sum;
+        total.count[i] = total.count[i].saturating_add(count);
+    })?;
+    Ok(info)
+}
+
+/// The film of a state whose header said `info` and `(w, h)`.
+fn read_film(
+    source: impl Read + Seek,
+    info: StateInfo,
+    (w, h): (usize, usize),
+) -> Result<(Film, StateInfo), String> {
+    let range = info.pass.range(info.samples);
+    let mut film = Film::new(w as u32, h as u32, range.start);
+    read_pixels(source, &info, (w, h), &mut |i, sum, count| {
+        film.sum[i] = sum;
+        film.count[i] = count;
+    })?;
+    Ok((film, info))
+}
+
+/// What the pixel reader keeps while it reads: where pixels go, how many
+/// each row has had, and the first thing wrong.
+struct PixelSink<'a> {
+    width: usize,
+    most: u32,
+    visit: Option<&'a mut dyn FnMut(usize, DVec3, u32)>,
+    row_pixels: Vec<u32>,
+    error: Option<String>,
+}
+
+impl PixelSink<'_> {
+    /// Takes the pixel at `(x, y)` if it is one a render makes.
+    fn take(&mut self, (x, y): (usize, usize), sum: DVec3, count: u32) {
+        if self.error.is_some() {
+            return;
+        }
+        let row = &mut self.row_pixels[y];
+        *row += 1;
+        self.error = if *row as usize > self.width {
+            Some("it holds a row of pixels twice".into())
+        } else if !sum.is_finite() {
+            Some("its state has a sum that is not finite".into())
+        } else if sum.abs().max_element() > crate::render::MAX_SAMPLE as f64 * count as f64 {
+            // At most its largest sample per sample (so every pixel's mean
+            // is a finite f32), nothing without samples.
+            Some("its state has a sum no render makes (beyond its samples' largest value)".into())
+        } else if count > self.most {
+            Some(format!("a pixel of its state has {count} samples"))
+        } else {
+            None
+        };
+        if let (None, Some(visit)) = (&self.error, &mut self.visit) {
+            visit(y * self.width + x, sum, count);
+        }
+    }
+}
+
+/// Reads the state part's pixels of a file whose headers were checked,
+/// handing each to `visit` (index, sum, count) after checking it.
+fn read_pixels(
+    source: impl Read + Seek,
+    info: &StateInfo,
+    (w, h): (usize, usize),
+    visit: &mut dyn FnMut(usize, DVec3, u32),
+) -> Result<(), String> {
+    use exr::prelude::*;
+    let most = info.pass.range(info.samples).len() as u32;
+    let slot = std::cell::Cell::new(Some(visit));
+    let [c0, c1, c2, c3, c4, c5, c6] = CHANNELS;
+    let image = read()
+        .no_deep_data()
+        .largest_resolution_level()
+        .specific_channels()
+        .required::<u32>(c0)
+        .required::<u32>(c1)
+        .required::<u32>(c2)
+        .required::<u32>(c3)
+        .required::<u32>(c4)
+        .required::<u32>(c5)
+        .required::<u32>(c6)
+        .collect_pixels(
+            |_, _| PixelSink {
+                width: w,
+                most,
+                visit: slot.take(),
+                row_pixels: vec![0; h],
+                error: None,
+            },
+            |sink: &mut PixelSink, p: Vec2<usize>, (n, bh, bl, gh, gl, rh, rl)| {
+                let f64_of = |hi: u32, lo: u32| f64::from_bits((hi as u64) << 32 | lo as u64);
+                let sum = DVec3::new(f64_of(rh, rl), f64_of(gh, gl), f64_of(bh, bl));
+                sink.take((p.x(), p.y()), sum, n)
+            },
+        )
+        .first_valid_layer()
+        .all_attributes()
+        .non_parallel()
+        .from_buffered(source)
+        .map_err(|e| format!("its pixels cannot be read ({e})"))?;
+    let sink = image.layer_data.channel_data.pixels;
+    match sink.error {
+        Some(why) if why.starts_with("a pixel") => Err(format!(
+            "{why}, more than its pass {} of {} samples per pixel holds ({most})",
+            info.pass, info.samples
+        )),
+        Some(why) => Err(why),
+        None if sink.row_pixels.iter().any(|&n| n as usize != w) => {
+            Err("it is missing pixels (a truncated or damaged file)".into())
+        }
+        None => Ok(()),
+    }
+}
+
+#[cfg(test)]
+#[path = "file_tests.rs"]
+mod tests;

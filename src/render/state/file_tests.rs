@@ -1,0 +1,112 @@
+use super::*;
+use crate::render::state::info::tests::info;
+use glam::Vec3;
+
+#[test]
+fn a_state_round_trips_bit_for_bit() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("s.exr");
+    let mut film = Film::new(3, 2, 3);
+    for (i, (s, n)) in film.sum.iter_mut().zip(&mut film.count).enumerate() {
+        *n = i as u32 % 4;
+        *s = DVec3::new(0.1 * i as f64, 1.0 / 3.0, 1e25) * *n as f64;
+    }
+    write_state(&path, &film, &info()).unwrap();
+    let (back, back_info) = read_state(&path).unwrap();
+    assert_eq!(back, film);
+    assert_eq!(back_info, info());
+    // The image part is what an EXR reader sees first.
+    let (w, h, px) = crate::output::read_exr(&path).unwrap();
+    assert_eq!((w, h, px[1]), (3, 2, film.pixel(1)));
+}
+
+
+#[test]
+fn sums_no_render_makes_are_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("s.exr");
+    let mut film = Film::new(1, 1, 0);
+    film.sum[0] = DVec3::splat(1.0);
+    write_state(&path, &film, &info()).unwrap();
+    assert!(
+        read_state(&path).unwrap_err().contains("no render makes"),
+        "a sum without samples"
+    );
+    film.count[0] = 1;
+    film.sum[0] = DVec3::splat(1e31);
+    write_state(&path, &film, &info()).unwrap();
+    assert!(read_state(&path).is_err(), "a sum past the largest sample");
+    film.sum[0] = DVec3::new(f64::NAN, 0.0, 0.0);
+    write_state(&path, &film, &info()).unwrap();
+    assert!(read_state(&path).unwrap_err().contains("not finite"));
+}
+
+
+#[test]
+fn a_plain_image_or_garbage_is_no_state() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("plain.exr");
+    crate::output::write_image(&path, (2, 2), |_| Vec3::ONE, 0.0).unwrap();
+    assert!(read_state(&path).unwrap_err().contains("no render state"));
+    std::fs::write(&path, b"not an exr").unwrap();
+    assert!(read_state(&path).unwrap_err().contains("not an OpenEXR"));
+}
+
+
+#[test]
+fn compressed_or_truncated_states_are_refused_from_their_headers() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("s.exr");
+    let mut film = Film::new(256, 128, 3);
+    film.count.fill(1);
+    let zip = exr::prelude::Encoding::SMALL_LOSSLESS;
+    write_state_encoded(&path, &film, &info(), zip).unwrap();
+    let small = std::fs::metadata(&path).unwrap().len();
+    assert!(small < BYTES_PER_PIXEL * 256 * 128, "{small} bytes: shorter than declared");
+    for why in [
+        read_state(&path).unwrap_err(),
+        read_state_bytes(&std::fs::read(&path).unwrap()).unwrap_err(),
+    ] {
+        assert!(why.contains("compressed"), "{why}");
+    }
+    write_state(&path, &film, &info()).unwrap();
+    let whole = std::fs::read(&path).unwrap();
+    std::fs::write(&path, &whole[..whole.len() / 2]).unwrap();
+    let why = read_state(&path).unwrap_err();
+    assert!(why.contains("too short") && why.contains("256×128"), "{why}");
+    assert!(read_state_info(&path).is_err(), "the description alone too");
+    assert!(is_state_file(&path), "still named a state by its headers");
+}
+
+#[test]
+fn a_state_adds_into_a_film_as_it_is_read() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("s.exr");
+    let mut film = Film::new(5, 3, 3);
+    for (i, (s, n)) in film.sum.iter_mut().zip(&mut film.count).enumerate() {
+        *n = 1 + i as u32 % 2;
+        *s = DVec3::splat(i as f64 + 0.25);
+    }
+    write_state(&path, &film, &info()).unwrap();
+    let mut total = film.clone();
+    add_state(&path, &mut total).unwrap();
+    for i in 0..15 {
+        assert_eq!(total.sum[i], film.sum[i] * 2.0);
+        assert_eq!(total.count[i], film.count[i] * 2);
+    }
+    let mut other = Film::new(3, 5, 0);
+    assert!(add_state(&path, &mut other).unwrap_err().contains("size differs"));
+}
+
+#[test]
+fn only_regular_files_are_opened() {
+    let dir = tempfile::tempdir().unwrap();
+    assert!(read_state(dir.path()).unwrap_err().contains("not a regular file"));
+    let fifo = dir.path().join("pipe.exr");
+    let made = std::process::Command::new("mkfifo").arg(&fifo).status();
+    if made.is_ok_and(|s| s.success()) {
+        // Opening a FIFO to read would wait for a writer forever.
+        assert!(read_state(&fifo).unwrap_err().contains("not a regular file"));
+        assert!(!is_state_file(&fifo));
+    }
+}

@@ -1,0 +1,25 @@
+//! A render's state file: what a stopped render continues from, and what
+//! `ptsc merge` adds up. An OpenEXR file of two parts (docs/farm.md):
+//!
+//! - `image`: R, G, B as float32, the mean so far, so any EXR viewer
+//!   shows how far the render got;
+//! - `ptsc.state`: per pixel the sum of its samples as the bits of three
+//!   f64 (channels `sum.R.hi`, `sum.R.lo`, … as uint32, the high and low
+//!   halves) and its sample count (`count`, uint32), uncompressed; its
+//!   header's text attribute `ptsc.state` is a JSON object naming the
+//!   scene's fingerprint, every setting that shapes a sample, the samples
+//!   per pixel of the whole render and the pass (K of N) it holds.
+//!
+//! Sums are kept bit for bit, so a render continued from its state adds
+//! the very samples, in the very order, of an uninterrupted one. Both parts
+//! are written and read block by block: a state of the largest image takes
+//! no memory beyond its film.
+
+mod file;
+mod info;
+
+pub use file::{
+    add_state, is_state_file, read_state, read_state_bytes, read_state_info, write_state,
+    STATE_PART,
+};
+pub use info::{sample_settings, Pass, StateInfo};

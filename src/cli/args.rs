@@ -41,6 +41,10 @@ pub struct RenderArgs {
     /// only --frame's); name the images with a # pattern (frame_####.png).
     #[arg(long, value_name = "A..B", value_parser = parse_frames)]
     pub frames: Option<(u32, u32)>,
+    /// The most memory the render may take, e.g. 16G or 512MiB (default:
+    /// what the machine, its control group and `ulimit -v` leave free).
+    #[arg(long, value_name = "SIZE", value_parser = crate::render::memory::parse_size)]
+    pub memory_limit: Option<u64>,
     /// Only errors: no warnings, progress or figures.
     #[arg(short, long, conflicts_with = "verbose")]
     pub quiet: bool,

@@ -4,7 +4,9 @@
 //! schedulers' scripts are in `deploy/`; docs/farm.md tells the story.
 
 use crate::render::film::Film;
-use crate::render::state::{read_state, read_state_info, Pass, StateInfo};
+use crate::render::state::{
+    add_state, is_state_file, read_state, read_state_header, read_state_info, Pass, StateInfo,
+};
 use std::path::{Path, PathBuf};
 
 /// Default seconds between two saves of a long render's state.
@@ -28,6 +30,10 @@ pub struct FarmArgs {
     /// so that samples can be added later.
     #[arg(long)]
     pub keep_state: bool,
+    /// Replace an output that holds a render's state (a part file, a saved
+    /// state) with this render's image: its samples are lost.
+    #[arg(long)]
+    pub force: bool,
     /// Seconds between two saves of the state of a long render (0: never).
     #[arg(long, value_name = "SECONDS", default_value_t = CHECKPOINT_SECONDS, value_parser = parse_seconds)]
     pub checkpoint: f64,
@@ -84,9 +90,10 @@ pub fn start(
     if farm.restart {
         return Ok(fresh(state.is_file(), None));
     }
-    // Only a readable state file counts: an image at a part's path from
-    // elsewhere is replaced like any output.
-    let saved = state.is_file().then(|| read_state(state));
+    // Only a state file counts (by its headers): an image at a part's path
+    // from elsewhere is replaced like any output. Its description is
+    // checked before its pixels are read.
+    let saved = is_state_file(state).then(|| read_state_info(state));
     match saved {
         None => Ok(fresh(
             false,
@@ -100,18 +107,22 @@ pub fn start(
         Some(Err(why)) if farm.resume => {
             Err(format!("cannot resume from {}: {why}", state.display()))
         }
-        Some(Err(_)) => Ok(fresh(false, None)),
-        Some(Ok((film, info))) if farm.resume => resumed(state, film, &info, now),
-        Some(Ok((film, info))) => Err(format!(
+        Some(Err(why)) => Err(format!(
+            "{} holds a render state that cannot be read ({why}); add --restart to replace it, or name another output",
+            state.display()
+        )),
+        Some(Ok(info)) if farm.resume => resumed(state, &info, now),
+        Some(Ok(info)) => Err(format!(
             "{} holds the state of a render ({}); add --resume to continue it or --restart to start over",
             state.display(),
-            describe(&film, &info)
+            describe_info(&info)
         )),
     }
 }
 
-/// The saved film, if it can hold samples of the render `now`.
-fn resumed(state: &Path, film: Film, saved: &StateInfo, now: &StateInfo) -> Result<Start, String> {
+/// The saved film, if it can hold samples of the render `now`: its
+/// description is checked first, its pixels read only then.
+fn resumed(state: &Path, saved: &StateInfo, now: &StateInfo) -> Result<Start, String> {
     let refuse = |why: String| Err(format!("cannot resume from {}: {why}", state.display()));
     if let Some(why) = saved.mismatch(now) {
         return refuse(why);
@@ -126,18 +137,23 @@ fn resumed(state: &Path, film: Film, saved: &StateInfo, now: &StateInfo) -> Resu
             }
         ));
     }
-    if (film.width, film.height) != size_of(now) {
+    if size_of(saved) != size_of(now) {
         return refuse("its image size differs".into());
     }
     // A pass's sample run depends on the render's samples per pixel; a
     // whole render's only grows.
-    let most = film.sample_counts().1;
     if saved.pass != Pass::WHOLE && saved.samples != now.samples {
         return refuse(format!(
             "it is a pass of {} samples per pixel, this render asks {} (a pass's share changes with them)",
             saved.samples, now.samples
         ));
     }
+    let film = match read_state(state) {
+        Ok((film, _)) if (film.width, film.height) == size_of(now) => film,
+        Ok(_) => return refuse("its image size differs".into()),
+        Err(why) => return refuse(why),
+    };
+    let most = film.sample_counts().1;
     if most > now.samples {
         return refuse(format!(
             "it already has {most} samples per pixel, more than the {} asked",
@@ -163,14 +179,19 @@ fn size_of(info: &StateInfo) -> (u32, u32) {
     (get("width"), get("height"))
 }
 
+/// "pass 2/4 of 64 spp" (from a description alone).
+fn describe_info(info: &StateInfo) -> String {
+    match info.pass {
+        Pass::WHOLE => format!("{} spp", info.samples),
+        p => format!("pass {p} of {} spp", info.samples),
+    }
+}
+
 /// "pass 2/4 of 64 spp: 16 of 16 samples in every pixel".
 fn describe(film: &Film, info: &StateInfo) -> String {
     let (least, most, _) = film.sample_counts();
     let share = info.pass.range(info.samples).len();
-    let of = match info.pass {
-        Pass::WHOLE => format!("{} spp", info.samples),
-        p => format!("pass {p} of {} spp", info.samples),
-    };
+    let of = describe_info(info);
     if least == most {
         format!("{of}: {least} of {share} samples in every pixel")
     } else {
@@ -191,9 +212,40 @@ pub struct MergeArgs {
     /// warning: each pixel is the mean of the samples it has.
     #[arg(long)]
     pub partial: bool,
+    /// The most memory the merge may take, e.g. 16G (default: what the
+    /// machine leaves free).
+    #[arg(long, value_name = "SIZE", value_parser = crate::render::memory::parse_size)]
+    pub memory_limit: Option<u64>,
+    /// Replace an output that holds a render's state (another part file):
+    /// its samples are lost.
+    #[arg(long)]
+    pub force: bool,
     /// Only errors: no warnings or summary.
     #[arg(short, long)]
     pub quiet: bool,
+}
+
+/// Why an image must not be written at `output`: it holds a render's
+/// state (a part file, a saved state), whose samples the image would
+/// replace, and `--force` was not given.
+pub fn refuse_to_replace_state(output: &Path, force: bool) -> Result<(), String> {
+    if force || !is_state_file(output) {
+        return Ok(());
+    }
+    let what = read_state_info(output).map_or_else(
+        |_| "a render state".to_string(),
+        |info| {
+            format!(
+                "the samples of a render of {} ({})",
+                info.scene,
+                describe_info(&info)
+            )
+        },
+    );
+    Err(format!(
+        "{} holds {what}; writing an image there would lose them: name another output, or add --force to replace it",
+        output.display()
+    ))
 }
 
 /// Runs `merge`; returns the exit code.
@@ -216,8 +268,6 @@ pub fn merge(args: &MergeArgs) -> u8 {
 /// order given changes nothing) and writes the image; returns the summary
 /// line, or why not.
 fn merge_parts(args: &MergeArgs) -> Result<String, String> {
-    crate::output::check_image_writable(&args.output)
-        .map_err(|why| format!("cannot write {}: {why}", args.output.display()))?;
     let output = &args.output;
     if let Some(part) = (args.parts.iter()).find(|p| crate::output::same_file(p, output)) {
         return Err(format!(
@@ -225,11 +275,16 @@ fn merge_parts(args: &MergeArgs) -> Result<String, String> {
             part.display()
         ));
     }
+    refuse_to_replace_state(output, args.force)?;
+    crate::output::check_image_writable(output)
+        .map_err(|why| format!("cannot write {}: {why}", output.display()))?;
     // First every description (headers only), so that a foreign or
     // duplicate part is refused before any pixel is read.
     let mut parts: Vec<(PathBuf, StateInfo)> = Vec::new();
+    let mut size = (0, 0);
     for path in &args.parts {
-        let info = read_state_info(path).map_err(|why| format!("{}: {why}", path.display()))?;
+        let (info, part_size) =
+            read_state_header(path).map_err(|why| format!("{}: {why}", path.display()))?;
         if let Some((first, reference)) = parts.first() {
             let foreign = |why: String| {
                 Err(format!(
@@ -250,7 +305,11 @@ fn merge_parts(args: &MergeArgs) -> Result<String, String> {
             if reference.exposure != info.exposure {
                 return foreign("its exposure differs".into());
             }
+            if part_size != size {
+                return foreign("its image size differs".into());
+            }
         }
+        size = part_size;
         if let Some((other, _)) = parts.iter().find(|(_, i)| i.pass == info.pass) {
             return Err(format!(
                 "{} and {} both hold pass {}: merge each part once",
@@ -283,11 +342,13 @@ fn merge_parts(args: &MergeArgs) -> Result<String, String> {
         }
         warnings.push(why);
     }
-    let mut total: Option<Film> = None;
+    crate::render::memory::check(&crate::render::memory::Need::film(size), args.memory_limit)?;
+    // One film: each part is added into it as it is read, in pass order.
+    let mut film = Film::new(size.0, size.1, 0);
     for (path, info) in &parts {
-        let (film, _) = read_state(path).map_err(|why| format!("{}: {why}", path.display()))?;
+        let (_, least) =
+            add_state(path, &mut film).map_err(|why| format!("{}: {why}", path.display()))?;
         let share = info.pass.range(info.samples).len() as u32;
-        let (least, _, _) = film.sample_counts();
         if least < share {
             let why = format!(
                 "{} is unfinished (pass {}: {} samples in some pixel of {share})",
@@ -300,13 +361,7 @@ fn merge_parts(args: &MergeArgs) -> Result<String, String> {
             }
             warnings.push(why);
         }
-        match &mut total {
-            None => total = Some(film),
-            Some(t) if (t.width, t.height) == (film.width, film.height) => t.add(&film),
-            Some(_) => return Err(format!("{}: its image size differs", path.display())),
-        }
     }
-    let film = total.expect("at least one part");
     film.write(&args.output, reference.exposure)
         .map_err(|e| format!("cannot write {}: {e}", args.output.display()))?;
     let (least, most, _) = film.sample_counts();

@@ -11,7 +11,7 @@ use crate::compile::{compile_file, Compiled, Options};
 use crate::lower::cache::LowerCache;
 use crate::render::film::Film;
 use crate::render::state::{self, Pass, StateInfo};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::sync::atomic::Ordering;
 use std::time::{Duration, Instant};
 
@@ -119,11 +119,18 @@ fn render_frame(
         );
         return EXIT_USAGE;
     }
-    if let Err(why) = crate::output::check_output(&output, &compiled.dependencies) {
-        eprintln!("error: cannot write {}: {why}", output.display());
+    let s = &ir.settings;
+    let state_path = farm::state_path(&output, farm.pass);
+    if let Err(why) = check_before_rendering(
+        args,
+        farm,
+        (&output, &state_path),
+        &compiled.dependencies,
+        s,
+    ) {
+        eprintln!("error: {why}");
         return EXIT_USAGE;
     }
-    let s = &ir.settings;
     if let Some(pass) = farm.pass {
         if crate::output::ImageFormat::of(&output) != Some(crate::output::ImageFormat::Exr) {
             eprintln!(
@@ -152,7 +159,6 @@ fn render_frame(
         pass: farm.pass.unwrap_or(Pass::WHOLE),
         exposure: s.exposure,
     };
-    let state_path = farm::state_path(&output, farm.pass);
     let start = match farm::start(&state_path, &now, (s.width, s.height), farm) {
         Ok(start) => start,
         Err(why) => {
@@ -284,20 +290,28 @@ fn render_frame(
         None if keep_state || (interrupted && most > 0) => Some(&state_path),
         None => None,
     };
+    let naming = |path: &Path| {
+        let path = path.to_path_buf();
+        move |e: std::io::Error| format!("cannot write {}: {e}", path.display())
+    };
     let result = match farm.pass {
-        Some(_) => state::write_state(&output, &film, &now),
+        Some(_) => state::write_state(&output, &film, &now).map_err(naming(&output)),
         // Both at once: each waits for its disk sync.
         None if most > 0 => {
             let (image, state) = rayon::join(
-                || film.write(&output, exposure),
-                || state_written.map_or(Ok(()), |path| state::write_state(path, &film, &now)),
+                || film.write(&output, exposure).map_err(naming(&output)),
+                || {
+                    state_written.map_or(Ok(()), |path| {
+                        state::write_state(path, &film, &now).map_err(naming(path))
+                    })
+                },
             );
             image.and(state)
         }
         None => Ok(()),
     };
     if let Err(e) = result {
-        eprintln!("error: cannot write {}: {e}", output.display());
+        eprintln!("error: {e}");
         return EXIT_USAGE;
     }
     if verbosity == Verbosity::Verbose {
@@ -354,6 +368,32 @@ fn render_frame(
     } else {
         EXIT_OK
     }
+}
+
+/// Why the render must not start: a path it will write that cannot be
+/// written (the image, and the state that checkpoints, interruptions and
+/// --keep-state write), an output holding a render's state that the image
+/// would replace, or more memory than is free for its film.
+fn check_before_rendering(
+    args: &RenderArgs,
+    farm: &FarmArgs,
+    (output, state_path): (&Path, &Path),
+    inputs: &[PathBuf],
+    settings: &crate::ir::settings::Settings,
+) -> Result<(), String> {
+    crate::output::check_output(output, inputs)
+        .map_err(|why| format!("cannot write {}: {why}", crate::output::shown(output)))?;
+    if farm.pass.is_none() {
+        farm::refuse_to_replace_state(output, farm.force)?;
+        crate::output::check_writable(state_path).map_err(|why| {
+            format!(
+                "cannot write the render's state at {} (where checkpoints, Ctrl-C and --keep-state save it): {why}",
+                crate::output::shown(state_path)
+            )
+        })?;
+    }
+    let need = crate::render::memory::Need::film((settings.width, settings.height));
+    crate::render::memory::check(&need, args.memory_limit)
 }
 
 /// The process's peak resident memory so far in MB (10^6 bytes), where the

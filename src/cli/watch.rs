@@ -15,6 +15,7 @@ use super::render::{compile, output_path, RenderArgs};
 use crate::ir::Scene;
 use crate::lower::cache::LowerCache;
 use crate::render::film::Film;
+use crate::render::memory::Need;
 use notify::{RecursiveMode, Watcher};
 use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
@@ -183,6 +184,16 @@ impl State {
                 "cannot write {}: {why}; keeping the last image",
                 output.display()
             ));
+            return;
+        }
+        // The image watch replaces must not be a render's state, and the
+        // film must fit (the last render's is released first).
+        self.stop_render();
+        let need = Need::film((ir.settings.width, ir.settings.height));
+        let fits = crate::cli::farm::refuse_to_replace_state(&output, false)
+            .and_then(|()| crate::render::memory::check(&need, self.args.memory_limit));
+        if let Err(why) = fits {
+            status(&format!("{why}; keeping the last image"));
             return;
         }
         status(&format!(

@@ -15,6 +15,21 @@ pub const MAX_FILE_NAME: usize = 255;
 /// that the temporary name (name, host, process) still fits a file name.
 const LONG_NAME: usize = 160;
 
+/// A path as messages show it: whole, or its start and end around an
+/// ellipsis when longer than a line (a 65,536-character `#` pattern).
+pub fn shown(path: &Path) -> String {
+    let text = path.display().to_string();
+    let chars: Vec<char> = text.chars().collect();
+    if chars.len() <= 120 {
+        return text;
+    }
+    let (head, tail): (String, String) = (
+        chars[..50].iter().collect(),
+        chars[chars.len() - 50..].iter().collect(),
+    );
+    format!("{head}…{tail} ({} characters)", chars.len())
+}
+
 /// Why nothing can be written at `path`, found before a run starts rather
 /// than after it: a path that names a folder (a trailing `/`) or something
 /// other than a file, a file name longer than a file system holds, a

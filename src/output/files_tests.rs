@@ -29,7 +29,9 @@ fn paths_that_name_folders_or_other_things_are_refused() {
         .unwrap_err()
         .contains("names a folder"));
     std::fs::create_dir(at("sub")).unwrap();
-    assert!(check_writable(&at("sub")).unwrap_err().contains("is a folder"));
+    assert!(check_writable(&at("sub"))
+        .unwrap_err()
+        .contains("is a folder"));
     assert!(check_writable(&at("missing/out.png"))
         .unwrap_err()
         .contains("does not exist"));
@@ -49,7 +51,9 @@ fn paths_that_name_folders_or_other_things_are_refused() {
 #[test]
 fn long_names_write_through_a_temporary_file_that_fits() {
     let dir = tempfile::tempdir().unwrap();
-    let path = dir.path().join(format!("{}.png", "b".repeat(MAX_FILE_NAME - 4)));
+    let path = dir
+        .path()
+        .join(format!("{}.png", "b".repeat(MAX_FILE_NAME - 4)));
     assert_eq!(check_writable(&path), Ok(()));
     write_atomically(&path, b"x").unwrap();
     assert_eq!(std::fs::read(&path).unwrap(), b"x");

@@ -6,7 +6,8 @@
 mod files;
 
 pub use files::{
-    check_writable, frame_path, same_file, write_atomically, write_atomically_with, MAX_FILE_NAME,
+    check_writable, frame_path, same_file, shown, write_atomically, write_atomically_with,
+    MAX_FILE_NAME,
 };
 use glam::Vec3;
 use std::io::Write;
@@ -24,7 +25,9 @@ pub fn write_image(
 ) -> std::io::Result<()> {
     let size = (width, height);
     match ImageFormat::of(path) {
-        Some(ImageFormat::Png) => write_atomically_with(path, |out| png(out, size, &pixel, exposure)),
+        Some(ImageFormat::Png) => {
+            write_atomically_with(path, |out| png(out, size, &pixel, exposure))
+        }
         Some(ImageFormat::Exr) => write_atomically_with(path, |out| exr(out, size, &pixel)),
         Some(ImageFormat::Pfm) => write_atomically_with(path, |out| pfm(out, size, &pixel)),
         None => Err(std::io::Error::new(

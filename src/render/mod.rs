@@ -4,6 +4,7 @@
 //! (seed, pixel, sample index), so the image is the same for any thread count.
 
 pub mod film;
+pub mod memory;
 pub mod state;
 
 use crate::accel::ray_count::{self, RayCounts};
@@ -18,19 +19,41 @@ use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 /// Side of a square tile in pixels.
 pub const TILE: u32 = 16;
 
-/// What a tile of a pass produced.
-struct TileResult {
+/// A tile's pixels in the film, borrowed row by row: the tiles of a pass
+/// add their samples in place, in parallel, with no copy of the film (a
+/// copy of an 8192 × 8192 film is 1.9 GB).
+struct TileRows<'a> {
     /// Its top-left pixel.
     corner: (u32, u32),
-    /// The new sample sums of its pixels, row-major: all of them, or (when
-    /// the pass was stopped) those begun.
-    sums: Vec<DVec3>,
-    /// The new sample counts of the same pixels.
-    counts: Vec<u32>,
-    /// Whether the pass was stopped in this tile.
-    stopped: bool,
-    /// The rays traced for it.
-    rays: RayCounts,
+    /// Its rows of sample sums.
+    sums: Vec<&'a mut [DVec3]>,
+    /// Its rows of sample counts.
+    counts: Vec<&'a mut [u32]>,
+}
+
+/// The film's pixels cut into tiles of TILE × TILE (fewer at the right and
+/// bottom edges), in row-major order of tiles.
+fn tile_rows<'a>(sums: &'a mut [DVec3], counts: &'a mut [u32], width: u32) -> Vec<TileRows<'a>> {
+    let (w, tile) = (width as usize, TILE as usize);
+    let across = w.div_ceil(tile);
+    let mut tiles: Vec<TileRows> = Vec::new();
+    let bands = sums.chunks_mut(w * tile).zip(counts.chunks_mut(w * tile));
+    for (band, (band_sums, band_counts)) in bands.enumerate() {
+        let first = tiles.len();
+        tiles.extend((0..across).map(|tx| TileRows {
+            corner: ((tx * tile) as u32, (band * tile) as u32),
+            sums: Vec::with_capacity(tile),
+            counts: Vec::with_capacity(tile),
+        }));
+        for (row_sums, row_counts) in band_sums.chunks_mut(w).zip(band_counts.chunks_mut(w)) {
+            let cells = row_sums.chunks_mut(tile).zip(row_counts.chunks_mut(tile));
+            for (tx, (s, c)) in cells.enumerate() {
+                tiles[first + tx].sums.push(s);
+                tiles[first + tx].counts.push(c);
+            }
+        }
+    }
+    tiles
 }
 
 /// How a render went.
@@ -174,34 +197,30 @@ fn render_view(
     debug_assert_eq!((film.width, film.height), (w, h));
     let scale = view.scale as f32;
     let first = film.first;
-    let tiles: Vec<(u32, u32)> = (0..h.div_ceil(TILE))
-        .flat_map(|ty| (0..w.div_ceil(TILE)).map(move |tx| (tx * TILE, ty * TILE)))
-        .collect();
     let done = AtomicU64::new(0);
     let mut rays = RayCounts::default();
     // A resumed film skips the passes its every pixel has done.
     let least = film.count.iter().copied().min().unwrap_or(0);
     for end in pass_ends(view.samples).into_iter().filter(|&e| e > least) {
-        let results: Vec<TileResult> = tiles
-            .par_iter()
-            .map(|&(x0, y0)| {
-                let (x1, y1) = ((x0 + TILE).min(w), (y0 + TILE).min(h));
+        let mut tiles = tile_rows(&mut film.sum, &mut film.count, w);
+        let results: Vec<(bool, RayCounts)> = tiles
+            .par_iter_mut()
+            .map(|tile| {
+                let (x0, y0) = tile.corner;
                 let rays_before = ray_count::this_thread();
-                let pixels = ((x1 - x0) * (y1 - y0)) as usize;
-                let mut sums = Vec::with_capacity(pixels);
-                let mut counts = Vec::with_capacity(pixels);
                 let mut stopped = false;
                 let mut samples = 0u64;
-                'pixels: for y in y0..y1 {
-                    for x in x0..x1 {
-                        let i = (y * w + x) as usize;
-                        let (mut sum, from) = (film.sum[i], film.count[i]);
+                let rows = tile.sums.iter_mut().zip(tile.counts.iter_mut());
+                'pixels: for (y, (sums, counts)) in (y0..).zip(rows) {
+                    for (x, (sum_held, count_held)) in
+                        (x0..).zip(sums.iter_mut().zip(counts.iter_mut()))
+                    {
+                        let (mut sum, from) = (*sum_held, *count_held);
                         for s in from..end {
                             if (s - from).is_multiple_of(CANCEL_POLL)
                                 && cancel.load(Ordering::Relaxed)
                             {
-                                sums.push(sum);
-                                counts.push(s);
+                                (*sum_held, *count_held) = (sum, s);
                                 samples += (s - from) as u64;
                                 stopped = true;
                                 break 'pixels;
@@ -209,33 +228,19 @@ fn render_view(
                             let l = sample(scene, integrator, x, y, first + s, scale);
                             sum += l.as_dvec3();
                         }
-                        sums.push(sum);
-                        counts.push(from.max(end));
+                        (*sum_held, *count_held) = (sum, from.max(end));
                         samples += end.saturating_sub(from) as u64;
                     }
                 }
                 progress(done.fetch_add(samples, Ordering::Relaxed) + samples);
-                TileResult {
-                    corner: (x0, y0),
-                    sums,
-                    counts,
-                    stopped,
-                    rays: ray_count::this_thread() - rays_before,
-                }
+                (stopped, ray_count::this_thread() - rays_before)
             })
             .collect();
+        drop(tiles);
         // A stopped pass keeps every sample done: each pixel counts its own.
-        let stopped = results.iter().any(|t| t.stopped);
-        for t in results {
-            rays = rays + t.rays;
-            let (x0, y0) = t.corner;
-            let x1 = (x0 + TILE).min(w);
-            for (k, (sum, count)) in t.sums.into_iter().zip(t.counts).enumerate() {
-                let (x, y) = (x0 + k as u32 % (x1 - x0), y0 + k as u32 / (x1 - x0));
-                let i = (y * w + x) as usize;
-                film.sum[i] = sum;
-                film.count[i] = count;
-            }
+        let stopped = results.iter().any(|t| t.0);
+        for (_, tile_rays) in results {
+            rays = rays + tile_rays;
         }
         if stopped {
             return Rendered {

@@ -99,8 +99,15 @@ fn is_state_part(attributes: &exr::meta::header::LayerAttributes) -> bool {
 
 /// Reads a state file's description alone (its headers, not its pixels).
 pub fn read_state_info(path: &Path) -> Result<StateInfo, String> {
+    read_state_header(path).map(|(info, _)| info)
+}
+
+/// Reads a state file's description and image size (its headers, not its
+/// pixels).
+pub fn read_state_header(path: &Path) -> Result<(StateInfo, (u32, u32)), String> {
     let (file, len) = open(path)?;
-    read_header(file, len).map(|(info, _)| info)
+    let (info, (w, h)) = read_header(file, len)?;
+    Ok((info, (w as u32, h as u32)))
 }
 
 /// A state file opened for reading and its length, or why not: only a
@@ -183,19 +190,22 @@ pub fn read_state(path: &Path) -> Result<(Film, StateInfo), String> {
 }
 
 /// Adds the samples of the state file at `path` to `total` (a film of the
-/// same size), pixel by pixel as they are read; returns its description.
-/// On an error `total` holds part of the file's samples.
-pub fn add_state(path: &Path, total: &mut Film) -> Result<StateInfo, String> {
+/// same size), pixel by pixel as they are read; returns its description
+/// and the fewest samples a pixel of it has. On an error `total` holds
+/// part of the file's samples.
+pub fn add_state(path: &Path, total: &mut Film) -> Result<(StateInfo, u32), String> {
     let (file, len) = open(path)?;
     let (info, (w, h)) = read_header(file, len)?;
     if (w as u32, h as u32) != (total.width, total.height) {
         return Err("its image size differs".into());
     }
+    let mut least = u32::MAX;
     read_pixels(open(path)?.0, &info, (w, h), &mut |i, sum, count| {
         total.sum[i] += sum;
         total.count[i] = total.count[i].saturating_add(count);
+        least = least.min(count);
     })?;
-    Ok(info)
+    Ok((info, least))
 }
 
 /// The film of a state whose header said `info` and `(w, h)`.

@@ -20,7 +20,6 @@ fn a_state_round_trips_bit_for_bit() {
     assert_eq!((w, h, px[1]), (3, 2, film.pixel(1)));
 }
 
-
 #[test]
 fn sums_no_render_makes_are_refused() {
     let dir = tempfile::tempdir().unwrap();
@@ -41,7 +40,6 @@ fn sums_no_render_makes_are_refused() {
     assert!(read_state(&path).unwrap_err().contains("not finite"));
 }
 
-
 #[test]
 fn a_plain_image_or_garbage_is_no_state() {
     let dir = tempfile::tempdir().unwrap();
@@ -52,7 +50,6 @@ fn a_plain_image_or_garbage_is_no_state() {
     assert!(read_state(&path).unwrap_err().contains("not an OpenEXR"));
 }
 
-
 #[test]
 fn compressed_or_truncated_states_are_refused_from_their_headers() {
     let dir = tempfile::tempdir().unwrap();
@@ -62,7 +59,10 @@ fn compressed_or_truncated_states_are_refused_from_their_headers() {
     let zip = exr::prelude::Encoding::SMALL_LOSSLESS;
     write_state_encoded(&path, &film, &info(), zip).unwrap();
     let small = std::fs::metadata(&path).unwrap().len();
-    assert!(small < BYTES_PER_PIXEL * 256 * 128, "{small} bytes: shorter than declared");
+    assert!(
+        small < BYTES_PER_PIXEL * 256 * 128,
+        "{small} bytes: shorter than declared"
+    );
     for why in [
         read_state(&path).unwrap_err(),
         read_state_bytes(&std::fs::read(&path).unwrap()).unwrap_err(),
@@ -73,7 +73,10 @@ fn compressed_or_truncated_states_are_refused_from_their_headers() {
     let whole = std::fs::read(&path).unwrap();
     std::fs::write(&path, &whole[..whole.len() / 2]).unwrap();
     let why = read_state(&path).unwrap_err();
-    assert!(why.contains("too short") && why.contains("256×128"), "{why}");
+    assert!(
+        why.contains("too short") && why.contains("256×128"),
+        "{why}"
+    );
     assert!(read_state_info(&path).is_err(), "the description alone too");
     assert!(is_state_file(&path), "still named a state by its headers");
 }
@@ -89,24 +92,30 @@ fn a_state_adds_into_a_film_as_it_is_read() {
     }
     write_state(&path, &film, &info()).unwrap();
     let mut total = film.clone();
-    add_state(&path, &mut total).unwrap();
+    assert_eq!(add_state(&path, &mut total).unwrap(), (info(), 1));
     for i in 0..15 {
         assert_eq!(total.sum[i], film.sum[i] * 2.0);
         assert_eq!(total.count[i], film.count[i] * 2);
     }
     let mut other = Film::new(3, 5, 0);
-    assert!(add_state(&path, &mut other).unwrap_err().contains("size differs"));
+    assert!(add_state(&path, &mut other)
+        .unwrap_err()
+        .contains("size differs"));
 }
 
 #[test]
 fn only_regular_files_are_opened() {
     let dir = tempfile::tempdir().unwrap();
-    assert!(read_state(dir.path()).unwrap_err().contains("not a regular file"));
+    assert!(read_state(dir.path())
+        .unwrap_err()
+        .contains("not a regular file"));
     let fifo = dir.path().join("pipe.exr");
     let made = std::process::Command::new("mkfifo").arg(&fifo).status();
     if made.is_ok_and(|s| s.success()) {
         // Opening a FIFO to read would wait for a writer forever.
-        assert!(read_state(&fifo).unwrap_err().contains("not a regular file"));
+        assert!(read_state(&fifo)
+            .unwrap_err()
+            .contains("not a regular file"));
         assert!(!is_state_file(&fifo));
     }
 }

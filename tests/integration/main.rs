@@ -15,6 +15,7 @@ mod layering;
 mod materials;
 mod mitsuba;
 mod nasty;
+mod outputs;
 mod render;
 mod shapes;
 mod texture_inputs;

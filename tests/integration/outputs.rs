@@ -1,0 +1,258 @@
+//! What a render writes, and that it loses nothing (issue 35): states of
+//! large images in bounded memory, memory refused up front, outputs holding
+//! samples never replaced without --force, every path checked before the
+//! first sample, lying state files refused from their headers, temporary
+//! files of killed runs cleaned.
+
+use super::{ptsc_stderr, temp_dir_with};
+use std::path::Path;
+
+/// A scene that renders fast at any size: a camera and a speck.
+const SPECK: &str = "camera { position <0, 0, -5> look_at <0, 0, 0> }\n\
+    sphere { center <0, 0, 0> radius 0.3 material { diffuse rgb 0.5 } }\n";
+
+/// Runs the ptsc binary under an address-space limit (`ulimit -v`, KiB),
+/// so that an allocation past it fails at once instead of swapping.
+fn ptsc_limited(kib: u64, args: &[&str]) -> (i32, String) {
+    let bin = env!("CARGO_BIN_EXE_ptsc");
+    let out = std::process::Command::new("sh")
+        .arg("-c")
+        .arg(format!("ulimit -v {kib} && exec \"$0\" \"$@\""))
+        .arg(bin)
+        .args(args)
+        .output()
+        .unwrap();
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
+fn path_str(p: &Path) -> &str {
+    p.to_str().unwrap()
+}
+
+#[test]
+fn a_state_of_a_large_image_is_written_in_bounded_memory() {
+    // 4096² (the largest CI holds quickly): the film is 470 MB; the state
+    // file 671 MB. Writing it whole in memory (as before) took 1.8 GB.
+    let dir = temp_dir_with(&[("s.pts", SPECK)]);
+    let scene = dir.path().join("s.pts");
+    let part = dir.path().join("part.exr");
+    let limit_kib = 1_100_000;
+    let (code, err) = ptsc_limited(
+        limit_kib,
+        &[
+            "render",
+            path_str(&scene),
+            "--resolution",
+            "4096x4096",
+            "--spp",
+            "1",
+            "--threads",
+            "2",
+            "--pass",
+            "1/1",
+            "-q",
+            "-o",
+            path_str(&part),
+        ],
+    );
+    assert_eq!(code, 0, "{err}");
+    let len = std::fs::metadata(&part).unwrap().len();
+    assert!(len > 40 * 4096 * 4096, "{len} bytes");
+    // Merging it reads it into one film, in the same bound.
+    let image = dir.path().join("image.exr");
+    let (code, err) = ptsc_limited(
+        limit_kib,
+        &["merge", path_str(&part), "-o", path_str(&image), "-q"],
+    );
+    assert_eq!(code, 0, "{err}");
+}
+
+#[test]
+fn memory_past_the_limit_is_refused_before_the_first_sample() {
+    let dir = temp_dir_with(&[("s.pts", SPECK)]);
+    let scene = dir.path().join("s.pts");
+    let out = dir.path().join("big.png");
+    let args = |extra: &'static [&'static str]| {
+        let mut a = vec![
+            "render",
+            path_str(&scene),
+            "--resolution",
+            "8192x8192",
+            "-o",
+            path_str(&out),
+        ];
+        a.extend(extra);
+        a
+    };
+    // The largest image under a 1 GB address space: its film alone is 1.9 GB.
+    let (code, err) = ptsc_limited(1_000_000, &args(&[]));
+    assert_eq!(code, 2, "{err}");
+    assert!(
+        err.contains("needs 1.95 GB") && err.contains("ulimit -v"),
+        "{err}"
+    );
+    let (code, err) = ptsc_stderr(&args(&["--memory-limit", "1G"]));
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("--memory-limit"), "{err}");
+    assert!(!out.exists());
+    let (code, err) = ptsc_stderr(&["render", "s.pts", "--memory-limit", "lots"]);
+    assert_eq!(code, 2, "{err}");
+}
+
+#[test]
+fn an_output_holding_samples_is_not_replaced_without_force() {
+    let dir = temp_dir_with(&[("s.pts", SPECK)]);
+    let scene = dir.path().join("s.pts");
+    let at = |name: &str| dir.path().join(name).to_str().unwrap().to_string();
+    let render = |extra: &[&str]| {
+        let mut a = vec![
+            "render",
+            path_str(&scene),
+            "--resolution",
+            "16x16",
+            "--spp",
+            "2",
+            "-q",
+        ];
+        a.extend(extra);
+        ptsc_stderr(&a)
+    };
+    let (p1, p2) = (at("p1.exr"), at("p2.exr"));
+    assert_eq!(render(&["--pass", "1/2", "-o", &p1]).0, 0);
+    assert_eq!(render(&["--pass", "2/2", "-o", &p2]).0, 0);
+    let part = std::fs::read(&p1).unwrap();
+    // A farm script that lost its --pass.
+    let (code, err) = render(&["-o", &p1]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("p1.exr") && err.contains("--force"), "{err}");
+    // A merge written over another part.
+    let (code, err) = ptsc_stderr(&["merge", &p1, "-o", &p2, "--partial", "-q"]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("p2.exr") && err.contains("--force"), "{err}");
+    assert_eq!(std::fs::read(&p1).unwrap(), part, "the samples are kept");
+    let (code, err) = render(&["-o", &p1, "--force"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(!ptsc::render::state::is_state_file(Path::new(&p1)));
+}
+
+#[test]
+fn every_path_a_render_writes_is_checked_before_the_first_sample() {
+    let dir = temp_dir_with(&[("s.pts", SPECK)]);
+    let scene = dir.path().join("s.pts");
+    // Many samples: a render that started would take minutes.
+    let render = |out: &str, extra: &[&str]| {
+        let mut a = vec!["render", path_str(&scene), "--spp", "100000", "-o", out];
+        a.extend(extra);
+        ptsc_stderr(&a)
+    };
+    let slash = format!("{}/", dir.path().join("out.png").display());
+    let (code, err) = render(&slash, &[]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("names a folder"), "{err}");
+    let out = dir.path().join("o.png");
+    std::fs::create_dir(dir.path().join("o.png.state.exr")).unwrap();
+    let (code, err) = render(path_str(&out), &["--keep-state"]);
+    assert_eq!(code, 2, "{err}");
+    assert!(
+        err.contains("o.png.state.exr") && err.contains("folder"),
+        "{err}"
+    );
+    // A frame pattern wider than a file name: refused, not a panic.
+    let wide = dir.path().join(format!("{}.png", "#".repeat(65_536)));
+    let (code, err) = render(path_str(&wide), &[]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("at most 255") && err.len() < 1000, "{err}");
+}
+
+#[test]
+fn compressed_or_truncated_states_are_refused_by_resume_and_merge() {
+    let dir = temp_dir_with(&[("s.pts", SPECK)]);
+    let scene = dir.path().join("s.pts");
+    let part = dir.path().join("p.exr");
+    let render = |extra: &[&str]| {
+        let mut a = vec![
+            "render",
+            path_str(&scene),
+            "--resolution",
+            "64x48",
+            "--spp",
+            "2",
+            "-q",
+        ];
+        a.extend(extra);
+        ptsc_stderr(&a)
+    };
+    assert_eq!(render(&["--pass", "1/1", "-o", path_str(&part)]).0, 0);
+    // The same state, its parts rewritten ZIP-compressed (as a tool that
+    // recompresses EXR files would).
+    let zipped = dir.path().join("z.exr");
+    recompress(&part, &zipped);
+    let image = dir.path().join("i.png");
+    let (code, err) = ptsc_stderr(&["merge", path_str(&zipped), "-o", path_str(&image)]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("compressed"), "{err}");
+    std::fs::copy(&zipped, &part).unwrap();
+    let (code, err) = render(&["--pass", "1/1", "--resume", "-o", path_str(&part)]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("compressed"), "{err}");
+    // Truncated: its header declares more than the file holds.
+    assert_eq!(
+        render(&["--pass", "1/1", "--restart", "-o", path_str(&part)]).0,
+        0
+    );
+    let bytes = std::fs::read(&part).unwrap();
+    std::fs::write(&part, &bytes[..bytes.len() * 2 / 3]).unwrap();
+    let (code, err) = ptsc_stderr(&["merge", path_str(&part), "-o", path_str(&image)]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("too short"), "{err}");
+}
+
+/// Rewrites an EXR file with every part ZIP-compressed.
+fn recompress(from: &Path, to: &Path) {
+    use exr::prelude::*;
+    let mut image = read_all_data_from_file(from).unwrap();
+    for layer in &mut image.layer_data {
+        layer.encoding = Encoding::SMALL_LOSSLESS;
+    }
+    image.write().to_file(to).unwrap();
+}
+
+#[test]
+fn temporary_files_of_killed_runs_are_removed_by_the_next_run() {
+    let dir = temp_dir_with(&[("s.pts", SPECK)]);
+    let scene = dir.path().join("s.pts");
+    let out = dir.path().join("out.png");
+    let mut child = std::process::Command::new("true").spawn().unwrap();
+    let dead = child.id();
+    child.wait().unwrap();
+    let host = std::fs::read_to_string("/proc/sys/kernel/hostname").unwrap_or_default();
+    let host: String = (host.trim().chars())
+        .filter(|c| c.is_ascii_alphanumeric() || *c == '-')
+        .collect();
+    let stale = [
+        format!(".out.png.{host}.{dead}.tmp"),
+        format!(".out.png.{dead}.tmp"),
+        format!(".out.png.state.exr.{host}.{dead}.tmp"),
+    ];
+    for name in &stale {
+        std::fs::write(dir.path().join(name), vec![0u8; 4096]).unwrap();
+    }
+    let (code, err) = ptsc_stderr(&[
+        "render",
+        path_str(&scene),
+        "--resolution",
+        "8x8",
+        "-q",
+        "-o",
+        path_str(&out),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let left: Vec<String> = (std::fs::read_dir(dir.path()).unwrap().flatten())
+        .map(|e| e.file_name().to_string_lossy().into_owned())
+        .filter(|n| n.ends_with(".tmp"))
+        .collect();
+    assert!(left.is_empty(), "{left:?}");
+}

@@ -1269,7 +1269,7 @@ fn emissive_plane(at: Span) -> Diagnostic {
 }
 
 /// `n` with thousands separated: `4,000,000`.
-pub(super) fn group_digits(n: u64) -> String {
+pub fn group_digits(n: u64) -> String {
     let digits = n.to_string();
     let mut out = String::new();
     for (i, c) in digits.chars().enumerate() {

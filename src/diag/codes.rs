@@ -112,6 +112,8 @@ pub const MESH_FILE: &str = "pts::check::mesh_file";
 pub const OUTPUT_FILE: &str = "pts::check::output_file";
 /// A transform that cannot be inverted.
 pub const SINGULAR_TRANSFORM: &str = "pts::check::singular_transform";
+/// A scene making more primitives than the renderer holds.
+pub const TOO_MANY_PRIMITIVES: &str = "pts::lower::too_many_primitives";
 /// A sphere, disk, cylinder, cone or torus under a non-uniform scale.
 pub const NON_UNIFORM_SCALE: &str = "pts::lower::non_uniform_scale";
 /// Warning: a material never used.
@@ -390,6 +392,12 @@ pub const CATALOGUE: &[Entry] = &[
         title: "A mesh file that is missing, unreadable or of an unknown format",
         explanation: "`mesh { file … }` reads OBJ and PLY (ASCII, binary little and big endian) files with at least one triangle. The label says what went wrong: the file is missing, has another extension, or its contents are broken (the line or element is named).",
         example: "mesh { file \"bunny.stl\" }",
+    },
+    Entry {
+        code: TOO_MANY_PRIMITIVES,
+        title: "A scene making more primitives than the renderer holds",
+        explanation: "A scene (and each group's shared copy) makes at most 50,000,000 primitives, a mesh triangle counting one and a box six: about 4 GB once built. Placements of a group are shared, not copied, so a group of a large mesh placed a thousand times costs one mesh; only its planes and the objects emissive under a placement are copied at each placement. The limit is checked before anything is built, so `check` reports it as `render` does.",
+        example: "group lamp {\n  mesh { file \"million_triangles.ply\" material { emission rgb 5 } }\n}\nfor i in 0..1000 { instance lamp { translate <i, 0, 0> } }",
     },
     Entry {
         code: SINGULAR_TRANSFORM,

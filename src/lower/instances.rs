@@ -5,11 +5,14 @@
 //! material, the nearest enclosing instance's) or, for a group placed
 //! several times, a placement of its shared prototype (`ir::instance`).
 //!
-//! A placement is expanded into objects when sharing would gain nothing
-//! or cannot be done: its group is placed once (a single placement renders
-//! as the flat scene does), holds an infinite plane (no bounds to place),
-//! or holds an object emissive under it (lights are sampled as the scene's
-//! primitives; a lamp's bulb is small).
+//! A placement is expanded into objects when sharing would gain nothing:
+//! its group is placed once (a single placement renders as the flat scene
+//! does). Objects that cannot be shared are expanded alone, the rest of
+//! their group still shared: an infinite plane (no bounds to place) and an
+//! object emissive under some placement (lights are sampled as the scene's
+//! primitives; a lamp's bulb is small). A lamp of a million triangles
+//! placed a thousand times is refused by the primitive limit
+//! (`shapes::MAX_PRIMITIVES`), not built.
 
 use super::shapes::{self, non_uniform, uniform_scale, within_domain};
 use super::{geometry, LowerCache};
@@ -46,6 +49,9 @@ pub struct Split {
     pub scene: Option<check::Scene>,
     /// The placements of shared groups.
     pub shared: Vec<Leaf>,
+    /// What of each group its shared placements share: its objects less
+    /// those expanded alone (planes, emitters), by group index.
+    pub groups: Vec<check::Group>,
 }
 
 /// Every placement of the scene's groups, through every level (iterative:
@@ -92,6 +98,7 @@ pub fn split(scene: &check::Scene) -> Split {
         return Split {
             scene: None,
             shared: Vec::new(),
+            groups: Vec::new(),
         };
     }
     let leaves = leaves(scene);
@@ -99,27 +106,29 @@ pub fn split(scene: &check::Scene) -> Split {
     for leaf in &leaves {
         *count.entry(leaf.group).or_default() += 1;
     }
+    let alone = expanded_alone(scene, &leaves);
+    let groups: Vec<check::Group> = (scene.groups.iter().zip(&alone))
+        .map(|(group, alone)| shareable_part(group, alone))
+        .collect();
     let mut objects = scene.objects.clone();
     let mut shared = Vec::new();
     for leaf in leaves {
         let group = &scene.groups[leaf.group];
-        let parts = group.objects.iter().zip(&group.unmaterialled);
-        let emissive = parts
-            .clone()
-            .any(|(o, &u)| scene.materials[material_under(o, u, &leaf)].is_emissive());
-        let unbounded =
-            (group.objects.iter()).any(|o| matches!(o.shape, check::Shape::Plane { .. }));
-        if count[&leaf.group] >= 2 && !emissive && !unbounded {
-            shared.push(leaf);
-            continue;
-        }
-        for (object, &unmaterialled) in parts {
+        let sharing = count[&leaf.group] >= 2 && !groups[leaf.group].objects.is_empty();
+        let parts = (group.objects.iter().zip(&group.unmaterialled)).zip(&alone[leaf.group]);
+        for ((object, &unmaterialled), &alone) in parts {
+            if sharing && !alone {
+                continue;
+            }
             objects.push(Object {
                 transform: leaf.transform * object.transform,
                 velocity: leaf.velocity + leaf.transform.transform_vector3(object.velocity),
                 material: material_under(object, unmaterialled, &leaf),
                 ..object.clone()
             });
+        }
+        if sharing {
+            shared.push(leaf);
         }
     }
     Split {
@@ -130,6 +139,41 @@ pub fn split(scene: &check::Scene) -> Split {
             ..scene.clone()
         }),
         shared,
+        groups,
+    }
+}
+
+/// For each group, which of its objects are expanded at every placement:
+/// planes (no bounds to place) and objects emissive under some placement.
+fn expanded_alone(scene: &check::Scene, leaves: &[Leaf]) -> Vec<Vec<bool>> {
+    let mut alone: Vec<Vec<bool>> = (scene.groups.iter())
+        .map(|g| {
+            (g.objects.iter())
+                .map(|o| matches!(o.shape, check::Shape::Plane { .. }))
+                .collect()
+        })
+        .collect();
+    for leaf in leaves {
+        let group = &scene.groups[leaf.group];
+        let parts = group.objects.iter().zip(&group.unmaterialled);
+        for (k, (o, &u)) in parts.enumerate() {
+            if scene.materials[material_under(o, u, leaf)].is_emissive() {
+                alone[leaf.group][k] = true;
+            }
+        }
+    }
+    alone
+}
+
+/// A group less its objects expanded alone: what its placements share.
+fn shareable_part(group: &check::Group, alone: &[bool]) -> check::Group {
+    let keep = |k: &usize| !alone[*k];
+    let indices: Vec<usize> = (0..group.objects.len()).filter(keep).collect();
+    check::Group {
+        objects: indices.iter().map(|&k| group.objects[k].clone()).collect(),
+        unmaterialled: indices.iter().map(|&k| group.unmaterialled[k]).collect(),
+        instances: Vec::new(),
+        ..group.clone()
     }
 }
 
@@ -155,7 +199,7 @@ pub struct Gathered {
 /// placement, with a note at the second.
 pub fn gather(
     scene: &check::Scene,
-    shared: &[Leaf],
+    Split { shared, groups, .. }: &Split,
     cache: &mut LowerCache,
 ) -> Result<Gathered, Diagnostics> {
     let mut diags = Diagnostics::new();
@@ -173,7 +217,7 @@ pub fn gather(
     let mut uneven_at: HashMap<(usize, usize), usize> = HashMap::new();
     let mut uneven_count: HashMap<(usize, usize), usize> = HashMap::new();
     for leaf in shared {
-        let group = &scene.groups[leaf.group];
+        let group = &groups[leaf.group];
         for (k, object) in group.objects.iter().enumerate() {
             // Round shapes take similarity transforms only, placed or not
             // (the flat scene could not hold an ellipsoid either); an
@@ -241,7 +285,7 @@ pub fn gather(
         out.placements.push((placement, bounds));
     }
     for ((group, k), spans) in uneven {
-        let object = &scene.groups[group].objects[k];
+        let object = &groups[group].objects[k];
         let what = object.shape.round_kind().unwrap_or("shape");
         let mut d = non_uniform(object.span, what).with_secondary(spans[0], "placed here");
         if let Some(&second) = spans.get(1) {

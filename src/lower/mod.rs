@@ -66,7 +66,7 @@ pub fn lower(
     let split = instances::split(scene);
     let flat = split.scene.as_ref().unwrap_or(scene);
     let coats = material::Coats::default();
-    let prepared = prepare(scene, flat, &split.shared, adjust, (cache, coats), warnings)?;
+    let prepared = prepare(scene, flat, &split, adjust, (cache, coats), warnings)?;
     Ok(prepared.build(flat, cache))
 }
 
@@ -82,14 +82,7 @@ pub fn validate(
     let split = instances::split(scene);
     let flat = split.scene.as_ref().unwrap_or(scene);
     let coats = material::Coats::for_checking();
-    match prepare(
-        scene,
-        flat,
-        &split.shared,
-        &|_| {},
-        (cache, coats),
-        warnings,
-    ) {
+    match prepare(scene, flat, &split, &|_| {}, (cache, coats), warnings) {
         Ok(_) => Diagnostics::new(),
         Err(errors) => errors,
     }
@@ -123,7 +116,7 @@ struct Prepared {
 fn prepare(
     original: &check::Scene,
     flat: &check::Scene,
-    shared: &[instances::Leaf],
+    split: &instances::Split,
     adjust: &dyn Fn(&mut Settings),
     (cache, mut coats): (&mut LowerCache, material::Coats),
     warnings: &mut Diagnostics,
@@ -143,7 +136,7 @@ fn prepare(
     let environment = (flat.environment.as_ref())
         .and_then(|e| environment::lower_environment(e, images, &mut diags, warnings));
     images.keep_only_used();
-    let placements = instances::gather(original, shared, cache).map_err(|d| diags.extend(d));
+    let placements = instances::gather(original, split, cache).map_err(|d| diags.extend(d));
     let key = (!cache.is_one_off()).then(|| cache.geometry_key(flat));
     let shapes = match key.and_then(|k| cache.reuse_geometry(k)) {
         // Shared, not copied: materials and lights live outside the geometry.

@@ -7,6 +7,7 @@
 
 use super::cache::LowerCache;
 use super::collect::{Collected, PlainMesh};
+use super::mesh::MeshData;
 use crate::check;
 use crate::check::domain::{self, unit_f32, MAX_MAGNITUDE, MIN_SIZE};
 use crate::diag::codes;
@@ -18,6 +19,9 @@ use crate::geometry::torus::Torus;
 use crate::geometry::Aabb;
 use crate::ir::Prim;
 use glam::{DMat4, DVec3, Vec2, Vec3};
+use std::collections::HashMap;
+use std::path::PathBuf;
+use std::sync::Arc;
 
 /// The primitives of a list of objects (the scene's, or a group's in its
 /// frame), before the BVH orders them.
@@ -64,12 +68,21 @@ impl Gathered {
     }
 }
 
+/// The most primitives a scene (or a group's prototype) may make, a mesh
+/// triangle counting one: about 4 GB once built (docs/language.md, "Limits").
+pub const MAX_PRIMITIVES: usize = 50_000_000;
+
 /// What one object's shapes make: where they go and the objects out of
 /// range or too small so far (one diagnostic each, for the first).
 struct Gathering<'a> {
     out: Gathered,
     out_of_range: Option<usize>,
     too_small: Option<usize>,
+    /// The primitives the objects make (counted before any is made).
+    wanted: u64,
+    /// The meshes read so far by path: an object copied by many
+    /// placements reads its file once.
+    meshes: HashMap<PathBuf, Result<Arc<MeshData>, String>>,
     diags: Diagnostics,
     cache: &'a mut LowerCache,
 }
@@ -88,9 +101,16 @@ pub fn gather(
         },
         out_of_range: None,
         too_small: None,
+        wanted: 0,
+        meshes: HashMap::new(),
         diags: Diagnostics::new(),
         cache,
     };
+    // Counted before anything is made: past the limit, nothing is.
+    if let Some(o) = g.count(objects) {
+        g.diags.push(too_many(objects[o].span, g.wanted));
+        return Err(g.diags);
+    }
     for (o, obj) in objects.iter().enumerate() {
         g.object(o, obj);
     }
@@ -115,6 +135,22 @@ pub fn gather(
         return Err(g.diags);
     }
     Ok(g.out)
+}
+
+/// The error of a scene making more than [`MAX_PRIMITIVES`] (`wanted`),
+/// at the object that crossed the limit.
+fn too_many(span: crate::span::Span, wanted: u64) -> Diagnostic {
+    Diagnostic::error(
+        codes::TOO_MANY_PRIMITIVES,
+        format!(
+            "the scene makes {} primitives (a mesh triangle counts one), more than the {} the renderer holds",
+            check::group_digits(wanted),
+            check::group_digits(MAX_PRIMITIVES as u64)
+        ),
+        span,
+    )
+    .with_label("the limit is crossed here")
+    .with_help("a group placed many times is shared, not copied, except its planes and emissive objects: keep large meshes out of those, or use fewer copies")
 }
 
 /// The error of an object that leaves f32's range after its transforms.
@@ -144,6 +180,36 @@ impl Gathering<'_> {
             }
         }
         self.out.prims.push(Prim { shape, velocity }, o as u32);
+    }
+
+    /// The mesh at `path`, read once per gathering.
+    fn read_mesh(&mut self, path: &std::path::Path) -> Result<Arc<MeshData>, String> {
+        if let Some(read) = self.meshes.get(path) {
+            return read.clone();
+        }
+        let read = self.cache.mesh(path);
+        self.meshes.insert(path.to_path_buf(), read.clone());
+        read
+    }
+
+    /// Counts the primitives `objects` make into `wanted` (a mesh its
+    /// triangles, a box its six faces); the first object past
+    /// [`MAX_PRIMITIVES`], if one is.
+    fn count(&mut self, objects: &[check::Object]) -> Option<usize> {
+        let mut first_past = None;
+        for (o, obj) in objects.iter().enumerate() {
+            self.wanted += match &obj.shape {
+                check::Shape::Mesh { path, .. } => {
+                    (self.read_mesh(path)).map_or(0, |d| d.triangles.len() as u64)
+                }
+                check::Shape::Box { .. } => 6,
+                _ => 1,
+            };
+            if self.wanted > MAX_PRIMITIVES as u64 {
+                first_past.get_or_insert(o);
+            }
+        }
+        first_past
     }
 
     /// Adds the primitives of object `o`.
@@ -212,7 +278,7 @@ impl Gathering<'_> {
         (path, path_span): (&std::path::Path, crate::span::Span),
         smooth: bool,
     ) {
-        let data = match self.cache.mesh(path) {
+        let data = match self.read_mesh(path) {
             Ok(d) => d,
             Err(e) => {
                 self.diags.push(

@@ -350,3 +350,61 @@ fn emissive_parts_of_groups_are_lights_at_every_placement() {
     assert_eq!(ir.area_lights.len(), 2, "one light per placement");
     assert_same_image(&pixels(&grouped), &pixels(&flat), "lamps");
 }
+
+/// A group holding the bench blob and a plane (which cannot be shared),
+/// placed 1,000 times: the plane is copied at each placement, the blob
+/// still shared (it used to be copied too: a billion triangles).
+#[test]
+fn a_plane_beside_a_placed_mesh_is_copied_alone() {
+    let blob = ptsc::bench_data::ensure_mesh_blob(&crate::root()).unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    let scene = dir.path().join("s.pts");
+    let text = format!(
+        "camera {{ position <0, 3, 40> look_at <0, 0, 0> }}\nbackground rgb 1\n\
+         group g {{ mesh {{ file \"{}\" }} plane {{ normal <0, 1, 0> }} }}\n\
+         for i in 0..1000 {{ instance g {{ translate <i % 40 - 20, 0, -(i / 40)> }} }}\n",
+        blob.display()
+    );
+    std::fs::write(&scene, text).unwrap();
+    let one = peak_memory_mb(&crate::root().join("examples/bench/mesh.pts"));
+    let placed = peak_memory_mb(&scene);
+    assert!(
+        placed <= 1.3 * one,
+        "1,000 placements: {placed} MB; one blob: {one} MB"
+    );
+}
+
+/// An emissive blob placed 100 times must be copied (lights are the
+/// scene's primitives): 100 million triangles, refused before anything is
+/// built, by check as by render.
+#[test]
+fn copies_past_the_primitive_limit_are_refused_by_check_and_render() {
+    let blob = ptsc::bench_data::ensure_mesh_blob(&crate::root()).unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    let scene = dir.path().join("s.pts");
+    let text = format!(
+        "camera {{ position <0, 3, 40> look_at <0, 0, 0> }}\n\
+         group lamp {{ mesh {{ file \"{}\" material {{ emission rgb 1 }} }} }}\n\
+         for i in 0..100 {{ instance lamp {{ translate <i * 3, 0, 0> }} }}\n",
+        blob.display()
+    );
+    std::fs::write(&scene, text).unwrap();
+    let scene = scene.to_str().unwrap();
+    let out = dir.path().join("o.png");
+    for args in [
+        vec!["check", scene],
+        vec!["render", scene, "-o", out.to_str().unwrap()],
+    ] {
+        let started = std::time::Instant::now();
+        let (code, err) = crate::ptsc_stderr(&args);
+        assert_eq!(code, 1, "{args:?}: {err}");
+        assert!(
+            err.contains("too_many_primitives") && err.contains("100,352,000"),
+            "{err}"
+        );
+        // One read of the blob, nothing built (a copy per placement took
+        // minutes and tens of GB).
+        assert!(started.elapsed().as_secs() < 60, "{args:?}");
+    }
+    assert!(!out.exists());
+}

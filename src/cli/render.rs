@@ -179,6 +179,20 @@ fn render_frame(
             ir.prim_object.len(),
             ir.lights.len()
         );
+        let need = memory_need(s);
+        let free = crate::render::memory::available(args.memory_limit)
+            .map(|(bytes, which)| {
+                format!(
+                    "; {} free ({which})",
+                    crate::render::memory::gigabytes(bytes)
+                )
+            })
+            .unwrap_or_default();
+        eprintln!(
+            "memory: {} ({}){free}",
+            crate::render::memory::gigabytes(need.to_allocate()),
+            need.describe()
+        );
     }
     let target = now.pass.range(s.samples).len() as u32;
     let samples_in = |film: &Film| film.count.iter().map(|&n| n as u64).sum::<u64>();
@@ -392,8 +406,12 @@ fn check_before_rendering(
             )
         })?;
     }
-    let need = crate::render::memory::Need::film((settings.width, settings.height));
-    crate::render::memory::check(&need, args.memory_limit)
+    crate::render::memory::check(&memory_need(settings), args.memory_limit)
+}
+
+/// What a render of `settings` needs beyond what its scene holds.
+fn memory_need(settings: &crate::ir::settings::Settings) -> crate::render::memory::Need {
+    crate::render::memory::Need::film((settings.width, settings.height))
 }
 
 /// The process's peak resident memory so far in MB (10^6 bytes), where the

@@ -617,15 +617,22 @@ impl Env {
     /// a diagnostic, when they are too many. Counted before the value is
     /// built, so that a refused one costs nothing.
     fn charge_items(&mut self, n: usize, span: Span, diags: &mut Diagnostics) -> bool {
+        self.charge_items_as(n, || format!("this is a list of {n}"), span, diags)
+    }
+
+    /// [`Env::charge_items`], with the label of the error made by `label`.
+    fn charge_items_as(
+        &mut self,
+        n: usize,
+        label: impl FnOnce() -> String,
+        span: Span,
+        diags: &mut Diagnostics,
+    ) -> bool {
         self.items += n as u64;
         if n <= MAX_ITEMS && self.items <= 2 * MAX_ITEMS as u64 {
             return true;
         }
-        let all = crate::diag::group_digits(self.items);
-        diags.push(too_large(
-            format!("this would make {all} items in all"),
-            span,
-        ));
+        diags.push(too_large(label(), span));
         false
     }
 }
@@ -876,7 +883,10 @@ fn binary(
                 diags.push(too_large(format!("{n} bytes"), span));
                 return None;
             }
-            if !(env.charge(n as u64 / 16, span, diags) && env.charge_items(n / 16, span, diags)) {
+            let label = || "this is a string".to_string();
+            if !(env.charge(n as u64 / 16, span, diags)
+                && env.charge_items_as(n / 16, label, span, diags))
+            {
                 return None;
             }
             return Some(Str(format!("{x}{y}").into()));

@@ -6,7 +6,7 @@
 //! runs.
 //!
 //! ```text
-//! cargo run --release --example fuzz -- [--seconds N] [--seed S] scene|ply|obj|image|state|all
+//! cargo run --release --example fuzz -- [--seconds N] [--seed S] scene|ply|obj|image|state|budget|all
 //! cargo run --release --example fuzz -- --time-seeds scene   # the cost of each seed
 //! ```
 //!
@@ -245,6 +245,7 @@ fn run(target: &str, seconds: f64, seed: u64, out: &Path) -> usize {
         "obj" => |b| ptsc::fuzz::obj(b),
         "image" => |b| ptsc::fuzz::image(b),
         "state" => |b| ptsc::fuzz::state(b),
+        "budget" => |b| ptsc::fuzz::budget(b),
         other => panic!("unknown target {other}"),
     };
     let current = out.join(format!("current-{target}"));
@@ -330,6 +331,7 @@ fn time_seeds(target: &str) {
             "ply" => ptsc::fuzz::ply(&bytes),
             "image" => ptsc::fuzz::image(&bytes),
             "state" => ptsc::fuzz::state(&bytes),
+            "budget" => ptsc::fuzz::budget(&bytes),
             _ => ptsc::fuzz::obj(&bytes),
         };
         println!(
@@ -354,12 +356,13 @@ fn main() {
                     .expect("--seconds N")
             }
             "--seed" => seed = args.next().and_then(|s| s.parse().ok()).expect("--seed N"),
-            "all" => targets.extend(["scene", "ply", "obj", "image", "state"].map(String::from)),
+            "all" => targets
+                .extend(["scene", "ply", "obj", "image", "state", "budget"].map(String::from)),
             t => targets.push(t.to_string()),
         }
     }
     if targets.is_empty() {
-        eprintln!("usage: fuzz [--seconds N] [--seed S] scene|ply|obj|image|state|all");
+        eprintln!("usage: fuzz [--seconds N] [--seed S] scene|ply|obj|image|state|budget|all");
         std::process::exit(2);
     }
     // Relative paths in the corpus (meshes, includes) start at the root.

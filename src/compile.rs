@@ -10,7 +10,7 @@
 //!        Compiled { sources, diagnostics (one list), ir, dependencies, output }
 //! ```
 
-use crate::check::{self, Animation, MAX_LOOP_STATEMENTS};
+use crate::check::{self, Animation, Budgets, MAX_LOOP_STATEMENTS};
 use crate::diag::{codes, Diagnostic, Diagnostics};
 use crate::ir::settings::Settings;
 use crate::lower::cache::LowerCache;
@@ -33,6 +33,9 @@ pub struct Options<'a> {
     /// The statements loops may run in all (a fuzzer keeps its inputs fast
     /// with a small budget; the rules are the same).
     pub loop_statements: u64,
+    /// The steps of work expressions may take in all
+    /// ([`check::eval::MAX_WORK`]; a fuzzer's is smaller).
+    pub work: u64,
     /// The frame of an animation to compile (`frame` and `clock` in the
     /// scene).
     pub animation: Animation,
@@ -51,6 +54,7 @@ impl Default for Options<'_> {
             adjust: &|_| {},
             cache: None,
             loop_statements: MAX_LOOP_STATEMENTS,
+            work: check::eval::MAX_WORK,
             animation: Animation::default(),
             fingerprint: false,
             output_elsewhere: false,
@@ -110,8 +114,11 @@ pub fn compile_str(path: &Path, text: &str, options: Options) -> Compiled {
 }
 
 fn compile_from(path: &Path, bytes: Vec<u8>, options: Options, start: Instant) -> Compiled {
-    let checked =
-        check::check_bytes_within(path, bytes, options.loop_statements, options.animation);
+    let budgets = Budgets {
+        loop_statements: options.loop_statements,
+        work: options.work,
+    };
+    let checked = check::check_bytes_within(path, bytes, budgets, options.animation);
     let check_seconds = start.elapsed().as_secs_f64();
     let mut dependencies: Vec<PathBuf> = checked
         .sources

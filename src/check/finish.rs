@@ -12,7 +12,7 @@ impl Checker {
         // Warnings about the whole scene; a file that did not parse makes them noise.
         if self.syntax_failed {
             self.show_include_chains();
-            collapse_repeats(&mut self.diags);
+            self.diags.settle();
             self.diags.sort();
             return Checked {
                 sources: self.sources,
@@ -150,7 +150,7 @@ impl Checker {
             );
         }
         self.show_include_chains();
-        collapse_repeats(&mut self.diags);
+        self.diags.settle();
         self.diags.sort();
         let scene = if self.diags.has_errors() {
             None
@@ -209,9 +209,10 @@ impl Checker {
                 Some(g) => self.groups[g].objects[at.index].material = material,
                 None => self.objects[at.index].material = material,
             }
-            let suggestion =
-                did_you_mean(&name.name, self.material_names.keys().map(String::as_str))
-                    .map(str::to_string);
+            let names = self.material_names.keys().map(String::as_str);
+            let suggestion = (self.env)
+                .suggest(&name.name, self.material_names.len(), names)
+                .map(str::to_string);
             let help = match &suggestion {
                 Some(s) => {
                     let index = self.material_names[s].index;
@@ -239,37 +240,6 @@ impl Checker {
             self.diags.push(d);
         }
     }
-}
-
-/// Keeps one of the diagnostics a loop or a repeated include produced at
-/// the same place (the same code and span; their messages may differ by
-/// the loop variable), with the count in its message.
-pub(super) fn collapse_repeats(diags: &mut Diagnostics) {
-    let mut first: HashMap<(&'static str, Option<Span>), usize> = HashMap::new();
-    let mut counts: Vec<usize> = Vec::with_capacity(diags.items.len());
-    let mut keep = Vec::with_capacity(diags.items.len());
-    for (i, d) in diags.items.iter().enumerate() {
-        match first.entry((d.code, d.span)) {
-            std::collections::hash_map::Entry::Occupied(e) => {
-                counts[*e.get()] += 1;
-                keep.push(false);
-            }
-            std::collections::hash_map::Entry::Vacant(e) => {
-                e.insert(i);
-                keep.push(true);
-            }
-        }
-        counts.push(1);
-    }
-    let mut i = 0;
-    diags.items.retain_mut(|d| {
-        let (kept, n) = (keep[i], counts[i]);
-        i += 1;
-        if kept && n > 1 {
-            d.message = format!("{} ({} times)", d.message, super::group_digits(n as u64));
-        }
-        kept
-    });
 }
 
 impl Checker {

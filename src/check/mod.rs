@@ -6,6 +6,7 @@ mod blocks;
 pub mod domain;
 pub mod eval;
 mod finish;
+mod loops;
 mod material;
 mod objects;
 pub mod params;
@@ -15,7 +16,8 @@ mod texture;
 pub use blocks::{WholeSetting, MAX_PIXELS, MAX_SIDE, SAMPLES, SEED};
 pub use scene::*;
 
-use crate::diag::{codes, did_you_mean, Diagnostic, Diagnostics};
+pub(crate) use crate::diag::group_digits;
+use crate::diag::{codes, Diagnostic, Diagnostics};
 use crate::source::{FileId, ReadError, SourceMap, MAX_SCENE_BYTES};
 use crate::span::Span;
 use crate::syntax::ast::{BlockKind, Entry, MaterialRef, Statement};
@@ -103,19 +105,39 @@ pub fn read_scene_file(path: &Path) -> std::io::Result<Vec<u8>> {
 /// Checks a scene given as bytes, as if read from `path` (includes are
 /// resolved relative to it).
 pub fn check_bytes(path: &Path, bytes: Vec<u8>) -> Checked {
-    check_bytes_within(path, bytes, MAX_LOOP_STATEMENTS, Animation::default())
+    check_bytes_within(path, bytes, Budgets::default(), Animation::default())
 }
 
-/// [`check_bytes`] with another budget of loop statements (a fuzzer keeps
-/// its inputs fast with a small one; the rules are the same), at a frame of
-/// an animation.
+/// What the loops and expressions of one compile may do: the statements
+/// loops may run ([`MAX_LOOP_STATEMENTS`]) and the steps of work
+/// expressions may take ([`eval::MAX_WORK`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Budgets {
+    /// Statements loops and repeated includes may run in all.
+    pub loop_statements: u64,
+    /// Steps of work evaluation may take in all.
+    pub work: u64,
+}
+
+impl Default for Budgets {
+    /// The budgets of every compile but a fuzzer's.
+    fn default() -> Self {
+        Budgets {
+            loop_statements: MAX_LOOP_STATEMENTS,
+            work: eval::MAX_WORK,
+        }
+    }
+}
+
+/// [`check_bytes`] with other budgets (a fuzzer keeps its inputs fast
+/// with small ones; the rules are the same), at a frame of an animation.
 pub fn check_bytes_within(
     path: &Path,
     bytes: Vec<u8>,
-    loop_statements: u64,
+    budgets: Budgets,
     animation: Animation,
 ) -> Checked {
-    let mut c = Checker::new(loop_statements);
+    let mut c = Checker::new(budgets);
     let [frame, clock] = PREDEFINED;
     c.env.predefined = vec![
         (frame, Value::Num(animation.frame as f64)),
@@ -256,14 +278,15 @@ impl Checker {
             .or(self.sky.as_ref().map(|s| s.span))
     }
 
-    fn new(loop_statements: u64) -> Self {
+    fn new(budgets: Budgets) -> Self {
         Checker {
             sources: SourceMap::new(),
-            diags: Diagnostics::new(),
-            env: Env::new(),
+            // A loop meets its body's problems once per iteration: one each.
+            diags: Diagnostics::folding(),
+            env: Env::with_work(budgets.work),
             include_stack: Vec::new(),
-            loop_budget: loop_statements,
-            loop_statements,
+            loop_budget: budgets.loop_statements,
+            loop_statements: budgets.loop_statements,
             loops: Vec::new(),
             loops_exhausted: false,
             render: None,
@@ -312,44 +335,6 @@ impl Checker {
         }
     }
 
-    /// Charges one statement run by a loop; `false` once the loops have
-    /// run out of statements (the first time, with the diagnostic).
-    fn charge_loop_statement(&mut self) -> bool {
-        self.charge_loop(1)
-    }
-
-    /// Charges `units` statements to the loops running now (none outside
-    /// loops); `false` once they have run out (the first time, with the
-    /// diagnostic).
-    fn charge_loop(&mut self, units: u64) -> bool {
-        if self.loops.is_empty() {
-            return true;
-        }
-        if self.loops_exhausted {
-            return false;
-        }
-        if self.loop_budget < units {
-            self.loop_budget = 0;
-            self.loops_exhausted = true;
-            let outermost = self.loops[0];
-            self.diags.push(
-                Diagnostic::error(
-                    codes::LOOP_TOO_LONG,
-                    format!(
-                        "the loops (and repeated includes) of this scene run more than {} statements in all",
-                        group_digits(self.loop_statements)
-                    ),
-                    outermost,
-                )
-                .with_label("these loops stop here")
-                .with_help("nested loops multiply: a loop of 1,000 around one of 10,000 runs 10,000,000 statements; shrink the ranges, or put generated geometry in a mesh file"),
-            );
-            return false;
-        }
-        self.loop_budget -= units;
-        true
-    }
-
     /// Where the constant, function or texture named `name` visible in
     /// the current frame is declared, if there is one.
     fn name_taken(&self, name: &str) -> Option<Span> {
@@ -362,45 +347,6 @@ impl Checker {
         for st in body {
             self.statement(st, file);
         }
-    }
-
-    /// Runs `body` once per item of `items` with `var` bound to it, each
-    /// statement charged to the loop budget (`range` is the loop's range
-    /// or list, where a runaway is reported).
-    fn run_loop(
-        &mut self,
-        var: &crate::syntax::ast::Ident,
-        items: impl Iterator<Item = Value>,
-        range: Span,
-        body: &[Statement],
-        file: FileId,
-    ) {
-        self.env.used.insert(var.span);
-        self.loops.push(range);
-        for item in items {
-            if self.loops_exhausted {
-                break;
-            }
-            if body.is_empty() && !self.charge_loop_statement() {
-                break;
-            }
-            let errors_before = self.diags.error_count();
-            self.env.push();
-            self.env.bind(
-                &var.name,
-                Binding {
-                    value: Some(item),
-                    decl: var.span,
-                },
-            );
-            self.statements(body, file);
-            self.env.pop();
-            // One broken iteration is enough to report; the others repeat it.
-            if self.diags.error_count() > errors_before {
-                break;
-            }
-        }
-        self.loops.pop();
     }
 
     /// `group name { body }`: runs the body with objects and instances
@@ -501,7 +447,8 @@ impl Checker {
                     name.span,
                 )
                 .with_label("no group of this name");
-                d = match did_you_mean(&name.name, self.group_names.keys().map(String::as_str)) {
+                let names = self.group_names.keys().map(String::as_str);
+                d = match (self.env).suggest(&name.name, self.group_names.len(), names) {
                     Some(s) => d.with_help(format!("did you mean `{s}`?")),
                     None => d.with_help(format!(
                         "declare it before placing it: `group {} {{ sphere {{ … }} }}`",
@@ -529,8 +476,11 @@ impl Checker {
             if material == Some(PENDING_MATERIAL) {
                 // Resolved at the end like an object's; instances name
                 // materials declared before them (reported otherwise).
-                self.diags
-                    .push(unknown_material_here(m, &self.material_names));
+                self.diags.push(unknown_material_here(
+                    m,
+                    &self.material_names,
+                    &mut self.env,
+                ));
                 return;
             }
         }
@@ -643,105 +593,14 @@ impl Checker {
                 end: None,
                 body,
                 ..
-            } => {
-                let Some(list) = eval(start, &mut self.env, &mut self.diags) else {
-                    return;
-                };
-                let items: Vec<Value> = match list {
-                    Value::List(items) => items.iter().cloned().collect(),
-                    other => {
-                        self.diags.push(
-                            Diagnostic::error(
-                                codes::TYPE_MISMATCH,
-                                format!(
-                                    "`for … in` needs a range `a..b` or a list, found {}",
-                                    other.type_name()
-                                ),
-                                start.span,
-                            )
-                            .with_label(format!("this is {}", other.type_name()))
-                            .with_help(
-                                "write `for i in 0..10 { … }` or `for x in [1, 2, 3] { … }`",
-                            ),
-                        );
-                        return;
-                    }
-                };
-                self.run_loop(var, items.into_iter(), start.span, body, file);
-            }
+            } => self.for_list(var, start, body, file),
             Statement::For {
                 var,
                 start,
                 end: Some(end),
                 body,
                 ..
-            } => {
-                let a = eval(start, &mut self.env, &mut self.diags);
-                let b = eval(end, &mut self.env, &mut self.diags);
-                let bound = |v: Option<Value>, s: Span, diags: &mut Diagnostics| -> Option<i64> {
-                    match v? {
-                        Value::Num(x) if x.fract() == 0.0 && x.abs() < 1e15 => Some(x as i64),
-                        other => {
-                            diags.push(
-                                Diagnostic::error(
-                                    codes::TYPE_MISMATCH,
-                                    format!(
-                                        "a loop bound must be a whole number, found {}",
-                                        match other {
-                                            Value::Num(x) => format!("{x}"),
-                                            o => o.type_name(),
-                                        }
-                                    ),
-                                    s,
-                                )
-                                .with_label("not a whole number")
-                                .with_help("write the range as `0..10`"),
-                            );
-                            None
-                        }
-                    }
-                };
-                let a = bound(a, start.span, &mut self.diags);
-                let b = bound(b, end.span, &mut self.diags);
-                let (Some(a), Some(b)) = (a, b) else { return };
-                let n = (b - a).max(0) as u64;
-                let range = start.span.join(end.span);
-                // Every iteration runs at least one statement (or counts one).
-                if n > self.loop_budget {
-                    let before = self.loop_statements - self.loop_budget;
-                    let (message, help) = if before == 0 {
-                        (
-                            format!(
-                                "this loop runs {} times, more than the {} statements loops may run in all",
-                                group_digits(n),
-                                group_digits(self.loop_statements)
-                            ),
-                            "shrink the range; large generated scenes belong in a mesh file".to_string(),
-                        )
-                    } else {
-                        (
-                            format!(
-                                "this loop runs {} times, more than the {} statements loops may still run ({} in all)",
-                                group_digits(n),
-                                group_digits(self.loop_budget),
-                                group_digits(self.loop_statements)
-                            ),
-                            format!(
-                                "the loops before it (and around it) ran {} statements already; nested loops multiply; shrink the ranges, or put generated geometry in a mesh file",
-                                group_digits(before)
-                            ),
-                        )
-                    };
-                    self.diags.push(
-                        Diagnostic::error(codes::LOOP_TOO_LONG, message, range)
-                            .with_label(format!("{} iterations", group_digits(n)))
-                            .with_help(help),
-                    );
-                    self.loops_exhausted = true;
-                    return;
-                }
-                self.run_loop(var, (a..b).map(|i| Value::Num(i as f64)), range, body, file);
-            }
+            } => self.for_range(var, (start, end), body, file),
             Statement::If {
                 arms, otherwise, ..
             } => {
@@ -955,13 +814,13 @@ impl Checker {
         // statement's size).
         if let Some(id) = self.sources.find(&target) {
             let bytes = self.sources.get(id).text.len() as u64;
-            self.loops.push(path_span);
+            self.enter_loop(path_span);
             if self.charge_loop(INCLUDE_RUN_COST + bytes / STATEMENT_BYTES) {
                 self.include_stack.push((canonical, path_span));
                 self.run_file(id);
                 self.include_stack.pop();
             }
-            self.loops.pop();
+            self.leave_loop();
             return;
         }
         let room = MAX_SCENE_BYTES.saturating_sub(self.sources.total_bytes() as u64);
@@ -1243,6 +1102,7 @@ fn not_in_group(what: &str, span: Span, group: Span, help: &str) -> Diagnostic {
 fn unknown_material_here(
     name: &crate::syntax::ast::Ident,
     names: &HashMap<String, MaterialEntry>,
+    env: &mut Env,
 ) -> Diagnostic {
     let d = Diagnostic::error(
         codes::UNKNOWN_MATERIAL,
@@ -1250,7 +1110,7 @@ fn unknown_material_here(
         name.span,
     )
     .with_label("not declared before this instance");
-    match did_you_mean(&name.name, names.keys().map(String::as_str)) {
+    match env.suggest(&name.name, names.len(), names.keys().map(String::as_str)) {
         Some(s) => d.with_help(format!("did you mean `{s}`?")),
         None => d.with_help(format!(
             "declare it before the instance: `material {} {{ diffuse rgb 0.8 }}`",
@@ -1266,19 +1126,6 @@ fn emissive_plane(at: Span) -> Diagnostic {
         .with_help(
             "use a `quad` or a `disk` as an area light, or `background` for light from everywhere",
         )
-}
-
-/// `n` with thousands separated: `4,000,000`.
-pub fn group_digits(n: u64) -> String {
-    let digits = n.to_string();
-    let mut out = String::new();
-    for (i, c) in digits.chars().enumerate() {
-        if i > 0 && (digits.len() - i).is_multiple_of(3) {
-            out.push(',');
-        }
-        out.push(c);
-    }
-    out
 }
 
 /// A name declared again (`let`, `texture`) where it was declared `first`.

@@ -787,15 +787,17 @@ fn typed_value(
             );
             return None;
         }
-        (Ty::Vec2, Value::Vector(v)) if v.len() == 2 => Some(Val::Vector(v)),
-        (Ty::Vec3, Value::Vector(v)) if v.len() == 3 => Some(Val::Vector(v)),
+        (Ty::Vec2, Value::Vector(v)) if v.len() == 2 => Some(Val::Vector(v.to_vec())),
+        (Ty::Vec3, Value::Vector(v)) if v.len() == 3 => Some(Val::Vector(v.to_vec())),
         (Ty::NumOrVec3, Value::Num(x)) => Some(Val::Vector(vec![x; 3])),
-        (Ty::NumOrVec3, Value::Vector(v)) if v.len() == 3 => Some(Val::Vector(v)),
+        (Ty::NumOrVec3, Value::Vector(v)) if v.len() == 3 => Some(Val::Vector(v.to_vec())),
         (Ty::NumOrVec2, Value::Num(x)) => Some(Val::Vector(vec![x; 2])),
-        (Ty::NumOrVec2, Value::Vector(v)) if v.len() == 2 => Some(Val::Vector(v)),
-        (Ty::Matrix, Value::Vector(v)) if v.len() == 12 || v.len() == 16 => Some(Val::Vector(v)),
+        (Ty::NumOrVec2, Value::Vector(v)) if v.len() == 2 => Some(Val::Vector(v.to_vec())),
+        (Ty::Matrix, Value::Vector(v)) if v.len() == 12 || v.len() == 16 => {
+            Some(Val::Vector(v.to_vec()))
+        }
         (Ty::Color, Value::Color(c)) => Some(Val::Color(c)),
-        (Ty::Str, Value::Str(s)) => Some(Val::Str(s)),
+        (Ty::Str, Value::Str(s)) => Some(Val::Str(s.to_string())),
         (Ty::Bool, Value::Bool(b)) => Some(Val::Bool(b)),
         (ty, other) => {
             let help = match (ty, &other) {

@@ -16,14 +16,10 @@ pub fn report(
 ) {
     let quiet;
     let d = if verbosity == Verbosity::Quiet {
-        quiet = Diagnostics {
-            items: diagnostics
-                .items
-                .iter()
-                .filter(|d| d.severity == Severity::Error)
-                .cloned()
-                .collect(),
-        };
+        quiet = (diagnostics.items.iter())
+            .filter(|d| d.severity == Severity::Error)
+            .cloned()
+            .collect::<Diagnostics>();
         &quiet
     } else {
         diagnostics

@@ -106,6 +106,8 @@ pub const INVALID_UTF8: &str = "pts::check::invalid_utf8";
 pub const MISSING_CAMERA: &str = "pts::check::missing_camera";
 /// Loops that run too many statements.
 pub const LOOP_TOO_LONG: &str = "pts::check::loop_too_long";
+/// Expressions that do too much work in all.
+pub const EVALUATION_TOO_LONG: &str = "pts::check::evaluation_too_long";
 /// A mesh file that is missing, unreadable or of an unknown format.
 pub const MESH_FILE: &str = "pts::check::mesh_file";
 /// An output image the render could not write.
@@ -380,6 +382,12 @@ pub const CATALOGUE: &[Entry] = &[
         title: "Loops that run too many statements",
         explanation: "Loops and repeated includes run at most 4,000,000 statements in all, counted by their text, so that every scene checks in bounded time and memory. Use fewer iterations, or a mesh for very many triangles.",
         example: "for i in 0..100000000 { sphere { center <i, 0, 0> radius 0.5 } }",
+    },
+    Entry {
+        code: EVALUATION_TOO_LONG,
+        title: "Expressions that do too much work",
+        explanation: "The expressions of a scene take at most 40,000,000 steps of work in all, so that every scene checks in seconds whatever its loops, functions and lists do. A step is an expression evaluated in a loop, in a file included again or in a function's body; a list item compared by `==` or `!=`; a byte of text written by `str`; and 16 bytes of a string or 16 components of a vector made, copied or scanned. (An expression run once at the top level of a file costs nothing: its text bounds it.) Compare and print large lists outside loops, call long functions less often, and put large generated data in a mesh file.",
+        example: "let a = [0, 0, 0, 0, 0, 0, 0, 0];\nlet b = a + a + a + a + a + a + a + a;\nlet c = b + b + b + b + b + b + b + b;\nlet d = c + c + c + c + c + c + c + c;\nlet e = d + d + d + d + d + d + d + d;\nlet f = d + d + d + d + d + d + d + d;\nfor i in 0..2000 { let _same = e == f; }",
     },
     Entry {
         code: OUTPUT_FILE,

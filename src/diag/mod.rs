@@ -86,10 +86,39 @@ impl Diagnostic {
 }
 
 /// Every diagnostic of a run, in source order once sorted.
+///
+/// Adding one costs constant time whatever the list holds: a checker meets
+/// the same problem once per iteration of a loop, and a loop of a million
+/// iterations must not scan a million diagnostics each time. A folding
+/// collection ([`Diagnostics::folding`], the checker's) keeps the first of
+/// the diagnostics with one code and span and counts the others.
 #[derive(Debug, Clone, Default)]
 pub struct Diagnostics {
-    /// The diagnostics.
+    /// The diagnostics. Read them freely; add with [`Diagnostics::push`]
+    /// (which folds repeats and counts errors).
     pub items: Vec<Diagnostic>,
+    /// Errors pushed so far, folded repeats included (never decreases).
+    errors_pushed: u64,
+    /// While folding: repeats of the diagnostics in `items`.
+    folds: Option<Folds>,
+}
+
+/// The repeats a folding collection has met: where the first diagnostic of
+/// each code and span is, and how many times each came.
+#[derive(Debug, Clone, Default)]
+struct Folds {
+    /// The index in `items` of the first diagnostic of a code and span.
+    first: std::collections::HashMap<(&'static str, Option<Span>), usize>,
+    /// How many times the diagnostic at each index of `items` came.
+    times: Vec<u64>,
+}
+
+impl FromIterator<Diagnostic> for Diagnostics {
+    fn from_iter<I: IntoIterator<Item = Diagnostic>>(iter: I) -> Self {
+        let mut d = Diagnostics::new();
+        iter.into_iter().for_each(|x| d.push(x));
+        d
+    }
 }
 
 impl Diagnostics {
@@ -98,19 +127,67 @@ impl Diagnostics {
         Self::default()
     }
 
-    /// Adds one.
+    /// An empty collection that folds repeats: a diagnostic with the code
+    /// and span of an earlier one (its message may differ, by a loop
+    /// variable) is counted, not kept; [`Diagnostics::settle`] writes the
+    /// counts into the messages.
+    pub fn folding() -> Self {
+        Diagnostics {
+            folds: Some(Folds::default()),
+            ..Self::default()
+        }
+    }
+
+    /// Adds one (in constant time).
     pub fn push(&mut self, d: Diagnostic) {
+        if d.is_error() {
+            self.errors_pushed += 1;
+        }
+        if let Some(folds) = &mut self.folds {
+            match folds.first.entry((d.code, d.span)) {
+                std::collections::hash_map::Entry::Occupied(e) => {
+                    folds.times[*e.get()] += 1;
+                    return;
+                }
+                std::collections::hash_map::Entry::Vacant(e) => {
+                    e.insert(self.items.len());
+                    folds.times.push(1);
+                }
+            }
+        }
         self.items.push(d);
     }
 
+    /// Errors pushed so far, folded repeats included: it never decreases,
+    /// so that comparing it before and after some work tells in constant
+    /// time whether that work met an error.
+    pub fn errors_pushed(&self) -> u64 {
+        self.errors_pushed
+    }
+
+    /// Ends folding: each diagnostic that came more than once says how many
+    /// times (`… (1,000 times)`). Later pushes are kept as they come.
+    pub fn settle(&mut self) {
+        let Some(folds) = self.folds.take() else {
+            return;
+        };
+        for (d, &n) in self.items.iter_mut().zip(&folds.times) {
+            if n > 1 {
+                d.message = format!("{} ({} times)", d.message, group_digits(n));
+            }
+        }
+    }
+
     /// Adds all of `other`.
-    pub fn extend(&mut self, other: Diagnostics) {
-        self.items.extend(other.items);
+    pub fn extend(&mut self, mut other: Diagnostics) {
+        other.settle();
+        other.items.into_iter().for_each(|d| self.push(d));
     }
 
     /// Drops each diagnostic equal to an earlier one (the same problem met
     /// again), keeping the first's place in the list.
     pub fn dedup(&mut self) {
+        self.settle();
         let mut seen = std::collections::HashSet::new();
         let items = std::mem::take(&mut self.items);
         self.items = (items.into_iter())
@@ -135,6 +212,7 @@ impl Diagnostics {
 
     /// Sorts by file and position, keeping the order of equal positions.
     pub fn sort(&mut self) {
+        self.settle();
         self.items
             .sort_by_key(|d| d.span.map(|s| (s.file.0, s.start)).unwrap_or((u32::MAX, 0)));
     }
@@ -192,6 +270,19 @@ impl Diagnostics {
             .collect();
         serde_json::to_string_pretty(&arr).expect("JSON of plain values")
     }
+}
+
+/// `n` with thousands separated: `4,000,000`.
+pub fn group_digits(n: u64) -> String {
+    let digits = n.to_string();
+    let mut out = String::new();
+    for (i, c) in digits.chars().enumerate() {
+        if i > 0 && (digits.len() - i).is_multiple_of(3) {
+            out.push(',');
+        }
+        out.push(c);
+    }
+    out
 }
 
 /// Line and column lookups that remember the last one: diagnostics come in

@@ -144,8 +144,8 @@ fn too_many(span: crate::span::Span, wanted: u64) -> Diagnostic {
         codes::TOO_MANY_PRIMITIVES,
         format!(
             "the scene makes {} primitives (a mesh triangle counts one), more than the {} the renderer holds",
-            check::group_digits(wanted),
-            check::group_digits(MAX_PRIMITIVES as u64)
+            crate::diag::group_digits(wanted),
+            crate::diag::group_digits(MAX_PRIMITIVES as u64)
         ),
         span,
     )

@@ -37,3 +37,33 @@ fn the_generated_mesh_is_the_shared_one() {
         shared.display()
     );
 }
+
+/// The budgets bound runaway scenes, not real ones: every example and
+/// golden scene checks within a fiftieth of them (the most demanding,
+/// `many_lights.pts`, takes about 590,000 steps of work and 61,000 loop
+/// statements), so that a scene has to be 50 times larger than any of
+/// them to meet a budget.
+#[test]
+fn every_example_is_far_below_the_budgets() {
+    ptsc::bench_data::ensure_mesh_blob(&crate::root()).unwrap();
+    let mut files = crate::files_below(&crate::root().join("examples"), "pts");
+    files.extend(crate::files_below(
+        &crate::root().join("tests/golden/scenes"),
+        "pts",
+    ));
+    for f in files {
+        let options = Options {
+            lower: false,
+            loop_statements: ptsc::check::MAX_LOOP_STATEMENTS / 50,
+            work: ptsc::check::eval::MAX_WORK / 50,
+            ..Options::default()
+        };
+        let c = compile_file(&f, options).unwrap();
+        assert!(
+            !c.diagnostics.has_errors(),
+            "{}:\n{}",
+            f.display(),
+            c.diagnostics.render_human(&c.sources, false)
+        );
+    }
+}

@@ -574,3 +574,70 @@ fn deep_and_long_language_constructs() {
         run_generated(&generated(name, expect), "groups.pts", text.as_bytes());
     }
 }
+
+/// Issue 35, item 9: evaluation is bounded by its work, not by the
+/// statements that ask for it. Each input ran for minutes, or crashed,
+/// before the evaluation budget, shared values and nesting bound.
+#[test]
+fn work_that_statements_do_not_show() {
+    let head = format!("{CAMERA}background rgb 1\nsphere {{ center <0, 0, 0> radius 1 }}\n");
+    let doubling = |n: usize| {
+        let mut s = String::from("let xs0 = [1];\n");
+        for k in 1..=n {
+            s += &format!("let xs{k} = xs{} + xs{};\n", k - 1, k - 1);
+        }
+        s
+    };
+    // A function of 2,000 terms called 500,000 times (5 minutes): every
+    // expression of its body is a step.
+    let terms: Vec<String> = (0..2000).map(|k| format!("x * {k}")).collect();
+    let long_function = format!(
+        "{head}fn f(x) = {};\nfor i in 0..500000 {{ let _v = f(i); }}\n",
+        terms.join(" + ")
+    );
+    // `str` of a list of 524,288 items, 1,000 times (100 s): a text past
+    // a string's 4,096 bytes is refused before it is written whole.
+    let long_text = format!(
+        "{head}{}for i in 0..1000 {{ let _s = str(xs19); }}\n",
+        doubling(19)
+    );
+    // 20,000 unknown names among 40,000 constants: each error weighed
+    // every name for a suggestion (8 minutes).
+    let mut names = head.clone();
+    for i in 0..20_000 {
+        names += &format!("let a{i} = {i};\n");
+    }
+    for i in 0..20_000 {
+        names += &format!("let b{i} = zz{i};\n");
+    }
+    // A list nested 300,000 deep by a chain of `let`s overflowed the
+    // stack when it was dropped.
+    let mut deep = format!("{head}let l0 = [];\n");
+    for k in 1..300_000 {
+        deep += &format!("let l{k} = [l{}];\n", k - 1);
+    }
+    // A vector of 100,000 components added to itself 100,000 times at the
+    // top level: each sum made and checked the whole vector (and kept it).
+    let mut long_vector = format!("{head}let v = <{}>;\n", vec!["1"; 100_000].join(", "));
+    for i in 0..100_000 {
+        long_vector += &format!("let _w{i} = v + v;\n");
+    }
+    for (name, text, expect) in [
+        (
+            "long function",
+            long_function,
+            "// stderr: evaluation_too_long",
+        ),
+        ("long text", long_text, "// stderr: value_too_large"),
+        ("suggestions", names, "// stderr: 20000 errors"),
+        (
+            "deep list",
+            deep,
+            "// stderr: lists nest at most 256 levels deep",
+        ),
+        ("long vector", long_vector, "// stderr: evaluation_too_long"),
+    ] {
+        let case = generated(name, &format!("// exit: 1\n{expect}\n// timeout: 30"));
+        run_generated(&case, "work.pts", text.as_bytes());
+    }
+}

@@ -201,3 +201,31 @@ proptest! {
         let _ = run(&base.as_bytes()[..cut]);
     }
 }
+
+/// Issue 35, item 12: vectors at the edges of 64-bit floats. Their squared
+/// lengths overflowed (`normalize(<1e200, 0, 0>)` was `<0, 0, 0>`, a
+/// length "not a finite number") or underflowed ("cannot normalize a zero
+/// vector"), and a whole loop bound too large was "not a whole number".
+#[test]
+fn numbers_at_the_edges_of_f64() {
+    let text = "camera { position <0,0,5> look_at <0,0,0> }\n\
+        background rgb 1\n\
+        let big = normalize(<1e200, 0, 0>);\n\
+        let tiny = normalize(<0, 1e-200, 0>);\n\
+        sphere { center big + tiny radius length(<1e200, 0, 0>) / 1e200 }\n";
+    let c = run(text.as_bytes());
+    let scene = c.scene.unwrap_or_else(|| {
+        panic!("{}", c.diagnostics.render_human(&c.sources, false));
+    });
+    match scene.objects[0].shape {
+        ptsc::check::Shape::Sphere { center, radius, .. } => {
+            assert_eq!((center.to_array(), radius), ([1.0, 1.0, 0.0], 1.0));
+        }
+        ref other => panic!("not a sphere: {other:?}"),
+    }
+    let c =
+        run(b"camera { position <0,0,5> look_at <0,0,0> }\nfor i in 0..1e300 { let _x = i; }\n");
+    let d = c.diagnostics.items.iter().find(|d| d.is_error()).unwrap();
+    assert_eq!(d.code, "pts::check::loop_too_long");
+    assert!(d.message.contains("1e300 times"), "{}", d.message);
+}

@@ -5,12 +5,25 @@
 //! [`crate::syntax::MAX_NESTING`] deep as written; calls of user
 //! functions at most [`MAX_CALL_DEPTH`] deep (a recursion without an end
 //! is a diagnostic, not a stack overflow) and [`MAX_CALLS`] in all; lists
-//! and strings hold at most [`MAX_ITEMS`] items and [`MAX_STRING`] bytes.
+//! and strings hold at most [`MAX_ITEMS`] items and [`MAX_STRING`] bytes,
+//! lists nest at most [`MAX_LIST_DEPTH`] deep; and the work of all
+//! evaluation together is bounded by a budget of steps
+//! ([`budget::MAX_WORK`]), so that no expression, however small its text,
+//! costs more than its share of it.
+
+mod budget;
+mod builtins;
+mod value;
+
+pub use budget::{MAX_SUGGESTIONS, MAX_WORK};
+pub use builtins::{random, FUNCTIONS};
+pub use value::{shown, Function, List, Value, MAX_LIST_DEPTH};
 
 use crate::diag::codes;
 use crate::diag::{did_you_mean, Diagnostic, Diagnostics};
 use crate::span::Span;
 use crate::syntax::ast::{BinOp, Expr, ExprKind};
+use budget::Work;
 use std::collections::HashMap;
 use std::sync::Arc;
 
@@ -26,51 +39,6 @@ pub const MAX_CALLS: u64 = 1_000_000;
 pub const MAX_ITEMS: usize = 1_000_000;
 /// Longest string (file names are built of strings).
 pub const MAX_STRING: usize = 4096;
-
-/// A user function: `fn name(params) = body;`.
-#[derive(Debug, PartialEq)]
-pub struct Function {
-    /// Its name as declared.
-    pub name: String,
-    /// Its parameters' names.
-    pub params: Vec<String>,
-    /// Its value.
-    pub body: Arc<Expr>,
-}
-
-/// A value computed from an expression.
-#[derive(Debug, Clone, PartialEq)]
-pub enum Value {
-    /// A number.
-    Num(f64),
-    /// A vector of 2 or more numbers.
-    Vector(Vec<f64>),
-    /// An RGB colour.
-    Color([f64; 3]),
-    /// A string.
-    Str(String),
-    /// A boolean.
-    Bool(bool),
-    /// A list of values (shared: copying a name copies a pointer).
-    List(Arc<Vec<Value>>),
-    /// A user function.
-    Function(Arc<Function>),
-}
-
-impl Value {
-    /// The type's name in messages ("a number", "a vector of 3", …).
-    pub fn type_name(&self) -> String {
-        match self {
-            Value::Num(_) => "a number".into(),
-            Value::Vector(v) => format!("a vector of {}", v.len()),
-            Value::Color(_) => "a colour".into(),
-            Value::Str(_) => "a string".into(),
-            Value::Bool(_) => "a boolean".into(),
-            Value::List(l) => format!("a list of {}", l.len()),
-            Value::Function(f) => format!("the function `{}`", f.name),
-        }
-    }
-}
 
 /// One bound name: a constant or a loop variable.
 #[derive(Debug, Clone)]
@@ -100,6 +68,18 @@ pub struct Env {
     exhausted: bool,
     /// Evaluations under way, nested.
     depth: usize,
+    /// The steps of work evaluation may still take ([`MAX_WORK`] but for
+    /// fuzzers).
+    work: Work,
+    /// The budget `work` started with, for the message.
+    work_limit: u64,
+    /// The work ran out (reported once).
+    work_reported: bool,
+    /// Names did-you-mean suggestions may still weigh.
+    suggestions: Work,
+    /// Loops and repeated includes running now: an expression they
+    /// evaluate costs a step (one the text bounds does not).
+    pub repeating: usize,
     /// Declarations that were read at least once.
     pub used: std::collections::HashSet<Span>,
     /// Declared textures (`texture name kind { … }`), with the span of
@@ -113,12 +93,52 @@ pub struct Env {
 impl Env {
     /// An environment with one (global) frame.
     pub fn new() -> Self {
+        Env::with_work(MAX_WORK)
+    }
+
+    /// An environment whose evaluation may take `steps` of work (a fuzzer
+    /// keeps its inputs fast with a small budget; the rules are the same).
+    pub fn with_work(steps: u64) -> Self {
         Env {
             frames: vec![HashMap::new()],
-            used: Default::default(),
-            textures: HashMap::new(),
+            work: Work::new(steps),
+            work_limit: steps,
+            suggestions: Work::new(MAX_SUGGESTIONS),
             ..Default::default()
         }
+    }
+
+    /// Takes `steps` of the work budget for work done at `span`: `false`,
+    /// after the error (reported once), when the budget is spent.
+    pub fn charge(&mut self, steps: u64, span: Span, diags: &mut Diagnostics) -> bool {
+        if self.work.take(steps) {
+            return true;
+        }
+        self.out_of_work(span, diags);
+        false
+    }
+
+    /// Reports the work budget spent at `span` (once).
+    fn out_of_work(&mut self, span: Span, diags: &mut Diagnostics) {
+        if !self.work_reported {
+            self.work_reported = true;
+            diags.push(budget::out_of_work(self.work_limit, span));
+        }
+    }
+
+    /// The closest of `candidates` to `word` for a "did you mean" help,
+    /// while the suggestions' budget lasts (`count` is how many there are):
+    /// an error with a suggestion costs the names it weighs.
+    pub fn suggest<'a>(
+        &mut self,
+        word: &str,
+        count: usize,
+        candidates: impl IntoIterator<Item = &'a str>,
+    ) -> Option<&'a str> {
+        if !self.suggestions.take(count as u64) {
+            return None;
+        }
+        did_you_mean(word, candidates)
     }
 
     /// Opens a nested frame.
@@ -166,6 +186,24 @@ impl Env {
         Some(value)
     }
 
+    /// The name in scope (or of `also`) closest to `word`, while the
+    /// suggestions' budget lasts ([`Env::suggest`]).
+    fn suggest_name(&mut self, word: &str, also: &[&str]) -> Option<String> {
+        let count = self.name_count() + also.len();
+        if !self.suggestions.take(count as u64) {
+            return None;
+        }
+        let names = self.names();
+        let candidates = (also.iter().copied()).chain(names.iter().map(String::as_str));
+        did_you_mean(word, candidates).map(str::to_string)
+    }
+
+    /// How many names [`Env::names`] gives.
+    fn name_count(&self) -> usize {
+        let frames: usize = self.visible().map(HashMap::len).sum();
+        frames + self.textures.len() + self.predefined.len()
+    }
+
     /// Every name in scope (for "did you mean").
     pub fn names(&self) -> Vec<String> {
         (self.visible().flat_map(|f| f.keys()))
@@ -175,36 +213,6 @@ impl Env {
             .collect()
     }
 }
-
-/// The built-in functions: name, least and most number of arguments.
-pub const FUNCTIONS: &[(&str, (usize, usize))] = &[
-    ("sin", (1, 1)),
-    ("cos", (1, 1)),
-    ("tan", (1, 1)),
-    ("asin", (1, 1)),
-    ("acos", (1, 1)),
-    ("atan2", (2, 2)),
-    ("sqrt", (1, 1)),
-    ("pow", (2, 2)),
-    ("exp", (1, 1)),
-    ("log", (1, 1)),
-    ("abs", (1, 1)),
-    ("min", (2, 2)),
-    ("max", (2, 2)),
-    ("clamp", (3, 3)),
-    ("floor", (1, 1)),
-    ("ceil", (1, 1)),
-    ("round", (1, 1)),
-    ("radians", (1, 1)),
-    ("degrees", (1, 1)),
-    ("normalize", (1, 1)),
-    ("length", (1, 1)),
-    ("dot", (2, 2)),
-    ("cross", (2, 2)),
-    ("len", (1, 1)),
-    ("str", (1, 2)),
-    ("rand", (2, 2)),
-];
 
 /// Deepest nesting of evaluation in all (expressions within expressions,
 /// through calls): what the brackets of one expression allow
@@ -229,10 +237,23 @@ pub fn eval(e: &Expr, env: &mut Env, diags: &mut Diagnostics) -> Option<Value> {
         }
         return None;
     }
+    // An expression that a loop or a function runs again costs a step
+    // (once, at the top level, its text bounds it); what an operation
+    // makes costs by its size besides (`Env::made`).
+    if (env.repeating > 0 || env.call_depth > 0) && !env.charge(1, e.span, diags) {
+        return None;
+    }
     env.depth += 1;
     let v = eval_inner(e, env, diags);
     env.depth -= 1;
-    finite(v?, e.span, matches!(e.kind, ExprKind::Number(_)), diags)
+    match e.kind {
+        // What an operation computes is checked where it is computed (a
+        // chain's every step, a built-in's result, a literal); a name, an
+        // item or a function's result is a value checked before, and a
+        // long vector is not walked again each time it is passed on.
+        ExprKind::Number(_) => finite(v?, e.span, true, diags),
+        _ => v,
+    }
 }
 
 /// Evaluates a condition: `Some(true or false)`, or `None` after a
@@ -270,20 +291,32 @@ fn finite(v: Value, span: Span, literal: bool, diags: &mut Diagnostics) -> Optio
     if ok {
         return Some(v);
     }
-    let (msg, help) = if literal {
-        (
+    let overflow = match &v {
+        Value::Num(x) => x.is_infinite(),
+        Value::Vector(v) => v.iter().any(|x| x.is_infinite()),
+        Value::Color(c) => c.iter().any(|x| x.is_infinite()),
+        _ => false,
+    };
+    let (msg, label, help) = match (literal, overflow) {
+        (true, _) => (
             "number too large",
+            "this is not finite",
             "numbers must fit a 64-bit float (about 1.8e308)",
-        )
-    } else {
-        (
-            "expression is not a finite number",
-            "the result is infinite or NaN; check for overflow, sqrt of a negative or a zero denominator",
-        )
+        ),
+        (false, true) => (
+            "the result is too large: beyond the ±1.8e308 of a 64-bit float",
+            "this overflows",
+            "scale the values down, or divide by a larger number; `pow`, `exp` and products of large numbers grow fast",
+        ),
+        (false, false) => (
+            "the result is not a number (NaN)",
+            "this is NaN",
+            "an intermediate value overflowed (∞ − ∞, 0 × ∞); scale the values down",
+        ),
     };
     diags.push(
         Diagnostic::error(codes::NOT_FINITE, msg, span)
-            .with_label("this is not finite")
+            .with_label(label)
             .with_help(help),
     );
     None
@@ -292,7 +325,12 @@ fn finite(v: Value, span: Span, literal: bool, diags: &mut Diagnostics) -> Optio
 fn eval_inner(e: &Expr, env: &mut Env, diags: &mut Diagnostics) -> Option<Value> {
     match &e.kind {
         ExprKind::Number(x) => Some(Value::Num(*x)),
-        ExprKind::Str(s) => Some(Value::Str(s.clone())),
+        ExprKind::Str(s) => {
+            // A literal run again is copied again: a long one costs by its size.
+            let v = Value::Str(s.as_str().into());
+            let repeated = env.repeating > 0 || env.call_depth > 0;
+            (!repeated || env.charge(v.weight(), e.span, diags)).then_some(v)
+        }
         ExprKind::Bool(b) => Some(Value::Bool(*b)),
         ExprKind::Vector(items) => {
             let mut out = Vec::with_capacity(items.len());
@@ -318,7 +356,7 @@ fn eval_inner(e: &Expr, env: &mut Env, diags: &mut Diagnostics) -> Option<Value>
                     None => ok = false,
                 }
             }
-            ok.then_some(Value::Vector(out))
+            ok.then_some(Value::Vector(out.into()))
         }
         ExprKind::Color(inner) => match eval(inner, env, diags)? {
             Value::Num(x) => Some(Value::Color([x; 3])),
@@ -344,14 +382,13 @@ fn eval_inner(e: &Expr, env: &mut Env, diags: &mut Diagnostics) -> Option<Value>
             if let Some(v) = env.lookup(name) {
                 return v;
             }
-            let names = env.names();
             let mut d = Diagnostic::error(
                 codes::UNKNOWN_NAME,
                 format!("unknown name `{name}`"),
                 e.span,
             )
             .with_label("not defined");
-            d = match did_you_mean(name, names.iter().map(String::as_str)) {
+            d = match env.suggest_name(name, &[]) {
                 Some(s) => d.with_help(format!("did you mean `{s}`?")),
                 None => d.with_help(format!("define it first with `let {name} = …;`")),
             };
@@ -360,7 +397,14 @@ fn eval_inner(e: &Expr, env: &mut Env, diags: &mut Diagnostics) -> Option<Value>
         }
         ExprKind::Neg(inner) => match eval(inner, env, diags)? {
             Value::Num(x) => Some(Value::Num(-x)),
-            Value::Vector(v) => Some(Value::Vector(v.iter().map(|x| -x).collect())),
+            Value::Vector(v) => {
+                // Counted before it is made: a budget spent stops the work.
+                let weight = Value::Vector(v.clone()).weight();
+                if !env.charge(weight, e.span, diags) {
+                    return None;
+                }
+                Some(Value::Vector(v.iter().map(|x| -x).collect()))
+            }
             Value::Color(c) => Some(Value::Color(c.map(|x| -x))),
             other => {
                 diags.push(
@@ -409,6 +453,10 @@ fn eval_inner(e: &Expr, env: &mut Env, diags: &mut Diagnostics) -> Option<Value>
             let mut at = base.span;
             for ix in indexes {
                 let i = eval(ix, env, diags)?;
+                // A string is indexed by its characters, counted from its start.
+                if matches!(v, Value::Str(_)) && !env.charge(v.weight(), at, diags) {
+                    return None;
+                }
                 v = index(v, i, at, ix.span, diags)?;
                 at = at.join(ix.span);
             }
@@ -455,17 +503,10 @@ fn eval_inner(e: &Expr, env: &mut Env, diags: &mut Diagnostics) -> Option<Value>
                     bare_rgb,
                 };
                 acc = match (acc, b) {
-                    (Some(a), Some(b)) => {
-                        binary(*op, a, b, at, diags).and_then(|v| finite(v, span, false, diags))
-                    }
+                    (Some(a), Some(b)) => binary(*op, a, b, at, env, diags)
+                        .and_then(|v| finite(v, span, false, diags)),
                     _ => None,
                 };
-                if acc
-                    .as_ref()
-                    .is_some_and(|v| !env.charge_items(v, span, diags))
-                {
-                    return None;
-                }
                 acc_span = span;
                 bare_rgb = false;
             }
@@ -492,20 +533,12 @@ fn eval_inner(e: &Expr, env: &mut Env, diags: &mut Diagnostics) -> Option<Value>
                 _ => {}
             }
             let Some(&(_, (least, most))) = builtin else {
-                let user: Vec<String> = env.names();
-                let names = FUNCTIONS
-                    .iter()
-                    .map(|(n, _)| *n)
-                    .chain(user.iter().map(String::as_str));
-                let help = match did_you_mean(&func.name, names) {
+                let built_in: Vec<&str> = FUNCTIONS.iter().map(|(n, _)| *n).collect();
+                let help = match env.suggest_name(&func.name, &built_in) {
                     Some(s) => format!("did you mean `{s}`?"),
                     None => format!(
                         "the built-in functions are {}; declare your own with `fn {}(x) = …;`",
-                        FUNCTIONS
-                            .iter()
-                            .map(|(n, _)| *n)
-                            .collect::<Vec<_>>()
-                            .join(", "),
+                        built_in.join(", "),
                         func.name
                     ),
                 };
@@ -546,7 +579,8 @@ fn eval_inner(e: &Expr, env: &mut Env, diags: &mut Diagnostics) -> Option<Value>
                 vals.push(eval(a, env, diags));
             }
             let vals: Option<Vec<Value>> = vals.into_iter().collect();
-            call(&func.name, &vals?, args, e.span, diags)
+            builtins::call(&func.name, &vals?, args, e.span, env, diags)
+                .and_then(|v| finite(v, e.span, false, diags))
         }
     }
 }
@@ -559,25 +593,46 @@ impl Env {
         span: Span,
         diags: &mut Diagnostics,
     ) -> Option<Value> {
-        let v = Value::List(Arc::new(items));
-        self.charge_items(&v, span, diags).then_some(v)
+        let list = List::new(items);
+        if list.depth > MAX_LIST_DEPTH {
+            diags.push(
+                Diagnostic::error(
+                    codes::VALUE_TOO_LARGE,
+                    format!("lists nest at most {MAX_LIST_DEPTH} levels deep"),
+                    span,
+                )
+                .with_label(format!("this list nests {} levels", list.depth))
+                .with_help("a list of lists of lists… is walked level by level; keep the data flat (a list of vectors), or put it in a mesh file"),
+            );
+            return None;
+        }
+        let n = list.items.len();
+        let v = Value::List(Arc::new(list));
+        self.charge_items(n, span, diags).then_some(v)
     }
 
-    /// Counts a list or string just built against what all values built
-    /// may hold ([`MAX_ITEMS`] items per list, twice that in all; a
-    /// string's 16 bytes as one item): `false`, after a diagnostic, when
-    /// it is too large.
-    fn charge_items(&mut self, v: &Value, span: Span, diags: &mut Diagnostics) -> bool {
-        let n = match v {
-            Value::List(l) => l.len(),
-            Value::Str(s) => s.len() / 16,
-            _ => return true,
-        };
+    /// Counts `n` items of a list (or 16 bytes of a string) about to be
+    /// built at `span` against what all values built may hold
+    /// ([`MAX_ITEMS`] items per list, twice that in all): `false`, after
+    /// a diagnostic, when they are too many. Counted before the value is
+    /// built, so that a refused one costs nothing.
+    fn charge_items(&mut self, n: usize, span: Span, diags: &mut Diagnostics) -> bool {
+        self.charge_items_as(n, || format!("this is a list of {n}"), span, diags)
+    }
+
+    /// [`Env::charge_items`], with the label of the error made by `label`.
+    fn charge_items_as(
+        &mut self,
+        n: usize,
+        label: impl FnOnce() -> String,
+        span: Span,
+        diags: &mut Diagnostics,
+    ) -> bool {
         self.items += n as u64;
         if n <= MAX_ITEMS && self.items <= 2 * MAX_ITEMS as u64 {
             return true;
         }
-        diags.push(too_large(format!("this is {}", v.type_name()), span));
+        diags.push(too_large(label(), span));
         false
     }
 }
@@ -679,7 +734,7 @@ fn call_user(
 /// character of a string.
 fn index(v: Value, i: Value, at: Span, i_span: Span, diags: &mut Diagnostics) -> Option<Value> {
     let len = match &v {
-        Value::List(l) => l.len(),
+        Value::List(l) => l.items.len(),
         Value::Vector(x) => x.len(),
         Value::Color(_) => 3,
         Value::Str(s) => s.chars().count(),
@@ -705,7 +760,7 @@ fn index(v: Value, i: Value, at: Span, i_span: Span, diags: &mut Diagnostics) ->
                     format!(
                         "an index must be a whole number, found {}",
                         match other {
-                            Value::Num(x) => format!("{x}"),
+                            Value::Num(x) => value::shown(x),
                             o => o.type_name(),
                         }
                     ),
@@ -721,7 +776,11 @@ fn index(v: Value, i: Value, at: Span, i_span: Span, diags: &mut Diagnostics) ->
         diags.push(
             Diagnostic::error(
                 codes::INDEX_OUT_OF_RANGE,
-                format!("index {k} is out of range for {}", v.type_name()),
+                format!(
+                    "index {} is out of range for {}",
+                    value::shown(k),
+                    v.type_name()
+                ),
                 i_span,
             )
             .with_label(if len == 0 {
@@ -736,61 +795,15 @@ fn index(v: Value, i: Value, at: Span, i_span: Span, diags: &mut Diagnostics) ->
     }
     let k = k as usize;
     Some(match v {
-        Value::List(l) => l[k].clone(),
+        Value::List(l) => l.items[k].clone(),
         Value::Vector(x) => Value::Num(x[k]),
         Value::Color(c) => Value::Num(c[k]),
-        Value::Str(s) => Value::Str(s.chars().nth(k).map(String::from).unwrap_or_default()),
+        Value::Str(s) => {
+            let c = s.chars().nth(k).map(String::from).unwrap_or_default();
+            Value::Str(c.into())
+        }
         _ => unreachable!("checked above"),
     })
-}
-
-/// `v` as text: whole numbers without a fraction (zero-padded to `width`
-/// digits), other numbers as the shortest decimal that reads back the same,
-/// strings as they are, other values as they are written in a scene.
-pub fn format_value(v: &Value, width: usize) -> String {
-    let number = |x: f64| {
-        if x.fract() == 0.0 && x.abs() < 1e15 {
-            let digits = format!("{:0width$}", (x as i64).unsigned_abs());
-            if x < 0.0 {
-                format!("-{digits}")
-            } else {
-                digits
-            }
-        } else {
-            format!("{x}")
-        }
-    };
-    let join = |xs: &[f64]| xs.iter().map(|&x| number(x)).collect::<Vec<_>>().join(", ");
-    match v {
-        Value::Num(x) => number(*x),
-        Value::Str(s) => s.clone(),
-        Value::Bool(b) => b.to_string(),
-        Value::Vector(xs) => format!("<{}>", join(xs)),
-        Value::Color(c) => format!("rgb <{}>", join(c)),
-        Value::List(l) => {
-            let items: Vec<String> = l.iter().map(|x| format_value(x, 0)).collect();
-            format!("[{}]", items.join(", "))
-        }
-        Value::Function(f) => format!("fn {}", f.name),
-    }
-}
-
-/// A random number in [0, 1) that depends only on `seed` and `index`: the
-/// same scene always makes the same forest. The two numbers' bits are
-/// mixed by SplitMix64's finaliser (Steele, Lea and Flood 2014, "Fast
-/// splittable pseudorandom number generators"), applied twice; the top 53
-/// bits are the fraction.
-pub fn random(seed: f64, index: f64) -> f64 {
-    fn mix(mut z: u64) -> u64 {
-        z = z.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-    // +0.0 for -0.0: the two are equal, so they give the same number.
-    let bits = |x: f64| (x + 0.0).to_bits();
-    let h = mix(mix(bits(seed)) ^ bits(index));
-    (h >> 11) as f64 / (1u64 << 53) as f64
 }
 
 /// Where the parts of one operation are written.
@@ -819,12 +832,26 @@ fn mismatch(at: Operands, msg: String, help: &str) -> Diagnostic {
         .with_help(help.to_string())
 }
 
-fn binary(op: BinOp, a: Value, b: Value, at: Operands, diags: &mut Diagnostics) -> Option<Value> {
+fn binary(
+    op: BinOp,
+    a: Value,
+    b: Value,
+    at: Operands,
+    env: &mut Env,
+    diags: &mut Diagnostics,
+) -> Option<Value> {
     let (a_span, b_span) = (at.lhs, at.rhs);
     use Value::*;
     match (op, &a, &b) {
-        (BinOp::Eq, _, _) => return Some(Bool(a == b)),
-        (BinOp::Ne, _, _) => return Some(Bool(a != b)),
+        (BinOp::Eq | BinOp::Ne, _, _) => {
+            // Two lists of a million items are compared item by item, each
+            // a step of the budget: a loop of such comparisons stops.
+            let Some(same) = value::equal(&a, &b, &mut env.work) else {
+                env.out_of_work(a_span.join(b_span), diags);
+                return None;
+            };
+            return Some(Bool(same == (op == BinOp::Eq)));
+        }
         (BinOp::Lt | BinOp::Le | BinOp::Gt | BinOp::Ge, Num(x), Num(y)) => {
             return Some(Bool(match op {
                 BinOp::Lt => x < y,
@@ -851,12 +878,18 @@ fn binary(op: BinOp, a: Value, b: Value, at: Operands, diags: &mut Diagnostics) 
             return None;
         }
         (BinOp::Add, Str(x), Str(y)) => {
-            if x.len() + y.len() > MAX_STRING {
-                let n = x.len() + y.len();
-                diags.push(too_large(format!("{n} bytes"), a_span.join(b_span)));
+            let (n, span) = (x.len() + y.len(), a_span.join(b_span));
+            if n > MAX_STRING {
+                diags.push(too_large(format!("{n} bytes"), span));
                 return None;
             }
-            return Some(Str(format!("{x}{y}")));
+            let label = || "this is a string".to_string();
+            if !(env.charge(n as u64 / 16, span, diags)
+                && env.charge_items_as(n / 16, label, span, diags))
+            {
+                return None;
+            }
+            return Some(Str(format!("{x}{y}").into()));
         }
         (BinOp::Add, Str(_), _) | (BinOp::Add, _, Str(_)) => {
             diags.push(
@@ -871,14 +904,18 @@ fn binary(op: BinOp, a: Value, b: Value, at: Operands, diags: &mut Diagnostics) 
             return None;
         }
         (BinOp::Add, List(x), List(y)) => {
-            // Counted against the items of all lists by the caller's
-            // `new_list`; here only the length of one list is bounded.
-            if x.len() + y.len() > MAX_ITEMS {
-                let n = x.len() + y.len();
-                diags.push(too_large(format!("a list of {n}"), a_span.join(b_span)));
+            let (n, span) = (x.items.len() + y.items.len(), a_span.join(b_span));
+            if n > MAX_ITEMS {
+                diags.push(too_large(format!("a list of {n}"), span));
                 return None;
             }
-            return Some(List(Arc::new(x.iter().chain(y.iter()).cloned().collect())));
+            // Counted before the copy: a refused one costs nothing.
+            if !env.charge_items(n, span, diags) {
+                return None;
+            }
+            return Some(Value::list(
+                x.items.iter().chain(&y.items).cloned().collect(),
+            ));
         }
         (BinOp::And | BinOp::Or, _, _) => unreachable!("`&&` and `||` are evaluated lazily"),
         _ => {}
@@ -891,6 +928,11 @@ fn binary(op: BinOp, a: Value, b: Value, at: Operands, diags: &mut Diagnostics) 
         BinOp::Rem => x % y,
         _ => unreachable!("comparisons are handled above"),
     };
+    // Each component of a vector is computed: counted before, so that a
+    // budget spent stops the work.
+    if !env.charge(a.weight().max(b.weight()), a_span.join(b_span), diags) {
+        return None;
+    }
     if matches!(op, BinOp::Div | BinOp::Rem) {
         let zero = match &b {
             Num(y) => *y == 0.0,
@@ -911,7 +953,7 @@ fn binary(op: BinOp, a: Value, b: Value, at: Operands, diags: &mut Diagnostics) 
     let r = match (a, b) {
         (Num(x), Num(y)) => Num(f(x, y)),
         (Vector(u), Vector(v)) if u.len() == v.len() => {
-            Vector(u.iter().zip(&v).map(|(x, y)| f(*x, *y)).collect())
+            Vector(u.iter().zip(v.iter()).map(|(x, y)| f(*x, *y)).collect())
         }
         (Color(u), Color(v)) => Color([f(u[0], v[0]), f(u[1], v[1]), f(u[2], v[2])]),
         (Vector(u), Num(y)) if !additive => Vector(u.iter().map(|x| f(*x, y)).collect()),
@@ -956,452 +998,5 @@ fn binary(op: BinOp, a: Value, b: Value, at: Operands, diags: &mut Diagnostics) 
     Some(r)
 }
 
-fn call(
-    name: &str,
-    vals: &[Value],
-    args: &[Expr],
-    span: Span,
-    diags: &mut Diagnostics,
-) -> Option<Value> {
-    use Value::*;
-    let num = |i: usize, diags: &mut Diagnostics| -> Option<f64> {
-        match &vals[i] {
-            Num(x) => Some(*x),
-            other => {
-                diags.push(
-                    Diagnostic::error(
-                        codes::TYPE_MISMATCH,
-                        format!("`{name}` needs a number, found {}", other.type_name()),
-                        args[i].span,
-                    )
-                    .with_label("expected a number")
-                    .with_help(format!("pass a number to `{name}`")),
-                );
-                None
-            }
-        }
-    };
-    let vec3 = |i: usize, diags: &mut Diagnostics| -> Option<[f64; 3]> {
-        match &vals[i] {
-            Vector(v) if v.len() == 3 => Some([v[0], v[1], v[2]]),
-            other => {
-                diags.push(
-                    Diagnostic::error(
-                        codes::TYPE_MISMATCH,
-                        format!("`{name}` needs a vector of 3, found {}", other.type_name()),
-                        args[i].span,
-                    )
-                    .with_label("expected a vector <x, y, z>")
-                    .with_help(format!("pass a vector such as `<0, 1, 0>` to `{name}`")),
-                );
-                None
-            }
-        }
-    };
-    let dot3 = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-    Some(match name {
-        "sin" => Num(num(0, diags)?.sin()),
-        "cos" => Num(num(0, diags)?.cos()),
-        "tan" => Num(num(0, diags)?.tan()),
-        "sqrt" => {
-            let x = num(0, diags)?;
-            if x < 0.0 {
-                diags.push(
-                    Diagnostic::error(
-                        codes::DOMAIN,
-                        "square root of a negative number",
-                        args[0].span,
-                    )
-                    .with_label(format!("this is {x}"))
-                    .with_help("sqrt needs a value ≥ 0"),
-                );
-                return None;
-            }
-            Num(x.sqrt())
-        }
-        "pow" => Num(num(0, diags)?.powf(num(1, diags)?)),
-        "asin" | "acos" => {
-            let x = num(0, diags)?;
-            if !(-1.0..=1.0).contains(&x) {
-                diags.push(
-                    Diagnostic::error(
-                        codes::DOMAIN,
-                        format!("`{name}` of a number outside [-1, 1]"),
-                        args[0].span,
-                    )
-                    .with_label(format!("this is {x}"))
-                    .with_help(format!("`{name}` takes a sine or cosine, between -1 and 1")),
-                );
-                return None;
-            }
-            Num(if name == "asin" { x.asin() } else { x.acos() })
-        }
-        "atan2" => Num(num(0, diags)?.atan2(num(1, diags)?)),
-        "exp" => Num(num(0, diags)?.exp()),
-        "log" => {
-            let x = num(0, diags)?;
-            if x <= 0.0 {
-                diags.push(
-                    Diagnostic::error(
-                        codes::DOMAIN,
-                        "logarithm of a number that is not positive",
-                        args[0].span,
-                    )
-                    .with_label(format!("this is {x}"))
-                    .with_help("log needs a value > 0"),
-                );
-                return None;
-            }
-            Num(x.ln())
-        }
-        "clamp" => {
-            let (x, lo, hi) = (num(0, diags)?, num(1, diags)?, num(2, diags)?);
-            if lo > hi {
-                diags.push(
-                    Diagnostic::error(
-                        codes::DOMAIN,
-                        "`clamp` with its low bound above its high bound",
-                        args[1].span.join(args[2].span),
-                    )
-                    .with_label(format!("{lo} > {hi}"))
-                    .with_help("call it as `clamp(x, low, high)`"),
-                );
-                return None;
-            }
-            Num(x.clamp(lo, hi))
-        }
-        "floor" => Num(num(0, diags)?.floor()),
-        "ceil" => Num(num(0, diags)?.ceil()),
-        "round" => Num(num(0, diags)?.round()),
-        "len" => match &vals[0] {
-            List(l) => Num(l.len() as f64),
-            Vector(v) => Num(v.len() as f64),
-            Str(t) => Num(t.chars().count() as f64),
-            Color(_) => Num(3.0),
-            other => {
-                diags.push(
-                    Diagnostic::error(
-                        codes::TYPE_MISMATCH,
-                        format!(
-                            "`len` needs a list, vector or string, found {}",
-                            other.type_name()
-                        ),
-                        args[0].span,
-                    )
-                    .with_label(format!("this is {}", other.type_name()))
-                    .with_help("`len(xs)` counts the items of a list"),
-                );
-                return None;
-            }
-        },
-        "str" => {
-            let width = match vals.get(1) {
-                None => 0,
-                Some(_) => {
-                    let w = num(1, diags)?;
-                    if !(w.fract() == 0.0 && (0.0..=32.0).contains(&w)) {
-                        diags.push(
-                            Diagnostic::error(
-                                codes::DOMAIN,
-                                "a width must be a whole number from 0 to 32",
-                                args[1].span,
-                            )
-                            .with_label(format!("this is {w}"))
-                            .with_help("`str(7, 4)` is \"0007\""),
-                        );
-                        return None;
-                    }
-                    w as usize
-                }
-            };
-            Str(format_value(&vals[0], width))
-        }
-        "rand" => Num(random(num(0, diags)?, num(1, diags)?)),
-        "abs" => Num(num(0, diags)?.abs()),
-        "min" => Num(num(0, diags)?.min(num(1, diags)?)),
-        "max" => Num(num(0, diags)?.max(num(1, diags)?)),
-        "radians" => Num(num(0, diags)?.to_radians()),
-        "degrees" => Num(num(0, diags)?.to_degrees()),
-        "length" => Num(dot3(vec3(0, diags)?, vec3(0, diags)?).sqrt()),
-        "normalize" => {
-            let v = vec3(0, diags)?;
-            let l = dot3(v, v).sqrt();
-            if l == 0.0 {
-                diags.push(
-                    Diagnostic::error(
-                        codes::DOMAIN,
-                        "cannot normalize a zero vector",
-                        args[0].span,
-                    )
-                    .with_label("this vector has length 0")
-                    .with_help("pass a non-zero vector"),
-                );
-                return None;
-            }
-            Vector(v.iter().map(|x| x / l).collect())
-        }
-        "dot" => Num(dot3(vec3(0, diags)?, vec3(1, diags)?)),
-        "cross" => {
-            let a = vec3(0, diags)?;
-            let b = vec3(1, diags)?;
-            Vector(vec![
-                a[1] * b[2] - a[2] * b[1],
-                a[2] * b[0] - a[0] * b[2],
-                a[0] * b[1] - a[1] * b[0],
-            ])
-        }
-        other => unreachable!("function table and evaluator disagree on `{other}` at {span:?}"),
-    })
-}
-
 #[cfg(test)]
-mod tests {
-    use crate::check::{check_str, Shape};
-    use crate::diag::codes;
-    use std::path::Path;
-
-    /// The value of `expr` used as a sphere's radius.
-    fn radius(expr: &str) -> f64 {
-        let src = format!(
-            "camera {{ position <0, 0, 5> look_at <0, 0, 0> }}\n\
-             sphere {{ center <0, 0, 0> radius {expr} }}\n"
-        );
-        let c = check_str(Path::new("t.pts"), &src);
-        let scene = c
-            .scene
-            .unwrap_or_else(|| panic!("{}", c.diagnostics.render_human(&c.sources, false)));
-        match scene.objects[0].shape {
-            Shape::Sphere { radius, .. } => radius,
-            ref s => panic!("not a sphere: {s:?}"),
-        }
-    }
-
-    /// The value of `expr` after the statements `before`, or the first
-    /// diagnostic's code.
-    fn value(before: &str, expr: &str) -> Result<super::Value, String> {
-        use crate::syntax::ast::Statement;
-        let src = format!("{before}\nlet v__ = {expr};");
-        let file =
-            crate::syntax::parse(crate::source::FileId(0), &src).map_err(|d| d.code.to_string())?;
-        let mut env = super::Env::new();
-        let mut diags = crate::diag::Diagnostics::new();
-        let mut out = None;
-        for st in &file.statements {
-            match st {
-                Statement::Let { name, value, .. } => {
-                    let v = super::eval(value, &mut env, &mut diags);
-                    if name.name == "v__" {
-                        out = v.clone();
-                    }
-                    let decl = name.span;
-                    env.bind(&name.name, super::Binding { value: v, decl });
-                }
-                Statement::Function {
-                    name, params, body, ..
-                } => {
-                    let f = super::Function {
-                        name: name.name.clone(),
-                        params: params.iter().map(|p| p.name.clone()).collect(),
-                        body: body.clone(),
-                    };
-                    let value = Some(super::Value::Function(std::sync::Arc::new(f)));
-                    env.bind(
-                        &name.name,
-                        super::Binding {
-                            value,
-                            decl: name.span,
-                        },
-                    );
-                }
-                _ => {}
-            }
-        }
-        match diags.items.first() {
-            Some(d) => Err(d.code.to_string()),
-            None => Ok(out.expect("a value")),
-        }
-    }
-
-    fn num(before: &str, expr: &str) -> f64 {
-        match value(before, expr) {
-            Ok(super::Value::Num(x)) => x,
-            other => panic!("{expr}: {other:?}"),
-        }
-    }
-
-    fn boolean(expr: &str) -> bool {
-        match value("", expr) {
-            Ok(super::Value::Bool(b)) => b,
-            other => panic!("{expr}: {other:?}"),
-        }
-    }
-
-    #[test]
-    fn comparisons_and_logic_bind_below_arithmetic() {
-        for (expr, want) in [
-            ("1 + 1 == 2", true),
-            ("2 * 3 < 5", false),
-            ("1 < 2 && 2 < 3", true),
-            ("1 > 2 || 2 < 3 && 3 < 4", true),
-            ("(1 > 2 || 2 < 3) && 3 > 4", false),
-            ("!(1 < 2)", false),
-            ("!!true", true),
-            ("1 <= 1 && 1 >= 1 && 1 != 2", true),
-            ("<1, 2, 3> == <1, 2, 3>", true),
-            ("[1, \"a\"] != [1, \"a\"]", false),
-            ("\"ab\" == \"a\" + \"b\"", true),
-            ("rgb 1 == rgb <1, 1, 1>", true),
-        ] {
-            assert_eq!(boolean(expr), want, "{expr}");
-        }
-        // `&&` and `||` stop at the first operand that decides: the right
-        // side would fail (index out of range, division by zero).
-        assert!(!boolean("[1][0] > 1 && [1][5] > 0"));
-        assert!(boolean("true || 1 / 0 > 0"));
-        assert_eq!(value("", "1 < true").unwrap_err(), codes::TYPE_MISMATCH);
-        assert_eq!(value("", "1 && true").unwrap_err(), codes::TYPE_MISMATCH);
-    }
-
-    #[test]
-    fn lists_index_and_measure() {
-        let before = "let xs = [10, <1, 2, 3>, \"abc\", [4, 5]];";
-        assert_eq!(num(before, "xs[0]"), 10.0);
-        assert_eq!(num(before, "xs[1][2]"), 3.0);
-        assert_eq!(num(before, "xs[3][1]"), 5.0);
-        assert_eq!(num(before, "len(xs) + len(xs[2]) + len([])"), 7.0);
-        assert_eq!(num(before, "len(xs + [1, 2])"), 6.0);
-        assert_eq!(value(before, "xs[2][1]"), Ok(super::Value::Str("b".into())));
-        assert_eq!(
-            value(before, "xs[4]").unwrap_err(),
-            codes::INDEX_OUT_OF_RANGE
-        );
-        assert_eq!(
-            value(before, "xs[-1]").unwrap_err(),
-            codes::INDEX_OUT_OF_RANGE
-        );
-        assert_eq!(value(before, "xs[0.5]").unwrap_err(), codes::TYPE_MISMATCH);
-        assert_eq!(value(before, "xs[0][0]").unwrap_err(), codes::TYPE_MISMATCH);
-    }
-
-    #[test]
-    fn conditionals_evaluate_only_the_chosen_arm() {
-        assert_eq!(
-            num(
-                "let a = 2;",
-                "if a < 1 { 10 } else if a < 3 { 20 } else { 30 }"
-            ),
-            20.0
-        );
-        assert_eq!(
-            num(
-                "let a = 5;",
-                "if a < 1 { 10 } else if a < 3 { 20 } else { 30 }"
-            ),
-            30.0
-        );
-        // The arm not taken would divide by zero.
-        assert_eq!(num("", "if true { 1 } else { 1 / 0 }"), 1.0);
-        assert_eq!(
-            value("", "if 1 { 1 } else { 2 }").unwrap_err(),
-            codes::TYPE_MISMATCH
-        );
-    }
-
-    #[test]
-    fn functions_see_their_parameters_and_the_file_and_recurse_within_bounds() {
-        let before = "let k = 3;\nfn scale(x) = x * k;\nfn fact(n) = if n <= 1 { 1 } else { n * fact(n - 1) };";
-        assert_eq!(num(before, "scale(2)"), 6.0);
-        assert_eq!(num(before, "fact(10)"), 3_628_800.0);
-        assert_eq!(
-            value(before, "fact(100)").unwrap_err(),
-            codes::RECURSION_LIMIT
-        );
-        assert_eq!(
-            value(before, "scale(1, 2)").unwrap_err(),
-            codes::WRONG_ARGUMENT_COUNT
-        );
-        assert_eq!(value(before, "k(1)").unwrap_err(), codes::TYPE_MISMATCH);
-        assert_eq!(
-            value(before, "scal(1)").unwrap_err(),
-            codes::UNKNOWN_FUNCTION
-        );
-        // A constant named like a built-in leaves the built-in callable.
-        assert_eq!(num("let max = 1;", "max(max, 2)"), 2.0);
-        // A function's body does not see its caller's names.
-        assert_eq!(
-            value("fn f(x) = x + y;\nfn g(y) = f(1);", "g(2)").unwrap_err(),
-            codes::UNKNOWN_NAME
-        );
-    }
-
-    #[test]
-    fn strings_and_numbers_format() {
-        let s = |expr: &str| match value("", expr) {
-            Ok(super::Value::Str(s)) => s,
-            other => panic!("{expr}: {other:?}"),
-        };
-        assert_eq!(s("\"frame_\" + str(7, 4) + \".png\""), "frame_0007.png");
-        assert_eq!(s("str(-3, 3)"), "-003");
-        assert_eq!(s("str(0.25)"), "0.25");
-        assert_eq!(s("str(<1, 2.5, 3>)"), "<1, 2.5, 3>");
-        assert_eq!(s("str([1, \"a\"])"), "[1, a]");
-        assert_eq!(value("", "str(1, 40)").unwrap_err(), codes::DOMAIN);
-        assert_eq!(value("", "\"a\" + 1").unwrap_err(), codes::TYPE_MISMATCH);
-    }
-
-    #[test]
-    fn random_numbers_are_a_pure_function_of_seed_and_index() {
-        let a: Vec<f64> = (0..1000).map(|i| super::random(7.0, i as f64)).collect();
-        let b: Vec<f64> = (0..1000).map(|i| super::random(7.0, i as f64)).collect();
-        assert_eq!(a, b);
-        assert!(a.iter().all(|x| (0.0..1.0).contains(x)));
-        // Another seed, another sequence; uniform enough to fill ten bins.
-        assert_ne!(super::random(8.0, 0.0), a[0]);
-        assert_eq!(super::random(-0.0, 3.0), super::random(0.0, 3.0));
-        let mut bins = [0; 10];
-        for x in &a {
-            bins[(x * 10.0) as usize] += 1;
-        }
-        assert!(bins.iter().all(|&n| (70..130).contains(&n)), "{bins:?}");
-        let mean = a.iter().sum::<f64>() / a.len() as f64;
-        assert!((mean - 0.5).abs() < 0.03, "{mean}");
-    }
-
-    #[test]
-    fn new_built_in_functions() {
-        assert_eq!(num("", "floor(-1.5) + ceil(1.2) + round(2.5)"), 3.0);
-        assert_eq!(num("", "clamp(5, 0, 1) + clamp(-1, 0, 1)"), 1.0);
-        assert!((num("", "atan2(1, 1)") - std::f64::consts::FRAC_PI_4).abs() < 1e-12);
-        assert!((num("", "exp(log(3))") - 3.0).abs() < 1e-12);
-        assert!((num("", "asin(1) + acos(1)") - std::f64::consts::FRAC_PI_2).abs() < 1e-12);
-        assert_eq!(value("", "asin(2)").unwrap_err(), codes::DOMAIN);
-        assert_eq!(value("", "log(0)").unwrap_err(), codes::DOMAIN);
-        assert_eq!(value("", "clamp(0, 1, -1)").unwrap_err(), codes::DOMAIN);
-    }
-
-    #[test]
-    fn operators_bind_and_associate_as_in_arithmetic() {
-        // Each wrong precedence or associativity gives another (or a
-        // negative, rejected) value.
-        for (expr, want) in [
-            ("10 - 2 * 3 - 1", 3.0),
-            ("2 * 3 + 4 * 5", 26.0),
-            ("1 - 2 + 3", 2.0),
-            ("12 / 3 * 2", 8.0),
-            ("8 / 2 / 2", 2.0),
-            ("2 - -3", 5.0),
-            ("-2 * -3", 6.0),
-            ("- - 3", 3.0),
-            ("-(1 - 3) * 2", 4.0),
-            ("2 * (1 + 2) - 1", 5.0),
-            ("1 + 2 * 3 * 2 - 4 / 2", 11.0),
-            // `%` binds as `*` and `/`, with the sign of the dividend.
-            ("7 % 4", 3.0),
-            ("1 + 7 % 4 * 2", 7.0),
-            ("7.5 % 2", 1.5),
-            ("10 - -7 % 4", 13.0),
-        ] {
-            assert_eq!(radius(expr), want, "{expr}");
-        }
-    }
-}
+mod tests;

@@ -5,6 +5,10 @@
 //! and by the in-process fuzzer `fuzz/inprocess.rs` that CI runs for a
 //! bounded time.
 
+mod budget;
+
+pub use budget::{budget, budget_scene};
+
 use crate::compile::{compile_bytes, Options};
 use crate::lower::mesh;
 use std::path::Path;

@@ -313,9 +313,10 @@ pub fn read_state_info(path: &Path) -> std::result::Result<StateInfo, String> {
     read_header(open(path)?).map(|(info, _)| info)
 }
 
-/// A state file opened for reading, or why not.
+/// A state file opened for reading, or why not (a regular file only: a
+/// FIFO would wait for a writer, a device could be endless).
 fn open(path: &Path) -> std::result::Result<std::io::BufReader<std::fs::File>, String> {
-    let file = std::fs::File::open(path).map_err(|e| e.to_string())?;
+    let (file, _) = crate::source::open_regular(path).map_err(|e| e.to_string())?;
     Ok(std::io::BufReader::new(file))
 }
 

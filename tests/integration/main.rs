@@ -17,6 +17,7 @@ mod mitsuba;
 mod nasty;
 mod render;
 mod shapes;
+mod special_files;
 mod texture_inputs;
 mod textures;
 mod verdict;

@@ -6,6 +6,7 @@
 pub mod cache;
 mod camera;
 mod collect;
+pub mod decode;
 mod environment;
 pub mod fingerprint;
 mod geometry;

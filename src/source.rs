@@ -15,6 +15,70 @@ pub const MAX_SCENE_BYTES: u64 = 256 << 20;
 /// The largest mesh file (a binary PLY of about 70 million triangles).
 pub const MAX_MESH_BYTES: u64 = 2 << 30;
 
+/// What a path is when it is not a regular file: the reason it is never
+/// read, named in messages.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum FileKind {
+    /// A directory.
+    Folder,
+    /// A character device (`/dev/zero`, `/dev/urandom`, a terminal): endless
+    /// or waiting for input.
+    CharDevice,
+    /// A block device (a disk).
+    BlockDevice,
+    /// A FIFO (named pipe): opening it waits for a writer, reading it for
+    /// the writer's data.
+    Fifo,
+    /// A Unix socket.
+    Socket,
+    /// Anything else a platform has.
+    Other,
+}
+
+impl fmt::Display for FileKind {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            FileKind::Folder => "a folder",
+            FileKind::CharDevice => "a character device",
+            FileKind::BlockDevice => "a block device",
+            FileKind::Fifo => "a FIFO (named pipe)",
+            FileKind::Socket => "a socket",
+            FileKind::Other => "not a file",
+        })
+    }
+}
+
+impl FileKind {
+    /// What `meta` (of a path, links followed) describes, `None` for a
+    /// regular file.
+    pub fn of(meta: &std::fs::Metadata) -> Option<FileKind> {
+        let t = meta.file_type();
+        if t.is_file() {
+            return None;
+        }
+        if t.is_dir() {
+            return Some(FileKind::Folder);
+        }
+        #[cfg(unix)]
+        {
+            use std::os::unix::fs::FileTypeExt;
+            if t.is_char_device() {
+                return Some(FileKind::CharDevice);
+            }
+            if t.is_block_device() {
+                return Some(FileKind::BlockDevice);
+            }
+            if t.is_fifo() {
+                return Some(FileKind::Fifo);
+            }
+            if t.is_socket() {
+                return Some(FileKind::Socket);
+            }
+        }
+        Some(FileKind::Other)
+    }
+}
+
 /// Why a file of a scene could not be read.
 #[derive(Debug)]
 pub enum ReadError {
@@ -22,7 +86,7 @@ pub enum ReadError {
     NotFound,
     /// A folder, a device, a pipe or a socket: never read (it could be
     /// endless or wait forever).
-    NotRegular,
+    NotRegular(FileKind),
     /// Larger than the limit (the size found, at least).
     TooLarge {
         /// The limit in bytes.
@@ -38,7 +102,7 @@ impl fmt::Display for ReadError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             ReadError::NotFound => f.write_str("not found"),
-            ReadError::NotRegular => f.write_str("not a regular file"),
+            ReadError::NotRegular(kind) => write!(f, "not a regular file: it is {kind}"),
             ReadError::TooLarge { limit, size } => write!(
                 f,
                 "larger than {} (the file has {})",
@@ -59,22 +123,44 @@ pub fn human_bytes(n: u64) -> String {
     }
 }
 
-/// Reads a regular file of at most `limit` bytes. The size is checked before
-/// reading and the read stops one byte past the limit (a file that grows
-/// meanwhile is caught too).
-pub fn read_file(path: &Path, limit: u64) -> Result<Vec<u8>, ReadError> {
-    let meta = std::fs::metadata(path).map_err(|e| match e.kind() {
+fn io_error(e: std::io::Error) -> ReadError {
+    match e.kind() {
         std::io::ErrorKind::NotFound => ReadError::NotFound,
         _ => ReadError::Io(e),
-    })?;
-    if !meta.is_file() {
-        return Err(ReadError::NotRegular);
     }
-    read_stream(
-        std::fs::File::open(path).map_err(ReadError::Io)?,
-        meta.len(),
-        limit,
-    )
+}
+
+/// Opens the regular file at `path` (links followed) for reading, with its
+/// length; anything else is refused without being opened (a device may
+/// have effects when opened, a FIFO waits for a writer). The opened file is
+/// checked again, so a path swapped for a FIFO in between is refused too:
+/// it is opened without waiting (`O_NONBLOCK`, which regular files ignore).
+pub fn open_regular(path: &Path) -> Result<(std::fs::File, u64), ReadError> {
+    let meta = std::fs::metadata(path).map_err(io_error)?;
+    if let Some(kind) = FileKind::of(&meta) {
+        return Err(ReadError::NotRegular(kind));
+    }
+    let mut options = std::fs::OpenOptions::new();
+    options.read(true);
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::OpenOptionsExt;
+        options.custom_flags(libc::O_NONBLOCK);
+    }
+    let file = options.open(path).map_err(io_error)?;
+    let meta = file.metadata().map_err(ReadError::Io)?;
+    match FileKind::of(&meta) {
+        Some(kind) => Err(ReadError::NotRegular(kind)),
+        None => Ok((file, meta.len())),
+    }
+}
+
+/// Reads a regular file of at most `limit` bytes (see [`open_regular`]).
+/// The size is checked before reading and the read stops one byte past
+/// the limit (a file that grows meanwhile is caught too).
+pub fn read_file(path: &Path, limit: u64) -> Result<Vec<u8>, ReadError> {
+    let (file, len) = open_regular(path)?;
+    read_stream(file, len, limit)
 }
 
 /// Reads at most `limit` bytes from `r`, expecting about `expected` (the
@@ -265,7 +351,10 @@ mod tests {
             Err(ReadError::TooLarge { size: 5000, .. })
         ));
         let dir = std::env::temp_dir();
-        assert!(matches!(read_file(&dir, 10), Err(ReadError::NotRegular)));
+        assert!(matches!(
+            read_file(&dir, 10),
+            Err(ReadError::NotRegular(FileKind::Folder))
+        ));
         assert!(matches!(
             read_file(&dir.join("no such file, surely"), 10),
             Err(ReadError::NotFound)
@@ -273,7 +362,7 @@ mod tests {
         if Path::new("/dev/zero").exists() {
             assert!(matches!(
                 read_file(Path::new("/dev/zero"), 10),
-                Err(ReadError::NotRegular)
+                Err(ReadError::NotRegular(FileKind::CharDevice))
             ));
         }
         assert_eq!(human_bytes(MAX_SCENE_BYTES), "256 MiB");

@@ -18,7 +18,7 @@ pub use scene::*;
 
 pub(crate) use crate::diag::group_digits;
 use crate::diag::{codes, Diagnostic, Diagnostics};
-use crate::source::{FileId, ReadError, SourceMap, MAX_SCENE_BYTES};
+use crate::source::{FileId, FileKind, ReadError, SourceMap, MAX_SCENE_BYTES};
 use crate::span::Span;
 use crate::syntax::ast::{BlockKind, Entry, MaterialRef, Statement};
 use eval::{eval, Binding, Env, Value};
@@ -87,17 +87,14 @@ pub fn check_file(path: &Path) -> std::io::Result<Checked> {
     Ok(check_bytes(path, read_scene_file(path)?))
 }
 
-/// The bytes of the scene file at `path`. It may be a pipe (`ptsc check
-/// <(generate)`); it is read up to [`MAX_SCENE_BYTES`] like every file of a
-/// scene.
+/// The bytes of the scene file at `path`, read up to [`MAX_SCENE_BYTES`]
+/// like every file of a scene. It must be a regular file: a FIFO (or
+/// `<(generate)`) would wait for its writer and a device could be endless
+/// (the message says what the path is).
 pub fn read_scene_file(path: &Path) -> std::io::Result<Vec<u8>> {
-    let file = std::fs::File::open(path)?;
-    let meta = file.metadata()?;
-    if meta.is_dir() {
-        return Err(std::io::Error::other("it is a folder, not a scene file"));
-    }
-    crate::source::read_stream(file, meta.len(), MAX_SCENE_BYTES).map_err(|e| match e {
+    crate::source::read_file(path, MAX_SCENE_BYTES).map_err(|e| match e {
         ReadError::Io(e) => e,
+        ReadError::NotFound => std::io::Error::from(std::io::ErrorKind::NotFound),
         other => std::io::Error::other(other.to_string()),
     })
 }
@@ -833,12 +830,12 @@ impl Checker {
                         "include paths are relative to the file that contains the `include`"
                             .to_string(),
                     ),
-                    ReadError::NotRegular if target.is_dir() => (
+                    ReadError::NotRegular(FileKind::Folder) => (
                         "it is a folder, not a file".to_string(),
                         "include a `.pts` or `.ptsi` file".to_string(),
                     ),
-                    ReadError::NotRegular => (
-                        "not a regular file".to_string(),
+                    ReadError::NotRegular(kind) => (
+                        format!("not a regular file: it is {kind}"),
                         "devices, pipes and sockets are never read: include a file".to_string(),
                     ),
                     ReadError::TooLarge { size, .. } if *size <= MAX_SCENE_BYTES => (

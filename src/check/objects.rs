@@ -6,6 +6,7 @@ use super::params::{Params, Val, SHAPE_COMMON};
 use super::scene::*;
 use crate::diag::codes;
 use crate::diag::{Diagnostic, Diagnostics};
+use crate::source::FileKind;
 use crate::syntax::ast::BlockKind;
 use glam::{DMat4, DVec3};
 use std::path::Path;
@@ -195,19 +196,18 @@ pub fn shape(
                 );
                 return None;
             }
-            match std::fs::metadata(&path) {
-                Ok(m) if m.is_file() => {}
-                Ok(_) => {
+            // Only the path's kind (a `stat`, which never waits): lowering
+            // reads the file, bounded, and reports what else is wrong.
+            match std::fs::metadata(&path).map(|m| FileKind::of(&m)) {
+                Ok(None) => {}
+                Ok(Some(kind)) => {
                     r.diags.push(
                         Diagnostic::error(
                             codes::MESH_FILE,
                             format!("mesh file `{f}` is not a regular file"),
                             *s,
                         )
-                        .with_label(format!(
-                            "{} is a folder, a device or a pipe",
-                            path.display()
-                        ))
+                        .with_label(format!("{} is {kind}", path.display()))
                         .with_help("a mesh is read from an OBJ or PLY file"),
                     );
                     return None;

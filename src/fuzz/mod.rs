@@ -10,9 +10,11 @@ mod budget;
 pub use budget::{budget, budget_scene};
 
 use crate::compile::{compile_bytes, Options};
+use crate::lower::decode::{decode, Format, Limits};
 use crate::lower::mesh;
 use std::path::Path;
 use std::sync::atomic::AtomicBool;
+use std::sync::Arc;
 
 /// The largest image a fuzzed scene renders: its resolution and samples are
 /// cut to this (the pipeline is the same; the fuzzer stays fast).
@@ -103,33 +105,62 @@ pub fn state(bytes: &[u8]) -> bool {
     true
 }
 
+/// The limits a fuzzed image is read under: small, so that a mutated
+/// header claiming a large image is refused from its header, and an image
+/// within them decodes in milliseconds.
+pub const IMAGE_LIMITS: Limits = Limits {
+    side: 4096,
+    texels: 1 << 20,
+    bytes: 12 << 20,
+};
+
 /// An image file given as bytes, decoded as PNG, JPEG, Radiance HDR and
-/// OpenEXR in turn (the texture reader; 8-bit ones as colours and as
-/// data): when one decodes, an image of at least one
-/// texel, as many texels as its size says, every one finite and
-/// non-negative, and a lookup anywhere finite. Returns whether any decoded.
+/// OpenEXR in turn (the texture reader, header first, under
+/// [`IMAGE_LIMITS`]). Header first: refused admission, no format decodes,
+/// and it says so within a second (nothing but headers was read). When one
+/// decodes: the size its header claimed and was admitted, within the
+/// limits; as many texels as its size says, every one finite and
+/// non-negative through both curves, and a lookup anywhere finite.
+/// Returns whether any decoded.
 pub fn image(bytes: &[u8]) -> bool {
-    use crate::lower::image::{decode, decode_exr};
-    use crate::texture::image::Wrap;
-    use ::image::ImageFormat::{Hdr, Jpeg, Png};
+    use crate::texture::image::{Image, Wrap};
+    use crate::texture::texels::Curve;
     let mut any = false;
-    let decoded = [(Png, false), (Png, true), (Jpeg, false), (Hdr, false)]
-        .into_iter()
-        .map(|(format, data)| decode(bytes, format, data))
-        .chain(std::iter::once(decode_exr(bytes)));
-    for im in decoded {
-        let Ok(im) = im else {
+    for format in Format::ALL {
+        let t0 = std::time::Instant::now();
+        let refused = decode(bytes, format, &IMAGE_LIMITS, |_| Err("refused".into()));
+        assert!(
+            refused.is_err(),
+            "{format:?} decoded an image it did not admit"
+        );
+        let took = t0.elapsed().as_secs_f64();
+        assert!(took < 1.0, "{format:?} took {took:.2} s to refuse an image");
+        let mut admitted = None;
+        let decoded = decode(bytes, format, &IMAGE_LIMITS, |h| {
+            admitted = Some(*h);
+            Ok(())
+        });
+        let Ok(texels) = decoded else {
             continue;
         };
         any = true;
-        assert!(im.width > 0 && im.height > 0);
-        assert_eq!(im.texels.len(), im.width * im.height);
-        assert!(im
-            .texels
-            .iter()
-            .all(|t| t.is_finite() && t.min_element() >= 0.0));
-        for wrap in [Wrap::Repeat, Wrap::Clamp, Wrap::Mirror] {
-            assert!(im.lookup(glam::Vec2::new(-3.7, 1.2), wrap).is_finite());
+        let claim = admitted.expect("a decoded image was admitted");
+        assert!(claim.bytes() <= IMAGE_LIMITS.bytes && claim.texels() <= IMAGE_LIMITS.texels);
+        assert!(
+            texels.bytes() <= claim.bytes(),
+            "{format:?}: more than it claimed"
+        );
+        assert_eq!(texels.layout(), claim.layout);
+        let texels = Arc::new(texels);
+        for curve in [Curve::Linear, Curve::Srgb] {
+            let im = Image::new(texels.clone(), curve);
+            assert!(im.width > 0 && im.height > 0);
+            assert!((0..im.width * im.height)
+                .map(|i| im.texel(i))
+                .all(|t| t.is_finite() && t.min_element() >= 0.0));
+            for wrap in [Wrap::Repeat, Wrap::Clamp, Wrap::Mirror] {
+                assert!(im.lookup(glam::Vec2::new(-3.7, 1.2), wrap).is_finite());
+            }
         }
     }
     any

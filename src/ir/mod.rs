@@ -3,6 +3,7 @@
 //! [`lower`](lower::lower); every primitive remembers the span it came from.
 
 pub mod instance;
+mod memory;
 pub mod settings;
 mod surface;
 

@@ -16,13 +16,12 @@ use crate::sampling::warp;
 use crate::texture::image::Image;
 use glam::{Mat3, Vec2, Vec3};
 use std::f32::consts::{PI, TAU};
-use std::sync::Arc;
 
 /// An environment map ready to evaluate and sample.
 #[derive(Debug, Clone)]
 pub struct EnvironmentMap {
     /// Linear RGB texels, rows from the zenith down (at least 2 × 2).
-    image: Arc<Image>,
+    image: Image,
     /// The map's frame → the world (a rotation).
     to_world: Mat3,
     /// The cells' sampling distribution over (u, v).
@@ -64,10 +63,10 @@ pub fn uv_to_direction(uv: Vec2) -> Vec3 {
 impl EnvironmentMap {
     /// The map of `image` (at least 2 × 2 texels) turned by `to_world` (a
     /// rotation).
-    pub fn new(image: Arc<Image>, to_world: Mat3) -> EnvironmentMap {
+    pub fn new(image: Image, to_world: Mat3) -> EnvironmentMap {
         let (w, h) = (image.width, image.height);
         assert!(w >= 1 && h >= 2, "an environment map has two rows at least");
-        let texel = |i: usize, j: usize| image.texels[j * w + i % w];
+        let texel = |i: usize, j: usize| image.texel(j * w + i % w);
         // The mean radiance, each row weighted by the solid angle it stands
         // for; in f64, so that texels near f32's largest value do not add
         // up to infinity.
@@ -101,6 +100,24 @@ impl EnvironmentMap {
         };
         map.build_distribution();
         map
+    }
+
+    /// The bytes a map of `width` × `height` texels takes besides its
+    /// image: its sampling distribution over the cells between texels,
+    /// about 8 bytes a texel.
+    pub fn sampling_bytes(width: usize, height: usize) -> u64 {
+        Distribution2D::bytes_for(width, height.saturating_sub(1))
+    }
+
+    /// The bytes its sampling distribution holds (its image's are
+    /// [`Image::bytes`], perhaps shared with textures).
+    pub fn distribution_bytes(&self) -> u64 {
+        self.distribution.bytes()
+    }
+
+    /// The image the map reads.
+    pub fn image(&self) -> &Image {
+        &self.image
     }
 
     /// The same map, its directions sampled uniformly over the sphere (the
@@ -137,7 +154,7 @@ impl EnvironmentMap {
         let y = (uv.y * (h - 1) as f32).clamp(0.0, (h - 1) as f32);
         let (i, j) = ((x as usize).min(w - 1), (y as usize).min(h - 2));
         let (fx, fy) = (x - i as f32, y - j as f32);
-        let t = |i: usize, j: usize| self.image.texels[j * w + i % w];
+        let t = |i: usize, j: usize| self.image.texel(j * w + i % w);
         let top = t(i, j).lerp(t(i + 1, j), fx);
         let bottom = t(i, j + 1).lerp(t(i + 1, j + 1), fx);
         top.lerp(bottom, fy)
@@ -201,7 +218,7 @@ impl EnvironmentMap {
             let importance = if self.uniform {
                 1.0
             } else {
-                luminance(self.image.texels[j * w + i % w])
+                luminance(self.image.texel(j * w + i % w))
             };
             // Capped: texels near f32's largest value must not overflow
             // the sums and squares of the bilinear warp (the density would
@@ -249,12 +266,9 @@ mod tests {
     use crate::sampling::chi2::sphere_p_value;
     use crate::sampling::sampler::Sampler;
 
-    fn image(w: usize, h: usize, f: impl Fn(usize, usize) -> Vec3) -> Arc<Image> {
-        Arc::new(Image {
-            width: w,
-            height: h,
-            texels: (0..w * h).map(|k| f(k % w, k / w)).collect(),
-        })
+    fn image(w: usize, h: usize, f: impl Fn(usize, usize) -> Vec3) -> Image {
+        let texels: Vec<Vec3> = (0..w * h).map(|k| f(k % w, k / w)).collect();
+        Image::from_rgb(w, h, &texels)
     }
 
     #[test]

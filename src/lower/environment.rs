@@ -20,7 +20,14 @@ pub fn lower_environment(
     diags: &mut Diagnostics,
     warnings: &mut Diagnostics,
 ) -> Option<Arc<EnvironmentMap>> {
-    let image = match images.get(&e.path, Encoding::ByFile) {
+    let sampling = |image: &crate::texture::image::Image| {
+        EnvironmentMap::sampling_bytes(image.width, image.height)
+    };
+    let image = match images.get(&e.path, Encoding::ByFile).and_then(|image| {
+        // Its distribution counts with the scene's images.
+        images.charge(sampling(&image), "its sampling distribution")?;
+        Ok(image)
+    }) {
         Ok(image) if image.height >= 2 => image,
         Ok(_) => {
             diags.push(

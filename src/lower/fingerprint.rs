@@ -6,7 +6,11 @@
 //! runs of white space read as one space and its `render { … }` blocks left
 //! out (editing a comment, the layout or the samples keeps the
 //! fingerprint), the frame's `frame` and `clock`, and the bytes of every
-//! data file the scene names (meshes, image textures, environment maps).
+//! data file the scene names (meshes, image textures, environment maps),
+//! read as their loaders read them: regular files within their format's
+//! limit; a device, a FIFO or a file over the limit is never read (it
+//! could be endless or wait forever) and hashes as unreadable, and
+//! lowering refuses it.
 //!
 //! Hashing the checked scene instead would also see through `2 * 3` for
 //! `6`, but formatting its numbers took 50 ms for 10,000 spheres, 4 % of
@@ -36,8 +40,8 @@ pub fn fingerprint(sources: &SourceMap, scene: &check::Scene, animation: Animati
     }
     hash = fnv(hash, &animation.frame.to_le_bytes());
     hash = fnv(hash, &animation.clock.to_bits().to_le_bytes());
-    for path in super::named_files(scene).0 {
-        hash = hash_file(hash, &path);
+    for (path, limit) in super::data_files(scene) {
+        hash = hash_file(hash, &path, limit);
     }
     hash
 }
@@ -61,27 +65,36 @@ fn fnv_words(mut hash: u64, bytes: &[u8]) -> u64 {
     fnv(hash, words.remainder())
 }
 
-/// Hashes a file's bytes in pieces (a mesh may be hundreds of MB); an
-/// unreadable file hashes as such (lowering reported it).
-fn hash_file(hash: u64, path: &std::path::Path) -> u64 {
-    let Ok(mut file) = std::fs::File::open(path) else {
-        return fnv(hash, b"unreadable");
+/// Hashes a file's bytes in pieces (a mesh may be hundreds of MB), as its
+/// loader reads it: a regular file of at most `limit` bytes, opened without
+/// waiting and read no further than the limit however the file grows. Any
+/// other file (a device, a FIFO, one too large) hashes as unreadable
+/// without being read: lowering reports it.
+fn hash_file(hash: u64, path: &std::path::Path, limit: u64) -> u64 {
+    let unreadable = |hash| fnv(hash, b"unreadable");
+    let Ok((file, len)) = crate::source::open_regular(path) else {
+        return unreadable(hash);
     };
+    if len > limit {
+        return unreadable(hash);
+    }
+    let mut file = file.take(limit + 1);
     // Pieces of a multiple of 8 bytes: the words fall the same way however
     // the reads split the file.
-    let (mut hash, mut buf, mut filled) = (hash, vec![0u8; 1 << 16], 0);
+    let (mut hash, mut buf, mut filled, mut total) = (hash, vec![0u8; 1 << 16], 0, 0u64);
     loop {
         match file.read(&mut buf[filled..]) {
+            Ok(0) if total > limit => return unreadable(hash),
             Ok(0) => return fnv_words(hash, &buf[..filled]),
             Ok(n) => {
-                filled += n;
+                (filled, total) = (filled + n, total + n as u64);
                 if filled == buf.len() {
                     hash = fnv_words(hash, &buf);
                     filled = 0;
                 }
             }
             Err(e) if e.kind() == std::io::ErrorKind::Interrupted => {}
-            Err(_) => return fnv(hash, b"unreadable"),
+            Err(_) => return unreadable(hash),
         }
     }
 }
@@ -175,6 +188,41 @@ mod tests {
             fnv_words(FNV_OFFSET, b"abcdefgh"),
             fnv_words(FNV_OFFSET, b"abcdefgi")
         );
+    }
+
+    #[test]
+    fn data_files_hash_as_their_loaders_read_them() {
+        let dir = tempfile::tempdir().unwrap();
+        let unreadable = fnv(FNV_OFFSET, b"unreadable");
+        // A regular file: its bytes, in 8-byte words, across pieces.
+        let path = dir.path().join("m.ply");
+        let bytes: Vec<u8> = (0..200_003u32).map(|i| (i * 7) as u8).collect();
+        std::fs::write(&path, &bytes).unwrap();
+        let h = hash_file(FNV_OFFSET, &path, 1 << 20);
+        assert_eq!(h, fnv_words(FNV_OFFSET, &bytes));
+        // Over the limit (a sparse terabyte, or a small limit): not read.
+        assert_eq!(hash_file(FNV_OFFSET, &path, 1000), unreadable);
+        let sparse = dir.path().join("big.png");
+        let f = std::fs::File::create(&sparse).unwrap();
+        if f.set_len(1 << 40).is_ok() {
+            let t = std::time::Instant::now();
+            assert_eq!(hash_file(FNV_OFFSET, &sparse, 1 << 30), unreadable);
+            assert!(t.elapsed().as_secs_f64() < 1.0);
+        }
+        // A device, a folder: never opened for reading.
+        if std::path::Path::new("/dev/zero").exists() {
+            assert_eq!(
+                hash_file(FNV_OFFSET, std::path::Path::new("/dev/zero"), 1 << 30),
+                unreadable
+            );
+        }
+        assert_eq!(hash_file(FNV_OFFSET, dir.path(), 1 << 30), unreadable);
+        // A FIFO without a writer: refused at once, not waited on.
+        let fifo = dir.path().join("f.obj");
+        let made = std::process::Command::new("mkfifo").arg(&fifo).status();
+        if made.is_ok_and(|s| s.success()) {
+            assert_eq!(hash_file(FNV_OFFSET, &fifo, 1 << 30), unreadable);
+        }
     }
 
     #[test]

@@ -1,11 +1,28 @@
-//! Image files for textures: PNG and JPEG (8-bit: colours decoded from sRGB
-//! to linear, data such as normal and bump maps read as they are),
-//! Radiance HDR and OpenEXR (linear), each read once per compile (and kept
-//! by `watch` while the file is unchanged), refused before allocation when
-//! absurdly large.
+//! A scene's image files (textures and the environment map): each read and
+//! decoded once per compile however many textures read it and in whatever
+//! encoding (`lower::decode`, header first), kept by `watch` while the file
+//! is unchanged, and all of them together held within
+//! [`MAX_TEXTURE_BYTES`].
+//!
+//! The limits, and why:
+//! - a file is read up to [`MAX_IMAGE_BYTES`] (1 GiB);
+//! - an image has at most [`MAX_IMAGE_SIDE`] texels a side and
+//!   [`MAX_IMAGE_TEXELS`] in all (16,384², a 16k texture or a 32k × 8k
+//!   panorama);
+//! - its texels take 1 (8-bit grey) to 12 (float RGB) bytes each in their
+//!   final layout (`texture::texels`), so the largest image takes 256 MiB
+//!   to 3 GiB, and decoding it never more than 12 bytes a texel;
+//! - a scene's images take at most [`MAX_TEXTURE_BYTES`] (4 GiB) together,
+//!   each file counted once, an environment map with its sampling
+//!   distribution (8 bytes a texel). The image that would cross the total
+//!   is refused from its header, before it is decoded, with the total in
+//!   the message. `watch`'s cache forgets the images the scene no longer
+//!   reads before it decodes a new one, so that it never holds more either.
 
-use crate::texture::image::{srgb_to_linear, Image};
-use glam::Vec3;
+use super::decode::{self, Format, Header, Limits};
+use crate::source::human_bytes;
+use crate::texture::image::Image;
+use crate::texture::texels::{Curve, Texels};
 use std::collections::hash_map::DefaultHasher;
 use std::collections::{HashMap, HashSet};
 use std::hash::{Hash, Hasher};
@@ -17,14 +34,18 @@ use std::time::SystemTime;
 pub const MAX_IMAGE_BYTES: u64 = 1 << 30;
 /// The longest side an image may have, in texels.
 pub const MAX_IMAGE_SIDE: u32 = 32_768;
-/// The most texels an image may have (16,384²: 3 GiB as linear f32 RGB).
+/// The most texels an image may have (16,384²).
 pub const MAX_IMAGE_TEXELS: u64 = 1 << 28;
+/// The most bytes a scene's images may take together: every texture's and
+/// environment map's texels (each file once) and the environment map's
+/// sampling distribution.
+pub const MAX_TEXTURE_BYTES: u64 = 4 << 30;
 
 /// How an image's values become linear ones.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum Encoding {
-    /// By the file: 8-bit values through the sRGB curve, floating-point
-    /// ones (HDR, EXR) as they are (colours, by default).
+    /// By the file: 8- and 16-bit values through the sRGB curve,
+    /// floating-point ones (HDR, EXR) as they are (colours, by default).
     ByFile,
     /// Every value as it is (data maps by default; `color_space linear`).
     Linear,
@@ -32,26 +53,46 @@ pub enum Encoding {
     Srgb,
 }
 
-/// An image file as a texture reads it: its path and encoding.
-type ImageKey = (PathBuf, Encoding);
+impl Encoding {
+    /// The curve that reads texels of `texels`' layout in this encoding.
+    fn curve(self, texels: &Texels) -> Curve {
+        match self {
+            Encoding::ByFile if texels.layout().is_float() => Curve::Linear,
+            Encoding::ByFile | Encoding::Srgb => Curve::Srgb,
+            Encoding::Linear => Curve::Linear,
+        }
+    }
+}
 
-/// The images read so far, each file read once per compile; kept between
-/// compiles (`watch`) while the file's length, modification time and bytes
-/// are unchanged.
-#[derive(Debug, Default)]
+/// The images read so far, each file decoded once per compile; kept
+/// between compiles (`watch`) while the file's length, modification time
+/// and bytes are unchanged.
+#[derive(Debug)]
 pub struct Images {
-    loaded: HashMap<ImageKey, CachedImage>,
-    /// The keys read since the last [`Images::keep_only_used`].
-    used: HashSet<ImageKey>,
+    loaded: HashMap<PathBuf, CachedImage>,
+    /// The files read since the last [`Images::keep_only_used`]: the
+    /// scene's.
+    used: HashSet<PathBuf>,
+    /// Bytes the scene's images hold besides their texels (environment
+    /// maps' distributions), since the last [`Images::keep_only_used`].
+    extra: u64,
+    /// The most bytes the scene's images may take together.
+    limit: u64,
     /// Image files decoded so far (a cache hit does not count).
     pub decodes: usize,
+}
+
+impl Default for Images {
+    fn default() -> Self {
+        Images::with_limit(MAX_TEXTURE_BYTES)
+    }
 }
 
 #[derive(Debug)]
 struct CachedImage {
     stamp: (u64, Option<SystemTime>),
     content: u64,
-    image: Arc<Image>,
+    texels: Arc<Texels>,
 }
 
 fn stamp(path: &Path) -> (u64, Option<SystemTime>) {
@@ -59,15 +100,40 @@ fn stamp(path: &Path) -> (u64, Option<SystemTime>) {
 }
 
 impl Images {
-    /// The image at `path` read with `encoding`, on first use; the error
-    /// is a sentence for a diagnostic.
-    pub fn get(&mut self, path: &Path, encoding: Encoding) -> Result<Arc<Image>, String> {
-        let key = (path.to_path_buf(), encoding);
+    /// No image yet; the scene's images may take `limit` bytes together.
+    pub fn with_limit(limit: u64) -> Images {
+        Images {
+            loaded: HashMap::new(),
+            used: HashSet::new(),
+            extra: 0,
+            limit,
+            decodes: 0,
+        }
+    }
+
+    /// The bytes the images read since the last
+    /// [`Images::keep_only_used`] take together (each file once, with the
+    /// environment map's distribution): what the limit bounds.
+    pub fn scene_bytes(&self) -> u64 {
+        let texels: u64 = (self.used.iter())
+            .filter_map(|p| self.loaded.get(p))
+            .map(|c| c.texels.bytes())
+            .sum();
+        texels + self.extra
+    }
+
+    /// The bytes of texels the cache holds (at most the limit).
+    pub fn held_bytes(&self) -> u64 {
+        self.loaded.values().map(|c| c.texels.bytes()).sum()
+    }
+
+    /// The image at `path` read with `encoding`, decoded on first use; the
+    /// error is a sentence for a diagnostic.
+    pub fn get(&mut self, path: &Path, encoding: Encoding) -> Result<Image, String> {
         let now = stamp(path);
-        if let Some(c) = self.loaded.get(&key) {
-            if self.used.contains(&key) || (c.stamp == now && now.1.is_some()) {
-                self.used.insert(key.clone());
-                return Ok(c.image.clone());
+        if let Some(c) = self.loaded.get(path) {
+            if self.used.contains(path) || (c.stamp == now && now.1.is_some()) {
+                return self.share(path, encoding);
             }
         }
         let bytes = crate::source::read_file(path, MAX_IMAGE_BYTES)
@@ -77,25 +143,80 @@ impl Images {
             bytes.hash(&mut h);
             h.finish()
         };
-        if let Some(c) = self.loaded.get_mut(&key) {
+        if let Some(c) = self.loaded.get_mut(path) {
             if c.content == content {
                 c.stamp = now;
-                self.used.insert(key.clone());
-                return Ok(c.image.clone());
+                return self.share(path, encoding);
             }
         }
-        let image = Arc::new(decode_encoded(path, &bytes, encoding)?);
+        // A changed file: its old texels go before the new ones come.
+        self.loaded.remove(path);
+        let texels = Arc::new(self.decode(path, &bytes)?);
+        drop(bytes);
         self.decodes += 1;
-        self.used.insert(key.clone());
-        self.loaded.insert(
-            key,
-            CachedImage {
-                stamp: now,
-                content,
-                image: image.clone(),
-            },
-        );
-        Ok(image)
+        let cached = CachedImage {
+            stamp: now,
+            content,
+            texels,
+        };
+        self.loaded.insert(path.to_path_buf(), cached);
+        self.used.insert(path.to_path_buf());
+        Ok(self.view(path, encoding))
+    }
+
+    /// Decodes `bytes` of the file at `path`: admitted when the scene's
+    /// images stay within the limit with it; the cache then forgets the
+    /// images the scene has not read (yet) if it would hold more.
+    fn decode(&mut self, path: &Path, bytes: &[u8]) -> Result<Texels, String> {
+        let format = Format::of(path)?;
+        let limits = Limits {
+            side: MAX_IMAGE_SIDE,
+            texels: MAX_IMAGE_TEXELS,
+            bytes: self.limit,
+        };
+        let scene = self.scene_bytes();
+        let (limit, used, loaded) = (self.limit, &self.used, &mut self.loaded);
+        decode::decode(bytes, format, &limits, |header: &Header| {
+            over_total(scene, header.bytes(), limit)
+                .map(|total| format!("{} {total}", header.describe()))
+                .map_or(Ok(()), Err)?;
+            let held: u64 = loaded.values().map(|c| c.texels.bytes()).sum();
+            if held + header.bytes() > limit {
+                loaded.retain(|p, _| used.contains(p));
+            }
+            Ok(())
+        })
+    }
+
+    /// A cached image read again: the scene's once more, or for the first
+    /// time this compile (then counted against the limit).
+    fn share(&mut self, path: &Path, encoding: Encoding) -> Result<Image, String> {
+        if !self.used.contains(path) {
+            let bytes = self.loaded[path].texels.bytes();
+            if let Some(total) = over_total(self.scene_bytes(), bytes, self.limit) {
+                return Err(format!("its texels take {} {total}", human_bytes(bytes)));
+            }
+            self.used.insert(path.to_path_buf());
+        }
+        Ok(self.view(path, encoding))
+    }
+
+    fn view(&self, path: &Path, encoding: Encoding) -> Image {
+        let texels = self.loaded[path].texels.clone();
+        let curve = encoding.curve(&texels);
+        Image::new(texels, curve)
+    }
+
+    /// Counts `bytes` more that an image of the scene holds besides its
+    /// texels (an environment map's sampling distribution); an error
+    /// (`what` says what they are) when the scene's images would take more
+    /// than the limit.
+    pub fn charge(&mut self, bytes: u64, what: &str) -> Result<(), String> {
+        if let Some(total) = over_total(self.scene_bytes(), bytes, self.limit) {
+            return Err(format!("{what} takes {} {total}", human_bytes(bytes)));
+        }
+        self.extra += bytes;
+        Ok(())
     }
 
     /// Forgets the images not read since the last call: a texture removed
@@ -103,223 +224,24 @@ impl Images {
     pub fn keep_only_used(&mut self) {
         let used = std::mem::take(&mut self.used);
         self.loaded.retain(|k, _| used.contains(k));
+        self.extra = 0;
     }
 }
 
-/// Reads and decodes an image file by its extension (`data`: 8-bit values
-/// read linearly).
-pub fn load(path: &Path, data: bool) -> Result<Image, String> {
-    let bytes = crate::source::read_file(path, MAX_IMAGE_BYTES)
-        .map_err(|e| format!("cannot read the file: {e}"))?;
-    decode_file(path, &bytes, data)
-}
-
-/// [`decode_file`] with an encoding: 8-bit values read linearly unless
-/// sRGB, floating-point ones put through the sRGB curve when `Srgb`.
-fn decode_encoded(path: &Path, bytes: &[u8], encoding: Encoding) -> Result<Image, String> {
-    let mut image = decode_file(path, bytes, encoding == Encoding::Linear)?;
-    if encoding == Encoding::Srgb && is_floating_point(path) {
-        for t in &mut image.texels {
-            *t = Vec3::new(
-                srgb_to_linear(t.x),
-                srgb_to_linear(t.y),
-                srgb_to_linear(t.z),
-            );
-        }
-        image = finite(image)?;
-    }
-    Ok(image)
-}
-
-/// Whether the file holds floating-point values (HDR, EXR), by its name.
-pub fn is_floating_point(path: &Path) -> bool {
-    let ext = path.extension().and_then(|e| e.to_str());
-    ext.is_some_and(|e| e.eq_ignore_ascii_case("hdr") || e.eq_ignore_ascii_case("exr"))
-}
-
-/// Decodes the bytes of the file at `path` by its extension (`data`: 8-bit
-/// values read linearly).
-fn decode_file(path: &Path, bytes: &[u8], data: bool) -> Result<Image, String> {
-    let ext = path
-        .extension()
-        .and_then(|e| e.to_str())
-        .map(str::to_ascii_lowercase);
-    let format = match ext.as_deref() {
-        Some("png") => image::ImageFormat::Png,
-        Some("jpg" | "jpeg") => image::ImageFormat::Jpeg,
-        Some("hdr") => image::ImageFormat::Hdr,
-        Some("exr") => return decode_exr(bytes),
-        _ => return Err("unknown image format (expected .png, .jpg, .hdr or .exr)".into()),
-    };
-    decode(bytes, format, data)
-}
-
-/// Decodes `bytes` in `format` (PNG, JPEG: sRGB colours, or linear `data`;
-/// HDR: linear).
-pub fn decode(bytes: &[u8], format: image::ImageFormat, data: bool) -> Result<Image, String> {
-    let mut reader = image::ImageReader::with_format(std::io::Cursor::new(bytes), format);
-    let mut limits = image::Limits::default();
-    limits.max_image_width = Some(MAX_IMAGE_SIDE);
-    limits.max_image_height = Some(MAX_IMAGE_SIDE);
-    limits.max_alloc = Some(4 * MAX_IMAGE_TEXELS * 4);
-    reader.limits(limits);
-    let decoded = reader
-        .decode()
-        .map_err(|e| format!("cannot decode the image: {e}"))?;
-    let (width, height) = (decoded.width() as usize, decoded.height() as usize);
-    if width == 0 || height == 0 {
-        return Err("the image has no texels".into());
-    }
-    if (width as u64) * (height as u64) > MAX_IMAGE_TEXELS {
-        return Err(format!("{width} × {height} texels is more than ptsc reads"));
-    }
-    let texels = if format == image::ImageFormat::Hdr || data {
-        let rgb = decoded.into_rgb32f();
-        rgb.pixels()
-            .map(|p| Vec3::new(p[0], p[1], p[2]).max(Vec3::ZERO))
-            .collect()
-    } else {
-        let rgb = decoded.into_rgb32f();
-        rgb.pixels()
-            .map(|p| {
-                Vec3::new(
-                    srgb_to_linear(p[0]),
-                    srgb_to_linear(p[1]),
-                    srgb_to_linear(p[2]),
-                )
-            })
-            .collect()
-    };
-    finite(Image {
-        width,
-        height,
-        texels,
-    })
-}
-
-/// An OpenEXR image (linear): its headers are read first, and a layer
-/// larger than ptsc reads is refused before its texels are allocated.
-pub fn decode_exr(bytes: &[u8]) -> Result<Image, String> {
-    use exr::prelude::*;
-    let meta = exr::meta::MetaData::read_from_buffered(std::io::Cursor::new(bytes), false)
-        .map_err(|e| format!("cannot decode the image: {e}"))?;
-    for header in meta.headers.iter() {
-        let (w, h) = (header.layer_size.width(), header.layer_size.height());
-        let side = MAX_IMAGE_SIDE as usize;
-        if w > side || h > side || (w as u64) * (h as u64) > MAX_IMAGE_TEXELS {
-            return Err(format!("{w} × {h} texels is more than ptsc reads"));
-        }
-    }
-    let image = read()
-        .no_deep_data()
-        .largest_resolution_level()
-        .rgba_channels(
-            |size, _| (size.width(), vec![Vec3::ZERO; size.area()]),
-            |(w, px): &mut (usize, Vec<Vec3>),
-             p: Vec2<usize>,
-             (r, g, b, _a): (f32, f32, f32, f32)| {
-                if let Some(t) = px.get_mut(p.y() * *w + p.x()) {
-                    *t = Vec3::new(r, g, b);
-                }
-            },
+/// When `more` bytes on top of the `scene`'s would cross `limit`: the end
+/// of a message saying so.
+fn over_total(scene: u64, more: u64, limit: u64) -> Option<String> {
+    let total = scene + more;
+    (total > limit).then(|| {
+        format!(
+            "and the scene's images would take {} together ({} before it), more than the {} ptsc gives them",
+            human_bytes(total),
+            human_bytes(scene),
+            human_bytes(limit)
         )
-        .first_valid_layer()
-        .all_attributes()
-        .from_buffered(std::io::Cursor::new(bytes))
-        .map_err(|e| format!("cannot decode the image: {e}"))?;
-    let size = image.layer_data.size;
-    let (width, height) = (size.width(), size.height());
-    if width == 0 || height == 0 {
-        return Err("the image has no texels".into());
-    }
-    let (_, texels) = image.layer_data.channel_data.pixels;
-    finite(crate::texture::image::Image {
-        width,
-        height,
-        texels,
     })
-}
-
-/// Texels above this are read as it: the largest radiance the checker
-/// accepts, so that a texel times any accepted scale stays finite in f32.
-pub const MAX_TEXEL: f32 = 1e12;
-
-/// Refuses texels that are not finite or negative (a texture is a colour)
-/// and caps the others at [`MAX_TEXEL`].
-fn finite(mut image: Image) -> Result<Image, String> {
-    if image
-        .texels
-        .iter()
-        .any(|t| !t.is_finite() || t.min_element() < 0.0)
-    {
-        return Err("the image has texels that are not finite, non-negative numbers".into());
-    }
-    for t in &mut image.texels {
-        *t = t.min(Vec3::splat(MAX_TEXEL));
-    }
-    Ok(image)
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// A PNG of the given 8-bit RGB texels.
-    fn png(width: u32, height: u32, rgb: &[u8]) -> Vec<u8> {
-        use image::ImageEncoder;
-        let mut out = Vec::new();
-        image::codecs::png::PngEncoder::new(&mut out)
-            .write_image(rgb, width, height, image::ExtendedColorType::Rgb8)
-            .unwrap();
-        out
-    }
-
-    #[test]
-    fn eight_bit_images_are_decoded_from_srgb() {
-        let bytes = png(2, 1, &[255, 0, 128, 0, 0, 0]);
-        let im = decode(&bytes, image::ImageFormat::Png, false).unwrap();
-        assert_eq!((im.width, im.height), (2, 1));
-        assert!((im.texels[0].x - 1.0).abs() < 1e-6 && im.texels[0].y == 0.0);
-        // sRGB 128 is linear 0.2158.
-        assert!((im.texels[0].z - 0.2158).abs() < 1e-3, "{}", im.texels[0].z);
-        assert_eq!(im.texels[1], Vec3::ZERO);
-        // Data (a normal map) is read as it is: 128 is 128 / 255.
-        let data = decode(&bytes, image::ImageFormat::Png, true).unwrap();
-        assert!((data.texels[0].z - 128.0 / 255.0).abs() < 1e-6);
-    }
-
-    #[test]
-    fn exr_images_are_read_and_absurd_headers_refused_before_allocation() {
-        let dir = tempfile::tempdir().unwrap();
-        let path = dir.path().join("t.exr");
-        let px = |i: usize| Vec3::new(i as f32, 0.5, 2.0);
-        crate::output::write_image(&path, (3, 2), px, 0.0).unwrap();
-        let mut bytes = std::fs::read(&path).unwrap();
-        let im = decode_exr(&bytes).unwrap();
-        assert_eq!((im.width, im.height), (3, 2));
-        assert_eq!(im.texels[4], px(4));
-        // The header claims a 100,000 × 100,000 data window: refused from
-        // the header, before 120 GB of texels would be allocated.
-        let name = b"dataWindow\0box2i\0";
-        let at = bytes.windows(name.len()).position(|w| w == name).unwrap() + name.len() + 4;
-        bytes[at + 8..at + 12].copy_from_slice(&99_999i32.to_le_bytes());
-        bytes[at + 12..at + 16].copy_from_slice(&99_999i32.to_le_bytes());
-        let e = decode_exr(&bytes).unwrap_err();
-        assert!(e.contains("more than ptsc reads"), "{e}");
-    }
-
-    #[test]
-    fn broken_and_absurd_images_are_errors_not_panics_or_allocations() {
-        assert!(decode(b"not a png", image::ImageFormat::Png, false).is_err());
-        let mut bytes = png(1, 1, &[1, 2, 3]);
-        // Claim 100,000 × 100,000 in the header: refused before any allocation.
-        bytes[16..20].copy_from_slice(&100_000u32.to_be_bytes());
-        bytes[20..24].copy_from_slice(&100_000u32.to_be_bytes());
-        assert!(decode(&bytes, image::ImageFormat::Png, false).is_err());
-        assert!(load(Path::new("missing.png"), false).is_err());
-        assert!(decode_file(Path::new("wood.gif"), b"GIF89a", false)
-            .unwrap_err()
-            .contains("unknown image format"));
-        assert!(decode_exr(b"v/1\x01 not an exr").is_err());
-    }
-}
+#[path = "image_tests.rs"]
+mod tests;

@@ -6,6 +6,7 @@
 pub mod cache;
 mod camera;
 mod collect;
+pub mod decode;
 mod environment;
 pub mod fingerprint;
 mod geometry;
@@ -227,21 +228,28 @@ fn warn_missing_texcoords(
 /// texture images it reads, and the image its `render { output … }` asks
 /// for.
 pub fn named_files(scene: &check::Scene) -> (Vec<PathBuf>, Option<PathBuf>) {
+    let inputs = data_files(scene).into_iter().map(|(p, _)| p).collect();
+    (inputs, scene.render.output.clone())
+}
+
+/// The data files a checked scene reads, in order (its objects' meshes,
+/// its groups' meshes, its materials' images, its environment map), each
+/// with the most bytes its reader takes.
+fn data_files(scene: &check::Scene) -> Vec<(PathBuf, u64)> {
     let meshes = (scene.objects.iter())
         .chain(scene.groups.iter().flat_map(|g| &g.objects))
         .filter_map(|o| match &o.shape {
-            check::Shape::Mesh { path, .. } => Some(path.clone()),
+            check::Shape::Mesh { path, .. } => Some((path.clone(), crate::source::MAX_MESH_BYTES)),
+            _ => None,
+        });
+    let images = scene.materials.iter().flat_map(|m| {
+        m.textures.iter().filter_map(|(_, t)| match &t.kind {
+            check::TextureKind::Image { path, .. } => Some((path.clone(), image::MAX_IMAGE_BYTES)),
             _ => None,
         })
-        .chain(scene.materials.iter().flat_map(|m| {
-            m.textures.iter().filter_map(|(_, t)| match &t.kind {
-                check::TextureKind::Image { path, .. } => Some(path.clone()),
-                _ => None,
-            })
-        }))
-        .chain(scene.environment.iter().map(|e| e.path.clone()))
-        .collect();
-    (meshes, scene.render.output.clone())
+    });
+    let environment = (scene.environment.iter()).map(|e| (e.path.clone(), image::MAX_IMAGE_BYTES));
+    meshes.chain(images).chain(environment).collect()
 }
 
 /// Lights, light selection and the camera on top of the geometry.

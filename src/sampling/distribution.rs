@@ -58,6 +58,12 @@ impl Distribution1D {
         self.func.is_empty()
     }
 
+    /// The bytes its values take: a bin's value and its cumulative sum,
+    /// 4 bytes each.
+    pub fn bytes(&self) -> u64 {
+        4 * (self.func.len() + self.cdf.len()) as u64
+    }
+
     /// The integral of the function over [0, 1).
     pub fn integral(&self) -> f64 {
         self.integral
@@ -122,6 +128,19 @@ impl Distribution2D {
             rows,
             marginal: Distribution1D::new(&marginal),
         }
+    }
+
+    /// The bytes its values take: 8 a cell and 8 a row
+    /// ([`Distribution2D::bytes_for`]).
+    pub fn bytes(&self) -> u64 {
+        self.rows.iter().map(|r| r.bytes()).sum::<u64>() + self.marginal.bytes()
+    }
+
+    /// The bytes a distribution of `nu` × `nv` values takes, before it is
+    /// built: each row's values and cumulative sums, and the marginal's.
+    pub fn bytes_for(nu: usize, nv: usize) -> u64 {
+        let (nu, nv) = (nu as u64, nv as u64);
+        4 * (nv * (2 * nu + 1) + 2 * nv + 1)
     }
 
     /// A point of [0, 1)² for `u` and its density.
@@ -192,6 +211,7 @@ mod tests {
             })
             .collect();
         let d = Distribution2D::new(&f, nu, nv);
+        assert_eq!(d.bytes(), Distribution2D::bytes_for(nu, nv));
         let total: f64 = f.iter().map(|&x| x as f64).sum();
         let n = 200_000;
         let mut observed = vec![0.0; nu * nv];

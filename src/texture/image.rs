@@ -3,7 +3,9 @@
 //! (1, 1) its top-right (rows are stored top to bottom, as files have them);
 //! texel centres sit at half-integers, as in pbrt and Mitsuba.
 
+use super::texels::{Curve, Samples, Texels};
 use glam::{Vec2, Vec3};
+use std::sync::Arc;
 
 /// What (u, v) outside [0, 1] reads.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -50,27 +52,57 @@ impl Wrap {
     }
 }
 
-/// An image in linear RGB.
+/// An image read in linear RGB: its decoded texels (shared by every
+/// texture that reads the file, whatever its encoding) and the curve that
+/// turns their values into linear ones.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Image {
     /// Width in texels.
     pub width: usize,
     /// Height in texels.
     pub height: usize,
-    /// Texels, row by row from the top.
-    pub texels: Vec<Vec3>,
+    texels: Arc<Texels>,
+    curve: Curve,
 }
 
 impl Image {
+    /// `texels` read through `curve`.
+    pub fn new(texels: Arc<Texels>, curve: Curve) -> Image {
+        Image {
+            width: texels.width(),
+            height: texels.height(),
+            texels,
+            curve,
+        }
+    }
+
+    /// An image of linear RGB texels, row by row from the top (finite,
+    /// non-negative: tests and generated maps).
+    pub fn from_rgb(width: usize, height: usize, rgb: &[Vec3]) -> Image {
+        let samples = rgb.iter().flat_map(|c| c.to_array()).collect();
+        let texels = Texels::new(width, height, Samples::RgbF32(samples));
+        Image::new(Arc::new(texels), Curve::Linear)
+    }
+
+    /// Texel `i`, row by row from the top, in linear RGB.
+    #[inline]
+    pub fn texel(&self, i: usize) -> Vec3 {
+        self.texels.get(i, self.curve)
+    }
+
+    /// The decoded texels (shared between the encodings of a file).
+    pub fn texels(&self) -> &Arc<Texels> {
+        &self.texels
+    }
+
+    /// The bytes its texels take.
+    pub fn bytes(&self) -> u64 {
+        self.texels.bytes()
+    }
+
     /// The brightest texel (by largest component).
     pub fn brightest(&self) -> Vec3 {
-        (self.texels.iter().copied()).fold(Vec3::ZERO, |a, t| {
-            if t.max_element() > a.max_element() {
-                t
-            } else {
-                a
-            }
-        })
+        self.texel(self.texels.brightest())
     }
 
     /// The bilinearly filtered colour at (u, v).
@@ -94,9 +126,9 @@ impl Image {
             wrap.texel(y0, self.height) * self.width,
             wrap.texel(y0.saturating_add(1), self.height) * self.width,
         );
-        let t = &self.texels;
-        let top = t[r0 + c0].lerp(t[r0 + c1], fx);
-        let bottom = t[r1 + c0].lerp(t[r1 + c1], fx);
+        let t = |i| self.texel(i);
+        let top = t(r0 + c0).lerp(t(r0 + c1), fx);
+        let bottom = t(r1 + c0).lerp(t(r1 + c1), fx);
         top.lerp(bottom, fy)
     }
 }
@@ -116,11 +148,7 @@ mod tests {
 
     /// 2 × 2: top row red, green; bottom row blue, white.
     fn image() -> Image {
-        Image {
-            width: 2,
-            height: 2,
-            texels: vec![Vec3::X, Vec3::Y, Vec3::Z, Vec3::ONE],
-        }
+        Image::from_rgb(2, 2, &[Vec3::X, Vec3::Y, Vec3::Z, Vec3::ONE])
     }
 
     fn close(a: Vec3, b: Vec3) -> bool {

@@ -11,11 +11,11 @@ pub mod gradient;
 pub mod image;
 pub mod noise;
 pub mod shading_normal;
+pub mod texels;
 
 pub use color_map::ColorMap;
 
 use glam::{Affine3A, Vec2, Vec3};
-use std::sync::Arc;
 
 /// Where a texture is evaluated: the three spaces a pattern can live in.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -60,7 +60,7 @@ pub enum Pattern {
     /// over the unit square; in object or world space: projected along z).
     Image {
         /// The texels (shared by every texture that reads the same file).
-        image: Arc<image::Image>,
+        image: image::Image,
         /// What coordinates outside [0, 1] read.
         wrap: image::Wrap,
     },

@@ -9,7 +9,8 @@
 //! `stderr-not:` text that must not, `finite:` an EXR output whose every
 //! pixel must be finite and not all black, `interrupt:` seconds after which
 //! SIGINT is sent and `within:` the seconds the process then has to exit,
-//! `timeout:` the seconds the whole run may take (default 60).
+//! `timeout:` the seconds the whole run may take (default 60), `memory:` the
+//! address space it may use in MiB (default 4096).
 //! Inputs too large to keep in the repository are generated below and run
 //! through the same checks. `PTSC_HOSTILE_BIN=path/to/old/ptsc` runs the
 //! cases against another build (each case must fail before its fix).
@@ -19,12 +20,13 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
-/// Address space a run may use: a hostile input must not take the machine.
-const MEMORY_LIMIT_KIB: u64 = 4 * 1024 * 1024;
+/// Address space a run may use unless its case says (`memory:`): a hostile
+/// input must not take the machine.
+const MEMORY_LIMIT_MIB: u64 = 4 * 1024;
 
 /// What a case runs and expects.
 #[derive(Debug, Default, Clone)]
-struct Case {
+pub struct Case {
     name: String,
     args: Vec<String>,
     exit: i32,
@@ -35,6 +37,8 @@ struct Case {
     interrupt: Option<f64>,
     within: Option<f64>,
     timeout: f64,
+    /// The address space the run may use, in MiB.
+    memory_mib: u64,
 }
 
 impl Case {
@@ -44,6 +48,7 @@ impl Case {
             name: name.to_string(),
             args: vec!["check".into(), "{scene}".into()],
             timeout: 60.0,
+            memory_mib: MEMORY_LIMIT_MIB,
             ..Case::default()
         };
         for line in text.lines() {
@@ -64,6 +69,7 @@ impl Case {
                 "interrupt" => case.interrupt = Some(value.parse().expect("seconds")),
                 "within" => case.within = Some(value.parse().expect("seconds")),
                 "timeout" => case.timeout = value.parse().expect("seconds"),
+                "memory" => case.memory_mib = value.parse().expect("MiB"),
                 _ => {}
             }
         }
@@ -81,7 +87,10 @@ impl Case {
         let args: Vec<String> = self.args.iter().map(|a| fill(a)).collect();
         let mut child = Command::new("bash")
             .arg("-c")
-            .arg(format!("ulimit -v {MEMORY_LIMIT_KIB}; exec \"$0\" \"$@\""))
+            .arg(format!(
+                "ulimit -v {}; exec \"$0\" \"$@\"",
+                self.memory_mib * 1024
+            ))
             .arg(binary())
             .args(&args)
             .current_dir(scene.parent().unwrap_or(Path::new(".")))
@@ -215,13 +224,13 @@ fn hostile_dir() -> PathBuf {
 }
 
 /// Runs a case on `scene` with outputs in `dir`; fails on any failure.
-fn check_case(case: &Case, scene: &Path, dir: &Path) {
+pub fn check_case(case: &Case, scene: &Path, dir: &Path) {
     let failures = case.run(scene, dir);
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
 
 /// Runs a case on a scene file it writes into a fresh temporary folder.
-fn run_generated(case: &Case, file_name: &str, text: &[u8]) {
+pub fn run_generated(case: &Case, file_name: &str, text: &[u8]) {
     let dir = tempfile::tempdir().unwrap();
     let scene = dir.path().join(file_name);
     std::fs::write(&scene, text).unwrap();
@@ -244,7 +253,7 @@ fn include_files(dir: &Path, n: usize, file: impl Fn(usize) -> String) -> PathBu
 }
 
 /// A case with directives written as in a file.
-fn generated(name: &str, directives: &str) -> Case {
+pub fn generated(name: &str, directives: &str) -> Case {
     Case::parse(name, directives)
 }
 
@@ -277,7 +286,7 @@ fn every_hostile_file_is_handled() {
     );
 }
 
-const CAMERA: &str = "camera { position <0, 0, 5> look_at <0, 0, 0> }\n";
+pub const CAMERA: &str = "camera { position <0, 0, 5> look_at <0, 0, 0> }\n";
 
 /// Item 1: a diagnostic past column 65,535 of a line panicked in miette.
 #[test]

@@ -18,6 +18,7 @@ mod nasty;
 mod outputs;
 mod render;
 mod shapes;
+mod special_files;
 mod texture_inputs;
 mod textures;
 mod verdict;

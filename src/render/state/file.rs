@@ -113,12 +113,8 @@ pub fn read_state_header(path: &Path) -> Result<(StateInfo, (u32, u32)), String>
 /// A state file opened for reading and its length, or why not: only a
 /// regular file is opened (a FIFO would block, a device never end).
 fn open(path: &Path) -> Result<(std::io::BufReader<std::fs::File>, u64), String> {
-    let meta = std::fs::metadata(path).map_err(|e| e.to_string())?;
-    if !meta.is_file() {
-        return Err("it is not a regular file".into());
-    }
-    let file = std::fs::File::open(path).map_err(|e| e.to_string())?;
-    Ok((std::io::BufReader::new(file), meta.len()))
+    let (file, len) = crate::source::open_regular(path).map_err(|e| e.to_string())?;
+    Ok((std::io::BufReader::new(file), len))
 }
 
 /// A state given as bytes (the fuzzer's entry).

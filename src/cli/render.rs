@@ -179,7 +179,10 @@ fn render_frame(
             ir.prim_object.len(),
             ir.lights.len()
         );
-        let need = memory_need(s);
+        let need = crate::render::memory::Need {
+            textures: ir.texture_bytes(),
+            ..memory_need(s)
+        };
         let free = crate::render::memory::available(args.memory_limit)
             .map(|(bytes, which)| {
                 format!(

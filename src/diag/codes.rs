@@ -386,7 +386,7 @@ pub const CATALOGUE: &[Entry] = &[
     Entry {
         code: EVALUATION_TOO_LONG,
         title: "Expressions that do too much work",
-        explanation: "The expressions of a scene take at most 40,000,000 steps of work in all, so that every scene checks in seconds whatever its loops, functions and lists do. A step is an expression evaluated in a loop, in a file included again or in a function's body; a list item compared by `==` or `!=`; a byte of text written by `str`; and 16 bytes of a string or 16 components of a vector made, copied or scanned. (An expression run once at the top level of a file costs nothing: its text bounds it.) Compare and print large lists outside loops, call long functions less often, and put large generated data in a mesh file.",
+        explanation: "The expressions of a scene take at most 25,000,000 steps of work in all, so that every scene checks in seconds whatever its loops, functions and lists do. A step is an expression evaluated in a loop, in a file included again or in a function's body; a list item compared by `==` or `!=`; a byte of text written by `str`; and 16 bytes of a string or two components of a vector made or scanned (naming a value copies nothing). (An expression run once at the top level of a file costs nothing: its text bounds it.) Compare and print large lists outside loops, call long functions less often, and put large generated data in a mesh file.",
         example: "let a = [0, 0, 0, 0, 0, 0, 0, 0];\nlet b = a + a + a + a + a + a + a + a;\nlet c = b + b + b + b + b + b + b + b;\nlet d = c + c + c + c + c + c + c + c;\nlet e = d + d + d + d + d + d + d + d;\nlet f = d + d + d + d + d + d + d + d;\nfor i in 0..2000 { let _same = e == f; }",
     },
     Entry {

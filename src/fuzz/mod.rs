@@ -30,6 +30,10 @@ const MAX_LIGHT_SAMPLES: u32 = 4;
 /// only the budget is smaller, so that a mutated `0..4` into `0..1000000`
 /// stays fast).
 const LOOP_STATEMENTS: u64 = 20_000;
+/// The steps of work a fuzzed scene's expressions may take (the rule is
+/// the checker's; about 20 a loop statement, as the full budgets' ratio is
+/// 10, so that the loops' budget still comes first in ordinary scenes).
+const WORK: u64 = 400_000;
 
 /// The whole pipeline on a scene given as bytes: parse, check, both
 /// diagnostic formats, lowering and a tiny render, whose every pixel must be
@@ -49,6 +53,7 @@ pub fn scene(bytes: &[u8]) -> bool {
                 s.light_samples = s.light_samples.min(MAX_LIGHT_SAMPLES);
             },
             loop_statements: LOOP_STATEMENTS,
+            work: WORK,
             // The fuzzer writes no image: a scene's `output` is not probed.
             output_elsewhere: true,
             ..Options::default()

@@ -19,11 +19,14 @@
 use crate::diag::{codes, group_digits, Diagnostic};
 use crate::span::Span;
 
-/// Most steps the expressions of one compile may take: about 3 s of the
-/// slowest step (an expression evaluated in a function, ~80 ns) on a
-/// loaded machine of 2021, and far above any scene of the examples (the
-/// largest, `forest.pts`, takes about 200,000).
-pub const MAX_WORK: u64 = 40_000_000;
+/// Most steps the expressions of one compile may take: 1.5 s of CPU at the
+/// slowest step (an expression evaluated in a function's body, about
+/// 60 ns; 3 s on a machine as loaded as 2026-12-03's), a scene at the
+/// budget checking in a few seconds whatever spends it; about six steps a
+/// statement of the loops' budget (a `sphere` in a loop takes five), and
+/// forty times what the most demanding example takes (`many_lights.pts`,
+/// 590,000).
+pub const MAX_WORK: u64 = 25_000_000;
 
 /// Most names did-you-mean suggestions may weigh in one compile, all
 /// errors together: 20,000 unknown names among 20,000 constants would

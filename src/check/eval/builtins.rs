@@ -7,8 +7,9 @@
 //! negative number to a fraction is a domain error, not a NaN, and a
 //! result past ±1.8e308 is reported as too large by the evaluator.
 
+use super::env::{too_large, Env};
 use super::value::{text, TextError, Value};
-use super::{too_large, Env, MAX_STRING};
+use super::MAX_STRING;
 use crate::check::domain;
 use crate::diag::{codes, Diagnostic, Diagnostics};
 use crate::span::Span;

@@ -441,6 +441,6 @@ fn suggestions_stop_when_their_budget_is_spent() {
     let mut env = super::Env::new();
     let names = ["radius", "center"];
     assert_eq!(env.suggest("radus", 2, names), Some("radius"));
-    env.suggestions = super::Work::new(1);
+    env.suggestions = super::budget::Work::new(1);
     assert_eq!(env.suggest("radus", 2, names), None);
 }

@@ -154,10 +154,18 @@ impl EnvironmentMap {
         let y = (uv.y * (h - 1) as f32).clamp(0.0, (h - 1) as f32);
         let (i, j) = ((x as usize).min(w - 1), (y as usize).min(h - 2));
         let (fx, fy) = (x - i as f32, y - j as f32);
-        let t = |i: usize, j: usize| self.image.texel(j * w + i % w);
-        let top = t(i, j).lerp(t(i + 1, j), fx);
-        let bottom = t(i, j + 1).lerp(t(i + 1, j + 1), fx);
-        top.lerp(bottom, fy)
+        let [a, b, c, d] = self.corners((i, j));
+        a.lerp(b, fx).lerp(c.lerp(d, fx), fy)
+    }
+
+    /// The texels at the corners of cell (i, j), the column after the last
+    /// wrapping to the first, in the order [`warp::bilinear`] takes them.
+    #[inline(always)]
+    fn corners(&self, (i, j): (usize, usize)) -> [Vec3; 4] {
+        let w = self.image.width;
+        let (i0, i1) = (i % w, (i + 1) % w);
+        let (r0, r1) = (j * w, (j + 1) * w);
+        self.image.texels4([r0 + i0, r0 + i1, r1 + i0, r1 + i1])
     }
 
     /// A world direction for `u`, its radiance (before the intensity) and
@@ -211,26 +219,18 @@ impl EnvironmentMap {
     /// The sampling weights (luminance × sin θ) at a cell's four corners,
     /// in the order [`warp::bilinear`] takes them.
     fn corner_weights(&self, (i, j): (usize, usize)) -> [f32; 4] {
-        let w = self.image.width;
         let h = self.image.height;
-        let weight = |i: usize, j: usize| {
-            let sin_theta = (j as f32 / (h - 1) as f32 * PI).sin().max(0.0);
-            let importance = if self.uniform {
-                1.0
-            } else {
-                luminance(self.image.texel(j * w + i % w))
-            };
-            // Capped: texels near f32's largest value must not overflow
-            // the sums and squares of the bilinear warp (the density would
-            // turn to NaN); 10^15 against the rest is importance enough.
-            (importance * sin_theta).min(1e15)
+        let sin_theta = |j: usize| (j as f32 / (h - 1) as f32 * PI).sin().max(0.0);
+        let (s0, s1) = (sin_theta(j), sin_theta(j + 1));
+        let importance = match self.uniform {
+            true => [1.0; 4],
+            false => self.corners((i, j)).map(luminance),
         };
-        [
-            weight(i, j),
-            weight(i + 1, j),
-            weight(i, j + 1),
-            weight(i + 1, j + 1),
-        ]
+        // Capped: texels near f32's largest value must not overflow the
+        // sums and squares of the bilinear warp (the density would turn to
+        // NaN); 10^15 against the rest is importance enough.
+        let [a, b, c, d] = importance;
+        [a * s0, b * s0, c * s1, d * s1].map(|x| x.min(1e15))
     }
 
     /// u of a direction → u of the distribution's cells, whose cell i lies

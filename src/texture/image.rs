@@ -90,6 +90,12 @@ impl Image {
         self.texels.get(i, self.curve)
     }
 
+    /// Four texels at once (see [`Texels::get4`]).
+    #[inline]
+    pub fn texels4(&self, at: [usize; 4]) -> [Vec3; 4] {
+        self.texels.get4(at, self.curve)
+    }
+
     /// The decoded texels (shared between the encodings of a file).
     pub fn texels(&self) -> &Arc<Texels> {
         &self.texels
@@ -126,10 +132,8 @@ impl Image {
             wrap.texel(y0, self.height) * self.width,
             wrap.texel(y0.saturating_add(1), self.height) * self.width,
         );
-        let t = |i| self.texel(i);
-        let top = t(r0 + c0).lerp(t(r0 + c1), fx);
-        let bottom = t(r1 + c0).lerp(t(r1 + c1), fx);
-        top.lerp(bottom, fy)
+        let [a, b, c, d] = self.texels4([r0 + c0, r0 + c1, r1 + c0, r1 + c1]);
+        a.lerp(b, fx).lerp(c.lerp(d, fx), fy)
     }
 }
 

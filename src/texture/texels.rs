@@ -112,6 +112,15 @@ static SRGB16: LazyLock<Vec<f32>> = LazyLock::new(|| {
         .collect()
 });
 
+/// The table that reads 8-bit values through `curve`.
+#[inline(always)]
+fn table8(curve: Curve) -> &'static [f32; 256] {
+    match curve {
+        Curve::Linear => &LINEAR8,
+        Curve::Srgb => &SRGB8,
+    }
+}
+
 impl Texels {
     /// `width` × `height` texels of `samples` (as many as that takes).
     pub fn new(width: usize, height: usize, samples: Samples) -> Texels {
@@ -172,22 +181,50 @@ impl Texels {
     }
 
     /// Texel `i` (row by row from the top) in linear RGB through `curve`.
-    #[inline]
+    #[inline(always)]
     pub fn get(&self, i: usize, curve: Curve) -> Vec3 {
-        let table8 = || match curve {
-            Curve::Linear => &*LINEAR8,
-            Curve::Srgb => &*SRGB8,
-        };
+        self.get4([i; 4], curve)[0]
+    }
+
+    /// Four texels at once, as bilinear filtering reads them: one choice of
+    /// layout for the four, inlined into the lookups (a float or 8-bit
+    /// texel is then a load and a table read or two, as cheap as the
+    /// `Vec<Vec3>` of before).
+    #[inline(always)]
+    pub fn get4(&self, at: [usize; 4], curve: Curve) -> [Vec3; 4] {
+        // Written out: `array::map` leaves a loop of calls behind.
+        #[inline(always)]
+        fn each(at: [usize; 4], f: impl Fn(usize) -> Vec3) -> [Vec3; 4] {
+            [f(at[0]), f(at[1]), f(at[2]), f(at[3])]
+        }
+        match (&self.samples, curve) {
+            (Samples::RgbF32(v), Curve::Linear) => {
+                let rgb = v.as_chunks::<3>().0;
+                each(at, |i| Vec3::from_array(rgb[i]))
+            }
+            (Samples::Rgb8(v), _) => {
+                let (t, rgb) = (table8(curve), v.as_chunks::<3>().0);
+                each(at, |i| {
+                    let [r, g, b] = rgb[i];
+                    Vec3::new(t[r as usize], t[g as usize], t[b as usize])
+                })
+            }
+            (Samples::Gray8(v), _) => {
+                let t = table8(curve);
+                each(at, |i| Vec3::splat(t[v[i] as usize]))
+            }
+            _ => each(at, |i| self.get_rare(i, curve)),
+        }
+    }
+
+    /// [`Texels::get`] for 16-bit samples and floats through the sRGB curve.
+    #[inline(never)]
+    fn get_rare(&self, i: usize, curve: Curve) -> Vec3 {
         let to16 = |v: u16| match curve {
             Curve::Linear => v as f32 / 65535.0,
             Curve::Srgb => SRGB16[v as usize],
         };
         match &self.samples {
-            Samples::Gray8(v) => Vec3::splat(table8()[v[i] as usize]),
-            Samples::Rgb8(v) => {
-                let (t, s) = (table8(), &v[3 * i..3 * i + 3]);
-                Vec3::new(t[s[0] as usize], t[s[1] as usize], t[s[2] as usize])
-            }
             Samples::Gray16(v) => Vec3::splat(to16(v[i])),
             Samples::Rgb16(v) => {
                 let s = &v[3 * i..3 * i + 3];
@@ -205,6 +242,7 @@ impl Texels {
                     .min(Vec3::splat(MAX_TEXEL)),
                 }
             }
+            Samples::Gray8(_) | Samples::Rgb8(_) => unreachable!("read by get4"),
         }
     }
 
@@ -214,19 +252,16 @@ impl Texels {
         self.brightest
     }
 
-    /// The first texel whose largest sample is the largest of all.
+    /// The first texel whose largest sample is the largest of all: the
+    /// first holding the largest sample (two passes that vectorise: this
+    /// runs over every texel of every image decoded).
     fn find_brightest(&self) -> usize {
         fn first_max<T: PartialOrd + Copy>(samples: &[T], channels: usize) -> usize {
-            let mut best = (0, None::<T>);
-            for (i, texel) in samples.chunks_exact(channels).enumerate() {
-                let m = texel[1..]
-                    .iter()
-                    .fold(texel[0], |a, &b| if b > a { b } else { a });
-                if best.1.is_none_or(|b| m > b) {
-                    best = (i, Some(m));
-                }
-            }
-            best.0
+            let Some(&first) = samples.first() else {
+                return 0;
+            };
+            let max = (samples.iter()).fold(first, |a, &b| if b > a { b } else { a });
+            samples.iter().position(|&s| s == max).unwrap_or(0) / channels
         }
         let c = self.channels();
         match &self.samples {

@@ -10,6 +10,7 @@ mod farm;
 mod frames;
 mod golden;
 mod hostile;
+mod image_limits;
 mod instances;
 mod layering;
 mod materials;

@@ -187,7 +187,9 @@ impl Checker {
         self.env.used.insert(var.span);
         self.enter_loop(range);
         for item in items {
-            if self.loops_exhausted {
+            // A spent work budget fails every expression silently: the
+            // iterations left would do nothing but count statements.
+            if self.loops_exhausted || self.env.spent() {
                 break;
             }
             if body.is_empty() && !self.charge_loop_statement() {

@@ -366,6 +366,29 @@ mod tests {
     }
 
     #[test]
+    fn a_folding_collection_counts_repeats_and_keeps_the_first() {
+        let at = |start| Span::new(FileId(0), start, start + 1);
+        let mut d = Diagnostics::folding();
+        for i in 0..100_000 {
+            d.push(Diagnostic::warning("w", format!("warning {i}"), at(1)));
+        }
+        d.push(Diagnostic::error("e", "error", at(2)));
+        d.push(Diagnostic::error("e", "error again", at(2)));
+        d.push(Diagnostic::error("e", "elsewhere", at(3)));
+        assert_eq!(d.items.len(), 3);
+        assert_eq!(d.errors_pushed(), 3);
+        d.sort();
+        let messages: Vec<&str> = d.items.iter().map(|d| d.message.as_str()).collect();
+        assert_eq!(
+            messages,
+            ["warning 0 (100,000 times)", "error (2 times)", "elsewhere"]
+        );
+        // Settled: what comes later is kept as it comes.
+        d.push(Diagnostic::error("e", "late", at(3)));
+        assert_eq!(d.items.len(), 4);
+    }
+
+    #[test]
     fn did_you_mean_picks_the_closest_plausible_name() {
         let names = ["radius", "center", "material"];
         assert_eq!(did_you_mean("radus", names), Some("radius"));

@@ -200,16 +200,22 @@ fn numeric(a: &Args, diags: &mut Diagnostics) -> Option<f64> {
 /// fraction has none; zero to a negative power is a division by zero). A
 /// result too large is the evaluator's to report.
 fn pow(a: &Args, x: f64, y: f64, diags: &mut Diagnostics) -> Option<f64> {
+    // Both arguments make the mistake: the error spans them.
+    let both = |d: Diagnostic| Diagnostic {
+        span: Some(a.args[0].span.join(a.args[1].span)),
+        ..d
+    };
     if x < 0.0 && y.fract() != 0.0 {
         let label = format!("{} to the power {}", domain::number(x), domain::number(y));
         let help = "only whole powers of a negative number are real; use `pow(abs(x), y)` or a whole exponent";
-        diags.push(a.domain(0, "a negative number to a fractional power", label, help));
+        let message = "a negative number to a fractional power";
+        diags.push(both(a.domain(0, message, label, help)));
         return None;
     }
     if x == 0.0 && y < 0.0 {
         let label = format!("0 to the power {}", domain::number(y));
         let help = "a negative power divides by the base; give a base other than 0";
-        diags.push(a.domain(0, "zero to a negative power", label, help));
+        diags.push(both(a.domain(0, "zero to a negative power", label, help)));
         return None;
     }
     Some(x.powf(y))

@@ -88,6 +88,12 @@ impl Env {
         false
     }
 
+    /// Whether the work budget is spent (and reported): nothing that costs
+    /// a step can run any more.
+    pub fn spent(&self) -> bool {
+        self.work_reported
+    }
+
     /// Reports the work budget spent at `span` (once).
     pub(super) fn out_of_work(&mut self, span: Span, diags: &mut Diagnostics) {
         if !self.work_reported {

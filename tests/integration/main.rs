@@ -18,6 +18,7 @@ mod mitsuba;
 mod nasty;
 mod render;
 mod shapes;
+#[cfg(unix)]
 mod special_files;
 mod texture_inputs;
 mod textures;

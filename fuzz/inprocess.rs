@@ -165,11 +165,55 @@ impl Rng {
     }
 }
 
-/// One to four random edits of `input`, perhaps spliced with `other`.
-fn mutate(rng: &mut Rng, input: &[u8], other: &[u8]) -> Vec<u8> {
+/// Sizes a binary mutation writes over a file's bytes: the edges of the
+/// image limits (16,384² texels, 32,768 a side) and of 16 and 32 bits, so
+/// that headers claim huge images often.
+const SIZES: &[u32] = &[
+    0,
+    1,
+    2,
+    255,
+    256,
+    4096,
+    16_383,
+    16_384,
+    16_385,
+    32_767,
+    32_768,
+    65_535,
+    65_536,
+    1 << 20,
+    1 << 28,
+    i32::MAX as u32,
+    u32::MAX,
+];
+
+/// Writes one of [`SIZES`] over `v` at `at`: 2 or 4 bytes, little- or
+/// big-endian (a PNG's or JPEG's header is big-endian, an EXR's little).
+fn write_size(rng: &mut Rng, v: &mut [u8], at: usize) {
+    let size = SIZES[rng.below(SIZES.len())];
+    let bytes: Vec<u8> = match rng.below(4) {
+        0 => size.to_le_bytes().to_vec(),
+        1 => size.to_be_bytes().to_vec(),
+        2 => (size as u16).to_le_bytes().to_vec(),
+        _ => (size as u16).to_be_bytes().to_vec(),
+    };
+    let end = (at + bytes.len()).min(v.len());
+    let n = end.saturating_sub(at);
+    v[at.min(end)..end].copy_from_slice(&bytes[..n]);
+}
+
+/// One to four random edits of `input`, perhaps spliced with `other`; a
+/// `binary` file also gets sizes written over its bytes (headers claiming
+/// large images or films).
+fn mutate(rng: &mut Rng, input: &[u8], other: &[u8], binary: bool) -> Vec<u8> {
     let mut v = input.to_vec();
     for _ in 0..1 + rng.below(4) {
         let at = rng.below(v.len() + 1);
+        if binary && rng.below(3) == 0 {
+            write_size(rng, &mut v, at);
+            continue;
+        }
         match rng.below(8) {
             0 if !v.is_empty() => {
                 let i = rng.below(v.len());
@@ -248,6 +292,8 @@ fn run(target: &str, seconds: f64, seed: u64, out: &Path) -> usize {
         "budget" => |b| ptsc::fuzz::budget(b),
         other => panic!("unknown target {other}"),
     };
+    // Files whose sizes sit in binary headers.
+    let binary = matches!(target, "image" | "state");
     let current = out.join(format!("current-{target}"));
     let started = Arc::new(AtomicU64::new(0));
     let t0 = Instant::now();
@@ -279,7 +325,7 @@ fn run(target: &str, seconds: f64, seed: u64, out: &Path) -> usize {
             &pool[rng.below(pool.len())]
         };
         let other = &seeds[rng.below(seeds.len())];
-        let input = mutate(&mut rng, parent, other);
+        let input = mutate(&mut rng, parent, other, binary);
         let _ = std::fs::write(&current, &input);
         started.store(t0.elapsed().as_millis().max(1) as u64, Ordering::Relaxed);
         let result = std::panic::catch_unwind(AssertUnwindSafe(|| feed(&input)));

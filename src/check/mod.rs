@@ -94,7 +94,7 @@ pub fn check_file(path: &Path) -> std::io::Result<Checked> {
 pub fn read_scene_file(path: &Path) -> std::io::Result<Vec<u8>> {
     crate::source::read_file(path, MAX_SCENE_BYTES).map_err(|e| match e {
         ReadError::Io(e) => e,
-        ReadError::NotFound => std::io::Error::from(std::io::ErrorKind::NotFound),
+        ReadError::NotFound => std::io::Error::new(std::io::ErrorKind::NotFound, "no such file"),
         other => std::io::Error::other(other.to_string()),
     })
 }

@@ -33,8 +33,9 @@ const PREVIEW_DIVISOR: u32 = 4;
 
 /// Runs `watch`; returns the exit code (after Ctrl-C).
 pub fn run(args: &RenderArgs) -> u8 {
-    if !args.file.is_file() {
-        eprintln!("error: cannot watch {}: no such file", args.file.display());
+    // A regular file only (a FIFO would wait for a writer at every compile).
+    if let Err(e) = crate::source::open_regular(&args.file) {
+        eprintln!("error: cannot watch {}: {e}", args.file.display());
         return super::EXIT_USAGE;
     }
     // One frame: --frame's, else the first of --frames.

@@ -422,7 +422,7 @@ pub const CATALOGUE: &[Entry] = &[
     Entry {
         code: IMAGE_FILE,
         title: "An image file that is missing, unreadable or of an unknown format",
-        explanation: "`image { file … }` reads PNG and JPEG (8-bit: colours decoded from sRGB, data such as normal maps as they are), Radiance HDR and OpenEXR (linear) files, relative to the scene file. The label says what went wrong: the file is missing, has another extension, cannot be decoded, is larger than ptsc reads (1 GiB, 16,384² texels), or holds texels that are not finite, non-negative numbers.",
+        explanation: "`image { file … }` and `environment { file … }` read PNG and JPEG (8- and 16-bit: colours decoded from sRGB, data such as normal maps as they are), Radiance HDR and OpenEXR (linear) files, relative to the scene file. The label says what went wrong: the file is missing, is not a regular file (a folder, a device, a FIFO), has another extension, cannot be decoded, is larger than ptsc reads (a file of 1 GiB, 32,768 texels a side, 16,384² texels), is shorter than the texels its header claims (truncated, or a hostile header), would take the scene's images past the 4 GiB they may hold together (the label gives the total), or holds texels that are not finite, non-negative numbers. Sizes are checked on the file's header, before its texels are decoded.",
         example: "material { diffuse image { file \"wood.gif\" } }",
     },
     Entry {

@@ -128,12 +128,15 @@ impl Images {
     }
 
     /// The image at `path` read with `encoding`, decoded on first use; the
-    /// error is a sentence for a diagnostic.
+    /// error is a sentence for a diagnostic. A file is known by its
+    /// canonical path: named from two folders, or through a link, it is
+    /// still read once.
     pub fn get(&mut self, path: &Path, encoding: Encoding) -> Result<Image, String> {
+        let key = std::fs::canonicalize(path).unwrap_or_else(|_| path.to_path_buf());
         let now = stamp(path);
-        if let Some(c) = self.loaded.get(path) {
-            if self.used.contains(path) || (c.stamp == now && now.1.is_some()) {
-                return self.share(path, encoding);
+        if let Some(c) = self.loaded.get(&key) {
+            if self.used.contains(&key) || (c.stamp == now && now.1.is_some()) {
+                return self.share(&key, encoding);
             }
         }
         let bytes = crate::source::read_file(path, MAX_IMAGE_BYTES)
@@ -143,14 +146,14 @@ impl Images {
             bytes.hash(&mut h);
             h.finish()
         };
-        if let Some(c) = self.loaded.get_mut(path) {
+        if let Some(c) = self.loaded.get_mut(&key) {
             if c.content == content {
                 c.stamp = now;
-                return self.share(path, encoding);
+                return self.share(&key, encoding);
             }
         }
         // A changed file: its old texels go before the new ones come.
-        self.loaded.remove(path);
+        self.loaded.remove(&key);
         let texels = Arc::new(self.decode(path, &bytes)?);
         drop(bytes);
         self.decodes += 1;
@@ -159,9 +162,9 @@ impl Images {
             content,
             texels,
         };
-        self.loaded.insert(path.to_path_buf(), cached);
-        self.used.insert(path.to_path_buf());
-        Ok(self.view(path, encoding))
+        self.loaded.insert(key.clone(), cached);
+        self.used.insert(key.clone());
+        Ok(self.view(&key, encoding))
     }
 
     /// Decodes `bytes` of the file at `path`: admitted when the scene's
@@ -188,21 +191,21 @@ impl Images {
         })
     }
 
-    /// A cached image read again: the scene's once more, or for the first
-    /// time this compile (then counted against the limit).
-    fn share(&mut self, path: &Path, encoding: Encoding) -> Result<Image, String> {
-        if !self.used.contains(path) {
-            let bytes = self.loaded[path].texels.bytes();
+    /// A cached image (by its `key`) read again: the scene's once more, or
+    /// for the first time this compile (then counted against the limit).
+    fn share(&mut self, key: &Path, encoding: Encoding) -> Result<Image, String> {
+        if !self.used.contains(key) {
+            let bytes = self.loaded[key].texels.bytes();
             if let Some(total) = over_total(self.scene_bytes(), bytes, self.limit) {
                 return Err(format!("its texels take {} {total}", human_bytes(bytes)));
             }
-            self.used.insert(path.to_path_buf());
+            self.used.insert(key.to_path_buf());
         }
-        Ok(self.view(path, encoding))
+        Ok(self.view(key, encoding))
     }
 
-    fn view(&self, path: &Path, encoding: Encoding) -> Image {
-        let texels = self.loaded[path].texels.clone();
+    fn view(&self, key: &Path, encoding: Encoding) -> Image {
+        let texels = self.loaded[key].texels.clone();
         let curve = encoding.curve(&texels);
         Image::new(texels, curve)
     }

@@ -25,7 +25,19 @@ fn a_file_is_decoded_once_whatever_its_encodings() {
     assert_eq!(colour.texel(0), srgb.texel(0));
     assert!((colour.texel(0).x - 0.2158).abs() < 1e-3);
     assert!((data.texel(0).x - 128.0 / 255.0).abs() < 1e-6);
-    // Counted once.
+    // Counted once, also through another path to it or a link.
+    let sub = dir.path().join("sub");
+    std::fs::create_dir(&sub).unwrap();
+    images
+        .get(&sub.join("../wood.png"), Encoding::ByFile)
+        .unwrap();
+    #[cfg(unix)]
+    {
+        let link = dir.path().join("link.png");
+        std::os::unix::fs::symlink(&path, &link).unwrap();
+        images.get(&link, Encoding::Linear).unwrap();
+    }
+    assert_eq!(images.decodes, 1);
     assert_eq!((images.scene_bytes(), images.held_bytes()), (48, 48));
 }
 

@@ -19,6 +19,7 @@ mod nasty;
 mod outputs;
 mod render;
 mod shapes;
+#[cfg(unix)]
 mod special_files;
 mod texture_inputs;
 mod textures;

@@ -7,7 +7,8 @@
 //! fingerprint: it waited forever on a device or a FIFO (and ignored
 //! SIGTERM meanwhile) and read a sparse file in full, while `check` said
 //! the scene was wrong, or `check FIFO` itself waited for a writer. Run
-//! through the binary under the hostile suite's time and memory limits.
+//! through the binary under the hostile suite's time and memory limits,
+//! then compared: `check` and `render` print the same diagnostics.
 
 use crate::hostile::{check_case, generated, CAMERA};
 use std::path::Path;
@@ -96,6 +97,11 @@ fn special_and_huge_files_are_refused_at_once_by_check_and_render() {
                 );
                 check_case(&case, &path, dir.path());
                 tried += 1;
+            }
+            // Both ended at once: their diagnostics are the same, spans too.
+            let out = dir.path().join("out.png");
+            if let Some(why) = crate::verdict::disagreement(&path, &out) {
+                panic!("{why}");
             }
         }
     }

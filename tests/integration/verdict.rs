@@ -36,7 +36,7 @@ fn names_an_output(scene: &Path) -> bool {
 
 /// Runs `check` and a tiny `render` of `scene` from the package root;
 /// `None` when they agree, else what differs.
-fn disagreement(scene: &Path, out: &Path) -> Option<String> {
+pub fn disagreement(scene: &Path, out: &Path) -> Option<String> {
     let rel = crate::relative(scene);
     let rel = rel.to_str().unwrap();
     let (check_code, _, check_err) = crate::ptsc(&["check", rel]);

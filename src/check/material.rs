@@ -382,3 +382,29 @@ fn options_checks(p: &Params, m: &mut Material, ignored: &[&str], diags: &mut Di
 pub fn material_schema() -> [&'static [ParamSpec]; 1] {
     [MATERIAL]
 }
+
+/// The help for a metal `name` that is not one of the presets: the
+/// preset it is another name for, or how to give a metal's constants.
+pub(super) fn other_metal(name: &str) -> Option<String> {
+    let preset = match name {
+        "chrome" | "chromium_metal" => "chromium",
+        "aluminum" | "aluminum_metal" | "alu" => "aluminium",
+        "au" => "gold",
+        "ag" => "silver",
+        "cu" => "copper",
+        "cr" => "chromium",
+        "al" => "aluminium",
+        _ => {
+            let look = match name {
+                "brass" | "bronze" => " (`preset gold` or `preset copper` looks close)",
+                "steel" | "iron" | "stainless" | "nickel" | "titanium" | "platinum" | "tin"
+                | "zinc" => " (`preset chromium` or `preset aluminium` looks close)",
+                _ => return None,
+            };
+            return Some(format!(
+                "`{name}` is not a preset{look}; for any metal, remove `preset` and give its complex index of refraction per channel: `eta rgb <…> k rgb <…>` (tables of n and k: refractiveindex.info, or Mitsuba 3's data/ior)"
+            ));
+        }
+    };
+    Some(format!("did you mean `{preset}`?"))
+}

@@ -10,6 +10,7 @@ mod loops;
 mod material;
 mod objects;
 pub mod params;
+mod povray;
 pub mod scene;
 mod texture;
 
@@ -64,11 +65,14 @@ pub struct Animation {
     pub frame: u32,
     /// Where the frame lies in the animation, 0 to 1.
     pub clock: f64,
+    /// The clock's step from one frame to the next (0 for a still image),
+    /// POV-Ray's `clock_delta`.
+    pub clock_delta: f64,
 }
 
 /// The names every scene sees unless it binds them itself, with the values
 /// of [`Animation`] (for the editors and docs too).
-pub const PREDEFINED: [&str; 2] = ["frame", "clock"];
+pub const PREDEFINED: [&str; 7] = ["frame", "clock", "clock_delta", "pi", "x", "y", "z"];
 
 /// The result of compiling a scene file up to the checked scene.
 #[derive(Debug)]
@@ -135,10 +139,16 @@ pub fn check_bytes_within(
     animation: Animation,
 ) -> Checked {
     let mut c = Checker::new(budgets);
-    let [frame, clock] = PREDEFINED;
+    let [frame, clock, clock_delta, pi, x, y, z] = PREDEFINED;
+    let axis = |v: [f64; 3]| Value::Vector(v.into());
     c.env.predefined = vec![
         (frame, Value::Num(animation.frame as f64)),
         (clock, Value::Num(animation.clock)),
+        (clock_delta, Value::Num(animation.clock_delta)),
+        (pi, Value::Num(std::f64::consts::PI)),
+        (x, axis([1.0, 0.0, 0.0])),
+        (y, axis([0.0, 1.0, 0.0])),
+        (z, axis([0.0, 0.0, 1.0])),
     ];
     let (text, bad_utf8) = decode(bytes);
     let id = c.sources.add(path, text);

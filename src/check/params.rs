@@ -446,6 +446,28 @@ pub fn shape_schema(kind: crate::syntax::ast::BlockKind) -> &'static [ParamSpec]
     }
 }
 
+/// POV-Ray's positional values of a shape (`sphere { <0, 1, 0>, 1 }`):
+/// the ptsc parameters they stand for in POV-Ray's order, and what ptsc
+/// means otherwise. A plane's second value is POV-Ray's distance along the
+/// normal, written as a `point` (see `check::povray`).
+pub fn povray_positional(
+    kind: crate::syntax::ast::BlockKind,
+) -> Option<(&'static [&'static str], &'static str)> {
+    use crate::syntax::ast::BlockKind::*;
+    Some(match kind {
+        Sphere => (&["center", "radius"], ""),
+        Plane => (&["normal", "point"], "a plane is given by a point on it"),
+        Box => (&["min", "max"], "`min` is the smaller corner"),
+        Cylinder => (&["base", "top", "radius"], "ptsc's cylinder is open unless `open false`; POV-Ray's is closed"),
+        Cone => (&["base", "base_radius", "top", "top_radius"], "ptsc's cone is open unless `open false`; POV-Ray's is closed"),
+        Torus => (&["major_radius", "minor_radius"], ""),
+        Disk => (&["center", "normal", "radius"], ""),
+        Triangle => (&["v0", "v1", "v2"], ""),
+        PointLight => (&["position", "intensity"], "ptsc's lights fall off with the squared distance (POV-Ray's do not unless told): an `intensity` of POV-Ray's colour times the squared distance to what it lights looks alike there"),
+        _ => return None,
+    })
+}
+
 /// A checked parameter value.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Val {
@@ -552,8 +574,40 @@ impl Params {
             suggested: Vec::new(),
         };
         let mut first_seen: Vec<(&'static str, Span)> = Vec::new();
-        for entry in &block.entries {
+        for (i, entry) in block.entries.iter().enumerate() {
             let (name, value) = match entry {
+                Entry::Foreign { name, span } => {
+                    diags.push(super::povray::foreign_block(&what, name, *span, schemas));
+                    continue;
+                }
+                Entry::Positional { values, span } => {
+                    match took_next_word(&block.entries, i, env) {
+                        // `no_shadow radius 1`, `diffuse color rgb 1`: the
+                        // word before took the next one as its value; its
+                        // error says why, and the parameter taken is given.
+                        Some(taken) => {
+                            // POV-Ray's `location` is `position`.
+                            let taken = crate::syntax::povray::parameter(taken).unwrap_or(taken);
+                            let all = schemas.iter().flat_map(|s| s.iter());
+                            params
+                                .suggested
+                                .extend(all.map(|p| p.name).find(|n| *n == taken))
+                        }
+                        None => {
+                            let (d, names) = super::povray::positional(&what, values, *span, env);
+                            diags.push(d);
+                            // Not reported missing too: the help names them.
+                            params.suggested.extend_from_slice(names);
+                        }
+                    }
+                    continue;
+                }
+                // `diffuse color rgb 1`: `rgb 1` after a word taken as a value.
+                Entry::Param { name, .. }
+                    if name.name == "rgb" && took_next_word(&block.entries, i, env).is_some() =>
+                {
+                    continue
+                }
                 Entry::Param { name, value, .. } => (name, Source::Value(value)),
                 Entry::Texture {
                     name,
@@ -722,7 +776,7 @@ impl Params {
             diags.push(
                 Diagnostic::error(
                     codes::MISSING_PARAM,
-                    format!("`{}` needs a `{spec_name}`", self.what),
+                    format!("`{}` needs {} `{spec_name}`", self.what, article(spec_name)),
                     self.head,
                 )
                 .with_label(format!("`{spec_name}` is missing"))
@@ -730,6 +784,28 @@ impl Params {
             );
         }
         None
+    }
+}
+
+/// The word the entry before `entries[i]` took as its value, when it is
+/// a bare name that means nothing (`no_shadow radius`, `diffuse color`):
+/// then `entries[i]` is the rest of a POV-Ray form already reported.
+fn took_next_word<'a>(entries: &'a [Entry], i: usize, env: &mut Env) -> Option<&'a str> {
+    let previous = entries.get(i.checked_sub(1)?)?;
+    let Entry::Param { value, .. } = previous else {
+        return None;
+    };
+    match &value.kind {
+        ExprKind::Name(n) if env.lookup(n).is_none() => Some(n),
+        _ => None,
+    }
+}
+
+/// "a" or "an" before `word`, by its first letter.
+fn article(word: &str) -> &'static str {
+    match word.chars().next() {
+        Some('a' | 'e' | 'i' | 'o' | 'u') => "an",
+        _ => "a",
     }
 }
 
@@ -756,9 +832,11 @@ fn typed_value(
         if words.contains(&w.as_str()) {
             return Some(Val::Word(w.clone()));
         }
-        let help = match did_you_mean(w, words.iter().copied()) {
-            Some(s) => format!("did you mean `{s}`?"),
-            None => format!("use one of {}", words.join(", ")),
+        let metal = (words == METAL_PRESETS).then(|| super::material::other_metal(w));
+        let help = match (metal.flatten(), did_you_mean(w, words.iter().copied())) {
+            (Some(help), _) => help,
+            (None, Some(s)) => format!("did you mean `{s}`?"),
+            (None, None) => format!("use one of {}", words.join(", ")),
         };
         diags.push(
             Diagnostic::error(

@@ -66,13 +66,15 @@ impl RenderArgs {
             let f = self.frame.unwrap_or(0);
             (f, f)
         });
+        let span = (b - a) as f64;
         let at = |frame: u32| Animation {
             frame,
             clock: if b > a {
-                (frame - a) as f64 / (b - a) as f64
+                (frame - a) as f64 / span
             } else {
                 0.0
             },
+            clock_delta: if b > a { 1.0 / span } else { 0.0 },
         };
         match self.frame {
             Some(f) if !(a..=b).contains(&f) => {
@@ -224,7 +226,8 @@ mod tests {
             one,
             vec![Animation {
                 frame: 12,
-                clock: 0.5
+                clock: 0.5,
+                clock_delta: 0.25,
             }]
         );
         let still = frames(&["--frame", "5"]).unwrap();
@@ -232,7 +235,8 @@ mod tests {
             still,
             vec![Animation {
                 frame: 5,
-                clock: 0.0
+                clock: 0.0,
+                clock_delta: 0.0,
             }]
         );
         assert_eq!(frames(&[]).unwrap(), vec![Animation::default()]);

@@ -44,6 +44,14 @@ pub const UNKNOWN_NAME: &str = "pts::check::unknown_name";
 pub const UNKNOWN_FUNCTION: &str = "pts::check::unknown_function";
 /// A call with the wrong number of arguments.
 pub const WRONG_ARGUMENT_COUNT: &str = "pts::check::argument_count";
+/// A vector's or colour's component that does not exist (`v.w`).
+pub const UNKNOWN_COMPONENT: &str = "pts::check::unknown_component";
+/// POV-Ray's `rgbf`/`rgbt` colour.
+pub const FILTER_COLOR: &str = "pts::check::filter_color";
+/// A block ptsc does not have inside a block (POV-Ray's `pigment { … }`).
+pub const FOREIGN_BLOCK: &str = "pts::check::foreign_block";
+/// Values without parameter names (POV-Ray's `sphere { <0, 1, 0>, 1 }`).
+pub const POSITIONAL_VALUES: &str = "pts::check::positional_values";
 /// An index outside a list.
 pub const INDEX_OUT_OF_RANGE: &str = "pts::check::index_out_of_range";
 /// A list or string too large.
@@ -214,6 +222,30 @@ pub const CATALOGUE: &[Entry] = &[
         title: "A call with the wrong number of arguments",
         explanation: "A function (built-in or declared with `fn`) was called with more or fewer arguments than it takes.",
         example: "let m = max(1);",
+    },
+    Entry {
+        code: UNKNOWN_COMPONENT,
+        title: "A component a vector or colour does not have",
+        explanation: "`v.x`, `v.y`, `v.z` (and `v.t`, `v.u`, `v.v`, as POV-Ray names them) read a vector's components; `c.red`, `c.green`, `c.blue` a colour's. ptsc colours have no filter or transmit channel; a list's items are read with `xs[i]`.",
+        example: "let v = <1, 2, 3>;\nlet w = v.w;",
+    },
+    Entry {
+        code: FILTER_COLOR,
+        title: "A colour with filter or transmit channels",
+        explanation: "POV-Ray's `rgbf`, `rgbt` and `rgbft` colours make a surface see-through. ptsc colours have three channels; a see-through material gives `transmission` (a smooth dielectric lobe: with `ior 1` light passes unbent, as through POV-Ray's filter without an `interior`). The help writes the colour and the transmission from the values given.",
+        example: "material m { diffuse rgbf <1, 1, 1, 0.5> }",
+    },
+    Entry {
+        code: FOREIGN_BLOCK,
+        title: "A block ptsc does not have",
+        explanation: "An object or material holds parameters (`name value`), textures (`diffuse checker { … }`) and a `material`, not other blocks. POV-Ray's `pigment { … }`, `finish { … }`, `texture { … }`, `normal { … }` and `interior { … }` are all parameters of one ptsc `material { … }`; the help says which. The rest of the scene is still checked.",
+        example: "sphere { center <0, 0, 0> radius 1 pigment { color rgb 1 } }",
+    },
+    Entry {
+        code: POSITIONAL_VALUES,
+        title: "Values without parameter names",
+        explanation: "ptsc names every parameter: POV-Ray's `sphere { <0, 1, 0>, 1 }` is `sphere { center <0, 1, 0> radius 1 }`. The help writes the block with the names the values stand for, in POV-Ray's order, and says where ptsc's meaning differs (a cylinder is open unless `open false`, a plane is given by a point rather than a distance).",
+        example: "sphere { <0, 1, 0>, 1 }",
     },
     Entry {
         code: INDEX_OUT_OF_RANGE,

@@ -249,7 +249,10 @@ mod tests {
         let fp = |text: &str, frame: u32| {
             let text = format!("camera {{ position <0, 1, 5> look_at <0, 0, 0> }}\n{text}");
             let c = check::check_str(std::path::Path::new("t.pts"), &text);
-            let animation = Animation { frame, clock: 0.0 };
+            let animation = Animation {
+                frame,
+                ..Animation::default()
+            };
             fingerprint(&c.sources, &c.scene.expect("checks"), animation)
         };
         let base = fp(

@@ -293,6 +293,22 @@ pub enum Entry {
         /// The whole entry.
         span: Span,
     },
+    /// `name { … }`: a block ptsc does not have (POV-Ray's `pigment
+    /// { … }`), its content not read.
+    Foreign {
+        /// The block's name.
+        name: Ident,
+        /// The whole entry.
+        span: Span,
+    },
+    /// `value, value, …` without a parameter name (POV-Ray's
+    /// `sphere { <0, 1, 0>, 1 }`).
+    Positional {
+        /// The values, in order.
+        values: Vec<Expr>,
+        /// The whole entry.
+        span: Span,
+    },
     /// `material name` or `material { ... }`
     Material {
         /// The referenced or inline material.
@@ -441,6 +457,22 @@ pub enum ExprKind {
         base: Box<Expr>,
         /// Each index, outermost first.
         indexes: Vec<Expr>,
+    },
+    /// `v.x`: a component of a vector or colour by name.
+    Member {
+        /// The vector or colour.
+        base: Box<Expr>,
+        /// The component's name (`x`, `red`, …).
+        member: Ident,
+    },
+    /// POV-Ray's `rgbf x`, `rgbt x` or `rgbft x`: a colour with filter or
+    /// transmit channels, which ptsc does not have (the checker says what
+    /// to write instead).
+    FilterColor {
+        /// The word (`rgbf`, `rgbt`, `rgbft`).
+        word: Ident,
+        /// Its value.
+        value: Box<Expr>,
     },
     /// `if c { a } else if d { b } else { e }`
     If {

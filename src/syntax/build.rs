@@ -271,6 +271,17 @@ impl Builder {
                     span,
                 }
             }
+            Rule::foreign_block => {
+                let name = self.build_ident(inner.next().unwrap());
+                Entry::Foreign { name, span }
+            }
+            Rule::positional => {
+                let values = inner
+                    .filter(|p| p.as_rule() == Rule::component)
+                    .map(|p| self.build_expr(p))
+                    .collect();
+                Entry::Positional { values, span }
+            }
             Rule::material_entry => {
                 inner.next(); // kw_material
                 let m = inner.next().unwrap();
@@ -313,6 +324,16 @@ impl Builder {
                     kind: ExprKind::Index {
                         base: Box::new(e),
                         indexes,
+                    },
+                };
+            }
+            if inner.peek().is_some_and(|p| p.as_rule() == Rule::member) {
+                let member = self.build_ident(inner.next().unwrap().into_inner().next().unwrap());
+                e = Expr {
+                    span: e.span.join(member.span),
+                    kind: ExprKind::Member {
+                        base: Box::new(e),
+                        member,
                     },
                 };
             }
@@ -413,6 +434,17 @@ impl Builder {
                 inner.next(); // `rgb`
                 Expr {
                     kind: ExprKind::Color(Box::new(self.build_operand(&mut inner))),
+                    span,
+                }
+            }
+            Rule::filter_color => {
+                let mut inner = pair.into_inner();
+                let word = self.build_ident(inner.next().unwrap());
+                Expr {
+                    kind: ExprKind::FilterColor {
+                        word,
+                        value: Box::new(self.build_operand(&mut inner)),
+                    },
                     span,
                 }
             }

@@ -50,6 +50,10 @@ pub fn rule_name(rule: Rule) -> &'static str {
         Rule::block_stmt | Rule::block_kind => "a block such as `sphere { … }`",
         Rule::block => "a block `{ … }`",
         Rule::entry | Rule::param => "a parameter name",
+        Rule::foreign_block | Rule::opaque_block | Rule::opaque_text => "a block `{ … }`",
+        Rule::positional => "a value",
+        Rule::member => "a component `.x`",
+        Rule::filter_color | Rule::filter_word => "a colour `rgb …`",
         Rule::texture_param => "a parameter given a texture",
         Rule::texture_decl | Rule::kw_texture => "`texture`",
         Rule::color_stop | Rule::stop_word => "a colour stop `stop 0.5 rgb …`",
@@ -203,7 +207,14 @@ pub fn convert_error(
     let word = found.trim_matches('`');
     if let Some((at, kw)) = statement_on_line(text, pos) {
         if let Some(&open) = open_braces(&text[..at]).last() {
-            if block_brace(text, open) {
+            // Only where closing the block before the line gets the parse
+            // further: a closed block is never blamed for an error on a
+            // line that happens to start with a statement's word.
+            // A file whose braces all pair up has no unclosed block.
+            if block_brace(text, open)
+                && !open_braces(text).is_empty()
+                && closing_helps(text, base, at, pos)
+            {
                 return unclosed_block(file, open).with_secondary(
                     Span::new(file, at, at + kw.len()),
                     format!("`{kw}` starts the next statement"),
@@ -216,8 +227,8 @@ pub fn convert_error(
             .chars()
             .take_while(|c| c.is_alphanumeric() || *c == '_')
             .collect();
-        let help = super::povray::hint(&directive).map_or_else(
-            || "ptsc has no `#` directives: statements are `let`, `include`, `for`, …".to_string(),
+        let help = super::povray::directive(&directive).map_or_else(
+            || "ptsc has no `#` directives: write its statements without `#`: `let`, `include`, `for`, `if`, …".to_string(),
             str::to_string,
         );
         return Diagnostic::error(
@@ -257,9 +268,21 @@ pub fn convert_error(
                         .iter()
                         .any(|r| rule_name(*r) == *n)
                 })
-                // A colour stop is one more name where names are expected.
-                .filter(|n| *n != rule_name(Rule::color_stop))
+                // A colour stop is one more name where names are expected;
+                // a component `.x` could follow any operand.
+                .filter(|n| *n != rule_name(Rule::color_stop) && *n != rule_name(Rule::member))
                 .collect();
+            // Where a parameter's value is expected, the `{` of a foreign
+            // block and the `,` of positional values are noise.
+            let value = rule_name(Rule::expr);
+            let useful: Vec<&str> = if useful.contains(&value) {
+                useful
+                    .into_iter()
+                    .filter(|n| !matches!(*n, "`{`" | "`,`"))
+                    .collect()
+            } else {
+                useful
+            };
             (if useful.is_empty() { names } else { useful }, neg)
         }
         ErrorVariant::CustomError { .. } => (Vec::new(), Vec::new()),
@@ -293,6 +316,21 @@ pub fn convert_error(
             .with_label("an object's block")
             .with_help("a constant holds a number, vector, colour or string; objects cannot be named yet (reusable objects are planned): write the object where it goes, in a `for` loop to repeat it");
         }
+    }
+    // `sphere { … hollow }`: a POV-Ray flag right before.
+    if let Some((named, hint)) = previous
+        .last()
+        .filter(|_| adjacent)
+        .and_then(|w| Some((*w, super::povray::flag(w)?)))
+    {
+        let end = text[..pos].trim_end().len();
+        return Diagnostic::error(
+            codes::UNEXPECTED_TOKEN,
+            format!("`{named}` is a POV-Ray flag"),
+            Span::new(file, end - named.len(), end),
+        )
+        .with_label("not ptsc")
+        .with_help(hint);
     }
     let help = super::povray::hint(word)
         .map(str::to_string)
@@ -351,6 +389,24 @@ fn unclosed_block(file: FileId, open: usize) -> Diagnostic {
     )
     .with_label("this `{` has no matching `}`")
     .with_help("add `}` at the end of the block")
+}
+
+/// Whether closing a block with `}` just before `at` (the start of the
+/// line where the parser failed at `pos`) lets a parse of the file from
+/// `base` get past `pos`: the evidence that the block lacks its `}`.
+fn closing_helps(text: &str, base: usize, at: usize, pos: usize) -> bool {
+    use pest::Parser;
+    let patched = format!("{}}}{}", &text[base..at], &text[at..]);
+    match PtsParser::parse(Rule::file, &patched) {
+        Ok(_) => true,
+        Err(e) => {
+            let failed = match e.location {
+                InputLocation::Pos(p) => p,
+                InputLocation::Span((s, _)) => s,
+            };
+            failed > pos + 1 - base
+        }
+    }
 }
 
 /// Words that open a statement: [`OPEN_NO_BLOCK`] that open no block

@@ -1,7 +1,11 @@
 //! POV-Ray's words and what ptsc says instead: a user who writes
 //! `light_source` or `pigment` learns the ptsc word, not just that theirs
-//! is wrong. Read by the parser's errors (a statement or parameter that
-//! ptsc does not have) and by the checker's unknown-parameter errors.
+//! is wrong. Read by the parser's errors (a statement, directive or flag
+//! that ptsc does not have) and by the checker's errors (an unknown
+//! parameter, block, name or function). One table per kind of word; a
+//! form whose answer needs the block's kind (POV-Ray's positional
+//! `sphere { <0, 1, 0>, 1 }`) is answered from the kind's row in
+//! `check/params.rs`.
 
 /// POV-Ray words (and a few from other renderers and languages) with what
 /// ptsc has instead, as a help line's text.
@@ -17,26 +21,11 @@ const WORDS: &[(&str, &str)] = &[
     ("difference", "ptsc has no CSG yet"),
     ("intersection", "ptsc has no CSG yet"),
     ("object", "POV-Ray's `#declare Thing = union { … }` and `object { Thing … }` are `group thing { … }` and `instance thing { translate … }` in ptsc"),
-    ("declare", "POV-Ray's `#declare NAME = …;` is `let NAME = …;` in ptsc (numbers, vectors, colours, strings, lists); an object to reuse is a `group`"),
-    ("local", "POV-Ray's `#local NAME = …;` is `let NAME = …;` in ptsc"),
-    ("macro", "a POV-Ray macro that makes objects is a `group` placed with `instance`; one that computes a value is a function, `fn name(a, b) = …;`"),
     ("function", "a user function is `fn name(a, b) = expression;` in ptsc"),
     ("array", "a list is written `[a, b, c]` in ptsc, indexed `xs[0]`, measured `len(xs)`, walked `for x in xs { … }`"),
-    ("concat", "strings join with `+` in ptsc: `\"tree_\" + str(i) + \".obj\"`"),
-    ("elseif", "ptsc writes `if a { … } else if b { … } else { … }`"),
-    ("ifdef", "ptsc has no `#ifdef`: a name must be defined before it is used"),
-    ("while", "ptsc loops are `for i in a..b { … }` (always bounded)"),
-    ("switch", "ptsc has no `switch`: write `if a { … } else if b { … } else { … }`"),
-    ("pigment", "POV-Ray's `pigment { color rgb … }` is `diffuse rgb …` inside ptsc's `material { … }`"),
-    ("finish", "POV-Ray's `finish` settings are `material` parameters in ptsc: `reflection rgb …`, `gloss …`, `emission rgb …`"),
-    ("normal", "POV-Ray's `normal { bumps … }` is a material's `bump` (any pattern, e.g. `bump noise { scale 0.1 }`) or `normal_map image { file … }`"),
-    ("interior", "POV-Ray's `interior { ior … }` is `ior` and `absorption` inside ptsc's `material { transmission 1 … }`"),
-    ("color", "colours are written `rgb <r, g, b>` (or `rgb 0.5` for grey)"),
-    ("colour", "colours are written `rgb <r, g, b>` (or `rgb 0.5` for grey)"),
     ("srgb", "colours are linear `rgb <r, g, b>` in ptsc"),
     ("global_settings", "ptsc's settings are in `render { … }`: `resolution`, `samples`, `max_depth`, `integrator`, …"),
     ("radiosity", "the `path` integrator (the default) computes all indirect light: `render { integrator path }`"),
-    ("photons", "the `path` integrator renders caustics without photons"),
     ("location", "POV-Ray's camera `location` is `position` in ptsc"),
     ("angle", "POV-Ray's camera `angle` is `fov` in ptsc, and ptsc's `fov` is the vertical field of view (POV-Ray's is horizontal)"),
     ("orthographic", "ptsc's camera is a perspective one (pinhole, or a thin lens with `aperture`); an orthographic camera is planned"),
@@ -45,11 +34,122 @@ const WORDS: &[(&str, &str)] = &[
     ("blur_samples", "ptsc takes depth of field samples from `render { samples … }`"),
     ("area_light", "an area light is an object with `material { emission rgb … }`, e.g. a `quad` or `disk`"),
     ("fade_distance", "ptsc's lights fall off with the square of the distance, as real ones do"),
-    ("image_map", "an image map is `diffuse image { file \"wood.png\" }` in a ptsc material"),
-    ("color_map", "a colour map is a texture's `stop` entries: `marble { stop 0 rgb 1 stop 0.7 rgb 0.2 }`"),
     ("gradient", "in a material, `diffuse gradient { low rgb 0 high rgb 1 rotate <0, 0, 90> }` (a ramp along x)"),
     ("checker", "in a material, `diffuse checker { even rgb 1 odd rgb 0 }` (see \"Textures\" in docs/language.md)"),
 ];
+
+/// POV-Ray's `#` directives, each with the ptsc statement that does its job.
+const DIRECTIVES: &[(&str, &str)] = &[
+    ("declare", "POV-Ray's `#declare NAME = …;` is `let NAME = …;` in ptsc (numbers, vectors, colours, strings, lists); an object to reuse is a `group`"),
+    ("local", "POV-Ray's `#local NAME = …;` is `let NAME = …;` in ptsc"),
+    ("include", "in ptsc, write `include \"file.pts\"` (no `#`); POV-Ray's own include files (colors.inc, textures.inc, …) have no ptsc version: write colours as `rgb <r, g, b>`"),
+    ("if", "in ptsc, write `if a < b { … } else { … }` (no `#`, no `#end`; `else if` chains)"),
+    ("else", "in ptsc, write `if a < b { … } else { … }` (no `#`, no `#end`)"),
+    ("elseif", "in ptsc, write `if a { … } else if b { … } else { … }`"),
+    ("end", "ptsc closes loops and branches with `}`: `for i in 0..10 { … }`, `if a { … }`"),
+    ("while", "in ptsc, write `for i in 0..n { … }` (loops are always bounded; no `#end`)"),
+    ("for", "in ptsc, write `for i in 0..n { … }` (the end is excluded; no `#`, no `#end`)"),
+    ("switch", "ptsc has no `switch`: write `if a { … } else if b { … } else { … }`"),
+    ("case", "ptsc has no `switch`: write `if a { … } else if b { … } else { … }`"),
+    ("macro", "a POV-Ray macro that makes objects is a `group` placed with `instance`; one that computes a value is a function, `fn name(a, b) = …;`"),
+    ("ifdef", "ptsc has no `#ifdef`: a name must be defined before it is used"),
+    ("ifndef", "ptsc has no `#ifndef`: a name must be defined before it is used"),
+    ("version", "ptsc needs no `#version`: a scene is read the same by every version"),
+    ("default", "ptsc has no `#default`: an object without a material is grey diffuse; name a material and give it to each object with `material NAME`"),
+    ("debug", "ptsc has no `#debug`: `ptsc check` reports every problem with its place"),
+    ("warning", "ptsc has no `#warning`: `ptsc check` reports every problem with its place"),
+    ("error", "ptsc has no `#error`: `ptsc check` reports every problem with its place"),
+    ("undef", "ptsc has no `#undef`: a `let` inside a loop or an `if` is visible only there"),
+];
+
+/// POV-Ray's blocks inside objects (`pigment { … }`), each with what ptsc
+/// writes instead.
+const BLOCKS: &[(&str, &str)] = &[
+    ("pigment", "POV-Ray's `pigment { color rgb … }` is `material { diffuse rgb … }` in ptsc (a pattern: `diffuse checker { … }`)"),
+    ("texture", "POV-Ray's `texture { pigment { … } finish { … } }` is one `material { … }` in ptsc: `diffuse rgb …`, `gloss …`, `reflection rgb …`"),
+    ("finish", "POV-Ray's `finish` is part of ptsc's `material { … }`: `type plastic gloss 0.3` for a highlight, `reflection rgb …` for a mirror, `emission rgb …` for a glow"),
+    ("normal", "POV-Ray's `normal { bumps … }` is a material's `bump` in ptsc: `material { bump noise { scale 0.1 } bump_height 0.02 }` (or `normal_map image { file … }`)"),
+    ("interior", "POV-Ray's `interior { ior … }` is part of ptsc's `material { transmission 1 ior 1.5 absorption rgb … }`"),
+    ("color_map", "POV-Ray's `color_map { [0 rgb …] [1 rgb …] }` is a pattern's stops in ptsc: `marble { stop 0 rgb 1 stop 1 rgb 0.2 }`"),
+    ("colour_map", "POV-Ray's `colour_map { [0 rgb …] [1 rgb …] }` is a pattern's stops in ptsc: `marble { stop 0 rgb 1 stop 1 rgb 0.2 }`"),
+    ("pigment_map", "ptsc has no pigment maps: a pattern's `stop`s are colours (`marble { stop 0 rgb 1 stop 1 rgb 0.2 }`)"),
+    ("image_map", "POV-Ray's `image_map { png \"file.png\" }` is `diffuse image { file \"file.png\" }` in a ptsc material"),
+    ("photons", "the `path` integrator (the default) renders caustics without photons"),
+    ("media", "ptsc has no participating media yet; absorption inside glass is `material { transmission 1 absorption rgb … }`"),
+    ("bounded_by", "ptsc bounds every object itself (a BVH): leave `bounded_by` out"),
+    ("clipped_by", "ptsc has no CSG or clipping yet"),
+];
+
+/// POV-Ray's object flags (a word without a value) with what ptsc does.
+const FLAGS: &[(&str, &str)] = &[
+    ("no_shadow", "ptsc's objects always cast shadows (a light bulb is an emissive object: it lights the scene whatever is around it); remove `no_shadow`"),
+    ("hollow", "ptsc needs no `hollow`: nothing fills an object's inside unless its material absorbs (`absorption`); remove it"),
+    ("no_image", "ptsc draws every object in the image; remove `no_image`"),
+    ("no_reflection", "ptsc shows every object in reflections; remove `no_reflection`"),
+    ("double_illuminate", "light reaches the back of a thin surface in ptsc through `transmission` (e.g. `type thin_dielectric`); remove `double_illuminate`"),
+    ("inverse", "ptsc has no CSG yet, so nothing to invert; remove `inverse`"),
+];
+
+/// POV-Ray's built-in functions that ptsc spells otherwise.
+const FUNCTIONS: &[(&str, &str)] = &[
+    ("vlength", "POV-Ray's `vlength(v)` is `length(v)` in ptsc"),
+    ("vnormalize", "POV-Ray's `vnormalize(v)` is `normalize(v)` in ptsc"),
+    ("vdot", "POV-Ray's `vdot(a, b)` is `dot(a, b)` in ptsc"),
+    ("vcross", "POV-Ray's `vcross(a, b)` is `cross(a, b)` in ptsc"),
+    ("sqr", "POV-Ray's `sqr(x)` is `x * x` (or `pow(x, 2)`) in ptsc"),
+    ("ln", "POV-Ray's `ln(x)` is `log(x)` in ptsc (ptsc's `log` is the natural logarithm; POV-Ray's `log` is base 10: `log(x) / log(10)`)"),
+    ("seed", "random numbers in ptsc need no stream: `rand(seed, i)` is the same number for the same `seed` and `i`"),
+    ("div", "POV-Ray's `div(a, b)` is `int(a / b)` in ptsc"),
+    ("select", "in ptsc, write `if a < 0 { b } else { c }` as a value"),
+    ("vrotate", "ptsc has no `vrotate`: rotate the object with `rotate <x, y, z>` instead"),
+    ("concat", "strings join with `+` in ptsc: `\"tree_\" + str(i) + \".obj\"`"),
+];
+
+/// Names of POV-Ray's `colors.inc` and `textures.inc` and what to write.
+const NAMES: &[(&str, &str)] = &[
+    ("White", "POV-Ray's colors.inc names are not predefined in ptsc: write `rgb 1` (or `let White = rgb 1;`)"),
+    ("Black", "POV-Ray's colors.inc names are not predefined in ptsc: write `rgb 0`"),
+    ("Red", "POV-Ray's colors.inc names are not predefined in ptsc: write `rgb <1, 0, 0>`"),
+    ("Green", "POV-Ray's colors.inc names are not predefined in ptsc: write `rgb <0, 1, 0>`"),
+    ("Blue", "POV-Ray's colors.inc names are not predefined in ptsc: write `rgb <0, 0, 1>`"),
+    ("Yellow", "POV-Ray's colors.inc names are not predefined in ptsc: write `rgb <1, 1, 0>`"),
+    ("Gray", "POV-Ray's colors.inc names are not predefined in ptsc: write `rgb 0.5`"),
+    ("Grey", "POV-Ray's colors.inc names are not predefined in ptsc: write `rgb 0.5`"),
+    ("Clear", "ptsc colours have no transmit channel: see-through is a material's `transmission 1` (with `ior 1` it bends nothing)"),
+    ("Chrome_Metal", "in ptsc, write `material { type conductor preset chromium gloss 0.1 }`"),
+    ("Glass", "in ptsc, write `material { type dielectric ior 1.5 }`"),
+    ("color", "colours are written `rgb <r, g, b>` (or `rgb 0.5` for grey)"),
+    ("colour", "colours are written `rgb <r, g, b>` (or `rgb 0.5` for grey)"),
+];
+
+/// The hint for POV-Ray's directive `#word`, if it has one.
+pub fn directive(word: &str) -> Option<&'static str> {
+    find(DIRECTIVES, word)
+}
+
+/// The hint for POV-Ray's object flag `word` (`no_shadow`, `hollow`).
+pub fn flag(word: &str) -> Option<&'static str> {
+    find(FLAGS, word)
+}
+
+/// The hint for POV-Ray's function `word` that ptsc spells otherwise.
+pub fn function(word: &str) -> Option<&'static str> {
+    find(FUNCTIONS, word)
+}
+
+/// The hint for a name POV-Ray's include files or syntax define
+/// (`White`, `color`).
+pub fn name(word: &str) -> Option<&'static str> {
+    find(NAMES, word)
+}
+
+/// The text of `word`'s row in `table`.
+fn find(table: &[(&str, &'static str)], word: &str) -> Option<&'static str> {
+    table
+        .iter()
+        .find(|(w, _)| *w == word)
+        .map(|(_, hint)| *hint)
+}
 
 /// POV-Ray parameter names with the ptsc parameter that does their job.
 const PARAMETERS: &[(&str, &str)] = &[
@@ -70,10 +170,19 @@ pub fn parameter(word: &str) -> Option<&'static str> {
 /// that ptsc does not have. `#declare` and `declare` are the same word.
 pub fn hint(word: &str) -> Option<&'static str> {
     let word = word.trim_start_matches('#');
-    WORDS
+    // ptsc's own words (`if`, `for`, `texture`) are not taken for POV-Ray's.
+    if super::parser::KEYWORDS.contains(&word) {
+        return None;
+    }
+    [WORDS, BLOCKS, FLAGS, DIRECTIVES, FUNCTIONS, NAMES]
         .iter()
-        .find(|(w, _)| *w == word)
-        .map(|(_, hint)| *hint)
+        .find_map(|table| find(table, word))
+}
+
+/// The hint for POV-Ray's block `word { … }` inside an object
+/// (`pigment`, and `texture`, a ptsc word with another meaning).
+pub fn block(word: &str) -> Option<&'static str> {
+    find(BLOCKS, word).or_else(|| hint(word))
 }
 
 #[cfg(test)]
@@ -86,10 +195,15 @@ mod tests {
         assert!(hint("#declare").unwrap().contains("let"));
         assert!(hint("pigment").unwrap().contains("diffuse"));
         assert!(hint("sphere").is_none());
+        assert!(hint("if").is_none(), "ptsc's `if` is not POV-Ray's");
+        assert!(directive("if").unwrap().contains("if a < b {"));
+        assert!(block("texture").unwrap().contains("material"));
+        assert!(flag("no_shadow").is_some() && hint("hollow").is_some());
+        assert!(function("vlength").unwrap().contains("length(v)"));
         // No entry for a word ptsc has.
-        for (w, _) in WORDS {
+        for (w, _) in [WORDS, FLAGS, FUNCTIONS, NAMES].concat() {
             assert!(
-                !super::super::parser::KEYWORDS.contains(w),
+                !super::super::parser::KEYWORDS.contains(&w),
                 "{w} is a ptsc keyword"
             );
         }

@@ -23,6 +23,7 @@ mod shapes;
 mod special_files;
 mod texture_inputs;
 mod textures;
+mod unclosed_blocks;
 mod verdict;
 mod watch;
 

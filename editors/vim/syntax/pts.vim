@@ -10,10 +10,10 @@ syn keyword ptsBlock render camera environment sky background material texture s
 syn keyword ptsColour rgb
 syn keyword ptsBoolean true false
 " The predefined names of an animation.
-syn keyword ptsPredefined frame clock
+syn keyword ptsPredefined frame clock clock_delta pi x y z
 syn keyword ptsParam absorption albedo ambient angle aperture axis base base_radius bump bump_height center color_space corner diffuse direction edge1 edge2 emission eta even exposure falloff file focus_distance fov gloss high hybrid_weight integrator intensity ior ior_outside irradiance k light_samples light_sampling light_selection look_at low major_radius matrix max_depth minor_radius multiscatter normal normal_map octaves odd open output point position preset radius reflection resolution rotate roughness rr_depth samples scale seed shutter smooth space stop sun_azimuth sun_direction sun_elevation sun_intensity top top_radius translate transmission turbidity two_sided type up v0 v1 v2 velocity wrap
 syn keyword ptsWord path whitted hybrid normals albedo depth uv object world checker image noise turbulence marble wood gradient stripes repeat clamp mirror mix conductor plastic dielectric thin_dielectric gold silver copper aluminium chromium auto bvh exhaustive power uniform
-syn keyword ptsFunction sin cos tan asin acos atan2 sqrt pow exp log abs min max clamp floor ceil round radians degrees normalize length dot cross len str rand
+syn keyword ptsFunction sin cos tan asin acos atan2 sqrt pow exp log abs min max clamp floor ceil round int mod radians degrees normalize length dot cross len str rand
 " 1, 2.5, 1e-3 and .5, but not the .. of a range (0..10).
 syn match ptsNumber "\%(\<\d\+\%(\.\.\@!\d*\)\=\|\%([.0-9]\)\@<!\.\d\+\)\%([eE][+-]\=\d\+\)\=\>"
 syn region ptsString start=+"+ skip=+\\.+ end=+"\|$+

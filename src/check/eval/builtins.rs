@@ -34,6 +34,8 @@ pub const FUNCTIONS: &[(&str, (usize, usize))] = &[
     ("floor", (1, 1)),
     ("ceil", (1, 1)),
     ("round", (1, 1)),
+    ("int", (1, 1)),
+    ("mod", (2, 2)),
     ("radians", (1, 1)),
     ("degrees", (1, 1)),
     ("normalize", (1, 1)),
@@ -142,6 +144,9 @@ fn numeric(a: &Args, diags: &mut Diagnostics) -> Option<f64> {
         "floor" => x.floor(),
         "ceil" => x.ceil(),
         "round" => x.round(),
+        // POV-Ray's `int`: the whole part, towards zero.
+        "int" => x.trunc(),
+        "mod" => return remainder(a, x, a.num(1, diags)?, diags),
         "radians" => x.to_radians(),
         "degrees" => x.to_degrees(),
         "sqrt" if x < 0.0 => {
@@ -194,6 +199,20 @@ fn numeric(a: &Args, diags: &mut Diagnostics) -> Option<f64> {
         }
         other => unreachable!("function table and evaluator disagree on `{other}`"),
     })
+}
+
+/// `mod(a, b)`: POV-Ray's remainder, `a - int(a / b) * b` (the sign of
+/// `a`, as `%`), or a division-by-zero error.
+fn remainder(a: &Args, x: f64, y: f64, diags: &mut Diagnostics) -> Option<f64> {
+    if y == 0.0 {
+        diags.push(
+            Diagnostic::error(codes::DIVISION_BY_ZERO, "`mod` by zero", a.args[1].span)
+                .with_label("this is 0")
+                .with_help("`mod(a, b)` needs b ≠ 0"),
+        );
+        return None;
+    }
+    Some(x % y)
 }
 
 /// `pow(x, y)`: a real number, or a domain error (a negative number to a

@@ -15,11 +15,13 @@ mod budget;
 mod builtins;
 mod env;
 mod operators;
+mod povray;
 mod value;
 
 pub use budget::{MAX_SUGGESTIONS, MAX_WORK};
 pub use builtins::{random, FUNCTIONS};
 pub use env::{Binding, Env};
+pub use povray::written;
 pub use value::{shown, Function, List, Value, MAX_LIST_DEPTH};
 
 use crate::diag::codes;
@@ -215,9 +217,13 @@ fn eval_inner(e: &Expr, env: &mut Env, diags: &mut Diagnostics) -> Option<Value>
                 e.span,
             )
             .with_label("not defined");
-            d = match env.suggest_name(name, &[]) {
-                Some(s) => d.with_help(format!("did you mean `{s}`?")),
-                None => d.with_help(format!("define it first with `let {name} = …;`")),
+            d = match (
+                crate::syntax::povray::hint(name),
+                env.suggest_name(name, &[]),
+            ) {
+                (Some(hint), _) => d.with_help(hint),
+                (None, Some(s)) => d.with_help(format!("did you mean `{s}`?")),
+                (None, None) => d.with_help(format!("define it first with `let {name} = …;`")),
             };
             diags.push(d);
             None
@@ -288,6 +294,15 @@ fn eval_inner(e: &Expr, env: &mut Env, diags: &mut Diagnostics) -> Option<Value>
                 at = at.join(ix.span);
             }
             Some(v)
+        }
+        ExprKind::Member { base, member } => {
+            let v = eval(base, env, diags)?;
+            povray::member(v, base.span, member, diags)
+        }
+        ExprKind::FilterColor { word, value } => {
+            let v = eval(value, env, diags);
+            diags.push(povray::filter_color(word, v, e));
+            None
         }
         ExprKind::If { arms, otherwise } => {
             // Only the chosen arm is evaluated: a recursion ends in the arm
@@ -361,7 +376,12 @@ fn eval_inner(e: &Expr, env: &mut Env, diags: &mut Diagnostics) -> Option<Value>
             }
             let Some(&(_, (least, most))) = builtin else {
                 let built_in: Vec<&str> = FUNCTIONS.iter().map(|(n, _)| *n).collect();
-                let help = match env.suggest_name(&func.name, &built_in) {
+                let pov = crate::syntax::povray::function(&func.name);
+                let help = match pov
+                    .map(str::to_string)
+                    .or_else(|| env.suggest_name(&func.name, &built_in))
+                {
+                    Some(hint) if pov.is_some() => hint,
                     Some(s) => format!("did you mean `{s}`?"),
                     None => format!(
                         "the built-in functions are {}; declare your own with `fn {}(x) = …;`",

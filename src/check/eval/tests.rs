@@ -444,3 +444,52 @@ fn suggestions_stop_when_their_budget_is_spent() {
     env.suggestions = super::budget::Work::new(1);
     assert_eq!(env.suggest("radus", 2, names), None);
 }
+
+#[test]
+fn povray_forms_that_ptsc_accepts_evaluate_as_in_povray() {
+    // `pi`, `x`/`y`/`z`, `clock_delta` are predefined; `int` truncates
+    // towards zero, `mod` keeps the sign of its first argument (POV-Ray's).
+    assert!((radius("pi") - std::f64::consts::PI).abs() < 1e-15);
+    assert_eq!(radius("int(2.7)"), 2.0);
+    assert_eq!(radius("-int(-2.7)"), 2.0);
+    assert_eq!(radius("mod(7, 3)"), 1.0);
+    assert_eq!(radius("-mod(-7, 3)"), 1.0);
+    assert_eq!(radius("mod(7.5, 2)"), 1.5);
+    assert_eq!(radius("(y * 30).y"), 30.0);
+    assert_eq!(radius("<4, 5, 6>.z"), 6.0);
+    assert_eq!(radius("(rgb <0.1, 0.2, 0.3>).green"), 0.2);
+    assert_eq!(num("let v = <1, 2, 3, 4>;", "v.t + v.x"), 5.0);
+    assert_eq!(num("let uv = <0.25, 0.75>;", "uv.u + uv.v"), 1.0);
+    assert_eq!(num("let xs = [<1, 2, 3>];", "xs[0].y"), 2.0);
+    // A scene may bind the names itself.
+    assert_eq!(num("let pi = 3;", "pi"), 3.0);
+    assert_eq!(num("let x = 2;", "x * x"), 4.0);
+    assert_eq!(radius("1 + clock_delta"), 1.0, "a still image's step is 0");
+}
+
+#[test]
+fn povray_forms_that_ptsc_refuses_name_what_to_write() {
+    assert_eq!(
+        value("", "<1, 2>.z").unwrap_err(),
+        codes::INDEX_OUT_OF_RANGE
+    );
+    assert_eq!(
+        value("", "<1, 2, 3>.w").unwrap_err(),
+        codes::UNKNOWN_COMPONENT
+    );
+    assert_eq!(
+        value("", "(rgb 1).filter").unwrap_err(),
+        codes::UNKNOWN_COMPONENT
+    );
+    assert_eq!(value("", "(2).x").unwrap_err(), codes::TYPE_MISMATCH);
+    assert_eq!(value("", "mod(1, 0)").unwrap_err(), codes::DIVISION_BY_ZERO);
+    let d = evaluate(super::MAX_WORK, "", "rgbft <1, 0.5, 0, 0.25, 0.25>").unwrap_err();
+    assert_eq!(d.code, codes::FILTER_COLOR);
+    let help = d.help.unwrap();
+    assert!(
+        help.contains("rgb <1, 0.5, 0>") && help.contains("transmission 0.5"),
+        "{help}"
+    );
+    let d = evaluate(super::MAX_WORK, "", "vlength(<1, 0, 0>)").unwrap_err();
+    assert!(d.help.unwrap().contains("length(v)"));
+}

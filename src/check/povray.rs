@@ -1,0 +1,124 @@
+//! The checker's answers to POV-Ray's forms inside blocks: a block ptsc
+//! does not have (`pigment { … }`) and values without parameter names
+//! (`sphere { <0, 1, 0>, 1 }`). The words' hints are in
+//! `syntax/povray.rs`; the positional order of each shape is in its row
+//! of `params.rs` ([`super::params::povray_positional`]).
+
+use super::eval::{eval, written, Env, Value};
+use super::params::{povray_positional, ParamSpec};
+use crate::diag::{codes, did_you_mean, Diagnostic, Diagnostics};
+use crate::span::Span;
+use crate::syntax::ast::{BlockKind, Expr, Ident};
+
+/// The error for `name { … }` inside the block `what` (with the
+/// parameters `schemas`), at `span`.
+pub fn foreign_block(
+    what: &str,
+    name: &Ident,
+    span: Span,
+    schemas: &[&'static [ParamSpec]],
+) -> Diagnostic {
+    let word = name.name.as_str();
+    let all: Vec<&str> = schemas
+        .iter()
+        .flat_map(|s| s.iter().map(|p| p.name))
+        .collect();
+    if all.contains(&word) {
+        return Diagnostic::error(
+            codes::FOREIGN_BLOCK,
+            format!("`{word}` takes a value, not a block"),
+            span,
+        )
+        .with_label("a parameter written as a block")
+        .with_help(format!(
+            "write `{word} VALUE`, or a texture as `{word} KIND {{ … }}` (e.g. `{word} checker {{ … }}`) where `{word}` takes one"
+        ));
+    }
+    let help = match crate::syntax::povray::block(word) {
+        Some(hint) => hint.to_string(),
+        None => match did_you_mean(word, all.iter().copied()) {
+            Some(s) => format!("did you mean the parameter `{s}`?"),
+            None => format!("`{what}` accepts {}", all.join(", ")),
+        },
+    };
+    let message = if crate::syntax::povray::block(word).is_some() {
+        format!("POV-Ray's `{word} {{ … }}` is not ptsc")
+    } else {
+        format!("unknown block `{word}` in `{what}`")
+    };
+    Diagnostic::error(codes::FOREIGN_BLOCK, message, span)
+        .with_label("a block ptsc does not have here")
+        .with_help(help)
+}
+
+/// The error for `values` written without parameter names in the block
+/// `what`, at `span`: the block written with the names they stand for
+/// where the kind has a POV-Ray order and the values evaluate; with the
+/// names of the parameters the values stand for.
+pub fn positional(
+    what: &str,
+    values: &[Expr],
+    span: Span,
+    env: &mut Env,
+) -> (Diagnostic, &'static [&'static str]) {
+    let kind = BlockKind::ALL.iter().copied().find(|k| k.keyword() == what);
+    let row = kind.and_then(povray_positional);
+    let help = match row {
+        Some((names, note)) => {
+            let rewritten = rewrite(names, values, env).unwrap_or_else(|| {
+                names
+                    .iter()
+                    .map(|n| format!("{n} …"))
+                    .collect::<Vec<_>>()
+                    .join(" ")
+            });
+            let note = if note.is_empty() {
+                String::new()
+            } else {
+                format!(" ({note})")
+            };
+            format!("ptsc names each value: `{what} {{ {rewritten} }}`{note}")
+        }
+        None => format!("ptsc names each value: `{what} {{ name value … }}`"),
+    };
+    let d = Diagnostic::error(
+        codes::POSITIONAL_VALUES,
+        format!("values without parameter names in `{what}`"),
+        span,
+    )
+    .with_label("POV-Ray's positional form")
+    .with_help(help);
+    (d, row.map_or(&[][..], |(names, _)| names))
+}
+
+/// `name value …` for `values` under `names`, from their evaluated values
+/// (a plane's distance becomes a point on it); `None` when a value does
+/// not evaluate or the counts differ.
+fn rewrite(names: &[&str], values: &[Expr], env: &mut Env) -> Option<String> {
+    if names.len() != values.len() {
+        return None;
+    }
+    let mut quiet = Diagnostics::default();
+    let mut evaluated = Vec::with_capacity(values.len());
+    for v in values {
+        evaluated.push(eval(v, env, &mut quiet)?);
+    }
+    if names == ["normal", "point"] {
+        // POV-Ray's plane { N, D }: the points p with p · N/|N| = D.
+        let (Value::Vector(n), Value::Num(d)) = (&evaluated[0], &evaluated[1]) else {
+            return None;
+        };
+        let length = n.iter().map(|x| x * x).sum::<f64>().sqrt();
+        if n.len() != 3 || length == 0.0 {
+            return None;
+        }
+        let point: Vec<f64> = n.iter().map(|x| x / length * d).collect();
+        evaluated[1] = Value::Vector(point.into());
+    }
+    let pairs: Vec<String> = names
+        .iter()
+        .zip(&evaluated)
+        .map(|(n, v)| format!("{n} {}", written(v)))
+        .collect();
+    Some(pairs.join(" "))
+}

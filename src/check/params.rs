@@ -428,7 +428,7 @@ pub fn shape_schema(kind: crate::syntax::ast::BlockKind) -> &'static [ParamSpec]
                 p("look_at", Ty::Vec3, "<0, 0, 0>").of(Magnitude),
                 p("intensity", Ty::Color, "rgb 100").of(Radiance),
                 p("angle", Ty::Num, "30"),
-                p("falloff", Ty::Num, "25"),
+                p("hotspot", Ty::Num, "25"),
             ];
             S
         }

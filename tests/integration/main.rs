@@ -9,6 +9,7 @@ mod examples;
 mod farm;
 mod frames;
 mod golden;
+mod group_lights;
 mod hostile;
 mod image_limits;
 mod instances;

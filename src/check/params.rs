@@ -74,6 +74,11 @@ pub struct ParamSpec {
     pub quantity: Quantity,
     /// Whether it may be given a texture instead of a value.
     pub texture: bool,
+    /// For a POV-Ray word this block refuses because ptsc means something
+    /// else by it (or has it under another name): the ptsc parameter that
+    /// does its job and a help line saying so. Not a parameter: refused
+    /// with the line, left out of the lists of accepted names.
+    pub povray: Option<(&'static str, &'static str)>,
 }
 
 impl ParamSpec {
@@ -99,6 +104,7 @@ const fn p(name: &'static str, ty: Ty, example: &'static str) -> ParamSpec {
         repeat: false,
         quantity: Quantity::Plain,
         texture: false,
+        povray: None,
     }
 }
 
@@ -110,8 +116,22 @@ const fn t(name: &'static str, ty: Ty, example: &'static str) -> ParamSpec {
         repeat: true,
         quantity: Quantity::Plain,
         texture: false,
+        povray: None,
     }
 }
+
+/// A POV-Ray word refused in one kind of block, with the ptsc parameter
+/// that does its job and the help line (see [`ParamSpec::povray`]).
+const fn povray(name: &'static str, instead: &'static str, help: &'static str) -> ParamSpec {
+    ParamSpec {
+        povray: Some((instead, help)),
+        ..p(name, Ty::Num, "")
+    }
+}
+
+/// The help line for POV-Ray's spot light angles, whose `falloff` is the
+/// opposite of what the word suggests: it is the outer angle.
+const SPOT_ANGLES: &str = "POV-Ray's `falloff` (the outer angle, where the light ends) is `angle` in ptsc; its `radius` (the hot spot, full light inside) is `hotspot`";
 
 /// Parameters every shape accepts besides `material`.
 pub const SHAPE_COMMON: &[ParamSpec] = &[
@@ -324,6 +344,7 @@ pub fn all_parameter_names() -> Vec<&'static str> {
         .chain(NOISE)
         .chain(GRADIENT)
         .chain(COLOR_MAP)
+        .filter(|p| p.povray.is_none())
         .map(|p| p.name)
         .collect();
     names.sort_unstable();
@@ -429,6 +450,10 @@ pub fn shape_schema(kind: crate::syntax::ast::BlockKind) -> &'static [ParamSpec]
                 p("intensity", Ty::Color, "rgb 100").of(Radiance),
                 p("angle", Ty::Num, "30"),
                 p("hotspot", Ty::Num, "25"),
+                povray("falloff", "angle", SPOT_ANGLES),
+                povray("radius", "hotspot", SPOT_ANGLES),
+                povray("tightness", "hotspot", "POV-Ray's `tightness` has no ptsc equivalent: the light falls off smoothly from `hotspot` to `angle`"),
+                povray("point_at", "look_at", "POV-Ray's `point_at` is `look_at` in ptsc"),
             ];
             S
         }
@@ -576,19 +601,39 @@ impl Params {
                 );
                 continue;
             }
-            let Some(spec) = schemas
+            let found = schemas
                 .iter()
                 .flat_map(|s| s.iter())
-                .find(|s| s.name == name.name)
-            else {
+                .find(|s| s.name == name.name);
+            let all = || -> Vec<&'static str> {
+                (schemas.iter().flat_map(|s| s.iter()))
+                    .filter(|p| p.povray.is_none())
+                    .map(|p| p.name)
+                    .collect()
+            };
+            if let Some(&ParamSpec {
+                povray: Some((instead, help)),
+                ..
+            }) = found
+            {
+                params.suggested.push(instead);
+                diags.push(
+                    Diagnostic::error(
+                        codes::UNKNOWN_PARAM,
+                        format!("unknown parameter `{}` in `{what}`", name.name),
+                        name.span,
+                    )
+                    .with_label("POV-Ray's word, not ptsc's")
+                    .with_help(format!("{help}; `{what}` accepts {}", all().join(", "))),
+                );
+                continue;
+            }
+            let Some(spec) = found else {
                 if let Some(d) = at_infinity(&what, &name.name, name.span) {
                     diags.push(d);
                     continue;
                 }
-                let all: Vec<&str> = schemas
-                    .iter()
-                    .flat_map(|s| s.iter().map(|p| p.name))
-                    .collect();
+                let all = all();
                 let help = match did_you_mean(&name.name, all.iter().copied()) {
                     Some(s) => {
                         params.suggested.push(s);

@@ -66,7 +66,9 @@ impl Checker {
                     instance.span,
                 )
                 .with_label("a light of the group lands out of the renderer's range")
-                .with_help("the renderer computes in 32-bit floats; check the instance's transforms"),
+                .with_help(
+                    "the renderer computes in 32-bit floats; check the instance's transforms",
+                ),
             );
         }
     }

@@ -883,7 +883,10 @@ impl Checker {
         span: Span,
         file: FileId,
     ) {
-        if let Some(g) = self.open_group.filter(|_| !kind.is_shape() && !kind.is_light()) {
+        if let Some(g) = self
+            .open_group
+            .filter(|_| !kind.is_shape() && !kind.is_light())
+        {
             self.diags.push(not_in_group(
                 &format!("`{}`", kind.keyword()),
                 kind_span,

@@ -265,13 +265,35 @@ pub const GRADIENT: &[ParamSpec] = &[
 ];
 
 /// `noise`, `turbulence`, `marble` and `wood { }`, besides
-/// [`TEXTURE_TRANSFORMS`].
+/// [`COLOR_MAP`] and [`TEXTURE_TRANSFORMS`] (and [`BANDS`] or
+/// [`UNBANDED`]). `octaves` 1 to 16 (default 6), `omega` in (0, 1]
+/// (default 0.5), `lambda` in (1, 10] (default 2), as POV-Ray's.
 pub const NOISE: &[ParamSpec] = &[
     p("low", Ty::Color, "rgb 0.2").of(Magnitude),
     p("high", Ty::Color, "rgb 0.9").of(Magnitude),
     p("octaves", Ty::Int, "4"),
+    p("omega", Ty::Num, "0.6"),
+    p("lambda", Ty::Num, "2.5"),
     p("space", Ty::Word(TEXTURE_SPACES), "world"),
 ];
+
+/// `marble` and `wood { }`'s bands, besides [`NOISE`]: `turbulence`, how
+/// far noise displaces them, 0 to 100 (default 2 for marble, 0.25 for
+/// wood); `frequency`, greater than 0 and at most 1000 (default 1);
+/// `phase`, 0 to 1 (default 0).
+pub const BANDS: &[ParamSpec] = &[
+    p("turbulence", Ty::Num, "1.5"),
+    p("frequency", Ty::Num, "2"),
+    p("phase", Ty::Num, "0.25"),
+];
+
+/// `noise` and `turbulence { }`, which have no bands to disturb: POV-Ray's
+/// `turbulence` (a warp any pattern takes) is refused with what to do.
+pub const UNBANDED: &[ParamSpec] = &[povray(
+    "turbulence",
+    "scale",
+    "ptsc's `turbulence` displaces the bands of `marble` and `wood`; `noise` and `turbulence` are the noise itself: `scale` them for larger features, `omega` for rougher ones",
+)];
 
 /// The wrap modes of an image texture.
 pub const WRAPS: &[&str] = &["repeat", "clamp", "mirror"];
@@ -342,6 +364,7 @@ pub fn all_parameter_names() -> Vec<&'static str> {
         .chain(CHECKER)
         .chain(IMAGE)
         .chain(NOISE)
+        .chain(BANDS)
         .chain(GRADIENT)
         .chain(COLOR_MAP)
         .filter(|p| p.povray.is_none())
@@ -623,7 +646,7 @@ impl Params {
                         format!("unknown parameter `{}` in `{what}`", name.name),
                         name.span,
                     )
-                    .with_label("POV-Ray's word, not ptsc's")
+                    .with_label("a POV-Ray parameter this block does not take")
                     .with_help(format!("{help}; `{what}` accepts {}", all().join(", "))),
                 );
                 continue;

@@ -51,10 +51,10 @@ pub enum TextureKind {
     Stripes,
     /// `noise`, `turbulence`, `marble` or `wood { … }`.
     Noise {
-        /// The pattern's name.
-        pattern: String,
-        /// Octaves of its fractal sum.
-        octaves: u32,
+        /// Which pattern.
+        kind: crate::texture::noise::NoiseKind,
+        /// Its octaves and bands (each in its range, safe in f32).
+        params: crate::texture::noise::NoiseParams,
     },
     /// `image { file … }`
     Image {

@@ -17,6 +17,7 @@ mod layering;
 mod materials;
 mod mitsuba;
 mod nasty;
+mod noise_params;
 mod outputs;
 mod render;
 mod shapes;

@@ -548,6 +548,23 @@ fn texture_not_allowed(spec: &ParamSpec, what: &str, span: Span) -> Diagnostic {
     ))
 }
 
+/// The error for a POV-Ray word that a block's row refuses (`falloff` in
+/// a `spot_light`), with its row's help line and the names it accepts.
+fn refused_povray_word(
+    name: &crate::syntax::ast::Ident,
+    what: &str,
+    help: &str,
+    accepted: &[&str],
+) -> Diagnostic {
+    Diagnostic::error(
+        codes::UNKNOWN_PARAM,
+        format!("unknown parameter `{}` in `{what}`", name.name),
+        name.span,
+    )
+    .with_label("a POV-Ray parameter this block does not take")
+    .with_help(format!("{help}; `{what}` accepts {}", accepted.join(", ")))
+}
+
 /// The texture `value` names, if it is a bare name that is not a constant
 /// but a declared texture (`texture oak wood { … }`).
 fn named_texture(value: &crate::syntax::ast::Expr, env: &mut Env) -> Option<super::scene::Texture> {
@@ -640,15 +657,7 @@ impl Params {
             }) = found
             {
                 params.suggested.push(instead);
-                diags.push(
-                    Diagnostic::error(
-                        codes::UNKNOWN_PARAM,
-                        format!("unknown parameter `{}` in `{what}`", name.name),
-                        name.span,
-                    )
-                    .with_label("a POV-Ray parameter this block does not take")
-                    .with_help(format!("{help}; `{what}` accepts {}", all().join(", "))),
-                );
+                diags.push(refused_povray_word(name, &what, help, &all()));
                 continue;
             }
             let Some(spec) = found else {
@@ -896,4 +905,33 @@ fn typed_value(
         }
     };
     ok
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::syntax::ast::BlockKind;
+
+    #[test]
+    fn a_refused_povray_word_names_a_parameter_its_block_has() {
+        let rows = (BlockKind::ALL.iter().map(|&k| shape_schema(k)))
+            .chain([NOISE, BANDS, UNBANDED, GRADIENT, CHECKER, IMAGE, MATERIAL]);
+        let mut refused = 0;
+        for row in rows {
+            for spec in row.iter().filter(|s| s.povray.is_some()) {
+                let (instead, help) = spec.povray.unwrap();
+                refused += 1;
+                assert!(help.contains(&format!("`{}`", spec.name)), "{help}");
+                // `scale` is every texture's (TEXTURE_TRANSFORMS).
+                let has = row.iter().any(|s| s.name == instead && s.povray.is_none());
+                assert!(has || instead == "scale", "{}: {instead}", spec.name);
+            }
+        }
+        assert_eq!(refused, 5);
+        // Editors highlight parameters only: no word that is only refused.
+        let names = all_parameter_names();
+        for word in ["falloff", "tightness", "point_at"] {
+            assert!(!names.contains(&word), "{word}");
+        }
+    }
 }

@@ -138,9 +138,10 @@ pub fn check_texture(
     })
 }
 
-/// The octaves and bands of a noise texture, each in its range (POV-Ray's
-/// ranges and defaults but for marble's and wood's `turbulence`, which
-/// keep the amounts they always had).
+/// The octaves and bands of a noise texture, each in its range (ranges
+/// and POV-Ray's differences in docs/language.md). The defaults are
+/// POV-Ray's but for marble's and wood's `turbulence`, which keep the
+/// amounts they always had.
 fn noise_params(kind: NoiseKind, r: &mut Reader) -> NoiseParams {
     let d = NoiseParams::defaults(kind);
     let mut num = |name, lo, hi, open_lo, default: f32| {

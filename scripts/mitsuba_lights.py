@@ -45,7 +45,7 @@ def lights_mixed(res, spp):
         "left": rectangle([-2, 0, 3], [0, 0, -5], [0, 3, 0], diffuse([0.7, 0.3, 0.2])),
         "ball": {"type": "sphere", "center": [0.4, 0.5, 0], "radius": 0.5, "bsdf": diffuse([0.7] * 3)},
         "point": {"type": "point", "position": [-1.2, 2, 1], "intensity": rgb([2] * 3)},
-        # beam_width = cutoff_angle: a hard cone, as ptsc's falloff = angle.
+        # beam_width = cutoff_angle: a hard cone, as ptsc's hotspot = angle.
         "spot": {"type": "spot", "intensity": rgb([30, 26, 20]), "cutoff_angle": 18.0, "beam_width": 18.0,
                  "to_world": mi.ScalarTransform4f().look_at(origin=[1.3, 2.6, -0.8], target=[1.5, 0, -1],
                                                             up=[0, 0, 1])},

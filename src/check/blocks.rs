@@ -488,7 +488,7 @@ pub fn light(kind: BlockKind, p: &Params, diags: &mut Diagnostics) -> Option<Lig
             let at = r.vec3_req("look_at", schema);
             let i = need_color(&mut r, "intensity");
             let angle = r.num_in("angle", 0.0, 90.0, true, 30.0);
-            let falloff = r.num_in("falloff", 0.0, angle, false, angle);
+            let hotspot = r.num_in("hotspot", 0.0, angle, false, angle);
             let (pos, s) = pos?;
             let dir = at?.0 - pos;
             if dir.length_squared() == 0.0 {
@@ -508,7 +508,7 @@ pub fn light(kind: BlockKind, p: &Params, diags: &mut Diagnostics) -> Option<Lig
                 direction: dir.normalize(),
                 intensity: i?,
                 angle,
-                falloff,
+                hotspot,
             })
         }
         BlockKind::DirectionalLight => {

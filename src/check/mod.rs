@@ -6,6 +6,7 @@ mod blocks;
 pub mod domain;
 pub mod eval;
 mod finish;
+mod group_lights;
 mod loops;
 mod material;
 mod objects;
@@ -389,7 +390,9 @@ impl Checker {
             objects: Vec::new(),
             unmaterialled: Vec::new(),
             instances: Vec::new(),
+            lights: Vec::new(),
             placed_objects: 0,
+            placed_lights: 0,
             span: name.span,
         });
         let index = self.groups.len() - 1;
@@ -399,11 +402,7 @@ impl Checker {
         self.statements(body, file);
         self.env.pop();
         self.open_group = None;
-        let g = &self.groups[index];
-        let nested = (g.instances.iter()).fold(0u64, |n, i| {
-            n.saturating_add(self.groups[i.group].placed_objects)
-        });
-        self.groups[index].placed_objects = nested.saturating_add(g.objects.len() as u64);
+        self.count_placements(index);
         self.group_names
             .insert(name.name.clone(), (index, name.span));
     }
@@ -526,6 +525,7 @@ impl Checker {
                     }
                     return;
                 }
+                self.place_lights(&instance);
                 self.instances.push(instance)
             }
         }
@@ -893,18 +893,15 @@ impl Checker {
         span: Span,
         file: FileId,
     ) {
-        if let Some(g) = self.open_group.filter(|_| !kind.is_shape()) {
-            let help = match kind {
-                BlockKind::PointLight | BlockKind::SpotLight | BlockKind::DirectionalLight => {
-                    "put lights at the top level; an emissive shape (a `sphere` with an emissive material) in a group is a light at every placement"
-                }
-                _ => "settings and the sky belong at the top level of the scene",
-            };
+        if let Some(g) = self
+            .open_group
+            .filter(|_| !kind.is_shape() && !kind.is_light())
+        {
             self.diags.push(not_in_group(
                 &format!("`{}`", kind.keyword()),
                 kind_span,
                 self.groups[g].span,
-                help,
+                "settings and the sky belong at the top level of the scene",
             ));
             return;
         }
@@ -980,7 +977,11 @@ impl Checker {
             }
             BlockKind::PointLight | BlockKind::SpotLight | BlockKind::DirectionalLight => {
                 if let Some(l) = blocks::light(kind, &p, &mut self.diags) {
-                    self.lights.push((l, span));
+                    // A group's lights are the scene's once placed.
+                    match self.open_group {
+                        Some(g) => self.groups[g].lights.push((l, span)),
+                        None => self.lights.push((l, span)),
+                    }
                 }
             }
             _ => {

@@ -74,6 +74,11 @@ pub struct ParamSpec {
     pub quantity: Quantity,
     /// Whether it may be given a texture instead of a value.
     pub texture: bool,
+    /// For a POV-Ray word this block refuses because ptsc means something
+    /// else by it (or has it under another name): the ptsc parameter that
+    /// does its job and a help line saying so. Not a parameter: refused
+    /// with the line, left out of the lists of accepted names.
+    pub povray: Option<(&'static str, &'static str)>,
 }
 
 impl ParamSpec {
@@ -99,6 +104,7 @@ const fn p(name: &'static str, ty: Ty, example: &'static str) -> ParamSpec {
         repeat: false,
         quantity: Quantity::Plain,
         texture: false,
+        povray: None,
     }
 }
 
@@ -110,8 +116,22 @@ const fn t(name: &'static str, ty: Ty, example: &'static str) -> ParamSpec {
         repeat: true,
         quantity: Quantity::Plain,
         texture: false,
+        povray: None,
     }
 }
+
+/// A POV-Ray word refused in one kind of block, with the ptsc parameter
+/// that does its job and the help line (see [`ParamSpec::povray`]).
+const fn povray(name: &'static str, instead: &'static str, help: &'static str) -> ParamSpec {
+    ParamSpec {
+        povray: Some((instead, help)),
+        ..p(name, Ty::Num, "")
+    }
+}
+
+/// The help line for POV-Ray's spot light angles, whose `falloff` is the
+/// opposite of what the word suggests: it is the outer angle.
+const SPOT_ANGLES: &str = "POV-Ray's `falloff` (the outer angle, where the light ends) is `angle` in ptsc; its `radius` (the hot spot, full light inside) is `hotspot`";
 
 /// Parameters every shape accepts besides `material`.
 pub const SHAPE_COMMON: &[ParamSpec] = &[
@@ -245,13 +265,35 @@ pub const GRADIENT: &[ParamSpec] = &[
 ];
 
 /// `noise`, `turbulence`, `marble` and `wood { }`, besides
-/// [`TEXTURE_TRANSFORMS`].
+/// [`COLOR_MAP`] and [`TEXTURE_TRANSFORMS`] (and [`BANDS`] or
+/// [`UNBANDED`]). `octaves` 1 to 16 (default 6), `omega` in (0, 1]
+/// (default 0.5), `lambda` in (1, 10] (default 2), as POV-Ray's.
 pub const NOISE: &[ParamSpec] = &[
     p("low", Ty::Color, "rgb 0.2").of(Magnitude),
     p("high", Ty::Color, "rgb 0.9").of(Magnitude),
     p("octaves", Ty::Int, "4"),
+    p("omega", Ty::Num, "0.6"),
+    p("lambda", Ty::Num, "2.5"),
     p("space", Ty::Word(TEXTURE_SPACES), "world"),
 ];
+
+/// `marble` and `wood { }`'s bands, besides [`NOISE`]: `turbulence`, how
+/// far noise displaces them, 0 to 100 (default 2 for marble, 0.25 for
+/// wood); `frequency`, greater than 0 and at most 1000 (default 1);
+/// `phase`, 0 to 1 (default 0).
+pub const BANDS: &[ParamSpec] = &[
+    p("turbulence", Ty::Num, "1.5"),
+    p("frequency", Ty::Num, "2"),
+    p("phase", Ty::Num, "0.25"),
+];
+
+/// `noise` and `turbulence { }`, which have no bands to disturb: POV-Ray's
+/// `turbulence` (a warp any pattern takes) is refused with what to do.
+pub const UNBANDED: &[ParamSpec] = &[povray(
+    "turbulence",
+    "scale",
+    "ptsc's `turbulence` displaces the bands of `marble` and `wood`; `noise` and `turbulence` are the noise itself: `scale` them for larger features, `omega` for rougher ones",
+)];
 
 /// The wrap modes of an image texture.
 pub const WRAPS: &[&str] = &["repeat", "clamp", "mirror"];
@@ -322,8 +364,10 @@ pub fn all_parameter_names() -> Vec<&'static str> {
         .chain(CHECKER)
         .chain(IMAGE)
         .chain(NOISE)
+        .chain(BANDS)
         .chain(GRADIENT)
         .chain(COLOR_MAP)
+        .filter(|p| p.povray.is_none())
         .map(|p| p.name)
         .collect();
     names.sort_unstable();
@@ -428,7 +472,11 @@ pub fn shape_schema(kind: crate::syntax::ast::BlockKind) -> &'static [ParamSpec]
                 p("look_at", Ty::Vec3, "<0, 0, 0>").of(Magnitude),
                 p("intensity", Ty::Color, "rgb 100").of(Radiance),
                 p("angle", Ty::Num, "30"),
-                p("falloff", Ty::Num, "25"),
+                p("hotspot", Ty::Num, "25"),
+                povray("falloff", "angle", SPOT_ANGLES),
+                povray("radius", "hotspot", SPOT_ANGLES),
+                povray("tightness", "hotspot", "POV-Ray's `tightness` has no ptsc equivalent: the light falls off smoothly from `hotspot` to `angle`"),
+                povray("point_at", "look_at", "POV-Ray's `point_at` is `look_at` in ptsc"),
             ];
             S
         }
@@ -520,6 +568,23 @@ fn texture_not_allowed(spec: &ParamSpec, what: &str, span: Span) -> Diagnostic {
         spec.name,
         spec.ty.describe()
     ))
+}
+
+/// The error for a POV-Ray word that a block's row refuses (`falloff` in
+/// a `spot_light`), with its row's help line and the names it accepts.
+fn refused_povray_word(
+    name: &crate::syntax::ast::Ident,
+    what: &str,
+    help: &str,
+    accepted: &[&str],
+) -> Diagnostic {
+    Diagnostic::error(
+        codes::UNKNOWN_PARAM,
+        format!("unknown parameter `{}` in `{what}`", name.name),
+        name.span,
+    )
+    .with_label("a POV-Ray parameter this block does not take")
+    .with_help(format!("{help}; `{what}` accepts {}", accepted.join(", ")))
 }
 
 /// The texture `value` names, if it is a bare name that is not a constant
@@ -630,19 +695,31 @@ impl Params {
                 );
                 continue;
             }
-            let Some(spec) = schemas
+            let found = schemas
                 .iter()
                 .flat_map(|s| s.iter())
-                .find(|s| s.name == name.name)
-            else {
+                .find(|s| s.name == name.name);
+            let all = || -> Vec<&'static str> {
+                (schemas.iter().flat_map(|s| s.iter()))
+                    .filter(|p| p.povray.is_none())
+                    .map(|p| p.name)
+                    .collect()
+            };
+            if let Some(&ParamSpec {
+                povray: Some((instead, help)),
+                ..
+            }) = found
+            {
+                params.suggested.push(instead);
+                diags.push(refused_povray_word(name, &what, help, &all()));
+                continue;
+            }
+            let Some(spec) = found else {
                 if let Some(d) = at_infinity(&what, &name.name, name.span) {
                     diags.push(d);
                     continue;
                 }
-                let all: Vec<&str> = schemas
-                    .iter()
-                    .flat_map(|s| s.iter().map(|p| p.name))
-                    .collect();
+                let all = all();
                 let help = match did_you_mean(&name.name, all.iter().copied()) {
                     Some(s) => {
                         params.suggested.push(s);
@@ -906,4 +983,33 @@ fn typed_value(
         }
     };
     ok
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::syntax::ast::BlockKind;
+
+    #[test]
+    fn a_refused_povray_word_names_a_parameter_its_block_has() {
+        let rows = (BlockKind::ALL.iter().map(|&k| shape_schema(k)))
+            .chain([NOISE, BANDS, UNBANDED, GRADIENT, CHECKER, IMAGE, MATERIAL]);
+        let mut refused = 0;
+        for row in rows {
+            for spec in row.iter().filter(|s| s.povray.is_some()) {
+                let (instead, help) = spec.povray.unwrap();
+                refused += 1;
+                assert!(help.contains(&format!("`{}`", spec.name)), "{help}");
+                // `scale` is every texture's (TEXTURE_TRANSFORMS).
+                let has = row.iter().any(|s| s.name == instead && s.povray.is_none());
+                assert!(has || instead == "scale", "{}: {instead}", spec.name);
+            }
+        }
+        assert_eq!(refused, 5);
+        // Editors highlight parameters only: no word that is only refused.
+        let names = all_parameter_names();
+        for word in ["falloff", "tightness", "point_at"] {
+            assert!(!names.contains(&word), "{word}");
+        }
+    }
 }

@@ -51,10 +51,10 @@ pub enum TextureKind {
     Stripes,
     /// `noise`, `turbulence`, `marble` or `wood { … }`.
     Noise {
-        /// The pattern's name.
-        pattern: String,
-        /// Octaves of its fractal sum.
-        octaves: u32,
+        /// Which pattern.
+        kind: crate::texture::noise::NoiseKind,
+        /// Its octaves and bands (each in its range, safe in f32).
+        params: crate::texture::noise::NoiseParams,
     },
     /// `image { file … }`
     Image {
@@ -421,10 +421,11 @@ pub enum Light {
         direction: DVec3,
         /// Radiant intensity on the axis.
         intensity: Rgb,
-        /// Half-angle of the cone, degrees.
+        /// Half-angle of the cone, degrees: no light outside it.
         angle: f64,
-        /// Half-angle where the fall-off starts, degrees.
-        falloff: f64,
+        /// Half-angle of the hot spot, degrees: full light inside it, a
+        /// smooth fall-off from it to `angle`.
+        hotspot: f64,
     },
     /// Light from a direction at infinity.
     Directional {
@@ -433,6 +434,56 @@ pub enum Light {
         /// Irradiance on a surface facing the light.
         irradiance: Rgb,
     },
+}
+
+impl Light {
+    /// The light placed by a transform (group → world): positions and a
+    /// spot light's aim move as points, a direction turns with the linear
+    /// part and is normalised again. Intensities, irradiance and a spot
+    /// light's angles are kept: scaling a lamp does not make it brighter
+    /// (a scaled emissive shape does get brighter: it has more area).
+    pub fn placed(&self, m: &DMat4) -> Light {
+        let turn = |d: DVec3| m.transform_vector3(d).normalize();
+        match self.clone() {
+            Light::Point {
+                position,
+                intensity,
+            } => Light::Point {
+                position: m.transform_point3(position),
+                intensity,
+            },
+            Light::Spot {
+                position,
+                direction,
+                intensity,
+                angle,
+                hotspot,
+            } => Light::Spot {
+                position: m.transform_point3(position),
+                // The aim (position + direction) moves as a point; the
+                // difference of two moved points is the turned direction.
+                direction: turn(direction),
+                intensity,
+                angle,
+                hotspot,
+            },
+            Light::Directional {
+                direction,
+                irradiance,
+            } => Light::Directional {
+                direction: turn(direction),
+                irradiance,
+            },
+        }
+    }
+
+    /// Where the light is (`None` for a directional light, at infinity).
+    pub fn position(&self) -> Option<DVec3> {
+        match self {
+            Light::Point { position, .. } | Light::Spot { position, .. } => Some(*position),
+            Light::Directional { .. } => None,
+        }
+    }
 }
 
 /// The `sky { }` block: a daylight sky and its sun.
@@ -504,17 +555,23 @@ pub struct Group {
     pub unmaterialled: Vec<bool>,
     /// The groups it places, in its frame.
     pub instances: Vec<Instance>,
-    /// How many objects one placement of it makes (its own and those of
-    /// the groups it places, through every level; saturating).
+    /// Its lights, in its frame, with where each is written: each placement
+    /// adds them to the scene's lights, moved by its transforms.
+    pub lights: Vec<(Light, Span)>,
+    /// How many objects and lights one placement of it makes (its own and
+    /// those of the groups it places, through every level; saturating).
     pub placed_objects: u64,
+    /// How many lights one placement of it makes, through every level
+    /// (saturating): placing a group without any walks none of its tree.
+    pub placed_lights: u64,
     /// Where its name is written.
     pub span: Span,
 }
 
 impl Group {
-    /// Whether the group holds nothing (no object, no placement).
+    /// Whether the group holds nothing (no object, light or placement).
     pub fn is_empty(&self) -> bool {
-        self.objects.is_empty() && self.instances.is_empty()
+        self.objects.is_empty() && self.instances.is_empty() && self.lights.is_empty()
     }
 }
 

@@ -5,12 +5,14 @@
 use super::blocks::Reader;
 use super::eval::{eval, Env, Value};
 use super::params::{
-    Params, Val, CHECKER, COLOR_MAP, GRADIENT, IMAGE, NOISE, TEXTURE_KINDS, TEXTURE_TRANSFORMS,
+    Params, Val, BANDS, CHECKER, COLOR_MAP, GRADIENT, IMAGE, NOISE, TEXTURE_KINDS,
+    TEXTURE_TRANSFORMS, UNBANDED,
 };
 use super::scene::{ColorSpace, Rgb, Texture, TextureKind, TextureSpace};
 use crate::diag::{codes, did_you_mean, Diagnostic, Diagnostics};
 use crate::span::Span;
 use crate::syntax::ast::{Block, Entry, Ident};
+use crate::texture::noise::{NoiseKind, NoiseParams};
 
 /// The texture `kind { block }` written at `span`; `None` after reporting
 /// why not.
@@ -44,10 +46,12 @@ pub fn check_texture(
         }
     };
     let is_image = kind.name == "image";
-    let schemas: &[&'static [super::params::ParamSpec]] = if is_image {
-        &[schema, TEXTURE_TRANSFORMS]
-    } else {
-        &[schema, COLOR_MAP, TEXTURE_TRANSFORMS]
+    let noise = NoiseKind::from_name(&kind.name);
+    let schemas: &[&'static [super::params::ParamSpec]] = match noise {
+        _ if is_image => &[schema, TEXTURE_TRANSFORMS],
+        Some(n) if n.has_bands() => &[schema, BANDS, COLOR_MAP, TEXTURE_TRANSFORMS],
+        Some(_) => &[schema, UNBANDED, COLOR_MAP, TEXTURE_TRANSFORMS],
+        None => &[schema, COLOR_MAP, TEXTURE_TRANSFORMS],
     };
     let p = Params::collect(kind.name.clone(), kind.span, block, schemas, env, diags);
     let transform = super::objects::transform(&p, diags);
@@ -82,11 +86,10 @@ pub fn check_texture(
         "gradient" => TextureKind::Gradient,
         "stripes" => TextureKind::Stripes,
         _ => {
-            let mut r = Reader { p: &p, diags };
-            let octaves = r.num_in("octaves", 1.0, 16.0, false, 6.0) as u32;
+            let kind = noise?;
             TextureKind::Noise {
-                pattern: kind.name.clone(),
-                octaves,
+                kind,
+                params: noise_params(kind, &mut Reader { p: &p, diags }),
             }
         }
     };
@@ -133,6 +136,25 @@ pub fn check_texture(
         transform,
         span,
     })
+}
+
+/// The octaves and bands of a noise texture, each in its range (ranges
+/// and POV-Ray's differences in docs/language.md). The defaults are
+/// POV-Ray's but for marble's and wood's `turbulence`, which keep the
+/// amounts they always had.
+fn noise_params(kind: NoiseKind, r: &mut Reader) -> NoiseParams {
+    let d = NoiseParams::defaults(kind);
+    let mut num = |name, lo, hi, open_lo, default: f32| {
+        r.num_in(name, lo, hi, open_lo, default as f64) as f32
+    };
+    NoiseParams {
+        octaves: num("octaves", 1.0, 16.0, false, d.octaves as f32) as u32,
+        omega: num("omega", 0.0, 1.0, true, d.omega),
+        lambda: num("lambda", 1.0, 10.0, true, d.lambda),
+        turbulence: num("turbulence", 0.0, 100.0, false, d.turbulence),
+        frequency: num("frequency", 0.0, 1000.0, true, d.frequency),
+        phase: num("phase", 0.0, 1.0, false, d.phase),
+    }
 }
 
 /// The colour stops of a texture's block, with the first one's span;

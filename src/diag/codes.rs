@@ -286,8 +286,8 @@ pub const CATALOGUE: &[Entry] = &[
     Entry {
         code: NOT_IN_GROUP,
         title: "A statement a group cannot hold",
-        explanation: "A group holds objects (shapes and meshes), placements of other groups, and the `let`, `fn`, `for` and `if` statements that build them. Settings (`render`, `camera`), lights other than emissive shapes (`point_light`, `spot_light`, `directional_light`), the background, environment and sky, declarations of materials, textures and groups, and includes belong at the top level of a scene.",
-        example: "group lamp {\n    point_light { position <0, 2, 0> intensity rgb 10 }\n}",
+        explanation: "A group holds objects (shapes and meshes), lights (`point_light`, `spot_light`, `directional_light`: each placement places them), placements of other groups, and the `let`, `fn`, `for` and `if` statements that build them. Settings (`render`, `camera`), the background, environment and sky, declarations of materials, textures and groups belong at the top level of a scene.",
+        example: "group lamp {\n    camera { position <0, 2, 5> look_at <0, 0, 0> }\n}",
     },
     Entry {
         code: TYPE_MISMATCH,

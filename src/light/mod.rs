@@ -45,8 +45,9 @@ pub enum Light {
         intensity: Vec3,
         /// Cosine of the cone's half-angle.
         cos_total: f32,
-        /// Cosine where the fall-off starts.
-        cos_falloff: f32,
+        /// Cosine of the hot spot's half-angle: full light inside it, the
+        /// fall-off from it to the cone's edge.
+        cos_hotspot: f32,
     },
     /// Light from infinitely far away along `direction`.
     Directional {
@@ -89,14 +90,14 @@ pub fn luminance(c: Vec3) -> f32 {
 }
 
 /// Smooth fall-off of a spot light (pbrt-v4 eq. 12.3: smoothstep).
-pub fn spot_falloff(cos: f32, cos_total: f32, cos_falloff: f32) -> f32 {
-    if cos >= cos_falloff {
+pub fn spot_falloff(cos: f32, cos_total: f32, cos_hotspot: f32) -> f32 {
+    if cos >= cos_hotspot {
         return 1.0;
     }
     if cos <= cos_total {
         return 0.0;
     }
-    let t = (cos - cos_total) / (cos_falloff - cos_total);
+    let t = (cos - cos_total) / (cos_hotspot - cos_total);
     t * t * (3.0 - 2.0 * t)
 }
 
@@ -144,10 +145,10 @@ impl Light {
             Light::Spot {
                 intensity,
                 cos_total,
-                cos_falloff,
+                cos_hotspot,
                 ..
             } => {
-                2.0 * pi * lum(*intensity) * (1.0 - 0.5 * (*cos_total as f64 + *cos_falloff as f64))
+                2.0 * pi * lum(*intensity) * (1.0 - 0.5 * (*cos_total as f64 + *cos_hotspot as f64))
             }
             Light::Directional { irradiance, .. } => pi * radius * radius * lum(*irradiance),
             Light::Environment { .. } | Light::Sky { .. } => {
@@ -220,18 +221,18 @@ impl Light {
                 direction,
                 intensity,
                 cos_total,
-                cos_falloff,
+                cos_hotspot,
             } => {
                 // The cone is in the bounds, so the power is a point
                 // light's (as pbrt-v4's `SpotLight::Bounds`).
                 // A milliradian of slack: the edge of a hard cone must not
                 // round to outside it.
-                let (total, falloff) = (cos_total.acos() + 1e-3, cos_falloff.acos());
+                let (total, falloff) = (cos_total.acos() + 1e-3, cos_hotspot.acos());
                 LightBounds {
                     bounds: at(*position),
                     w: *direction,
                     phi: four_pi * lum(*intensity),
-                    cos_o: *cos_falloff,
+                    cos_o: *cos_hotspot,
                     cos_e: (total - falloff).max(0.0).cos(),
                     two_sided: false,
                 }
@@ -330,13 +331,13 @@ impl Light {
                 direction,
                 intensity,
                 cos_total,
-                cos_falloff,
+                cos_hotspot,
             } => {
                 let to = *position - p;
                 let d2 = to.length_squared();
                 let dist = d2.sqrt();
                 let wi = to / dist;
-                let k = spot_falloff((-wi).dot(*direction), *cos_total, *cos_falloff);
+                let k = spot_falloff((-wi).dot(*direction), *cos_total, *cos_hotspot);
                 (k > 0.0).then(|| LightSample {
                     wi,
                     dist,

@@ -27,13 +27,13 @@ pub fn lower_light(l: &check::Light) -> Light {
             direction,
             intensity,
             angle,
-            falloff,
+            hotspot,
         } => Light::Spot {
             position: v3(*position),
             direction: v3(*direction),
             intensity: rgb(intensity),
             cos_total: angle.to_radians().cos() as f32,
-            cos_falloff: falloff.to_radians().cos() as f32,
+            cos_hotspot: hotspot.to_radians().cos() as f32,
         },
         check::Light::Directional {
             direction,

@@ -10,7 +10,6 @@ use crate::material::plastic::CoatFamily;
 use crate::material::plastic::Plastic;
 use crate::material::{self, microfacet, Input, Material, NormalInput, Textured};
 use crate::texture::image::Wrap;
-use crate::texture::noise::NoiseKind;
 use crate::texture::{ColorMap, Pattern, Space, Texture};
 use glam::{Affine3A, DVec3, Vec3};
 use std::collections::HashMap;
@@ -200,11 +199,9 @@ fn lower_texture(
         check::TextureKind::Checker => Pattern::Checker,
         check::TextureKind::Gradient => Pattern::Gradient,
         check::TextureKind::Stripes => Pattern::Stripes,
-        check::TextureKind::Noise { pattern, octaves } => Pattern::Noise {
-            kind: (NoiseKind::NAMES.iter())
-                .find(|(n, _)| n == pattern)
-                .map_or(NoiseKind::Noise, |&(_, k)| k),
-            octaves: *octaves,
+        check::TextureKind::Noise { kind, params } => Pattern::Noise {
+            kind: *kind,
+            params: *params,
         },
         check::TextureKind::Image {
             path,

@@ -248,6 +248,14 @@ impl BlockKind {
                 | BlockKind::DirectionalLight
         )
     }
+
+    /// Whether the block is an explicit light (point, spot, directional).
+    pub fn is_light(self) -> bool {
+        matches!(
+            self,
+            BlockKind::PointLight | BlockKind::SpotLight | BlockKind::DirectionalLight
+        )
+    }
 }
 
 /// A braced list of entries.

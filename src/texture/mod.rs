@@ -53,8 +53,8 @@ pub enum Pattern {
     Noise {
         /// Which pattern.
         kind: noise::NoiseKind,
-        /// Octaves of its fractal sum.
-        octaves: u32,
+        /// Its octaves and bands.
+        params: noise::NoiseParams,
     },
     /// An image, read at (x, y) of the coordinates (in (u, v): the image
     /// over the unit square; in object or world space: projected along z).
@@ -97,7 +97,7 @@ impl Texture {
             Pattern::Gradient => self.colors.at(gradient::ramp(p)),
             Pattern::Stripes => self.colors.end(gradient::stripe(p) > 0.5),
             Pattern::Image { image, wrap } => image.lookup(Vec2::new(p.x, p.y), *wrap),
-            Pattern::Noise { kind, octaves } => self.colors.at(kind.value(p, *octaves)),
+            Pattern::Noise { kind, params } => self.colors.at(kind.value(p, params)),
         }
     }
 

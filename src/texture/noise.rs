@@ -99,27 +99,28 @@ pub fn perlin(p: Vec3) -> f32 {
     )
 }
 
-/// Fractional Brownian motion: `octaves` of noise, each at twice the
-/// frequency and half the amplitude of the last, normalised to about ±1.
-pub fn fbm(p: Vec3, octaves: u32) -> f32 {
+/// Fractional Brownian motion: `octaves` of noise, each at `lambda` times
+/// the frequency and `omega` times the amplitude of the last (POV-Ray's
+/// defaults 2 and 0.5), normalised by the amplitudes' sum to about ±1.
+pub fn fbm(p: Vec3, octaves: u32, omega: f32, lambda: f32) -> f32 {
     let (mut sum, mut amplitude, mut norm, mut q) = (0.0, 1.0, 0.0, p);
     for _ in 0..octaves.max(1) {
         sum += amplitude * perlin(q);
         norm += amplitude;
-        amplitude *= 0.5;
-        q *= 2.0;
+        amplitude *= omega;
+        q *= lambda;
     }
     sum / norm
 }
 
 /// Turbulence: as [`fbm`] with the absolute value of each octave, in [0, 1).
-pub fn turbulence(p: Vec3, octaves: u32) -> f32 {
+pub fn turbulence(p: Vec3, octaves: u32, omega: f32, lambda: f32) -> f32 {
     let (mut sum, mut amplitude, mut norm, mut q) = (0.0, 1.0, 0.0, p);
     for _ in 0..octaves.max(1) {
         sum += amplitude * perlin(q).abs();
         norm += amplitude;
-        amplitude *= 0.5;
-        q *= 2.0;
+        amplitude *= omega;
+        q *= lambda;
     }
     sum / norm
 }
@@ -131,11 +132,48 @@ pub enum NoiseKind {
     Noise,
     /// Turbulence.
     Turbulence,
-    /// Veins along x: 0.5 + 0.5 sin(2π (x + 2 · turbulence)) (Perlin 1985).
+    /// Veins along x: 0.5 + 0.5 sin(2π (frequency · (x + amount ·
+    /// turbulence) + phase)) (Perlin 1985; amount 2 by default).
     Marble,
     /// Rings about the y axis, disturbed by noise: the fraction of
-    /// 4 · (distance from the axis + 0.25 · fbm).
+    /// frequency · 4 · (distance from the axis + amount · fbm) + phase
+    /// (amount 0.25 by default).
     Wood,
+}
+
+/// How a noise pattern's octaves add up and how marble's and wood's bands
+/// are disturbed and spaced: POV-Ray's pattern modifiers.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct NoiseParams {
+    /// Octaves of the fractal sum.
+    pub octaves: u32,
+    /// Each octave's amplitude over the last's.
+    pub omega: f32,
+    /// Each octave's frequency over the last's.
+    pub lambda: f32,
+    /// How far noise displaces marble's and wood's bands (unused by the
+    /// others).
+    pub turbulence: f32,
+    /// Bands per band: marble's and wood's bands are this many times as
+    /// many.
+    pub frequency: f32,
+    /// Shift of marble's and wood's bands, a fraction of one.
+    pub phase: f32,
+}
+
+impl NoiseParams {
+    /// The parameters a texture of `kind` that sets none has (today's
+    /// patterns: marble's turbulence 2 and wood's 0.25 were fixed).
+    pub const fn defaults(kind: NoiseKind) -> NoiseParams {
+        NoiseParams {
+            octaves: 6,
+            omega: 0.5,
+            lambda: 2.0,
+            turbulence: kind.default_turbulence(),
+            frequency: 1.0,
+            phase: 0.0,
+        }
+    }
 }
 
 impl NoiseKind {
@@ -147,18 +185,44 @@ impl NoiseKind {
         ("wood", NoiseKind::Wood),
     ];
 
+    /// The pattern named `name`, if it is one of these.
+    pub fn from_name(name: &str) -> Option<NoiseKind> {
+        (Self::NAMES.iter())
+            .find(|(n, _)| *n == name)
+            .map(|&(_, k)| k)
+    }
+
+    /// Whether its bands take `turbulence`, `frequency` and `phase`.
+    pub fn has_bands(self) -> bool {
+        matches!(self, NoiseKind::Marble | NoiseKind::Wood)
+    }
+
+    /// How far noise displaces its bands when the scene does not say.
+    pub const fn default_turbulence(self) -> f32 {
+        match self {
+            NoiseKind::Marble => 2.0,
+            NoiseKind::Wood => 0.25,
+            NoiseKind::Noise | NoiseKind::Turbulence => 0.0,
+        }
+    }
+
     /// The pattern's value at `p`, in [0, 1].
-    pub fn value(self, p: Vec3, octaves: u32) -> f32 {
+    pub fn value(self, p: Vec3, n: &NoiseParams) -> f32 {
+        let (octaves, omega, lambda) = (n.octaves, n.omega, n.lambda);
         let v = match self {
-            NoiseKind::Noise => 0.5 + 0.5 * fbm(p, octaves),
-            NoiseKind::Turbulence => turbulence(p, octaves),
+            NoiseKind::Noise => 0.5 + 0.5 * fbm(p, octaves, omega, lambda),
+            NoiseKind::Turbulence => turbulence(p, octaves, omega, lambda),
             NoiseKind::Marble => {
-                let phase = p.x + 2.0 * turbulence(p, octaves);
-                0.5 + 0.5 * (std::f32::consts::TAU * phase).sin()
+                let x = p.x + n.turbulence * turbulence(p, octaves, omega, lambda);
+                // Exact at the defaults (× 1 + 0): images made before
+                // frequency and phase existed are unchanged.
+                let bands = x * n.frequency + n.phase;
+                0.5 + 0.5 * (std::f32::consts::TAU * bands).sin()
             }
             NoiseKind::Wood => {
-                let r = (p.x * p.x + p.z * p.z).sqrt() + 0.25 * fbm(p, octaves);
-                let rings = 4.0 * r;
+                let r =
+                    (p.x * p.x + p.z * p.z).sqrt() + n.turbulence * fbm(p, octaves, omega, lambda);
+                let rings = 4.0 * r * n.frequency + n.phase;
                 rings - rings.floor()
             }
         };
@@ -217,14 +281,14 @@ mod tests {
         for (name, kind) in NoiseKind::NAMES {
             let (mut lo, mut hi) = (f32::MAX, f32::MIN);
             for p in points() {
-                let v = kind.value(p, 6);
+                let v = kind.value(p, &NoiseParams::defaults(kind));
                 assert!((0.0..=1.0).contains(&v), "{name} at {p}: {v}");
                 lo = lo.min(v);
                 hi = hi.max(v);
             }
             assert!(hi - lo > 0.5, "{name} hardly varies: {lo}..{hi}");
         }
-        assert!((0.0..1.0).contains(&turbulence(Vec3::splat(0.3), 0)));
-        assert!(fbm(Vec3::splat(1e30), 8).is_finite());
+        assert!((0.0..1.0).contains(&turbulence(Vec3::splat(0.3), 0, 0.5, 2.0)));
+        assert!(fbm(Vec3::splat(1e30), 8, 0.5, 2.0).is_finite());
     }
 }

@@ -208,14 +208,19 @@ fn an_image_texture_is_read_once_bilinear_and_a_dependency() {
 
 #[test]
 fn noise_patterns_blend_their_colours_by_the_pattern_in_its_space() {
-    use ptsc::texture::noise::NoiseKind;
+    use ptsc::texture::noise::{NoiseKind, NoiseParams};
     let wall = "quad { corner <-4, -4, 0> edge1 <8, 0, 0> edge2 <0, 8, 0> translate <0, 0, 0.5>";
     for (name, kind) in NoiseKind::NAMES {
+        let defaults = NoiseParams::defaults(kind);
         for p in [[0.3, 0.7, 0.5], [-2.2, 1.4, 0.5], [3.9, -3.1, 0.5]] {
             // World space, scaled by 2: the pattern reads half the coordinates.
             let texture =
                 format!("{name} {{ low rgb 0 high rgb 1 space world scale 2 octaves 3 }}");
-            let expect = kind.value(Vec3::from(p) / 2.0, 3);
+            let three = NoiseParams {
+                octaves: 3,
+                ..defaults
+            };
+            let expect = kind.value(Vec3::from(p) / 2.0, &three);
             let got = colour_at(wall, &texture, p);
             assert!(
                 (got - expect).abs() < 1e-5,
@@ -223,12 +228,34 @@ fn noise_patterns_blend_their_colours_by_the_pattern_in_its_space() {
             );
             // Object space by default: the wall's translate takes z back to 0.
             let texture = format!("{name} {{ low rgb 0 high rgb 1 }}");
-            let expect = kind.value(Vec3::new(p[0], p[1], 0.0), 6);
+            let expect = kind.value(Vec3::new(p[0], p[1], 0.0), &defaults);
             let got = colour_at(wall, &texture, p);
             assert!(
                 (got - expect).abs() < 1e-5,
                 "{name} (object) at {p:?}: {got} vs {expect}"
             );
+            // Every parameter reaches the pattern.
+            let (bands, set) = match kind.has_bands() {
+                true => ("turbulence 0.7 frequency 3 phase 0.2", (0.7, 3.0, 0.2)),
+                false => ("", (defaults.turbulence, 1.0, 0.0)),
+            };
+            let texture = format!("{name} {{ low rgb 0 high rgb 1 omega 0.8 lambda 2.5 {bands} }}");
+            let params = NoiseParams {
+                omega: 0.8,
+                lambda: 2.5,
+                turbulence: set.0,
+                frequency: set.1,
+                phase: set.2,
+                ..defaults
+            };
+            let expect = kind.value(Vec3::new(p[0], p[1], 0.0), &params);
+            let got = colour_at(wall, &texture, p);
+            // Three times the bands: three times the hit point's float noise.
+            assert!(
+                (got - expect).abs() < 1e-4,
+                "{name} ({bands}) at {p:?}: {got} vs {expect}"
+            );
+            assert_ne!(expect, kind.value(Vec3::new(p[0], p[1], 0.0), &defaults));
         }
     }
 }

@@ -90,6 +90,11 @@ pub enum Command {
     /// Add up the passes of a render made with `ptsc render --pass K/N`.
     Merge(farm::MergeArgs),
     /// Re-render a scene every time it (or an included file or mesh) is saved.
+    ///
+    /// Each save first writes a quarter-resolution 1-spp preview to
+    /// NAME.preview.png beside the image NAME.png (same format, replaced
+    /// atomically), then full-resolution passes of 1, 2, 4, … spp to the image
+    /// itself: the image only ever holds full-resolution results.
     Watch(render::RenderArgs),
     /// Explain a diagnostic code: what it means, an example (as `rustc --explain`).
     Explain {

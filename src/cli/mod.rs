@@ -91,8 +91,8 @@ pub enum Command {
     Merge(farm::MergeArgs),
     /// Re-render a scene every time it (or an included file or mesh) is saved.
     ///
-    /// Each save first writes a quarter-resolution 1-spp preview to
-    /// NAME.preview.png beside the image NAME.png (same format, replaced
+    /// Each save first writes a 1-spp preview at a quarter of the resolution
+    /// to NAME.preview.png beside the image NAME.png (same format, replaced
     /// atomically), then full-resolution passes of 1, 2, 4, … spp to the image
     /// itself: the image only ever holds full-resolution results.
     Watch(render::RenderArgs),

@@ -392,14 +392,23 @@ fn the_preview_goes_beside_the_image_never_into_it() {
         out.contains(&format!("→ {}", preview.display())),
         "the preview line names its file:\n{out}"
     );
-    // The preview is the image's size, in its format, and differs from it.
+    // The preview is a quarter of the image's width and height, in its format.
     let shot = std::fs::read(&preview).unwrap();
     let size = |b: &[u8]| image::load_from_memory(b).unwrap().to_rgb8().dimensions();
-    assert_eq!(size(&shot), (320, 240));
+    assert_eq!(size(&shot), (80, 60));
     assert_eq!(std::fs::read(&png).unwrap(), reference_render(&pts));
+    // Every version of the image is a full-resolution pass, none the
+    // preview enlarged (whose 4×4 blocks would each be one colour).
     assert!(!seen.is_empty());
-    assert!(
-        seen.iter().all(|b| *b != shot),
-        "the image held the preview at some point"
-    );
+    for b in &seen {
+        let img = image::load_from_memory(b).unwrap().to_rgb8();
+        assert_eq!(img.dimensions(), (320, 240));
+        let blocky = (0..60).all(|by| {
+            (0..80).all(|bx| {
+                let corner = img.get_pixel(4 * bx, 4 * by);
+                (0..16).all(|k| img.get_pixel(4 * bx + k % 4, 4 * by + k / 4) == corner)
+            })
+        });
+        assert!(!blocky, "the image held the enlarged preview");
+    }
 }

@@ -80,7 +80,13 @@ fn measure(name: &str, rule: Option<LightSelection>) -> Measured {
         r => r,
     };
     let key = format!("{name} {rule:?}");
-    let cell = DONE.get_or_init(Cells::default).lock().unwrap().entry(key).or_default().clone();
+    let cell = DONE
+        .get_or_init(Cells::default)
+        .lock()
+        .unwrap()
+        .entry(key)
+        .or_default()
+        .clone();
     cell.get_or_init(|| measure_once(name, rule)).clone()
 }
 

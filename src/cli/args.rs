@@ -30,6 +30,10 @@ pub struct RenderArgs {
     /// Integrator: path, whitted, hybrid, normals, albedo, depth or uv.
     #[arg(long, value_parser = parse_integrator)]
     pub integrator: Option<IntegratorKind>,
+    /// Clamp indirect light: each contribution's largest RGB component at
+    /// most X (as the scene's `clamp`; biased, fights fireflies).
+    #[arg(long, value_name = "X", value_parser = parse_clamp)]
+    pub clamp: Option<f32>,
     /// How shadow rays choose their light: auto, bvh, exhaustive, power or uniform.
     #[arg(long, value_parser = parse_light_selection)]
     pub light_selection: Option<LightSelection>,
@@ -153,6 +157,14 @@ fn parse_resolution(s: &str) -> Result<(u32, u32), String> {
     Ok((w, h))
 }
 
+fn parse_clamp(s: &str) -> Result<f32, String> {
+    match s.trim().parse::<f64>() {
+        // The scene's range: greater than 0 (and within f32, the renderer's).
+        Ok(x) if x > 0.0 && x <= f32::MAX as f64 => Ok(x as f32),
+        _ => Err("expected a number greater than 0, e.g. 10".into()),
+    }
+}
+
 fn parse_integrator(s: &str) -> Result<IntegratorKind, String> {
     IntegratorKind::from_name(s).ok_or_else(|| expected_one_of(&IntegratorKind::WORDS))
 }
@@ -183,6 +195,9 @@ pub fn apply_overrides(settings: &mut Settings, args: &RenderArgs) {
     }
     if let Some(k) = args.integrator {
         settings.integrator = k;
+    }
+    if let Some(x) = args.clamp {
+        settings.clamp = Some(x);
     }
     if let Some(rule) = args.light_selection {
         settings.light_selection = rule;

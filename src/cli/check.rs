@@ -1,10 +1,16 @@
-//! `ptsc check FILE`: parse and check, print diagnostics, set the exit code.
+//! `ptsc check FILE|FOLDER…`: parse and check each scene, print its
+//! diagnostics, a summary, and set the exit code.
+//!
+//! A folder stands for its `*.pts` files in name order; its subfolders are
+//! not entered and its `.ptsi` include fragments are not checked alone (a
+//! fragment is checked as part of each scene that includes it, where its
+//! names mean something).
 
 use super::{Format, Verbosity, EXIT_OK, EXIT_SCENE_ERROR, EXIT_USAGE};
 use crate::compile::{compile_file, Options};
 use crate::diag::{Diagnostics, Severity};
 use crate::source::SourceMap;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 /// Prints the diagnostics of a compile on stderr (human) or stdout (JSON);
 /// `Quiet` leaves the warnings out.
@@ -14,35 +20,130 @@ pub fn report(
     format: Format,
     verbosity: Verbosity,
 ) {
-    let quiet;
-    let d = if verbosity == Verbosity::Quiet {
-        quiet = (diagnostics.items.iter())
-            .filter(|d| d.severity == Severity::Error)
-            .cloned()
-            .collect::<Diagnostics>();
-        &quiet
-    } else {
-        diagnostics
-    };
+    let d = shown(diagnostics, verbosity);
     match format {
         Format::Human => {
             eprint!("{}", d.render_human(sources, super::stderr_is_terminal()));
             if !d.items.is_empty() {
-                eprintln!(
-                    "{} error{}, {} warning{}",
-                    d.error_count(),
-                    if d.error_count() == 1 { "" } else { "s" },
-                    d.warning_count(),
-                    if d.warning_count() == 1 { "" } else { "s" },
-                );
+                eprintln!("{}", counts(d.error_count(), d.warning_count()));
             }
         }
         Format::Json => println!("{}", d.render_json(sources)),
     }
 }
 
-/// Runs `check`; returns the exit code.
-pub fn run(file: &Path, format: Format, verbosity: Verbosity) -> u8 {
+/// The diagnostics a verbosity prints: `Quiet` only the errors.
+fn shown(diagnostics: &Diagnostics, verbosity: Verbosity) -> Diagnostics {
+    if verbosity == Verbosity::Quiet {
+        (diagnostics.items.iter())
+            .filter(|d| d.severity == Severity::Error)
+            .cloned()
+            .collect()
+    } else {
+        diagnostics.clone()
+    }
+}
+
+/// "1 error, 2 warnings".
+fn counts(errors: usize, warnings: usize) -> String {
+    let s = |n: usize| if n == 1 { "" } else { "s" };
+    format!(
+        "{errors} error{}, {warnings} warning{}",
+        s(errors),
+        s(warnings)
+    )
+}
+
+/// The scenes the arguments name: a file as it is, a folder as its `*.pts`
+/// files sorted by name (or the reason it holds none).
+fn scenes(args: &[PathBuf]) -> Vec<Result<PathBuf, (PathBuf, String)>> {
+    let mut out = Vec::new();
+    for arg in args {
+        if !arg.is_dir() {
+            out.push(Ok(arg.clone()));
+            continue;
+        }
+        let entries = match std::fs::read_dir(arg) {
+            Ok(e) => e,
+            Err(e) => {
+                let why = format!("cannot read the folder {}: {e}", arg.display());
+                out.push(Err((arg.clone(), why)));
+                continue;
+            }
+        };
+        let mut found: Vec<PathBuf> = entries
+            .filter_map(Result::ok)
+            .map(|e| e.path())
+            .filter(|p| p.extension().is_some_and(|x| x == "pts") && !p.is_dir())
+            .collect();
+        if found.is_empty() {
+            let why = format!(
+                "{} holds no .pts scene (subfolders are not searched)",
+                arg.display()
+            );
+            out.push(Err((arg.clone(), why)));
+        }
+        found.sort();
+        out.extend(found.into_iter().map(Ok));
+    }
+    out
+}
+
+/// What one scene's check found.
+struct Checked {
+    errors: usize,
+    warnings: usize,
+    /// The scene could not be read (a usage problem, exit code 2).
+    unreadable: bool,
+}
+
+/// Runs `check` on every scene the arguments name; returns the exit code:
+/// 2 if one cannot be read, else 1 if one has errors, else 0. One scene
+/// prints as it always did; several add a line per scene and a summary.
+pub fn run(args: &[PathBuf], format: Format, verbosity: Verbosity) -> u8 {
+    let scenes = scenes(args);
+    let several = scenes.len() > 1 || args.iter().any(|a| a.is_dir());
+    let mut json = Vec::new();
+    let mut all = Vec::new();
+    for scene in &scenes {
+        let checked = match scene {
+            Ok(path) => check_one(path, format, verbosity, several, &mut json),
+            Err((path, why)) => unreadable(path, why, format, &mut json),
+        };
+        all.push(checked);
+    }
+    let errors: usize = all.iter().map(|c| c.errors).sum();
+    let warnings: usize = all.iter().map(|c| c.warnings).sum();
+    match format {
+        Format::Json => println!(
+            "{}",
+            serde_json::to_string_pretty(&json).expect("JSON of plain values")
+        ),
+        Format::Human if several && (verbosity != Verbosity::Quiet || errors > 0) => {
+            let n = all.len();
+            let files = if n == 1 { "file" } else { "files" };
+            eprintln!("{n} {files} checked: {}", counts(errors, warnings));
+        }
+        Format::Human => {}
+    }
+    if all.iter().any(|c| c.unreadable) {
+        EXIT_USAGE
+    } else if errors > 0 {
+        EXIT_SCENE_ERROR
+    } else {
+        EXIT_OK
+    }
+}
+
+/// Checks one scene through the compile driver (checking only, no
+/// lowering) and prints what it found (JSON objects go to `json`).
+fn check_one(
+    file: &Path,
+    format: Format,
+    verbosity: Verbosity,
+    several: bool,
+    json: &mut Vec<serde_json::Value>,
+) -> Checked {
     let options = Options {
         lower: false,
         ..Options::default()
@@ -50,33 +151,72 @@ pub fn run(file: &Path, format: Format, verbosity: Verbosity) -> u8 {
     let compiled = match compile_file(file, options) {
         Ok(c) => c,
         Err(e) => {
-            let message = format!("cannot read {}: {e}", file.display());
-            match format {
-                Format::Human => eprintln!("error: {message}"),
-                // A client reading JSON gets JSON: one diagnostic, no span.
-                Format::Json => println!(
-                    "{}",
-                    serde_json::to_string_pretty(&serde_json::json!([{
-                        "severity": "error",
-                        "code": crate::diag::codes::IO_READ,
-                        "message": message,
-                        "label": "",
-                        "help": "check the path and that the file is readable",
-                        "file": file.display().to_string(),
-                    }]))
-                    .expect("JSON of plain values")
-                ),
-            }
-            return EXIT_USAGE;
+            return unreadable(
+                file,
+                &format!("cannot read {}: {e}", file.display()),
+                format,
+                json,
+            )
         }
     };
-    report(&compiled.diagnostics, &compiled.sources, format, verbosity);
-    if compiled.has_errors() {
-        EXIT_SCENE_ERROR
-    } else {
-        if format == Format::Human && verbosity != Verbosity::Quiet {
-            eprintln!("{}: ok", file.display());
+    let d = shown(&compiled.diagnostics, verbosity);
+    let (errors, warnings) = (d.error_count(), d.warning_count());
+    match format {
+        Format::Json => {
+            let name = file.display().to_string();
+            json.extend(d.json_items(&compiled.sources).into_iter().map(|mut o| {
+                // Every object says which scene it belongs to.
+                if o.get("file").is_none() {
+                    o["file"] = name.clone().into();
+                }
+                o
+            }));
         }
-        EXIT_OK
+        Format::Human => {
+            eprint!(
+                "{}",
+                d.render_human(&compiled.sources, super::stderr_is_terminal())
+            );
+            let quiet = verbosity == Verbosity::Quiet;
+            match (several, errors + warnings > 0) {
+                (true, true) => eprintln!("{}: {}", file.display(), counts(errors, warnings)),
+                (false, true) => eprintln!("{}", counts(errors, warnings)),
+                _ => {}
+            }
+            if errors == 0 && !quiet && !(several && warnings > 0) {
+                eprintln!("{}: ok", file.display());
+            }
+        }
+    }
+    Checked {
+        errors,
+        warnings,
+        unreadable: false,
+    }
+}
+
+/// Reports a scene (or folder) that cannot be read (`message` says why);
+/// JSON clients get JSON: one diagnostic without a span.
+fn unreadable(
+    path: &Path,
+    message: &str,
+    format: Format,
+    json: &mut Vec<serde_json::Value>,
+) -> Checked {
+    match format {
+        Format::Human => eprintln!("error: {message}"),
+        Format::Json => json.push(serde_json::json!({
+            "severity": "error",
+            "code": crate::diag::codes::IO_READ,
+            "message": message,
+            "label": "",
+            "help": "check the path and that the file is readable",
+            "file": path.display().to_string(),
+        })),
+    }
+    Checked {
+        errors: 1,
+        warnings: 0,
+        unreadable: true,
     }
 }

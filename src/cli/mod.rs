@@ -61,10 +61,16 @@ pub enum Format {
 /// The subcommands.
 #[derive(Debug, Subcommand)]
 pub enum Command {
-    /// Parse and check a scene; print every problem.
+    /// Parse and check scenes; print every problem, then a summary.
+    ///
+    /// A folder stands for its *.pts files, sorted by name (not its
+    /// subfolders; .ptsi include fragments are checked with the scenes that
+    /// include them). Exit status: 0 fine (warnings allowed), 1 a scene has
+    /// errors, 2 a file or folder cannot be read.
     Check {
-        /// The scene file.
-        file: std::path::PathBuf,
+        /// The scene files and folders of scenes.
+        #[arg(required = true, value_name = "FILE|FOLDER")]
+        files: Vec<std::path::PathBuf>,
         /// Output format of the diagnostics.
         #[arg(long, value_enum, default_value = "human")]
         format: Format,
@@ -84,6 +90,11 @@ pub enum Command {
     /// Add up the passes of a render made with `ptsc render --pass K/N`.
     Merge(farm::MergeArgs),
     /// Re-render a scene every time it (or an included file or mesh) is saved.
+    ///
+    /// Each save first writes a 1-spp preview at a quarter of the resolution
+    /// to NAME.preview.png beside the image NAME.png (same format, replaced
+    /// atomically), then full-resolution passes of 1, 2, 4, … spp to the image
+    /// itself: the image only ever holds full-resolution results.
     Watch(render::RenderArgs),
     /// Explain a diagnostic code: what it means, an example (as `rustc --explain`).
     Explain {
@@ -107,10 +118,10 @@ pub fn run() -> ExitCode {
     };
     let code = match cli.command {
         Command::Check {
-            file,
+            files,
             format,
             quiet,
-        } => check::run(&file, format, Verbosity::from_flags(quiet, false)),
+        } => check::run(&files, format, Verbosity::from_flags(quiet, false)),
         Command::Render { args, farm } => render::run(&args, &farm),
         Command::Merge(args) => farm::merge(&args),
         Command::Watch(args) => watch::run(&args),

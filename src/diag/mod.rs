@@ -225,9 +225,14 @@ impl Diagnostics {
 
     /// Renders every diagnostic as a JSON array (one object per diagnostic).
     pub fn render_json(&self, sources: &SourceMap) -> String {
+        serde_json::to_string_pretty(&self.json_items(sources)).expect("JSON of plain values")
+    }
+
+    /// The diagnostics as [`Diagnostics::render_json`]'s objects (for a
+    /// caller that joins several compiles' into one array).
+    pub fn json_items(&self, sources: &SourceMap) -> Vec<serde_json::Value> {
         let mut columns = Columns::default();
-        let arr: Vec<serde_json::Value> = self
-            .items
+        self.items
             .iter()
             .map(|d| {
                 let mut obj = serde_json::json!({
@@ -267,8 +272,7 @@ impl Diagnostics {
                 }
                 obj
             })
-            .collect();
-        serde_json::to_string_pretty(&arr).expect("JSON of plain values")
+            .collect()
     }
 }
 

@@ -4,12 +4,12 @@
 //!
 //! `.pts`: `render { integrator path  max_depth 8  rr_depth 5  light_sampling true }`.
 //! With `light_sampling false` it is the paper's naive estimator (BSDF
-//! sampling only), kept for comparison.
+//! sampling only), kept for comparison. `render { clamp X }` clamps indirect
+//! light (biased, off by default: see [`add`]).
 
 use super::{direct_light_mis, light_pdf, Integrator, T_MIN};
 use crate::geometry::{offset_origin, Ray};
 use crate::ir::Scene;
-use crate::light::luminance;
 use crate::sampling::sampler::Sampler;
 use crate::sampling::warp::power_heuristic;
 use glam::Vec3;
@@ -45,7 +45,8 @@ pub fn path_li(scene: &Scene, mut ray: Ray, sampler: &mut Sampler, nee: bool) ->
                 } else {
                     1.0
                 };
-                radiance += beta * light.arriving_from(ray.d) * w;
+                let c = beta * light.arriving_from(ray.d) * w;
+                add(&mut radiance, c, segments - 1, s.clamp);
             }
             break;
         };
@@ -70,18 +71,24 @@ pub fn path_li(scene: &Scene, mut ray: Ray, sampler: &mut Sampler, nee: bool) ->
                 }
                 None => 1.0,
             };
-            radiance += beta * le * w;
+            add(&mut radiance, beta * le * w, segments - 1, s.clamp);
         }
         if segments >= s.max_depth || !material.scatters() {
             break;
         }
         // Direct light (the paper's ambient term is added here when asked for: biased).
         if nee && material.has_smooth_lobe() {
-            radiance += beta * direct_light_mis(scene, &hit, material, wo, ray.time, sampler);
+            let c = beta * direct_light_mis(scene, &hit, material, wo, ray.time, sampler);
+            add(&mut radiance, c, segments, s.clamp);
         }
         if s.ambient != Vec3::ZERO && material.lobe_pdf[0] > 0.0 {
             let a = s.ambient;
-            radiance += beta * material.diffuse * a;
+            add(
+                &mut radiance,
+                beta * material.diffuse * a,
+                segments,
+                s.clamp,
+            );
         }
         // Continue the path by sampling the BSDF.
         let Some(bs) = material.sample(wo, hit.n_shading, sampler.next_f32(), sampler.next_2d())
@@ -115,11 +122,51 @@ pub fn path_li(scene: &Scene, mut ray: Ray, sampler: &mut Sampler, nee: bool) ->
         }
         ray = Ray::new(offset_origin(hit.p, hit.n_geo, bs.wi), bs.wi, ray.time);
     }
-    if let Some(c) = s.clamp {
-        let l = luminance(radiance);
-        if l > c {
-            radiance *= c / l;
+    radiance
+}
+
+/// Adds the contribution `c` of light arriving at the path's `vertex`-th
+/// surface hit (0: the camera sees it, 1: the first hit's direct light).
+/// With `render { clamp X }`, light arriving at the second hit or later —
+/// indirect light, which reaches the camera after at least one bounce — is
+/// scaled down so that its largest RGB component is at most X, keeping its
+/// hue (Cycles' "indirect light clamp"). Off, `c` is added as it is.
+#[inline]
+fn add(radiance: &mut Vec3, c: Vec3, vertex: u32, clamp: Option<f32>) {
+    *radiance += match clamp {
+        Some(x) if vertex >= 2 => clamp_to(c, x),
+        _ => c,
+    };
+}
+
+/// `c` scaled so that its largest component is at most `x`.
+fn clamp_to(c: Vec3, x: f32) -> Vec3 {
+    let m = c.max_element();
+    if m > x {
+        c * (x / m)
+    } else {
+        c
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn clamping_keeps_the_hue_and_only_touches_indirect_light() {
+        let c = Vec3::new(40.0, 20.0, 10.0);
+        assert_eq!(clamp_to(c, 4.0), Vec3::new(4.0, 2.0, 1.0));
+        assert_eq!(clamp_to(c, 100.0), c);
+        for (vertex, clamp, want) in [
+            (0, Some(4.0), c),
+            (1, Some(4.0), c),
+            (2, Some(4.0), Vec3::new(4.0, 2.0, 1.0)),
+            (5, None, c),
+        ] {
+            let mut r = Vec3::ONE;
+            add(&mut r, c, vertex, clamp);
+            assert_eq!(r, Vec3::ONE + want, "vertex {vertex} clamp {clamp:?}");
         }
     }
-    radiance
 }

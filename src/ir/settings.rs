@@ -85,7 +85,7 @@ pub struct Settings {
     pub rr_depth: u32,
     /// Weight of the Whitted estimate in the hybrid blend.
     pub hybrid_weight: f32,
-    /// Largest luminance a sample may contribute (biased; `None` = off).
+    /// Largest RGB component of each indirect contribution (biased; `None` = off; see `integrator::path`).
     pub clamp: Option<f32>,
     /// Whether the path integrator samples lights directly (NEE + MIS); `false` is the paper's naive mode.
     pub light_sampling: bool,

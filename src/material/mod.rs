@@ -10,6 +10,7 @@ pub mod conductor;
 pub mod fresnel;
 pub mod microfacet;
 pub mod multiscatter;
+mod multiscatter_table;
 pub mod plastic;
 pub mod rough_dielectric;
 pub mod thin_dielectric;

@@ -1,6 +1,6 @@
 //! Command-line conventions: exit codes after signals with the image of
 //! every sample done, JSON for a client even on I/O errors, `--quiet` and
-//! `--verbose`, flags checked like the scene.
+//! `--verbose`, flags checked like the scene, `check` of several scenes.
 
 use std::path::Path;
 use std::process::{Command, Stdio};
@@ -165,4 +165,104 @@ fn materials_may_be_used_before_their_declaration() {
          sphere { center <0, 0, 0> radius r }\nlet r = 1;\n",
     );
     assert!(c.diagnostics.has_errors());
+}
+
+/// A folder with a fine scene, one with a warning, one with an error, an
+/// include fragment and a subfolder.
+fn scenes_folder() -> tempfile::TempDir {
+    let dir = crate::temp_dir_with(&[
+        ("a_fine.pts", SCENE),
+        ("b_warning.pts", &format!("{SCENE}let unused = 1;\n")),
+        (
+            "c_error.pts",
+            &format!("{SCENE}sphere {{ center <0, 0, 0> radius -1 }}\n"),
+        ),
+        // Alone it would be missing its camera: it is not checked alone.
+        ("part.ptsi", "sphere { center <0, 2, 0> radius 0.1 }\n"),
+    ]);
+    std::fs::create_dir(dir.path().join("sub")).unwrap();
+    std::fs::write(dir.path().join("sub/d_error.pts"), "sphere {").unwrap();
+    dir
+}
+
+#[test]
+fn check_takes_several_scenes_and_folders_and_sums_them_up() {
+    let dir = scenes_folder();
+    let p = |n: &str| dir.path().join(n).to_str().unwrap().to_string();
+    // Two fine scenes: a line each and the summary, exit 0.
+    let (code, _, err) = ptsc(&["check", &p("a_fine.pts"), &p("b_warning.pts")]);
+    assert_eq!(code, 0, "{err}");
+    assert!(err.contains("a_fine.pts: ok"), "{err}");
+    assert!(err.contains("b_warning.pts: 0 errors, 1 warning"), "{err}");
+    assert!(
+        err.ends_with("2 files checked: 0 errors, 1 warning\n"),
+        "{err}"
+    );
+    // The folder: its three scenes in name order, not sub/ nor part.ptsi.
+    let (code, _, err) = ptsc(&["check", dir.path().to_str().unwrap()]);
+    assert_eq!(code, 1, "{err}");
+    let (a, b, c) = (
+        err.find("a_fine.pts: ok").unwrap(),
+        err.find("b_warning.pts: 0 errors, 1 warning").unwrap(),
+        err.find("c_error.pts: 1 error, 0 warnings").unwrap(),
+    );
+    assert!(a < b && b < c, "{err}");
+    assert!(
+        !err.contains("d_error") && !err.contains("part.ptsi"),
+        "{err}"
+    );
+    assert!(
+        err.ends_with("3 files checked: 1 error, 1 warning\n"),
+        "{err}"
+    );
+    // --quiet: the error and the summary only.
+    let (code, _, err) = ptsc(&["check", dir.path().to_str().unwrap(), "--quiet"]);
+    assert_eq!(code, 1);
+    assert!(
+        !err.contains(": ok") && !err.contains("never used"),
+        "{err}"
+    );
+    assert!(
+        err.contains("3 files checked: 1 error, 0 warnings"),
+        "{err}"
+    );
+    // An unreadable file among them is a usage error (2); the others are
+    // still checked. An empty folder says so.
+    let empty = dir.path().join("sub/empty");
+    std::fs::create_dir(&empty).unwrap();
+    let (code, _, err) = ptsc(&[
+        "check",
+        &p("no_such.pts"),
+        &p("c_error.pts"),
+        empty.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 2, "{err}");
+    assert!(
+        err.contains("cannot read") && err.contains("no_such.pts"),
+        "{err}"
+    );
+    assert!(err.contains("holds no .pts scene"), "{err}");
+    assert!(err.contains("c_error.pts: 1 error"), "{err}");
+}
+
+#[test]
+fn check_of_several_scenes_prints_one_json_array() {
+    let dir = scenes_folder();
+    let (code, out, err) = ptsc(&["check", dir.path().to_str().unwrap(), "--format", "json"]);
+    assert_eq!(code, 1, "{err}");
+    assert!(err.is_empty(), "{err}");
+    let json: serde_json::Value = serde_json::from_str(&out).unwrap();
+    let items = json.as_array().unwrap();
+    let files: Vec<&str> = items.iter().map(|d| d["file"].as_str().unwrap()).collect();
+    assert_eq!(items.len(), 2, "{out}");
+    assert!(files[0].ends_with("b_warning.pts") && items[0]["severity"] == "warning");
+    assert!(files[1].ends_with("c_error.pts") && items[1]["severity"] == "error");
+    // Nothing to say is still JSON: an empty array.
+    let fine = dir.path().join("a_fine.pts");
+    let (code, out, _) = ptsc(&["check", fine.to_str().unwrap(), "--format", "json"]);
+    assert_eq!(code, 0);
+    assert_eq!(
+        serde_json::from_str::<serde_json::Value>(&out).unwrap(),
+        serde_json::json!([])
+    );
 }

@@ -14,6 +14,7 @@ mod hostile;
 mod image_limits;
 mod instances;
 mod layering;
+mod lighting;
 mod materials;
 mod mitsuba;
 mod nasty;

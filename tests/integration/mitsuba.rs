@@ -49,11 +49,50 @@ fn check_scene(name: &str) -> (Vec<Vec3>, Vec<Vec3>) {
     (average, reference)
 }
 
+/// What [`measure`] finds: ptsc's image averaged over the seeds, the
+/// reference, the per-channel ratio of the means, ptsc's median MAE/mean
+/// and Mitsuba's.
+type Measured = (Vec<Vec3>, Vec<Vec3>, Vec3, f64, f64);
+
+/// The scene file of `name`: the benchmark scenes are examples; the
+/// others live beside their references.
+fn scene_path(name: &str) -> std::path::PathBuf {
+    let own = crate::root().join(format!("tests/mitsuba/{name}.pts"));
+    if own.exists() {
+        own
+    } else {
+        crate::root().join(format!("examples/bench/{name}.pts"))
+    }
+}
+
+/// [`measure_once`], each scene and light selection measured once per
+/// run: a scene's own test and the test of the rules ask for the same
+/// `auto` renders (seconds each), and the second waits for the first's.
+fn measure(name: &str, rule: Option<LightSelection>) -> Measured {
+    use std::collections::HashMap;
+    use std::sync::{Arc, Mutex, OnceLock};
+    type Cells = Mutex<HashMap<String, Arc<OnceLock<Measured>>>>;
+    static DONE: OnceLock<Cells> = OnceLock::new();
+    // A scene that names no rule renders with `auto`, as `Some(Auto)` does.
+    let text = std::fs::read_to_string(scene_path(name)).unwrap();
+    let rule = match rule {
+        None if !text.contains("light_selection") => Some(LightSelection::Auto),
+        r => r,
+    };
+    let key = format!("{name} {rule:?}");
+    let cell = DONE
+        .get_or_init(Cells::default)
+        .lock()
+        .unwrap()
+        .entry(key)
+        .or_default()
+        .clone();
+    cell.get_or_init(|| measure_once(name, rule)).clone()
+}
+
 /// Scene `name` rendered with the seeds of its baseline (with the light
-/// selection `rule` instead of the scene's, if given): ptsc's image
-/// averaged over the seeds, the reference, the per-channel ratio of the
-/// means, ptsc's median MAE/mean and Mitsuba's.
-fn measure(name: &str, rule: Option<LightSelection>) -> (Vec<Vec3>, Vec<Vec3>, Vec3, f64, f64) {
+/// selection `rule` instead of the scene's, if given).
+fn measure_once(name: &str, rule: Option<LightSelection>) -> Measured {
     let dir = crate::root().join("tests/mitsuba");
     let baseline: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(dir.join("baseline.json")).unwrap()).unwrap();
@@ -66,13 +105,7 @@ fn measure(name: &str, rule: Option<LightSelection>) -> (Vec<Vec3>, Vec<Vec3>, V
     assert_eq!((w, h), (res, res));
 
     ptsc::bench_data::ensure_mesh_blob(&crate::root()).unwrap();
-    // The benchmark scenes are examples; the others live beside their references.
-    let own = dir.join(format!("{name}.pts"));
-    let path = if own.exists() {
-        own
-    } else {
-        crate::root().join(format!("examples/bench/{name}.pts"))
-    };
+    let path = scene_path(name);
     let options = Options {
         adjust: &|s| {
             (s.width, s.height, s.samples) = (res, res, spp);

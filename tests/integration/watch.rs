@@ -1,5 +1,6 @@
 //! `ptsc watch` driven like an editor would drive it: saves, broken saves,
-//! atomic saves, edits of included files and meshes, bursts of saves.
+//! atomic saves, edits of included files and meshes, bursts of saves; the
+//! preview beside the image, never in it.
 
 use std::io::{BufRead, BufReader};
 use std::path::{Path, PathBuf};
@@ -182,8 +183,8 @@ fn fifty_rapid_saves_end_with_the_last_scene() {
         .collect();
     assert_eq!(
         names.len(),
-        2,
-        "only the scene and its image remain: {names:?}"
+        3,
+        "only the scene, its image and its preview remain: {names:?}"
     );
     assert!(!w.output().contains("panicked"));
 }
@@ -357,4 +358,57 @@ fn an_output_folder_that_disappears_is_reported_not_claimed() {
     std::fs::create_dir(&out_dir).unwrap();
     w.save_and_wait(&pts, &scene(35, ""));
     assert!(img.is_file());
+}
+
+#[test]
+fn the_preview_goes_beside_the_image_never_into_it() {
+    let (dir, pts, png) = setup();
+    let preview = dir.path().join("s.preview.png");
+    // Large enough that the full-resolution pass takes a while after the
+    // preview: the old preview-in-the-image would stay for many polls.
+    let text = scene(40, "").replace("<32, 32>", "<320, 240>");
+    std::fs::write(&pts, &text).unwrap();
+    // Every version of the image a viewer could have read.
+    let stop = std::sync::Arc::new(std::sync::atomic::AtomicBool::new(false));
+    let (stop2, png2) = (stop.clone(), png.clone());
+    let poll = std::thread::spawn(move || {
+        let mut seen: Vec<Vec<u8>> = Vec::new();
+        while !stop2.load(std::sync::atomic::Ordering::Relaxed) {
+            if let Ok(b) = std::fs::read(&png2) {
+                if seen.last() != Some(&b) {
+                    seen.push(b);
+                }
+            }
+            std::thread::sleep(Duration::from_millis(1));
+        }
+        seen
+    });
+    let w = Watch::start(&pts);
+    w.wait_for("done:", 0);
+    stop.store(true, std::sync::atomic::Ordering::Relaxed);
+    let seen = poll.join().unwrap();
+    let out = w.output();
+    assert!(
+        out.contains(&format!("→ {}", preview.display())),
+        "the preview line names its file:\n{out}"
+    );
+    // The preview is a quarter of the image's width and height, in its format.
+    let shot = std::fs::read(&preview).unwrap();
+    let size = |b: &[u8]| image::load_from_memory(b).unwrap().to_rgb8().dimensions();
+    assert_eq!(size(&shot), (80, 60));
+    assert_eq!(std::fs::read(&png).unwrap(), reference_render(&pts));
+    // Every version of the image is a full-resolution pass, none the
+    // preview enlarged (whose 4×4 blocks would each be one colour).
+    assert!(!seen.is_empty());
+    for b in &seen {
+        let img = image::load_from_memory(b).unwrap().to_rgb8();
+        assert_eq!(img.dimensions(), (320, 240));
+        let blocky = (0..60).all(|by| {
+            (0..80).all(|bx| {
+                let corner = img.get_pixel(4 * bx, 4 * by);
+                (0..16).all(|k| img.get_pixel(4 * bx + k % 4, 4 * by + k / 4) == corner)
+            })
+        });
+        assert!(!blocky, "the image held the enlarged preview");
+    }
 }

@@ -276,4 +276,21 @@ pub(crate) mod tests {
         c.fingerprint += 1;
         assert!(a.mismatch(&c).unwrap().contains("scene differs"));
     }
+
+    #[test]
+    fn the_clamp_is_a_setting_of_the_samples() {
+        let clamped = Settings {
+            clamp: Some(4.0),
+            ..Settings::default()
+        };
+        let settings = sample_settings(&clamped);
+        let clamp = settings.iter().find(|(k, _)| k == "clamp").unwrap();
+        assert_ne!(
+            clamp,
+            sample_settings(&Settings::default())
+                .iter()
+                .find(|(k, _)| k == "clamp")
+                .unwrap()
+        );
+    }
 }

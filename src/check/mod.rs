@@ -783,6 +783,23 @@ impl Checker {
                 block,
                 span,
             } => self.block(*kind, *kind_span, block, *span, file),
+            Statement::Foreign { name, span } => {
+                self.diags.push(povray::foreign_statement(name, *span));
+            }
+            Statement::Directive {
+                name,
+                binding,
+                span,
+            } => {
+                self.diags.push(povray::directive(name));
+                // `#declare R = 1;` binds `R` as `let` would: its uses are fine.
+                if let Some((bound, value)) = binding {
+                    let name = bound.clone();
+                    let value = value.clone();
+                    let span = *span;
+                    self.statement(&Statement::Let { name, value, span }, file);
+                }
+            }
         }
     }
 

@@ -120,6 +120,11 @@ const fn t(name: &'static str, ty: Ty, example: &'static str) -> ParamSpec {
     }
 }
 
+/// The help for a light's `color`: POV-Ray's light colour.
+const LIGHT_COLOR: &str = "POV-Ray's light `color` is `intensity rgb …` in ptsc: radiant intensity, falling off with the squared distance (POV-Ray's light does not fall off unless told: give about its colour times the squared distance to what it lights)";
+/// [`LIGHT_COLOR`] spelt `colour`.
+const LIGHT_COLOUR: &str = "POV-Ray's light `colour` is `intensity rgb …` in ptsc: radiant intensity, falling off with the squared distance (POV-Ray's light does not fall off unless told: give about its colour times the squared distance to what it lights)";
+
 /// A POV-Ray word refused in one kind of block, with the ptsc parameter
 /// that does its job and the help line (see [`ParamSpec::povray`]).
 const fn povray(name: &'static str, instead: &'static str, help: &'static str) -> ParamSpec {
@@ -463,6 +468,8 @@ pub fn shape_schema(kind: crate::syntax::ast::BlockKind) -> &'static [ParamSpec]
             const S: &[ParamSpec] = &[
                 p("position", Ty::Vec3, "<0, 5, 0>").of(Magnitude),
                 p("intensity", Ty::Color, "rgb 100").of(Radiance),
+                povray("color", "intensity", LIGHT_COLOR),
+                povray("colour", "intensity", LIGHT_COLOUR),
             ];
             S
         }
@@ -477,6 +484,8 @@ pub fn shape_schema(kind: crate::syntax::ast::BlockKind) -> &'static [ParamSpec]
                 povray("radius", "hotspot", SPOT_ANGLES),
                 povray("tightness", "hotspot", "POV-Ray's `tightness` has no ptsc equivalent: the light falls off smoothly from `hotspot` to `angle`"),
                 povray("point_at", "look_at", "POV-Ray's `point_at` is `look_at` in ptsc"),
+                povray("color", "intensity", LIGHT_COLOR),
+                povray("colour", "intensity", LIGHT_COLOUR),
             ];
             S
         }
@@ -506,8 +515,8 @@ pub fn povray_positional(
         Sphere => (&["center", "radius"], ""),
         Plane => (&["normal", "point"], "a plane is given by a point on it"),
         Box => (&["min", "max"], "`min` is the smaller corner"),
-        Cylinder => (&["base", "top", "radius"], "ptsc's cylinder is open unless `open false`; POV-Ray's is closed"),
-        Cone => (&["base", "base_radius", "top", "top_radius"], "ptsc's cone is open unless `open false`; POV-Ray's is closed"),
+        Cylinder => (&["base", "top", "radius"], ""),
+        Cone => (&["base", "base_radius", "top", "top_radius"], ""),
         Torus => (&["major_radius", "minor_radius"], ""),
         Disk => (&["center", "normal", "radius"], ""),
         Triangle => (&["v0", "v1", "v2"], ""),
@@ -643,6 +652,15 @@ impl Params {
             let (name, value) = match entry {
                 Entry::Foreign { name, span } => {
                     diags.push(super::povray::foreign_block(&what, name, *span, schemas));
+                    continue;
+                }
+                Entry::Flag { name } => {
+                    diags.push(super::povray::flag(&what, name));
+                    // A parameter written without its value is not missing too.
+                    let all = schemas.iter().flat_map(|s| s.iter());
+                    params
+                        .suggested
+                        .extend(all.map(|p| p.name).find(|n| *n == name.name));
                     continue;
                 }
                 Entry::Positional { values, span } => {
@@ -1005,7 +1023,7 @@ mod tests {
                 assert!(has || instead == "scale", "{}: {instead}", spec.name);
             }
         }
-        assert_eq!(refused, 5);
+        assert_eq!(refused, 9);
         // Editors highlight parameters only: no word that is only refused.
         let names = all_parameter_names();
         for word in ["falloff", "tightness", "point_at"] {

@@ -115,10 +115,97 @@ fn rewrite(names: &[&str], values: &[Expr], env: &mut Env) -> Option<String> {
         let point: Vec<f64> = n.iter().map(|x| x / length * d).collect();
         evaluated[1] = Value::Vector(point.into());
     }
+    if names == ["min", "max"] {
+        // POV-Ray takes any two opposite corners; ptsc the smaller first.
+        if let (Value::Vector(a), Value::Vector(b)) = (&evaluated[0], &evaluated[1]) {
+            let lo: Vec<f64> = a.iter().zip(b.iter()).map(|(x, y)| x.min(*y)).collect();
+            let hi: Vec<f64> = a.iter().zip(b.iter()).map(|(x, y)| x.max(*y)).collect();
+            evaluated = vec![Value::Vector(lo.into()), Value::Vector(hi.into())];
+        }
+    }
     let pairs: Vec<String> = names
         .iter()
         .zip(&evaluated)
         .map(|(n, v)| format!("{n} {}", written(v)))
         .collect();
     Some(pairs.join(" "))
+}
+
+/// The error for `name { … }` where a statement goes, at `span`: the ptsc
+/// statement for POV-Ray's word, or the closest ptsc word.
+pub fn foreign_statement(name: &Ident, span: Span) -> Diagnostic {
+    let word = name.name.as_str();
+    if word == "background" {
+        return Diagnostic::error(
+            codes::FOREIGN_BLOCK,
+            "`background` takes a colour, not a block",
+            span,
+        )
+        .with_label("POV-Ray's `background { color … }`")
+        .with_help("write `background rgb <0.5, 0.7, 1>` (no braces); a daylight sky is `sky { … }`, an HDR image `environment { … }`");
+    }
+    if let Some(hint) = crate::syntax::povray::hint(word) {
+        return Diagnostic::error(
+            codes::FOREIGN_BLOCK,
+            format!("POV-Ray's `{word} {{ … }}` is not ptsc"),
+            span,
+        )
+        .with_label("a statement ptsc does not have")
+        .with_help(hint);
+    }
+    let words = crate::syntax::parser::KEYWORDS.iter().copied();
+    let help = match did_you_mean(word, words) {
+        Some(s) => format!("did you mean `{s}`?"),
+        None => "a scene is a list of statements: `let`, `fn`, `include`, `for`, `if`, `material`, `group`, `instance`, `camera { … }`, `render { … }`, a light or an object such as `sphere { … }`".to_string(),
+    };
+    Diagnostic::error(
+        codes::FOREIGN_BLOCK,
+        format!("unknown statement `{word}`"),
+        span,
+    )
+    .with_label("not a ptsc statement")
+    .with_help(help)
+}
+
+/// The error for a name alone before the `}` of the block `what`:
+/// POV-Ray's flag (`no_shadow`), or a parameter without its value.
+pub fn flag(what: &str, name: &Ident) -> Diagnostic {
+    let word = name.name.as_str();
+    if let Some(hint) = crate::syntax::povray::flag(word) {
+        return Diagnostic::error(
+            codes::UNKNOWN_PARAM,
+            format!("`{word}` is a POV-Ray flag"),
+            name.span,
+        )
+        .with_label(format!("not a parameter of `{what}`"))
+        .with_help(hint);
+    }
+    Diagnostic::error(
+        codes::MISSING_VALUE,
+        format!("`{word}` has no value"),
+        name.span,
+    )
+    .with_label("a name without a value")
+    .with_help(format!(
+        "a parameter is a name and a value (e.g. `{word} 1`); a material is given as `material {word}`"
+    ))
+}
+
+/// The error for POV-Ray's directive `#name`, spanning the `#` and the
+/// word.
+pub fn directive(name: &Ident) -> Diagnostic {
+    let word = name.name.as_str();
+    let (start, end) = (name.span.start as usize, name.span.end as usize);
+    let span = Span::new(name.span.file, start.saturating_sub(1), end);
+    let help = crate::syntax::povray::directive(word).map_or_else(
+        || "ptsc has no `#` directives: write its statements without `#`: `let`, `include`, `for`, `if`, …".to_string(),
+        str::to_string,
+    );
+    Diagnostic::error(
+        codes::DIRECTIVE,
+        format!("`#{word}` is a POV-Ray directive"),
+        span,
+    )
+    .with_label("not ptsc")
+    .with_help(help)
 }

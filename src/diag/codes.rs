@@ -50,6 +50,8 @@ pub const UNKNOWN_COMPONENT: &str = "pts::check::unknown_component";
 pub const FILTER_COLOR: &str = "pts::check::filter_color";
 /// A block ptsc does not have inside a block (POV-Ray's `pigment { … }`).
 pub const FOREIGN_BLOCK: &str = "pts::check::foreign_block";
+/// A name alone at the end of a block, without its value.
+pub const MISSING_VALUE: &str = "pts::check::missing_value";
 /// Values without parameter names (POV-Ray's `sphere { <0, 1, 0>, 1 }`).
 pub const POSITIONAL_VALUES: &str = "pts::check::positional_values";
 /// An index outside a list.
@@ -238,13 +240,19 @@ pub const CATALOGUE: &[Entry] = &[
     Entry {
         code: FOREIGN_BLOCK,
         title: "A block ptsc does not have",
-        explanation: "An object or material holds parameters (`name value`), textures (`diffuse checker { … }`) and a `material`, not other blocks. POV-Ray's `pigment { … }`, `finish { … }`, `texture { … }`, `normal { … }` and `interior { … }` are all parameters of one ptsc `material { … }`; the help says which. The rest of the scene is still checked.",
+        explanation: "A statement or block ptsc does not have: POV-Ray's `light_source { … }`, `union { … }` or a misspelt `shpere { … }` where a statement goes, or a block inside an object. An object or material holds parameters (`name value`), textures (`diffuse checker { … }`) and a `material`, not other blocks. POV-Ray's `pigment { … }`, `finish { … }`, `texture { … }`, `normal { … }` and `interior { … }` are all parameters of one ptsc `material { … }`; the help says which. The rest of the scene is still checked.",
         example: "sphere { center <0, 0, 0> radius 1 pigment { color rgb 1 } }",
+    },
+    Entry {
+        code: MISSING_VALUE,
+        title: "A parameter without its value",
+        explanation: "A block's last entry is a name alone: a parameter is a name and its value (`radius 1`), and an object names its material with `material NAME`. POV-Ray's flags (`no_shadow`, `hollow`) get their own answer.",
+        example: "sphere { center <0, 0, 0> radius }",
     },
     Entry {
         code: POSITIONAL_VALUES,
         title: "Values without parameter names",
-        explanation: "ptsc names every parameter: POV-Ray's `sphere { <0, 1, 0>, 1 }` is `sphere { center <0, 1, 0> radius 1 }`. The help writes the block with the names the values stand for, in POV-Ray's order, and says where ptsc's meaning differs (a cylinder is open unless `open false`, a plane is given by a point rather than a distance).",
+        explanation: "ptsc names every parameter: POV-Ray's `sphere { <0, 1, 0>, 1 }` is `sphere { center <0, 1, 0> radius 1 }`. The help writes the block with the names the values stand for, in POV-Ray's order, and says where ptsc's meaning differs (a plane is given by a point on it rather than a distance, a box by its smaller and larger corners).",
         example: "sphere { <0, 1, 0>, 1 }",
     },
     Entry {

@@ -130,6 +130,24 @@ pub enum Statement {
         /// The whole statement.
         span: Span,
     },
+    /// `#word …`: a POV-Ray directive and the rest of its line, not read;
+    /// `#declare NAME = value;` keeps its name and value.
+    Directive {
+        /// The directive's word, without the `#`.
+        name: Ident,
+        /// A `#declare`'s or `#local`'s name and value.
+        binding: Option<(Ident, Expr)>,
+        /// The whole line.
+        span: Span,
+    },
+    /// `name { … }`: a statement ptsc does not have (POV-Ray's
+    /// `light_source { … }`), its content not read.
+    Foreign {
+        /// The statement's word.
+        name: Ident,
+        /// The whole statement.
+        span: Span,
+    },
 }
 
 impl Statement {
@@ -146,7 +164,9 @@ impl Statement {
             | Statement::Background { span, .. }
             | Statement::Material { span, .. }
             | Statement::Texture { span, .. }
-            | Statement::Block { span, .. } => *span,
+            | Statement::Block { span, .. }
+            | Statement::Foreign { span, .. }
+            | Statement::Directive { span, .. } => *span,
         }
     }
 }
@@ -270,6 +290,11 @@ pub struct Block {
 /// One entry of a block.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Entry {
+    /// `name` alone before the block's `}` (POV-Ray's `no_shadow`).
+    Flag {
+        /// The name.
+        name: Ident,
+    },
     /// `name value`
     Param {
         /// Parameter name.

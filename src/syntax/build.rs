@@ -217,6 +217,37 @@ impl Builder {
                     span,
                 }
             }
+            Rule::directive_stmt => {
+                let name = self.build_ident(inner.next().unwrap());
+                Statement::Directive {
+                    name,
+                    binding: None,
+                    span,
+                }
+            }
+            Rule::declare_stmt => {
+                let word = inner.next().unwrap();
+                let mut name = self.build_ident(word);
+                // The word without its `#`.
+                name.name.remove(0);
+                name.span = Span::new(
+                    name.span.file,
+                    name.span.start as usize + 1,
+                    name.span.end as usize,
+                );
+                let bound = self.build_ident(inner.next().unwrap());
+                inner.next(); // =
+                let value = self.build_expr(inner.next().unwrap());
+                Statement::Directive {
+                    name,
+                    binding: Some((bound, value)),
+                    span,
+                }
+            }
+            Rule::foreign_stmt => {
+                let name = self.build_ident(inner.next().unwrap());
+                Statement::Foreign { name, span }
+            }
             r => unreachable!("not a statement: {r:?}"),
         }
     }
@@ -275,6 +306,9 @@ impl Builder {
                 let name = self.build_ident(inner.next().unwrap());
                 Entry::Foreign { name, span }
             }
+            Rule::flag => Entry::Flag {
+                name: self.build_ident(inner.next().unwrap()),
+            },
             Rule::positional => {
                 let values = inner
                     .filter(|p| p.as_rule() == Rule::component)

@@ -52,6 +52,9 @@ pub fn rule_name(rule: Rule) -> &'static str {
         Rule::entry | Rule::param => "a parameter name",
         Rule::foreign_block | Rule::opaque_block | Rule::opaque_text => "a block `{ … }`",
         Rule::positional => "a value",
+        Rule::foreign_stmt | Rule::directive_stmt | Rule::directive_rest => "a statement",
+        Rule::declare_stmt | Rule::declare_word => "`let`",
+        Rule::flag => "a parameter name",
         Rule::member => "a component `.x`",
         Rule::filter_color | Rule::filter_word => "a colour `rgb …`",
         Rule::texture_param => "a parameter given a texture",
@@ -337,8 +340,9 @@ pub fn convert_error(
         .or_else(|| {
             // `sphere { … glass }`: a name without a value.
             let named = previous.last().filter(|_| adjacent)?;
-            expected.iter().any(|e| e.starts_with("a value")).then(|| {
-                format!("`{named}` needs a value (e.g. `{named} 1`); a material is given as `material {named}`")
+            expected.iter().any(|e| e.starts_with("a value")).then(|| match *named {
+                "background" => "`background` takes a colour without braces: `background rgb <0.5, 0.7, 1>` (a daylight sky is `sky { … }`)".to_string(),
+                _ => format!("`{named}` needs a value (e.g. `{named} 1`); a material is given as `material {named}`"),
             })
         })
         .or_else(|| {

@@ -34,6 +34,11 @@ const WORDS: &[(&str, &str)] = &[
     ("blur_samples", "ptsc takes depth of field samples from `render { samples … }`"),
     ("area_light", "an area light is an object with `material { emission rgb … }`, e.g. a `quad` or `disk`"),
     ("fade_distance", "ptsc's lights fall off with the square of the distance, as real ones do"),
+    ("phong", "ptsc's highlight is a glossy lobe: `material { type plastic diffuse rgb … gloss 0.2 }` (smaller gloss, smaller highlight)"),
+    ("specular", "ptsc's highlight is a glossy lobe: `material { type plastic diffuse rgb … gloss 0.2 }` (smaller gloss, smaller highlight)"),
+    ("brilliance", "ptsc's diffuse reflection is Lambertian; a sheen or highlight is `type plastic` with `gloss`"),
+    ("metallic", "a metal is `material { type conductor preset gold gloss 0.2 }` in ptsc"),
+    ("phong_size", "ptsc's highlight size is `gloss` (0 a mirror, 1 very rough) with `type plastic`"),
     ("gradient", "in a material, `diffuse gradient { low rgb 0 high rgb 1 rotate <0, 0, 90> }` (a ramp along x)"),
     ("checker", "in a material, `diffuse checker { even rgb 1 odd rgb 0 }` (see \"Textures\" in docs/language.md)"),
 ];

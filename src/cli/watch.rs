@@ -48,6 +48,15 @@ pub fn run(args: &RenderArgs) -> u8 {
             return super::EXIT_USAGE;
         }
     };
+    // An image named on the command line is checked once, as `render`
+    // does: a folder that does not exist is refused before watching.
+    if args.output.is_some() {
+        let output = output_path(args, None, animation.frame);
+        if let Err(why) = crate::output::check_output(&output, &[]) {
+            eprintln!("error: cannot write {}: {why}", output.display());
+            return super::EXIT_USAGE;
+        }
+    }
     let pool = match rayon::ThreadPoolBuilder::new()
         .num_threads(args.threads.unwrap_or(0))
         .build()

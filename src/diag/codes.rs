@@ -216,7 +216,7 @@ pub const CATALOGUE: &[Entry] = &[
     Entry {
         code: UNKNOWN_FUNCTION,
         title: "A function that does not exist",
-        explanation: "The name before `(` is neither a function declared before it with `fn name(x) = …;` nor one of the built-in functions: `sin`, `cos`, `tan`, `asin`, `acos`, `atan2`, `sqrt`, `pow`, `exp`, `log`, `abs`, `min`, `max`, `clamp`, `floor`, `ceil`, `round`, `radians`, `degrees`, `normalize`, `length`, `dot`, `cross`, `len`, `str`, `rand` (see docs/language.md). The help suggests a similar name when there is one.",
+        explanation: "The name before `(` is neither a function declared before it with `fn name(x) = …;` nor one of the built-in functions: `sin`, `cos`, `tan`, `asin`, `acos`, `atan2`, `sqrt`, `pow`, `exp`, `log`, `abs`, `min`, `max`, `clamp`, `floor`, `ceil`, `round`, `int`, `mod`, `radians`, `degrees`, `normalize`, `length`, `dot`, `cross`, `len`, `str`, `rand` (see docs/language.md). The help suggests a similar name when there is one, or the ptsc name of a POV-Ray function (`vlength` is `length`).",
         example: "let x = sine(1);",
     },
     Entry {

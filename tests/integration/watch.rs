@@ -412,3 +412,15 @@ fn the_preview_goes_beside_the_image_never_into_it() {
         assert!(!blocky, "the image held the enlarged preview");
     }
 }
+
+#[test]
+fn an_output_that_cannot_be_written_is_refused_before_watching() {
+    // As `render` refuses it: exit 2 at once, naming the folder.
+    let (dir, pts, _png) = setup();
+    std::fs::write(&pts, scene(40, "")).unwrap();
+    let img = dir.path().join("no_such_folder").join("img.png");
+    let (code, _, err) =
+        crate::ptsc(&["watch", pts.to_str().unwrap(), "-o", img.to_str().unwrap()]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("does not exist"), "{err}");
+}

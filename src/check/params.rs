@@ -301,7 +301,7 @@ pub const UNBANDED: &[ParamSpec] = &[povray(
 )];
 
 /// The wrap modes of an image texture.
-pub const WRAPS: &[&str] = &["repeat", "clamp", "mirror"];
+pub const WRAPS: &[&str] = &crate::texture::image::Wrap::WORDS;
 
 /// `image { }`, besides [`TEXTURE_TRANSFORMS`].
 pub const IMAGE: &[ParamSpec] = &[

@@ -63,7 +63,7 @@ pub enum TextureKind {
         /// Where its name is written.
         path_span: Span,
         /// `repeat`, `clamp` or `mirror`.
-        wrap: String,
+        wrap: crate::texture::image::Wrap,
         /// How its values are encoded, when the scene says (`None`: by the
         /// file and the parameter: 8-bit colours sRGB, the rest linear).
         color_space: Option<ColorSpace>,

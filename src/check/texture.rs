@@ -12,6 +12,7 @@ use super::scene::{ColorSpace, Rgb, Texture, TextureKind, TextureSpace};
 use crate::diag::{codes, did_you_mean, Diagnostic, Diagnostics};
 use crate::span::Span;
 use crate::syntax::ast::{Block, Entry, Ident};
+use crate::texture::image::Wrap;
 use crate::texture::noise::{NoiseKind, NoiseParams};
 
 /// The texture `kind { block }` written at `span`; `None` after reporting
@@ -77,7 +78,10 @@ pub fn check_texture(
             TextureKind::Image {
                 path: file.into(),
                 path_span,
-                wrap: word("wrap").unwrap_or_else(|| "repeat".into()),
+                // A word checked against `Wrap::WORDS` (the row's `Ty::Word`).
+                wrap: word("wrap")
+                    .and_then(|w| Wrap::from_name(&w))
+                    .unwrap_or(Wrap::Repeat),
                 color_space: word("color_space").and_then(|w| ColorSpace::from_name(&w)),
                 resolved: false,
             }

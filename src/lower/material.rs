@@ -9,7 +9,6 @@ use crate::material::conductor::{Conductor, PRESETS};
 use crate::material::plastic::CoatFamily;
 use crate::material::plastic::Plastic;
 use crate::material::{self, microfacet, Input, Material, NormalInput, Textured};
-use crate::texture::image::Wrap;
 use crate::texture::{ColorMap, Pattern, Space, Texture};
 use glam::{Affine3A, DVec3, Vec3};
 use std::collections::HashMap;
@@ -210,12 +209,7 @@ fn lower_texture(
             color_space,
             ..
         } => match images.get(path, encoding(*color_space, data)) {
-            Ok(image) => Pattern::Image {
-                image,
-                wrap: (Wrap::NAMES.iter())
-                    .find(|(n, _)| n == wrap)
-                    .map_or(Wrap::Repeat, |&(_, w)| w),
-            },
+            Ok(image) => Pattern::Image { image, wrap: *wrap },
             Err(e) => {
                 diags.push(
                     Diagnostic::error(

@@ -18,14 +18,13 @@ pub enum Wrap {
     Mirror,
 }
 
-impl Wrap {
-    /// The names of the wrap modes in the scene language.
-    pub const NAMES: [(&'static str, Wrap); 3] = [
-        ("repeat", Wrap::Repeat),
-        ("clamp", Wrap::Clamp),
-        ("mirror", Wrap::Mirror),
-    ];
+named_values!(Wrap {
+    "repeat" => Repeat,
+    "clamp" => Clamp,
+    "mirror" => Mirror,
+});
 
+impl Wrap {
     /// The texel a column or row index `i` (any integer) reads in a side of
     /// `n` texels.
     #[inline]

@@ -3,7 +3,7 @@
 //! parameters that mean nothing to it reported.
 
 use super::blocks::{textures, Reader};
-use super::params::{ParamSpec, Params, Val, MATERIAL, METAL_PRESETS};
+use super::params::{ParamSpec, Params, Val, MATERIAL};
 use super::scene::*;
 use crate::diag::codes;
 use crate::diag::{Diagnostic, Diagnostics};
@@ -214,7 +214,8 @@ fn kind(r: &mut Reader) -> MaterialKind {
                 );
             }
             if let Some((name, _)) = preset {
-                let name = METAL_PRESETS.iter().find(|n| **n == name).copied();
+                // A word checked against `Metal::WORDS` (the row's `Ty::Word`).
+                let name = crate::material::conductor::Metal::from_name(name);
                 return MaterialKind::Conductor {
                     preset: name,
                     eta: [1.0; 3],

@@ -243,7 +243,7 @@ pub const MATERIAL_TYPES: &[&str] = &[
 
 /// The named metals of `type conductor` (their constants live with the
 /// conductor model, `material::conductor::PRESETS`, in this order).
-pub const METAL_PRESETS: &[&str] = &["gold", "silver", "copper", "aluminium", "chromium"];
+pub const METAL_PRESETS: &[&str] = &crate::material::conductor::Metal::WORDS;
 
 /// The kinds of texture a parameter may be given.
 pub const TEXTURE_KINDS: &[&str] = &[

@@ -194,9 +194,9 @@ pub enum MaterialKind {
     Mix,
     /// A metal: a named one, or one of complex index `eta` + i`k`.
     Conductor {
-        /// The preset's name, if one is named (its constants are the
+        /// The named metal, if one is named (its constants are the
         /// renderer's).
-        preset: Option<&'static str>,
+        preset: Option<crate::material::conductor::Metal>,
         /// Real part of the index per channel.
         eta: Rgb,
         /// Extinction coefficient per channel.

@@ -5,7 +5,7 @@ use crate::check;
 use crate::check::scene::TextureInput;
 use crate::diag::{codes, Diagnostic, Diagnostics};
 use crate::lower::image::{Encoding, Images};
-use crate::material::conductor::{Conductor, PRESETS};
+use crate::material::conductor::Conductor;
 use crate::material::plastic::CoatFamily;
 use crate::material::plastic::Plastic;
 use crate::material::{self, microfacet, Input, Material, NormalInput, Textured};
@@ -144,8 +144,8 @@ fn kind(m: &check::Material, params: &mut material::Params, coats: &mut Coats) -
         check::MaterialKind::Mix => material::Kind::Lobes,
         check::MaterialKind::Conductor { preset, eta, k } => {
             // A metal's complex index relative to the medium outside.
-            let (eta, k) = match preset.and_then(|name| PRESETS.iter().find(|p| p.0 == name)) {
-                Some(&(_, eta, k)) => (Vec3::from_array(eta), Vec3::from_array(k)),
+            let (eta, k) = match preset.map(|metal| metal.constants()) {
+                Some((eta, k)) => (Vec3::from_array(eta), Vec3::from_array(k)),
                 None => (
                     DVec3::from_array(eta).as_vec3(),
                     DVec3::from_array(k).as_vec3(),

@@ -62,6 +62,37 @@ pub const PRESETS: &[(&str, [f32; 3], [f32; 3])] = &[
     ),
 ];
 
+/// A named metal: one row of [`PRESETS`], in its order.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Metal {
+    /// Gold.
+    Gold,
+    /// Silver.
+    Silver,
+    /// Copper.
+    Copper,
+    /// Aluminium.
+    Aluminium,
+    /// Chromium.
+    Chromium,
+}
+
+named_values!(Metal {
+    "gold" => Gold,
+    "silver" => Silver,
+    "copper" => Copper,
+    "aluminium" => Aluminium,
+    "chromium" => Chromium,
+});
+
+impl Metal {
+    /// The metal's η and k per linear-sRGB channel (its row of [`PRESETS`]).
+    pub fn constants(self) -> ([f32; 3], [f32; 3]) {
+        let (_, eta, k) = PRESETS[self as usize];
+        (eta, k)
+    }
+}
+
 impl Conductor {
     /// The metal with index `eta` + i`k`.
     pub fn new(eta: Vec3, k: Vec3) -> Conductor {
@@ -166,6 +197,15 @@ pub fn multiscatter_fraction(cos_o: f32, alpha: f32) -> f32 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn every_metal_is_its_row_of_the_presets() {
+        assert_eq!(Metal::NAMES.len(), PRESETS.len());
+        for (name, metal) in Metal::NAMES {
+            let row = PRESETS.iter().find(|p| p.0 == name).unwrap();
+            assert_eq!(metal.constants(), (row.1, row.2), "{name}");
+        }
+    }
 
     #[test]
     fn every_preset_is_a_metal() {

@@ -121,9 +121,9 @@ const fn t(name: &'static str, ty: Ty, example: &'static str) -> ParamSpec {
 }
 
 /// The help for a light's `color`: POV-Ray's light colour.
-const LIGHT_COLOR: &str = "POV-Ray's light `color` is `intensity rgb …` in ptsc: radiant intensity, falling off with the squared distance (POV-Ray's light does not fall off unless told: give about its colour times the squared distance to what it lights)";
+const LIGHT_COLOR: &str = "POV-Ray's light `color` is `intensity rgb …` in ptsc: radiant intensity, falling off with the squared distance (POV-Ray's light does not fall off unless told: give about 1.9 × its colour × the squared distance to what it lights)";
 /// [`LIGHT_COLOR`] spelt `colour`.
-const LIGHT_COLOUR: &str = "POV-Ray's light `colour` is `intensity rgb …` in ptsc: radiant intensity, falling off with the squared distance (POV-Ray's light does not fall off unless told: give about its colour times the squared distance to what it lights)";
+const LIGHT_COLOUR: &str = "POV-Ray's light `colour` is `intensity rgb …` in ptsc: radiant intensity, falling off with the squared distance (POV-Ray's light does not fall off unless told: give about 1.9 × its colour × the squared distance to what it lights)";
 
 /// A POV-Ray word refused in one kind of block, with the ptsc parameter
 /// that does its job and the help line (see [`ParamSpec::povray`]).
@@ -520,7 +520,7 @@ pub fn povray_positional(
         Torus => (&["major_radius", "minor_radius"], ""),
         Disk => (&["center", "normal", "radius"], ""),
         Triangle => (&["v0", "v1", "v2"], ""),
-        PointLight => (&["position", "intensity"], "ptsc's lights fall off with the squared distance (POV-Ray's do not unless told): an `intensity` of POV-Ray's colour times the squared distance to what it lights looks alike there"),
+        PointLight => (&["position", "intensity"], "ptsc's lights fall off with the squared distance (POV-Ray's do not unless told): an `intensity` of about 1.9 × POV-Ray's colour × the squared distance to what it lights looks alike there"),
         _ => return None,
     })
 }

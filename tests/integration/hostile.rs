@@ -650,3 +650,45 @@ fn work_that_statements_do_not_show() {
         run_generated(&case, "work.pts", text.as_bytes());
     }
 }
+
+#[test]
+fn povray_blocks_and_directives_at_the_largest_sizes() {
+    // POV-Ray's blocks are read whole, to their matching brace: nested as
+    // deep as braces go (128 with the sphere's), one level more refused
+    // as any nesting is; a directive line's braces likewise.
+    let nested = |n: usize| {
+        format!(
+            "{CAMERA}background rgb 1\nsphere {{ center <0, 0, 0> radius 1 {}{} }}\n#declare T = {}{}\n",
+            "pigment { ".repeat(n),
+            "}".repeat(n),
+            "{ ".repeat(n - 1),
+            "}".repeat(n - 1)
+        )
+    };
+    let case = generated(
+        "deepest POV-Ray blocks",
+        "// exit: 1\n// stderr: POV-Ray's `pigment { … }` is not ptsc\n// stderr: `#declare` is a POV-Ray directive",
+    );
+    run_generated(&case, "deep.pts", nested(127).as_bytes());
+    let case = generated(
+        "POV-Ray blocks too deep",
+        "// exit: 1\n// stderr: nesting deeper than 128",
+    );
+    run_generated(&case, "deeper.pts", nested(128).as_bytes());
+    // One block's content as long as a scene may be (256 MiB in all), with
+    // braces in its comments and strings: read in one pass (17 s, 0.84 GB
+    // peak on the 2-core machine).
+    let line = "color rgb <1, 0.5, 0.2> // a } in a comment\n \"a { in a string\" [0 rgb 1]\n";
+    let head =
+        format!("{CAMERA}background rgb 1\nsphere {{ center <0, 0, 0> radius 1 pigment {{\n");
+    let room = ptsc::source::MAX_SCENE_BYTES as usize - head.len() - 8;
+    let mut text = head;
+    text.push_str(&line.repeat(room / line.len()));
+    text.push_str("} }\n");
+    assert!(text.len() as u64 <= ptsc::source::MAX_SCENE_BYTES);
+    let case = generated(
+        "the longest POV-Ray block",
+        "// exit: 1\n// stderr: POV-Ray's `pigment { … }` is not ptsc\n// timeout: 120",
+    );
+    run_generated(&case, "long.pts", text.as_bytes());
+}

@@ -65,7 +65,7 @@ pub fn positional(
     let row = kind.and_then(povray_positional);
     let help = match row {
         Some((names, note)) => {
-            let rewritten = rewrite(names, values, env).unwrap_or_else(|| {
+            let rewritten = rewrite(kind, names, values, env).unwrap_or_else(|| {
                 names
                     .iter()
                     .map(|n| format!("{n} …"))
@@ -94,7 +94,12 @@ pub fn positional(
 /// `name value …` for `values` under `names`, from their evaluated values
 /// (a plane's distance becomes a point on it); `None` when a value does
 /// not evaluate or the counts differ.
-fn rewrite(names: &[&str], values: &[Expr], env: &mut Env) -> Option<String> {
+fn rewrite(
+    kind: Option<BlockKind>,
+    names: &[&str],
+    values: &[Expr],
+    env: &mut Env,
+) -> Option<String> {
     if names.len() != values.len() {
         return None;
     }
@@ -103,7 +108,7 @@ fn rewrite(names: &[&str], values: &[Expr], env: &mut Env) -> Option<String> {
     for v in values {
         evaluated.push(eval(v, env, &mut quiet)?);
     }
-    if names == ["normal", "point"] {
+    if kind == Some(BlockKind::Plane) {
         // POV-Ray's plane { N, D }: the points p with p · N/|N| = D.
         let (Value::Vector(n), Value::Num(d)) = (&evaluated[0], &evaluated[1]) else {
             return None;
@@ -115,7 +120,7 @@ fn rewrite(names: &[&str], values: &[Expr], env: &mut Env) -> Option<String> {
         let point: Vec<f64> = n.iter().map(|x| x / length * d).collect();
         evaluated[1] = Value::Vector(point.into());
     }
-    if names == ["min", "max"] {
+    if kind == Some(BlockKind::Box) {
         // POV-Ray takes any two opposite corners; ptsc the smaller first.
         if let (Value::Vector(a), Value::Vector(b)) = (&evaluated[0], &evaluated[1]) {
             let lo: Vec<f64> = a.iter().zip(b.iter()).map(|(x, y)| x.min(*y)).collect();

@@ -80,6 +80,18 @@ pub fn direct_light_mis(
     f * ls.li * cos * w / light_pdf
 }
 
+/// `c` scaled so that its largest component is at most `x`, its hue kept
+/// (a sample's bound and `render { clamp }`).
+#[inline]
+pub fn scaled_within(c: Vec3, x: f32) -> Vec3 {
+    let m = c.max_element();
+    if m > x {
+        c * (x / m)
+    } else {
+        c
+    }
+}
+
 /// The shadow ray from `hit` towards a light point at distance `dist` along
 /// `wi` (infinite for lights at infinity), and how far it must be free. The
 /// ray starts off the surface and is aimed at the light point itself (as

@@ -7,7 +7,7 @@
 //! sampling only), kept for comparison. `render { clamp X }` clamps indirect
 //! light (biased, off by default: see [`add`]).
 
-use super::{direct_light_mis, light_pdf, Integrator, T_MIN};
+use super::{direct_light_mis, light_pdf, scaled_within, Integrator, T_MIN};
 use crate::geometry::{offset_origin, Ray};
 use crate::ir::Scene;
 use crate::sampling::sampler::Sampler;
@@ -134,19 +134,9 @@ pub fn path_li(scene: &Scene, mut ray: Ray, sampler: &mut Sampler, nee: bool) ->
 #[inline]
 fn add(radiance: &mut Vec3, c: Vec3, vertex: u32, clamp: Option<f32>) {
     *radiance += match clamp {
-        Some(x) if vertex >= 2 => clamp_to(c, x),
+        Some(x) if vertex >= 2 => scaled_within(c, x),
         _ => c,
     };
-}
-
-/// `c` scaled so that its largest component is at most `x`.
-fn clamp_to(c: Vec3, x: f32) -> Vec3 {
-    let m = c.max_element();
-    if m > x {
-        c * (x / m)
-    } else {
-        c
-    }
 }
 
 #[cfg(test)]
@@ -156,8 +146,8 @@ mod tests {
     #[test]
     fn clamping_keeps_the_hue_and_only_touches_indirect_light() {
         let c = Vec3::new(40.0, 20.0, 10.0);
-        assert_eq!(clamp_to(c, 4.0), Vec3::new(4.0, 2.0, 1.0));
-        assert_eq!(clamp_to(c, 100.0), c);
+        assert_eq!(scaled_within(c, 4.0), Vec3::new(4.0, 2.0, 1.0));
+        assert_eq!(scaled_within(c, 100.0), c);
         for (vertex, clamp, want) in [
             (0, Some(4.0), c),
             (1, Some(4.0), c),

@@ -281,12 +281,7 @@ fn limit_sample(l: Vec3) -> Vec3 {
     if !l.is_finite() {
         return Vec3::ZERO;
     }
-    let big = l.max_element();
-    if big > MAX_SAMPLE {
-        l * (MAX_SAMPLE / big)
-    } else {
-        l
-    }
+    crate::integrator::scaled_within(l, MAX_SAMPLE)
 }
 
 #[cfg(test)]

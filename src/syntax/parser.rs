@@ -261,31 +261,34 @@ pub fn convert_error(
                     neg.push(n);
                 }
             }
-            // Operators could always continue an expression; they only add noise
-            // to the list unless nothing else fits.
-            let useful: Vec<&str> = names
+            // Noise unless nothing else fits: operators and indexes could
+            // always continue an expression, a component `.x` follow any
+            // operand, a colour stop is one more name where names are
+            // expected; and where a parameter's value is expected, the `{`
+            // of a foreign block and the `,` of positional values.
+            let value_expected = positives
                 .iter()
-                .copied()
-                .filter(|n| {
-                    ![Rule::bin_op, Rule::component_op, Rule::lbracket]
-                        .iter()
-                        .any(|r| rule_name(*r) == *n)
-                })
-                // A colour stop is one more name where names are expected;
-                // a component `.x` could follow any operand.
-                .filter(|n| *n != rule_name(Rule::color_stop) && *n != rule_name(Rule::member))
-                .collect();
-            // Where a parameter's value is expected, the `{` of a foreign
-            // block and the `,` of positional values are noise.
-            let value = rule_name(Rule::expr);
-            let useful: Vec<&str> = if useful.contains(&value) {
-                useful
-                    .into_iter()
-                    .filter(|n| !matches!(*n, "`{`" | "`,`"))
-                    .collect()
-            } else {
-                useful
+                .any(|r| rule_name(*r) == rule_name(Rule::expr));
+            let noise = |r: &Rule| {
+                matches!(
+                    r,
+                    Rule::bin_op
+                        | Rule::component_op
+                        | Rule::lbracket
+                        | Rule::color_stop
+                        | Rule::member
+                ) || (value_expected && matches!(r, Rule::lbrace | Rule::comma))
             };
+            let mut useful: Vec<&str> = Vec::new();
+            for n in positives
+                .iter()
+                .filter(|r| !noise(r))
+                .map(|r| rule_name(*r))
+            {
+                if !useful.contains(&n) {
+                    useful.push(n);
+                }
+            }
             (if useful.is_empty() { names } else { useful }, neg)
         }
         ErrorVariant::CustomError { .. } => (Vec::new(), Vec::new()),

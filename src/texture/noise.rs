@@ -176,22 +176,14 @@ impl NoiseParams {
     }
 }
 
+named_values!(NoiseKind {
+    "noise" => Noise,
+    "turbulence" => Turbulence,
+    "marble" => Marble,
+    "wood" => Wood,
+});
+
 impl NoiseKind {
-    /// The names of the patterns in the scene language.
-    pub const NAMES: [(&'static str, NoiseKind); 4] = [
-        ("noise", NoiseKind::Noise),
-        ("turbulence", NoiseKind::Turbulence),
-        ("marble", NoiseKind::Marble),
-        ("wood", NoiseKind::Wood),
-    ];
-
-    /// The pattern named `name`, if it is one of these.
-    pub fn from_name(name: &str) -> Option<NoiseKind> {
-        (Self::NAMES.iter())
-            .find(|(n, _)| *n == name)
-            .map(|&(_, k)| k)
-    }
-
     /// Whether its bands take `turbulence`, `frequency` and `phase`.
     pub fn has_bands(self) -> bool {
         matches!(self, NoiseKind::Marble | NoiseKind::Wood)

@@ -13,10 +13,7 @@
 
 use ptsc::compile::{compile_str, Options};
 use ptsc::diag::codes;
-use ptsc::integrator;
-use ptsc::render::render;
 use std::path::Path;
-use std::sync::atomic::AtomicBool;
 
 /// The room the lamps light: a floor, a wall and two shapes to cast
 /// shadows, no other light.
@@ -36,15 +33,7 @@ fn pixels(text: &str) -> Vec<[f32; 3]> {
         "{}",
         c.diagnostics.render_human(&c.sources, false)
     );
-    let ir = c.ir.expect("a scene without diagnostics lowers");
-    let integ = integrator::make(ir.settings.integrator);
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(1)
-        .build()
-        .unwrap();
-    let cancel = AtomicBool::new(false);
-    let r = pool.install(|| render(&ir, integ.as_ref(), &cancel, &|_| {}, &mut |_, _| {}));
-    r.film.pixels().iter().map(|p| p.to_array()).collect()
+    crate::render_pixels(&c.ir.expect("a scene without diagnostics lowers"))
 }
 
 /// The image's mean brightness (so that a test comparing images also

@@ -6,10 +6,7 @@
 
 use proptest::prelude::*;
 use ptsc::compile::{compile_str, Options};
-use ptsc::integrator;
-use ptsc::render::render;
 use std::path::Path;
-use std::sync::atomic::AtomicBool;
 
 /// The pixels of `text` rendered on one thread.
 fn pixels(text: &str) -> Vec<[f32; 3]> {
@@ -22,19 +19,7 @@ fn placed_pixels(text: &str) -> (bool, Vec<[f32; 3]>) {
     let c = compile_str(Path::new("instances.pts"), text, Options::default());
     let ir =
         c.ir.unwrap_or_else(|| panic!("{}\n{text}", c.diagnostics.render_human(&c.sources, false)));
-    (!ir.instances.is_empty(), render_pixels(&ir))
-}
-
-/// The pixels of a compiled scene rendered on one thread.
-fn render_pixels(ir: &ptsc::ir::Scene) -> Vec<[f32; 3]> {
-    let integ = integrator::make(ir.settings.integrator);
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(1)
-        .build()
-        .unwrap();
-    let cancel = AtomicBool::new(false);
-    let r = pool.install(|| render(ir, integ.as_ref(), &cancel, &|_| {}, &mut |_, _| {}));
-    r.film.pixels().iter().map(|p| p.to_array()).collect()
+    (!ir.instances.is_empty(), crate::render_pixels(&ir))
 }
 
 const HEAD: &str = "render { resolution <48, 36> samples 16 max_depth 4 }\n\
@@ -235,7 +220,7 @@ fn placed_meshes_and_moving_placements_match_their_flat_scenes() {
         let c = ptsc::compile::compile_file(&path, Options::default()).unwrap();
         let ir =
             c.ir.unwrap_or_else(|| panic!("{}", c.diagnostics.render_human(&c.sources, false)));
-        (!ir.instances.is_empty(), render_pixels(&ir))
+        (!ir.instances.is_empty(), crate::render_pixels(&ir))
     };
     let (shared, a) = render_at(&grouped);
     assert!(shared);

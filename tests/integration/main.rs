@@ -88,3 +88,16 @@ pub fn files_below(dir: &Path, extension: &str) -> Vec<PathBuf> {
 pub fn relative(path: &Path) -> PathBuf {
     path.strip_prefix(root()).unwrap_or(path).to_path_buf()
 }
+
+/// The pixels of a compiled scene rendered on one thread.
+pub fn render_pixels(ir: &ptsc::ir::Scene) -> Vec<[f32; 3]> {
+    let integ = ptsc::integrator::make(ir.settings.integrator);
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build()
+        .unwrap();
+    let cancel = std::sync::atomic::AtomicBool::new(false);
+    let r =
+        pool.install(|| ptsc::render::render(ir, integ.as_ref(), &cancel, &|_| {}, &mut |_, _| {}));
+    r.film.pixels().iter().map(|p| p.to_array()).collect()
+}

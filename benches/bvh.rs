@@ -123,7 +123,8 @@ fn bench(c: &mut Criterion) {
     };
     // The triangles' boxes, as lowering computes them (the scene keeps no
     // per-triangle record of a flat mesh).
-    let mesh = ptsc::lower::mesh::load(&mesh_path().expect("made above")).expect("the mesh loads");
+    let mesh = ptsc::lower::mesh::load(&ptsc::source::Disk, &mesh_path().expect("made above"))
+        .expect("the mesh loads");
     let bounds: Vec<Aabb> = mesh
         .triangles
         .iter()

@@ -14,7 +14,7 @@ use crate::check::{self, Animation, Budgets, MAX_LOOP_STATEMENTS};
 use crate::diag::{codes, Diagnostic, Diagnostics};
 use crate::ir::settings::Settings;
 use crate::lower::cache::LowerCache;
-use crate::source::SourceMap;
+use crate::source::{Asked, Disk, Files, SourceMap};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -44,6 +44,9 @@ pub struct Options<'a> {
     /// Whether the image goes elsewhere than the scene's `render { output
     /// … }` (the command line's `-o`): then that is not checked.
     pub output_elsewhere: bool,
+    /// Where the scene, its includes, meshes and images are read: the
+    /// disk, or files in memory (tests, an editor's unsaved buffers).
+    pub files: &'a dyn Files,
 }
 
 impl Default for Options<'_> {
@@ -58,6 +61,7 @@ impl Default for Options<'_> {
             animation: Animation::default(),
             fingerprint: false,
             output_elsewhere: false,
+            files: &Disk,
         }
     }
 }
@@ -72,9 +76,10 @@ pub struct Compiled {
     /// The scene ready to render, when there were no errors and lowering
     /// was asked for.
     pub ir: Option<crate::ir::Scene>,
-    /// Every file the scene read or names as an input, in order: the scene,
-    /// its includes and its meshes (those of a scene with errors only as far
-    /// as it was read). `watch` watches exactly these.
+    /// Every file the compile asked of its [`Files`], in the order first
+    /// asked, found or not: the scene, its includes, its meshes and images
+    /// (those of a scene with errors only as far as it was read). `watch`
+    /// watches exactly these.
     pub dependencies: Vec<PathBuf>,
     /// The image the scene's `render { output … }` names, if it does.
     pub output: Option<PathBuf>,
@@ -98,7 +103,7 @@ impl Compiled {
 /// root file is an I/O error (a usage problem), not a diagnostic.
 pub fn compile_file(path: &Path, options: Options) -> std::io::Result<Compiled> {
     let start = Instant::now();
-    let bytes = check::read_scene_file(path)?;
+    let bytes = check::read_scene_file(options.files, path)?;
     Ok(compile_from(path, bytes, options, start))
 }
 
@@ -118,14 +123,12 @@ fn compile_from(path: &Path, bytes: Vec<u8>, options: Options, start: Instant) -
         loop_statements: options.loop_statements,
         work: options.work,
     };
-    let checked = check::check_bytes_within(path, bytes, budgets, options.animation);
+    // The root was read already (or given): it is asked first all the same.
+    let asked = Asked::new(options.files);
+    asked.note(path);
+    let files: &dyn Files = &asked;
+    let checked = check::check_bytes_within(path, bytes, budgets, options.animation, files);
     let check_seconds = start.elapsed().as_secs_f64();
-    let mut dependencies: Vec<PathBuf> = checked
-        .sources
-        .files()
-        .iter()
-        .map(|f| f.path.clone())
-        .collect();
     let mut compiled = Compiled {
         sources: checked.sources,
         diagnostics: checked.diagnostics,
@@ -137,11 +140,10 @@ fn compile_from(path: &Path, bytes: Vec<u8>, options: Options, start: Instant) -
         lower_seconds: 0.0,
     };
     if let Some(scene) = checked.scene {
-        let (meshes, output) = crate::lower::named_files(&scene);
-        dependencies.extend(meshes);
-        compiled.output = output;
+        compiled.output = scene.render.output.clone();
         if options.fingerprint {
             compiled.fingerprint = Some(crate::lower::fingerprint(
+                files,
                 &compiled.sources,
                 &scene,
                 options.animation,
@@ -151,18 +153,21 @@ fn compile_from(path: &Path, bytes: Vec<u8>, options: Options, start: Instant) -
         let cache = options.cache.unwrap_or(&mut one_off);
         let mut warnings = crate::diag::Diagnostics::new();
         if options.lower {
-            match crate::lower::lower(&scene, options.adjust, cache, &mut warnings) {
+            match crate::lower::lower(&scene, options.adjust, (cache, files), &mut warnings) {
                 Ok(ir) => compiled.ir = Some(ir),
                 Err(d) => compiled.diagnostics.extend(d),
             }
         } else {
-            compiled
-                .diagnostics
-                .extend(crate::lower::validate(&scene, cache, &mut warnings));
+            compiled.diagnostics.extend(crate::lower::validate(
+                &scene,
+                (cache, files),
+                &mut warnings,
+            ));
         }
         compiled.diagnostics.extend(warnings);
         if !options.output_elsewhere {
-            let output = check_scene_output(&scene.render, options.animation.frame, &dependencies);
+            let inputs = asked.paths();
+            let output = check_scene_output(&scene.render, options.animation.frame, &inputs);
             if let Some(d) = output {
                 compiled.diagnostics.push(d);
                 // No image without the place to write it.
@@ -174,7 +179,7 @@ fn compile_from(path: &Path, bytes: Vec<u8>, options: Options, start: Instant) -
         compiled.diagnostics.dedup();
         compiled.lower_seconds = start.elapsed().as_secs_f64() - check_seconds;
     }
-    compiled.dependencies = dependencies;
+    compiled.dependencies = asked.paths();
     compiled
 }
 

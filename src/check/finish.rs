@@ -4,7 +4,7 @@
 
 use super::*;
 
-impl Checker {
+impl Checker<'_> {
     /// Runs the whole-scene checks and assembles the result.
     pub(super) fn finish(mut self) -> Checked {
         let root = FileId(0);
@@ -176,7 +176,7 @@ impl Checker {
     }
 }
 
-impl Checker {
+impl Checker<'_> {
     /// Gives the objects that named a material before its declaration
     /// their material, and reports the names never declared (with a
     /// did-you-mean, whose material then does not count as unused: the
@@ -242,7 +242,7 @@ impl Checker {
     }
 }
 
-impl Checker {
+impl Checker<'_> {
     /// Adds to every diagnostic in an included file the chain of includes
     /// that led to it ("included from"), nearest first.
     fn show_include_chains(&mut self) {

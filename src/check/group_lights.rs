@@ -8,7 +8,7 @@
 use super::*;
 use crate::check::domain::{number, MAX_MAGNITUDE};
 
-impl Checker {
+impl Checker<'_> {
     /// Counts what one placement of the group just declared makes: its
     /// objects and lights and those of the groups it places.
     pub(super) fn count_placements(&mut self, index: usize) {

@@ -12,7 +12,7 @@ use std::sync::Arc;
 /// exact in a 64-bit float (`i + 1` would be `i`).
 const MAX_BOUND: f64 = 9_007_199_254_740_992.0;
 
-impl Checker {
+impl Checker<'_> {
     /// Starts charging statements to the loop (or repeated include) at
     /// `span`: its statements, and the expressions they evaluate, cost.
     pub(super) fn enter_loop(&mut self, span: Span) {

@@ -20,7 +20,7 @@ pub use scene::*;
 
 pub(crate) use crate::diag::group_digits;
 use crate::diag::{codes, Diagnostic, Diagnostics};
-use crate::source::{FileId, FileKind, ReadError, SourceMap, MAX_SCENE_BYTES};
+use crate::source::{Disk, FileId, FileKind, Files, ReadError, SourceMap, MAX_SCENE_BYTES};
 use crate::span::Span;
 use crate::syntax::ast::{BlockKind, Entry, MaterialRef, Statement};
 use eval::{eval, Binding, Env, Value};
@@ -89,15 +89,15 @@ pub struct Checked {
 /// Reads, parses and checks the scene at `path` and everything it includes.
 /// An unreadable root file is an I/O error (exit code 2), not a diagnostic.
 pub fn check_file(path: &Path) -> std::io::Result<Checked> {
-    Ok(check_bytes(path, read_scene_file(path)?))
+    Ok(check_bytes(path, read_scene_file(&Disk, path)?))
 }
 
 /// The bytes of the scene file at `path`, read up to [`MAX_SCENE_BYTES`]
 /// like every file of a scene. It must be a regular file: a FIFO (or
 /// `<(generate)`) would wait for its writer and a device could be endless
 /// (the message says what the path is).
-pub fn read_scene_file(path: &Path) -> std::io::Result<Vec<u8>> {
-    crate::source::read_file(path, MAX_SCENE_BYTES).map_err(|e| match e {
+pub fn read_scene_file(files: &dyn Files, path: &Path) -> std::io::Result<Vec<u8>> {
+    files.read(path, MAX_SCENE_BYTES).map_err(|e| match e {
         ReadError::Io(e) => e,
         ReadError::NotFound => std::io::Error::new(std::io::ErrorKind::NotFound, "no such file"),
         other => std::io::Error::other(other.to_string()),
@@ -107,7 +107,7 @@ pub fn read_scene_file(path: &Path) -> std::io::Result<Vec<u8>> {
 /// Checks a scene given as bytes, as if read from `path` (includes are
 /// resolved relative to it).
 pub fn check_bytes(path: &Path, bytes: Vec<u8>) -> Checked {
-    check_bytes_within(path, bytes, Budgets::default(), Animation::default())
+    check_bytes_within(path, bytes, Budgets::default(), Animation::default(), &Disk)
 }
 
 /// What the loops and expressions of one compile may do: the statements
@@ -132,14 +132,16 @@ impl Default for Budgets {
 }
 
 /// [`check_bytes`] with other budgets (a fuzzer keeps its inputs fast
-/// with small ones; the rules are the same), at a frame of an animation.
+/// with small ones; the rules are the same), at a frame of an animation,
+/// its includes (and mesh files) read from `files`.
 pub fn check_bytes_within(
     path: &Path,
     bytes: Vec<u8>,
     budgets: Budgets,
     animation: Animation,
+    files: &dyn Files,
 ) -> Checked {
-    let mut c = Checker::new(budgets);
+    let mut c = Checker::new(budgets, files);
     let [frame, clock, clock_delta, pi, x, y, z] = PREDEFINED;
     let axis = |v: [f64; 3]| Value::Vector(v.into());
     c.env.predefined = vec![
@@ -157,7 +159,7 @@ pub fn check_bytes_within(
         c.diags.push(invalid_utf8(id, at));
     }
     // The root file opens the include stack, so that including it is a cycle too.
-    let root = std::fs::canonicalize(path).unwrap_or_else(|_| path.to_path_buf());
+    let root = files.canonical(path);
     c.include_stack.push((root, Span::new(id, 0, 0)));
     c.run_file(id);
     c.finish()
@@ -217,7 +219,9 @@ struct ObjectRef {
     index: usize,
 }
 
-struct Checker {
+struct Checker<'f> {
+    /// Where files are read: the front end asks nothing of the disk itself.
+    files: &'f dyn Files,
     sources: SourceMap,
     diags: Diagnostics,
     env: Env,
@@ -277,7 +281,7 @@ struct Checker {
     syntax_failed: bool,
 }
 
-impl Checker {
+impl<'f> Checker<'f> {
     /// Where the scene's light at infinity (background, environment or
     /// sky) was given, if it has one yet.
     fn infinite_light(&self) -> Option<Span> {
@@ -286,8 +290,9 @@ impl Checker {
             .or(self.sky.as_ref().map(|s| s.span))
     }
 
-    fn new(budgets: Budgets) -> Self {
+    fn new(budgets: Budgets, files: &'f dyn Files) -> Self {
         Checker {
+            files,
             sources: SourceMap::new(),
             // A loop meets its body's problems once per iteration: one each.
             diags: Diagnostics::folding(),
@@ -805,7 +810,7 @@ impl Checker {
 
     fn include(&mut self, path: &str, path_span: Span, file: FileId) {
         let target = folder_of(&self.sources, file).join(path);
-        let canonical = std::fs::canonicalize(&target).unwrap_or_else(|_| target.clone());
+        let canonical = self.files.canonical(&target);
         if let Some(pos) = self.include_stack.iter().position(|(p, _)| *p == canonical) {
             let mut d = Diagnostic::error(
                 codes::INCLUDE_CYCLE,
@@ -848,7 +853,7 @@ impl Checker {
             return;
         }
         let room = MAX_SCENE_BYTES.saturating_sub(self.sources.total_bytes() as u64);
-        let bytes = match crate::source::read_file(&target, room) {
+        let bytes = match self.files.read(&target, room) {
             Ok(b) => b,
             Err(e) => {
                 let (reason, help) = match &e {
@@ -1008,7 +1013,7 @@ impl Checker {
                     BlockKind::Mesh => folder_of(&self.sources, file),
                     _ => Path::new(""),
                 };
-                let shape = objects::shape(kind, &p, base, &mut self.diags);
+                let shape = objects::shape(kind, &p, (base, self.files), &mut self.diags);
                 let transform: DMat4 = objects::transform(&p, &mut self.diags);
                 let velocity = objects::velocity(&p);
                 if let (Some(shape), Some(material)) = (shape, material) {

@@ -6,7 +6,7 @@ use super::params::{Params, Val, SHAPE_COMMON};
 use super::scene::*;
 use crate::diag::codes;
 use crate::diag::{Diagnostic, Diagnostics};
-use crate::source::FileKind;
+use crate::source::{Files, ReadError};
 use crate::syntax::ast::BlockKind;
 use glam::{DMat4, DVec3};
 use std::path::Path;
@@ -77,7 +77,7 @@ pub fn transform(p: &Params, diags: &mut Diagnostics) -> DMat4 {
 pub fn shape(
     kind: BlockKind,
     p: &Params,
-    base_dir: &Path,
+    (base_dir, files): (&Path, &dyn Files),
     diags: &mut Diagnostics,
 ) -> Option<Shape> {
     let schema = super::params::shape_schema(kind);
@@ -198,9 +198,9 @@ pub fn shape(
             }
             // Only the path's kind (a `stat`, which never waits): lowering
             // reads the file, bounded, and reports what else is wrong.
-            match std::fs::metadata(&path).map(|m| FileKind::of(&m)) {
-                Ok(None) => {}
-                Ok(Some(kind)) => {
+            match files.exists(&path) {
+                Ok(()) => {}
+                Err(ReadError::NotRegular(kind)) => {
                     r.diags.push(
                         Diagnostic::error(
                             codes::MESH_FILE,

@@ -6,13 +6,14 @@
 use super::mesh::{self, MeshData};
 use super::Geometry;
 use crate::check;
+use crate::source::files::Stamp;
+use crate::source::Files;
 use glam::DVec3;
 use std::collections::hash_map::DefaultHasher;
 use std::collections::HashMap;
 use std::hash::{Hash, Hasher};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
-use std::time::SystemTime;
 
 /// Meshes and geometry kept from earlier compiles.
 #[derive(Default)]
@@ -32,14 +33,10 @@ pub struct LowerCache {
 
 struct CachedMesh {
     /// Length and modification time: when both match, the file is not read.
-    stamp: (u64, Option<SystemTime>),
+    stamp: Option<Stamp>,
     /// Hash of the file's bytes: a touched but unchanged file is not re-parsed.
     content: u64,
     data: Arc<MeshData>,
-}
-
-fn stamp(path: &Path) -> (u64, Option<SystemTime>) {
-    std::fs::metadata(path).map_or((u64::MAX, None), |m| (m.len(), m.modified().ok()))
 }
 
 fn hash_bytes(bytes: &[u8]) -> u64 {
@@ -64,14 +61,14 @@ impl LowerCache {
     }
 
     /// The mesh at `path`, parsed once per content.
-    pub fn mesh(&mut self, path: &Path) -> Result<Arc<MeshData>, String> {
-        let now = stamp(path);
+    pub fn mesh(&mut self, files: &dyn Files, path: &Path) -> Result<Arc<MeshData>, String> {
+        let now = files.stamp(path);
         if let Some(c) = self.meshes.get(path) {
-            if c.stamp == now && now.1.is_some() {
+            if c.stamp == now && now.is_some() {
                 return Ok(c.data.clone());
             }
         }
-        let bytes = mesh::read(path)?;
+        let bytes = mesh::read(files, path)?;
         if self.one_off {
             self.mesh_loads += 1;
             return mesh::parse(path, &bytes).map(Arc::new);
@@ -100,7 +97,7 @@ impl LowerCache {
     /// transform, motion and mesh content, and the shutter. Materials, the
     /// camera (but its shutter), lights and settings are left out, and so are
     /// source spans, so that edits elsewhere in the file keep the geometry.
-    pub fn geometry_key(&mut self, scene: &check::Scene) -> u64 {
+    pub fn geometry_key(&mut self, files: &dyn Files, scene: &check::Scene) -> u64 {
         let mut h = DefaultHasher::new();
         let number = |x: f64, h: &mut DefaultHasher| x.to_bits().hash(h);
         let points = |ps: &[DVec3], h: &mut DefaultHasher| {
@@ -165,7 +162,7 @@ impl LowerCache {
                     smooth.hash(&mut h);
                     // The content, through the mesh cache (a missing file hashes
                     // as such and fails later, in lowering, with a diagnostic).
-                    match self.mesh(path) {
+                    match self.mesh(files, path) {
                         Ok(_) => self.meshes[path.as_path()].content.hash(&mut h),
                         Err(e) => e.hash(&mut h),
                     }
@@ -201,7 +198,7 @@ mod tests {
         lower(
             c.scene.as_ref().unwrap(),
             &|_| {},
-            cache,
+            (cache, &crate::source::Disk),
             &mut Default::default(),
         )
         .unwrap()

@@ -8,6 +8,7 @@ use crate::light::environment::EnvironmentMap;
 use crate::light::sky::{SkyParameters, SunSky, SUN_APERTURE_DEGREES};
 use crate::light::Light;
 use crate::lower::image::{Encoding, Images};
+use crate::source::Files;
 use glam::{DMat3, DVec3, Mat3, Vec3};
 use std::sync::Arc;
 
@@ -16,18 +17,20 @@ use std::sync::Arc;
 /// twice as wide as high is a warning in `warnings`.
 pub fn lower_environment(
     e: &check::scene::Environment,
-    images: &mut Images,
+    (images, files): (&mut Images, &dyn Files),
     diags: &mut Diagnostics,
     warnings: &mut Diagnostics,
 ) -> Option<Arc<EnvironmentMap>> {
     let sampling = |image: &crate::texture::image::Image| {
         EnvironmentMap::sampling_bytes(image.width, image.height)
     };
-    let image = match images.get(&e.path, Encoding::ByFile).and_then(|image| {
-        // Its distribution counts with the scene's images.
-        images.charge(sampling(&image), "its sampling distribution")?;
-        Ok(image)
-    }) {
+    let image = match images
+        .get(files, &e.path, Encoding::ByFile)
+        .and_then(|image| {
+            // Its distribution counts with the scene's images.
+            images.charge(sampling(&image), "its sampling distribution")?;
+            Ok(image)
+        }) {
         Ok(image) if image.height >= 2 => image,
         Ok(_) => {
             diags.push(

@@ -21,7 +21,7 @@
 //! farm's nodes and a state file saved months ago need.
 
 use crate::check::{self, Animation};
-use crate::source::SourceMap;
+use crate::source::{Files, ReadError, SourceMap};
 use std::io::Read;
 
 /// FNV-1a's offset basis and prime (Fowler, Noll, Vo; IETF draft
@@ -32,7 +32,12 @@ const FNV_PRIME: u64 = 0x0000_0100_0000_01b3;
 
 /// The fingerprint of a scene: its files' significant text, the frame, and
 /// its data files' bytes (see the module's documentation).
-pub fn fingerprint(sources: &SourceMap, scene: &check::Scene, animation: Animation) -> u64 {
+pub fn fingerprint(
+    files: &dyn Files,
+    sources: &SourceMap,
+    scene: &check::Scene,
+    animation: Animation,
+) -> u64 {
     let mut hash = FNV_OFFSET;
     for file in sources.files() {
         hash = fnv(hash, &significant_text(&file.text));
@@ -41,7 +46,7 @@ pub fn fingerprint(sources: &SourceMap, scene: &check::Scene, animation: Animati
     hash = fnv(hash, &animation.frame.to_le_bytes());
     hash = fnv(hash, &animation.clock.to_bits().to_le_bytes());
     for (path, limit) in super::data_files(scene) {
-        hash = hash_file(hash, &path, limit);
+        hash = hash_file(hash, files.open(&path, limit), limit);
     }
     hash
 }
@@ -70,14 +75,11 @@ fn fnv_words(mut hash: u64, bytes: &[u8]) -> u64 {
 /// waiting and read no further than the limit however the file grows. Any
 /// other file (a device, a FIFO, one too large) hashes as unreadable
 /// without being read: lowering reports it.
-fn hash_file(hash: u64, path: &std::path::Path, limit: u64) -> u64 {
+fn hash_file(hash: u64, file: Result<Box<dyn Read + '_>, ReadError>, limit: u64) -> u64 {
     let unreadable = |hash| fnv(hash, b"unreadable");
-    let Ok((file, len)) = crate::source::open_regular(path) else {
+    let Ok(file) = file else {
         return unreadable(hash);
     };
-    if len > limit {
-        return unreadable(hash);
-    }
     let mut file = file.take(limit + 1);
     // Pieces of a multiple of 8 bytes: the words fall the same way however
     // the reads split the file.
@@ -175,6 +177,7 @@ fn significant_text(text: &str) -> Vec<u8> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::source::Disk;
 
     #[test]
     fn fnv_matches_its_published_values() {
@@ -198,30 +201,46 @@ mod tests {
         let path = dir.path().join("m.ply");
         let bytes: Vec<u8> = (0..200_003u32).map(|i| (i * 7) as u8).collect();
         std::fs::write(&path, &bytes).unwrap();
-        let h = hash_file(FNV_OFFSET, &path, 1 << 20);
+        let h = hash_file(FNV_OFFSET, Disk.open(&path, 1 << 20), 1 << 20);
         assert_eq!(h, fnv_words(FNV_OFFSET, &bytes));
         // Over the limit (a sparse terabyte, or a small limit): not read.
-        assert_eq!(hash_file(FNV_OFFSET, &path, 1000), unreadable);
+        assert_eq!(
+            hash_file(FNV_OFFSET, Disk.open(&path, 1000), 1000),
+            unreadable
+        );
         let sparse = dir.path().join("big.png");
         let f = std::fs::File::create(&sparse).unwrap();
         if f.set_len(1 << 40).is_ok() {
             let t = std::time::Instant::now();
-            assert_eq!(hash_file(FNV_OFFSET, &sparse, 1 << 30), unreadable);
+            assert_eq!(
+                hash_file(FNV_OFFSET, Disk.open(&sparse, 1 << 30), 1 << 30),
+                unreadable
+            );
             assert!(t.elapsed().as_secs_f64() < 1.0);
         }
         // A device, a folder: never opened for reading.
         if std::path::Path::new("/dev/zero").exists() {
             assert_eq!(
-                hash_file(FNV_OFFSET, std::path::Path::new("/dev/zero"), 1 << 30),
+                hash_file(
+                    FNV_OFFSET,
+                    Disk.open(std::path::Path::new("/dev/zero"), 1 << 30),
+                    1 << 30
+                ),
                 unreadable
             );
         }
-        assert_eq!(hash_file(FNV_OFFSET, dir.path(), 1 << 30), unreadable);
+        assert_eq!(
+            hash_file(FNV_OFFSET, Disk.open(dir.path(), 1 << 30), 1 << 30),
+            unreadable
+        );
         // A FIFO without a writer: refused at once, not waited on.
         let fifo = dir.path().join("f.obj");
         let made = std::process::Command::new("mkfifo").arg(&fifo).status();
         if made.is_ok_and(|s| s.success()) {
-            assert_eq!(hash_file(FNV_OFFSET, &fifo, 1 << 30), unreadable);
+            assert_eq!(
+                hash_file(FNV_OFFSET, Disk.open(&fifo, 1 << 30), 1 << 30),
+                unreadable
+            );
         }
     }
 
@@ -253,7 +272,7 @@ mod tests {
                 frame,
                 ..Animation::default()
             };
-            fingerprint(&c.sources, &c.scene.expect("checks"), animation)
+            fingerprint(&Disk, &c.sources, &c.scene.expect("checks"), animation)
         };
         let base = fp(
             "render { samples 4 }\nsphere { center <0,0,0> radius 1 }",

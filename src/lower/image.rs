@@ -20,7 +20,8 @@
 //!   reads before it decodes a new one, so that it never holds more either.
 
 use super::decode::{self, Format, Header, Limits};
-use crate::source::human_bytes;
+use crate::source::files::Stamp;
+use crate::source::{human_bytes, Files};
 use crate::texture::image::Image;
 use crate::texture::texels::{Curve, Texels};
 use std::collections::hash_map::DefaultHasher;
@@ -28,7 +29,6 @@ use std::collections::{HashMap, HashSet};
 use std::hash::{Hash, Hasher};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
-use std::time::SystemTime;
 
 /// The largest image file read, in bytes.
 pub const MAX_IMAGE_BYTES: u64 = 1 << 30;
@@ -90,13 +90,9 @@ impl Default for Images {
 
 #[derive(Debug)]
 struct CachedImage {
-    stamp: (u64, Option<SystemTime>),
+    stamp: Option<Stamp>,
     content: u64,
     texels: Arc<Texels>,
-}
-
-fn stamp(path: &Path) -> (u64, Option<SystemTime>) {
-    std::fs::metadata(path).map_or((u64::MAX, None), |m| (m.len(), m.modified().ok()))
 }
 
 impl Images {
@@ -131,15 +127,21 @@ impl Images {
     /// error is a sentence for a diagnostic. A file is known by its
     /// canonical path: named from two folders, or through a link, it is
     /// still read once.
-    pub fn get(&mut self, path: &Path, encoding: Encoding) -> Result<Image, String> {
-        let key = std::fs::canonicalize(path).unwrap_or_else(|_| path.to_path_buf());
-        let now = stamp(path);
+    pub fn get(
+        &mut self,
+        files: &dyn Files,
+        path: &Path,
+        encoding: Encoding,
+    ) -> Result<Image, String> {
+        let key = files.canonical(path);
+        let now = files.stamp(path);
         if let Some(c) = self.loaded.get(&key) {
-            if self.used.contains(&key) || (c.stamp == now && now.1.is_some()) {
+            if self.used.contains(&key) || (c.stamp == now && now.is_some()) {
                 return self.share(&key, encoding);
             }
         }
-        let bytes = crate::source::read_file(path, MAX_IMAGE_BYTES)
+        let bytes = files
+            .read(path, MAX_IMAGE_BYTES)
             .map_err(|e| format!("cannot read the file: {e}"))?;
         let content = {
             let mut h = DefaultHasher::new();

@@ -22,6 +22,7 @@ use crate::check::{self, Instance, Object};
 use crate::diag::{codes, Diagnostic, Diagnostics};
 use crate::geometry::Aabb;
 use crate::ir::instance::{Instances, Placement, Prototype, INHERITED};
+use crate::source::Files;
 use crate::span::Span;
 use glam::{Affine3A, DMat4, DVec3};
 use std::collections::HashMap;
@@ -200,7 +201,7 @@ pub struct Gathered {
 pub fn gather(
     scene: &check::Scene,
     Split { shared, groups, .. }: &Split,
-    cache: &mut LowerCache,
+    (cache, files): (&mut LowerCache, &dyn Files),
 ) -> Result<Gathered, Diagnostics> {
     let mut diags = Diagnostics::new();
     let shutter = (scene.camera.shutter.0 as f32, scene.camera.shutter.1 as f32);
@@ -240,7 +241,7 @@ pub fn gather(
             }
         }
         let prototype = *prototype_of.entry(leaf.group).or_insert_with(|| {
-            match shapes::gather(&group.objects, scene.camera.shutter, cache) {
+            match shapes::gather(&group.objects, scene.camera.shutter, (cache, files)) {
                 Ok(g) => {
                     out.bounds.push(g.bounds());
                     let parts = (object_materials(group), object_frames(group));

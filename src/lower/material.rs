@@ -9,6 +9,7 @@ use crate::material::conductor::Conductor;
 use crate::material::plastic::CoatFamily;
 use crate::material::plastic::Plastic;
 use crate::material::{self, microfacet, Input, Material, NormalInput, Textured};
+use crate::source::Files;
 use crate::texture::{ColorMap, Pattern, Space, Texture};
 use glam::{Affine3A, DVec3, Vec3};
 use std::collections::HashMap;
@@ -50,7 +51,7 @@ impl Coats {
 pub fn lower_material(
     m: &check::Material,
     textures: &mut Vec<Texture>,
-    images: &mut Images,
+    (images, files): (&mut Images, &dyn Files),
     coats: &mut Coats,
     diags: &mut Diagnostics,
 ) -> Material {
@@ -93,7 +94,7 @@ pub fn lower_material(
         tangent: uneven,
     };
     for (input, t) in &m.textures {
-        let Some(texture) = lower_texture(t, input.is_data(), images, diags) else {
+        let Some(texture) = lower_texture(t, input.is_data(), (images, files), diags) else {
             continue;
         };
         // What the parameter stands for in the lobes' weights and in a
@@ -191,7 +192,7 @@ fn encoding(color_space: Option<check::scene::ColorSpace>, data: bool) -> Encodi
 fn lower_texture(
     t: &check::Texture,
     data: bool,
-    images: &mut Images,
+    (images, files): (&mut Images, &dyn Files),
     diags: &mut Diagnostics,
 ) -> Option<Texture> {
     let pattern = match &t.kind {
@@ -208,7 +209,7 @@ fn lower_texture(
             wrap,
             color_space,
             ..
-        } => match images.get(path, encoding(*color_space, data)) {
+        } => match images.get(files, path, encoding(*color_space, data)) {
             Ok(image) => Pattern::Image { image, wrap: *wrap },
             Err(e) => {
                 diags.push(

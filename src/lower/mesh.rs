@@ -2,7 +2,7 @@
 //! little and big endian; our own reader: the format is small and we want
 //! exact control over errors and memory).
 
-use crate::source::MAX_MESH_BYTES;
+use crate::source::{Files, MAX_MESH_BYTES};
 use glam::{Vec2, Vec3};
 use std::path::Path;
 
@@ -21,13 +21,13 @@ pub struct MeshData {
 }
 
 /// Reads an OBJ or PLY file; the error is a sentence for a diagnostic.
-pub fn load(path: &Path) -> Result<MeshData, String> {
-    parse(path, &read(path)?)
+pub fn load(files: &dyn Files, path: &Path) -> Result<MeshData, String> {
+    parse(path, &read(files, path)?)
 }
 
 /// The bytes of a mesh file, at most [`MAX_MESH_BYTES`].
-pub fn read(path: &Path) -> Result<Vec<u8>, String> {
-    crate::source::read_file(path, MAX_MESH_BYTES).map_err(|e| format!("cannot read the file: {e}"))
+pub fn read(files: &dyn Files, path: &Path) -> Result<Vec<u8>, String> {
+    (files.read(path, MAX_MESH_BYTES)).map_err(|e| format!("cannot read the file: {e}"))
 }
 
 /// Parses the bytes of an OBJ or PLY file (the format follows `path`'s

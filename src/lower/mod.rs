@@ -30,6 +30,7 @@ use crate::light::environment::EnvironmentMap;
 use crate::light::selection::{LightSampler, Selectable};
 use crate::light::{Emitter, Light};
 use crate::material::Material;
+use crate::source::Files;
 use crate::texture::Texture;
 use cache::LowerCache;
 use camera::lower_camera;
@@ -59,7 +60,7 @@ fn v3(v: DVec3) -> Vec3 {
 pub fn lower(
     scene: &check::Scene,
     adjust: &dyn Fn(&mut Settings),
-    cache: &mut LowerCache,
+    (cache, files): (&mut LowerCache, &dyn Files),
     warnings: &mut Diagnostics,
 ) -> Result<Scene, Diagnostics> {
     // Placements of groups placed once become the scene's objects; the
@@ -67,7 +68,7 @@ pub fn lower(
     let split = instances::split(scene);
     let flat = split.scene.as_ref().unwrap_or(scene);
     let coats = material::Coats::default();
-    let prepared = prepare(scene, flat, &split, adjust, (cache, coats), warnings)?;
+    let prepared = prepare(scene, flat, &split, adjust, (cache, files, coats), warnings)?;
     Ok(prepared.build(flat, cache))
 }
 
@@ -77,13 +78,20 @@ pub fn lower(
 /// `render` give one verdict.
 pub fn validate(
     scene: &check::Scene,
-    cache: &mut LowerCache,
+    (cache, files): (&mut LowerCache, &dyn Files),
     warnings: &mut Diagnostics,
 ) -> Diagnostics {
     let split = instances::split(scene);
     let flat = split.scene.as_ref().unwrap_or(scene);
     let coats = material::Coats::for_checking();
-    match prepare(scene, flat, &split, &|_| {}, (cache, coats), warnings) {
+    match prepare(
+        scene,
+        flat,
+        &split,
+        &|_| {},
+        (cache, files, coats),
+        warnings,
+    ) {
         Ok(_) => Diagnostics::new(),
         Err(errors) => errors,
     }
@@ -119,7 +127,7 @@ fn prepare(
     flat: &check::Scene,
     split: &instances::Split,
     adjust: &dyn Fn(&mut Settings),
-    (cache, mut coats): (&mut LowerCache, material::Coats),
+    (cache, files, mut coats): (&mut LowerCache, &dyn Files, material::Coats),
     warnings: &mut Diagnostics,
 ) -> Result<Prepared, Diagnostics> {
     let mut settings = flat.render.settings.clone();
@@ -132,17 +140,18 @@ fn prepare(
         &mut cache.images
     };
     let materials: Vec<Material> = (flat.materials.iter())
-        .map(|m| lower_material(m, &mut textures, images, &mut coats, &mut diags))
+        .map(|m| lower_material(m, &mut textures, (images, files), &mut coats, &mut diags))
         .collect();
     let environment = (flat.environment.as_ref())
-        .and_then(|e| environment::lower_environment(e, images, &mut diags, warnings));
+        .and_then(|e| environment::lower_environment(e, (images, files), &mut diags, warnings));
     images.keep_only_used();
-    let placements = instances::gather(original, split, cache).map_err(|d| diags.extend(d));
-    let key = (!cache.is_one_off()).then(|| cache.geometry_key(flat));
+    let placements =
+        instances::gather(original, split, (cache, files)).map_err(|d| diags.extend(d));
+    let key = (!cache.is_one_off()).then(|| cache.geometry_key(files, flat));
     let shapes = match key.and_then(|k| cache.reuse_geometry(k)) {
         // Shared, not copied: materials and lights live outside the geometry.
         Some(g) => Ok(Shapes::Kept(g)),
-        None => shapes::gather(&flat.objects, flat.camera.shutter, cache)
+        None => shapes::gather(&flat.objects, flat.camera.shutter, (cache, files))
             .map(|g| Shapes::Gathered(g, key))
             .map_err(|d| diags.extend(d)),
     };
@@ -222,14 +231,6 @@ fn warn_missing_texcoords(
             ),
         );
     }
-}
-
-/// The files a checked scene names besides its sources: the meshes and
-/// texture images it reads, and the image its `render { output … }` asks
-/// for.
-pub fn named_files(scene: &check::Scene) -> (Vec<PathBuf>, Option<PathBuf>) {
-    let inputs = data_files(scene).into_iter().map(|(p, _)| p).collect();
-    (inputs, scene.render.output.clone())
 }
 
 /// The data files a checked scene reads, in order (its objects' meshes,

@@ -18,6 +18,7 @@ use crate::geometry::texcoord;
 use crate::geometry::torus::Torus;
 use crate::geometry::Aabb;
 use crate::ir::Prim;
+use crate::source::Files;
 use glam::{DMat4, DVec3, Vec2, Vec3};
 use std::collections::HashMap;
 use std::path::PathBuf;
@@ -85,6 +86,7 @@ struct Gathering<'a> {
     meshes: HashMap<PathBuf, Result<Arc<MeshData>, String>>,
     diags: Diagnostics,
     cache: &'a mut LowerCache,
+    files: &'a dyn Files,
 }
 
 /// The primitives of `objects` over the shutter interval, or every problem
@@ -92,7 +94,7 @@ struct Gathering<'a> {
 pub fn gather(
     objects: &[check::Object],
     (t0, t1): (f64, f64),
-    cache: &mut LowerCache,
+    (cache, files): (&mut LowerCache, &dyn Files),
 ) -> Result<Gathered, Diagnostics> {
     let mut g = Gathering {
         out: Gathered {
@@ -105,6 +107,7 @@ pub fn gather(
         meshes: HashMap::new(),
         diags: Diagnostics::new(),
         cache,
+        files,
     };
     // Counted before anything is made: past the limit, nothing is.
     if let Some(o) = g.count(objects) {
@@ -187,7 +190,7 @@ impl Gathering<'_> {
         if let Some(read) = self.meshes.get(path) {
             return read.clone();
         }
-        let read = self.cache.mesh(path);
+        let read = self.cache.mesh(self.files, path);
         self.meshes.insert(path.to_path_buf(), read.clone());
         read
     }

@@ -7,6 +7,7 @@ mod editors;
 mod environment;
 mod examples;
 mod farm;
+mod files;
 mod frames;
 mod golden;
 mod group_lights;

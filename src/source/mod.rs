@@ -3,6 +3,9 @@
 //! position costs a binary search, not a scan of the file; and the one way
 //! every file of a scene is read, with a size limit.
 
+pub mod files;
+
+pub use files::{Asked, Disk, Files, MemoryFiles};
 use std::fmt;
 use std::io::Read;
 use std::path::{Path, PathBuf};

@@ -2,12 +2,15 @@
 //! the models a `type` names, each with its own defaults and the
 //! parameters that mean nothing to it reported.
 
-use super::blocks::{textures, Reader};
-use super::params::{ParamSpec, Params, Val, MATERIAL};
+use super::eval::Env;
+use super::params::{CheckTexture, Params, Val};
+use super::reader::{textures, Reader};
 use super::scene::*;
+use super::schema::MATERIAL;
 use crate::diag::codes;
 use crate::diag::{Diagnostic, Diagnostics};
 use crate::span::Span;
+use crate::syntax::ast::Block;
 
 /// `material { }` → material.
 pub fn material(p: &Params, name: Option<String>, span: Span, diags: &mut Diagnostics) -> Material {
@@ -379,33 +382,13 @@ fn options_checks(p: &Params, m: &mut Material, ignored: &[&str], diags: &mut Di
     }
 }
 
-/// The material schema (for inline and named materials).
-pub fn material_schema() -> [&'static [ParamSpec]; 1] {
-    [MATERIAL]
-}
-
-/// The help for a metal `name` that is not one of the presets: the
-/// preset it is another name for, or how to give a metal's constants.
-pub(super) fn other_metal(name: &str) -> Option<String> {
-    let preset = match name {
-        "chrome" | "chromium_metal" => "chromium",
-        "aluminum" | "aluminum_metal" | "alu" => "aluminium",
-        "au" => "gold",
-        "ag" => "silver",
-        "cu" => "copper",
-        "cr" => "chromium",
-        "al" => "aluminium",
-        _ => {
-            let look = match name {
-                "brass" | "bronze" => " (`preset gold` or `preset copper` looks close)",
-                "steel" | "iron" | "stainless" | "nickel" | "titanium" | "platinum" | "tin"
-                | "zinc" => " (`preset chromium` or `preset aluminium` looks close)",
-                _ => return None,
-            };
-            return Some(format!(
-                "`{name}` is not a preset{look}; for any metal, remove `preset` and give its complex index of refraction per channel: `eta rgb <…> k rgb <…>` (tables of n and k: refractiveindex.info, or Mitsuba 3's data/ior)"
-            ));
-        }
-    };
-    Some(format!("did you mean `{preset}`?"))
+/// A material block's parameters (inline or named), textures and all.
+pub fn collect(
+    what: impl Into<std::borrow::Cow<'static, str>>,
+    head: Span,
+    block: &Block,
+    checking: (&mut Env, &mut Diagnostics),
+) -> Params {
+    let texture: CheckTexture = super::texture::check_texture;
+    Params::collect_textured(what, head, block, &[MATERIAL], checking, texture)
 }

@@ -12,10 +12,13 @@ mod material;
 mod objects;
 pub mod params;
 mod povray;
+mod reader;
 pub mod scene;
+pub mod schema;
 mod texture;
 
-pub use blocks::{WholeSetting, MAX_PIXELS, MAX_SIDE, SAMPLES, SEED};
+pub use blocks::{MAX_PIXELS, MAX_SIDE, SAMPLES, SEED};
+pub use reader::WholeSetting;
 pub use scene::*;
 
 pub(crate) use crate::diag::group_digits;
@@ -423,7 +426,7 @@ impl<'f> Checker<'f> {
             "instance",
             name.span,
             block,
-            &[params::SHAPE_COMMON],
+            &[schema::SHAPE_COMMON],
             &mut self.env,
             &mut self.diags,
         );
@@ -734,14 +737,9 @@ impl<'f> Checker<'f> {
                 }
             }
             Statement::Material { name, block, span } => {
-                let p = Params::collect(
-                    format!("material {}", name.name),
-                    name.span,
-                    block,
-                    &material::material_schema(),
-                    &mut self.env,
-                    &mut self.diags,
-                );
+                let what = format!("material {}", name.name);
+                let checking = (&mut self.env, &mut self.diags);
+                let p = material::collect(what, name.span, block, checking);
                 for e in &block.entries {
                     if let Entry::Material { span, .. } = e {
                         self.diags.push(
@@ -1086,14 +1084,7 @@ impl<'f> Checker<'f> {
                 None => Some(PENDING_MATERIAL),
             },
             Some((MaterialRef::Inline(block), s)) => {
-                let p = Params::collect(
-                    "material",
-                    *s,
-                    block,
-                    &material::material_schema(),
-                    &mut self.env,
-                    &mut self.diags,
-                );
+                let p = material::collect("material", *s, block, (&mut self.env, &mut self.diags));
                 let mut m = material::material(&p, None, *s, &mut self.diags);
                 m.resolve_paths(folder_of(&self.sources, s.file));
                 self.materials.push(m);

@@ -1,9 +1,10 @@
 //! Object blocks, checked: the shape of each kind (before transforms), the
 //! object-to-world transform and the linear motion.
 
-use super::blocks::{range_error, Reader};
-use super::params::{Params, Val, SHAPE_COMMON};
+use super::params::{Params, Val};
+use super::reader::{range_error, Reader};
 use super::scene::*;
+use super::schema::SHAPE_COMMON;
 use crate::diag::codes;
 use crate::diag::{Diagnostic, Diagnostics};
 use crate::source::{Files, ReadError};
@@ -80,7 +81,7 @@ pub fn shape(
     (base_dir, files): (&Path, &dyn Files),
     diags: &mut Diagnostics,
 ) -> Option<Shape> {
-    let schema = super::params::shape_schema(kind);
+    let schema = super::schema::shape_schema(kind);
     let mut r = Reader { p, diags };
     let what = kind.keyword();
     let positive = |r: &mut Reader, name: &'static str| -> Option<f64> {
@@ -325,7 +326,7 @@ pub fn velocity(p: &Params) -> DVec3 {
 }
 
 /// The schemas a shape block is checked against.
-pub fn shape_schemas(kind: BlockKind) -> [&'static [super::params::ParamSpec]; 2] {
+pub fn shape_schemas(kind: BlockKind) -> [&'static [super::schema::ParamSpec]; 2] {
     let common: &[_] = if kind.is_shape() { SHAPE_COMMON } else { &[] };
-    [super::params::shape_schema(kind), common]
+    [super::schema::shape_schema(kind), common]
 }

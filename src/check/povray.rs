@@ -2,10 +2,10 @@
 //! does not have (`pigment { … }`) and values without parameter names
 //! (`sphere { <0, 1, 0>, 1 }`). The words' hints are in
 //! `syntax/povray.rs`; the positional order of each shape is in its row
-//! of `params.rs` ([`super::params::povray_positional`]).
+//! of `params.rs` ([`super::schema::povray_positional`]).
 
 use super::eval::{eval, written, Env, Value};
-use super::params::{povray_positional, ParamSpec};
+use super::schema::{povray_positional, ParamSpec};
 use crate::diag::{codes, did_you_mean, Diagnostic, Diagnostics};
 use crate::span::Span;
 use crate::syntax::ast::{BlockKind, Expr, Ident};

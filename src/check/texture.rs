@@ -2,13 +2,13 @@
 //! name (`texture oak wood { … }`): the kind is looked up, the block
 //! checked against the kind's schema, its colour map and its transforms.
 
-use super::blocks::Reader;
 use super::eval::{eval, Env, Value};
-use super::params::{
-    Params, Val, BANDS, CHECKER, COLOR_MAP, GRADIENT, IMAGE, NOISE, TEXTURE_KINDS,
-    TEXTURE_TRANSFORMS, UNBANDED,
-};
+use super::params::{Params, Val};
+use super::reader::Reader;
 use super::scene::{ColorSpace, Rgb, Texture, TextureKind, TextureSpace};
+use super::schema::{
+    BANDS, CHECKER, COLOR_MAP, GRADIENT, IMAGE, NOISE, TEXTURE_KINDS, TEXTURE_TRANSFORMS, UNBANDED,
+};
 use crate::diag::{codes, did_you_mean, Diagnostic, Diagnostics};
 use crate::span::Span;
 use crate::syntax::ast::{Block, Entry, Ident};
@@ -24,7 +24,7 @@ pub fn check_texture(
     env: &mut Env,
     diags: &mut Diagnostics,
 ) -> Option<Texture> {
-    let schema: &'static [super::params::ParamSpec] = match kind.name.as_str() {
+    let schema: &'static [super::schema::ParamSpec] = match kind.name.as_str() {
         "checker" => CHECKER,
         "image" => IMAGE,
         "noise" | "turbulence" | "marble" | "wood" => NOISE,
@@ -48,7 +48,7 @@ pub fn check_texture(
     };
     let is_image = kind.name == "image";
     let noise = NoiseKind::from_name(&kind.name);
-    let schemas: &[&'static [super::params::ParamSpec]] = match noise {
+    let schemas: &[&'static [super::schema::ParamSpec]] = match noise {
         _ if is_image => &[schema, TEXTURE_TRANSFORMS],
         Some(n) if n.has_bands() => &[schema, BANDS, COLOR_MAP, TEXTURE_TRANSFORMS],
         Some(_) => &[schema, UNBANDED, COLOR_MAP, TEXTURE_TRANSFORMS],

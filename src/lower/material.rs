@@ -250,6 +250,6 @@ mod tests {
         let names: Vec<&str> = (crate::material::conductor::PRESETS.iter())
             .map(|p| p.0)
             .collect();
-        assert_eq!(names, crate::check::params::METAL_PRESETS);
+        assert_eq!(names, crate::check::schema::METAL_PRESETS);
     }
 }

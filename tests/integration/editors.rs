@@ -102,7 +102,7 @@ fn vscode_grammar() -> serde_json::Value {
 
 #[test]
 fn editors_know_every_parameter_and_only_parameters() {
-    let names: BTreeSet<String> = ptsc::check::params::all_parameter_names()
+    let names: BTreeSet<String> = ptsc::check::schema::all_parameter_names()
         .into_iter()
         .map(str::to_string)
         .collect();

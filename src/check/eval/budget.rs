@@ -11,7 +11,7 @@
 //!   compared or scanned (`len`, indexing).
 //!
 //! Building lists is counted apart, by their items
-//! ([`super::MAX_ITEMS`]); loops by their statements
+//! ([`super::limits::MAX_ITEMS`]); loops by their statements
 //! ([`crate::check::MAX_LOOP_STATEMENTS`]). Did-you-mean suggestions have
 //! a budget of their own ([`MAX_SUGGESTIONS`]): an error is reported
 //! without one once it is spent.

@@ -8,8 +8,8 @@
 //! result past ±1.8e308 is reported as too large by the evaluator.
 
 use super::env::{too_large, Env};
+use super::limits::MAX_STRING;
 use super::value::{text, TextError, Value};
-use super::MAX_STRING;
 use crate::check::domain;
 use crate::diag::{codes, Diagnostic, Diagnostics};
 use crate::span::Span;

@@ -3,8 +3,9 @@
 //! items, steps of work, suggestions).
 
 use super::budget::{self, Work};
+use super::budget::{MAX_SUGGESTIONS, MAX_WORK};
+use super::limits::{MAX_ITEMS, MAX_STRING};
 use super::value::{List, Value, MAX_LIST_DEPTH};
-use super::{MAX_ITEMS, MAX_STRING, MAX_SUGGESTIONS, MAX_WORK};
 use crate::diag::{codes, did_you_mean, Diagnostic, Diagnostics};
 use crate::span::Span;
 use std::collections::HashMap;

@@ -3,8 +3,8 @@
 //! before doing it ([`Env::charge`], [`Env::charge_items`]).
 
 use super::env::{too_large, Env};
+use super::limits::{MAX_ITEMS, MAX_STRING};
 use super::value::{self, Value};
-use super::{MAX_ITEMS, MAX_STRING};
 use crate::diag::{codes, Diagnostic, Diagnostics};
 use crate::span::Span;
 use crate::syntax::ast::BinOp;

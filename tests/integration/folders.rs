@@ -65,19 +65,14 @@ fn named_paths(
                 Vec::new()
             }
             "self" | "super" => {
+                // A file's path is its module's, so `super` is one step up
+                // from a plain file and from a folder's `mod.rs` alike.
                 let mut base = own.to_vec();
-                // In a plain file, `self` is the file; `super` its folder.
-                let mut here_is_folder = is_folder_root;
                 while let Some(&s) = segments.first() {
                     match s {
                         "self" => {}
                         "super" => {
-                            if !here_is_folder {
-                                base.pop();
-                            } else {
-                                base.pop();
-                            }
-                            here_is_folder = true;
+                            base.pop();
                         }
                         _ => break,
                     }

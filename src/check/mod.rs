@@ -338,17 +338,15 @@ impl<'f> Checker<'f> {
     fn run_file(&mut self, id: FileId) {
         let text = self.sources.get(id).text.clone();
         // Statements are checked while later parts of the file are parsed.
-        // After a syntax error the statements before it have been checked:
-        // their mistakes are reported with it.
-        let parsed = crate::syntax::parse_each(id, &text, &mut |statements| {
+        // Parsing goes on past a syntax error: the statements before and
+        // after it are checked, and their mistakes reported with it.
+        let errors = crate::syntax::parse_each(id, &text, &mut |statements| {
             for st in &statements {
                 self.statement(st, id);
             }
         });
-        if let Err(d) = parsed {
-            self.syntax_failed = true;
-            self.diags.push(d);
-        }
+        self.syntax_failed |= !errors.is_empty();
+        errors.into_iter().for_each(|d| self.diags.push(d));
     }
 
     /// Where the constant, function or texture named `name` visible in

@@ -67,7 +67,9 @@ impl Builder {
         let rule = pair.as_rule();
         let mut inner = pair.into_inner();
         match rule {
-            Rule::let_stmt => {
+            // A `let` or `fn` without its `;` (after a syntax error) is
+            // built as if it had one.
+            Rule::let_stmt | Rule::let_head => {
                 inner.next(); // kw_let
                 let name = self.build_decl_name(inner.next().unwrap());
                 inner.next(); // =
@@ -131,7 +133,7 @@ impl Builder {
                     span,
                 }
             }
-            Rule::fn_stmt => {
+            Rule::fn_stmt | Rule::fn_head => {
                 inner.next(); // kw_fn
                 let name = self.build_decl_name(inner.next().unwrap());
                 let mut params = Vec::new();

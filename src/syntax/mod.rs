@@ -2,36 +2,45 @@
 
 pub mod ast;
 mod build;
+mod hand_over;
 pub mod parser;
 pub mod povray;
+mod recover;
 
 use crate::diag::{codes, Diagnostic};
 use crate::source::FileId;
 use crate::span::Span;
 use parser::{PtsParser, Rule};
 use pest::Parser;
+use recover::{Break, Parsed};
 
 /// The deepest nesting of `(`, `[`, `<` and `{` the parser accepts. Deeper input is
 /// reported instead of risking the stack of a recursive-descent parser.
 pub const MAX_NESTING: usize = 128;
 
-/// Parses one file into an AST, or returns the first syntax error.
+/// Parses one file into an AST, or returns its first error (a syntax error
+/// exactly as a whole-file parse reports it, or a misused reserved word);
+/// parsing stops there.
 pub fn parse(file: FileId, text: &str) -> Result<ast::File, Diagnostic> {
     parse_in_pieces(file, text, PIECE)
 }
 
 /// Parses `text` and hands its statements to `sink` in file order, a piece at
 /// a time, while the pieces after it are still being parsed: a checker
-/// consuming them runs beside the parser instead of after it. On an error the
-/// statements before it have been handed over and the first error of the file
-/// (a syntax error exactly as a whole-file parse reports it, or a misused
-/// reserved word) is returned.
+/// consuming them runs beside the parser instead of after it. Returns the
+/// file's errors in file order, empty when it parsed. A broken statement is
+/// skipped to where the next statement plausibly starts and parsing goes on
+/// there, so the statements before and after it are handed over; its error
+/// is reported as a parse of the text from the end of the previous error
+/// finds it (the first exactly as a whole-file parse). A `{` or comment
+/// never closed runs to the end of the file: nothing follows. After 100
+/// errors, one more diagnostic says that the rest of the file is not read.
 pub fn parse_each(
     file: FileId,
     text: &str,
     sink: &mut (dyn FnMut(Vec<ast::Statement>) + Send),
-) -> Result<(), Diagnostic> {
-    parse_each_in_pieces(file, text, PIECE, sink)
+) -> Vec<Diagnostic> {
+    parse_each_in_pieces(file, text, PIECE, true, sink)
 }
 
 /// Least size of the pieces a file is cut into, each parsed in one pest call.
@@ -44,158 +53,97 @@ const BATCH: usize = 32;
 /// [`parse`] with the text cut into pieces of at least `min_piece` bytes.
 fn parse_in_pieces(file: FileId, text: &str, min_piece: usize) -> Result<ast::File, Diagnostic> {
     let mut statements = Vec::new();
-    parse_each_in_pieces(file, text, min_piece, &mut |piece| statements.extend(piece))?;
-    Ok(ast::File { statements })
+    let errors = parse_each_in_pieces(file, text, min_piece, false, &mut |piece| {
+        statements.extend(piece)
+    });
+    match errors.into_iter().next() {
+        Some(first) => Err(first),
+        None => Ok(ast::File { statements }),
+    }
 }
 
-/// [`parse_each`] with pieces of at least `min_piece` bytes.
+/// [`parse_each`] with pieces of at least `min_piece` bytes; without
+/// `recover`, parsing stops at the first error.
 fn parse_each_in_pieces(
     file: FileId,
     text: &str,
     min_piece: usize,
+    recover: bool,
     sink: &mut (dyn FnMut(Vec<ast::Statement>) + Send),
-) -> Result<(), Diagnostic> {
+) -> Vec<Diagnostic> {
     use rayon::prelude::*;
-    let pieces = pieces(text, min_piece).map_err(|at| too_deep(file, at))?;
+    let pieces = match pieces(text, min_piece) {
+        Ok(pieces) => pieces,
+        Err(at) => return vec![too_deep(file, at)],
+    };
+    let mut hand_over = hand_over::HandOver::new(file, text, recover);
+    let limit = hand_over.limit();
     // Each round parses one batch while the sink takes the batch before it.
     let mut ready: Vec<Parsed> = Vec::new();
     for batch in pieces.chunks(BATCH) {
-        let (parsed, stop) = rayon::join(
+        let (parsed, ()) = rayon::join(
             || {
                 batch
                     .par_iter()
-                    .map(|&(start, end)| parse_statements(file, &text[start..end], start))
+                    .map(|&(start, end)| parse_piece(file, text, start, end, limit))
                     .collect::<Vec<Parsed>>()
             },
-            || hand_over(std::mem::take(&mut ready), sink),
+            || hand_over.take(std::mem::take(&mut ready), sink),
         );
-        if let Some(error) = stop {
-            return Err(error.into_diagnostic(file, text));
+        if hand_over.stopped() {
+            return hand_over.finish();
         }
         ready = parsed;
     }
-    match hand_over(ready, sink) {
-        Some(error) => Err(error.into_diagnostic(file, text)),
-        None => Ok(()),
-    }
+    hand_over.take(ready, sink);
+    hand_over.finish()
 }
 
-/// Gives the statements of `pieces` to `sink` in order, up to the first
-/// error, which it returns.
-fn hand_over(
-    pieces: Vec<Parsed>,
-    sink: &mut (dyn FnMut(Vec<ast::Statement>) + Send),
-) -> Option<PieceError> {
-    for piece in pieces {
-        if !piece.statements.is_empty() {
-            sink(piece.statements);
-        }
-        if piece.error.is_some() {
-            return piece.error;
-        }
-    }
-    None
-}
-
-/// The statements of a piece up to its first error.
-struct Parsed {
-    statements: Vec<ast::Statement>,
-    error: Option<PieceError>,
-}
-
-/// Why a piece stopped early.
-enum PieceError {
-    /// pest failed: the whole file is parsed again for the exact error.
-    Syntax,
-    /// A reserved word used as a name (the builder's diagnostic).
-    Reserved(Diagnostic),
-}
-
-impl PieceError {
-    fn into_diagnostic(self, file: FileId, text: &str) -> Diagnostic {
-        match self {
-            // A syntax error: parse the whole file so that the error is
-            // reported exactly as a whole-file parse finds it.
-            PieceError::Syntax => match parse_whole(file, text) {
-                Err(d) => d,
-                // The two paths accept the same files (tested); were they
-                // ever to disagree, say so rather than panic.
-                Ok(_) => Diagnostic::error(
-                    codes::INTERNAL,
-                    "the parser disagreed with itself on this file",
-                    Span::new(file, 0, 0),
-                )
-                .with_label("parsed whole but not in pieces")
-                .with_help("please report this file as a ptsc bug"),
-            },
-            PieceError::Reserved(d) => d,
-        }
-    }
-}
-
-/// The statements of `text` (which starts at byte `base` of the file): the
-/// whole piece in one pest call, or, if that fails, one statement per call up
-/// to the error. Pieces are small: pest queues two tokens of 40 bytes per
-/// pair, and a whole file's queue was 32 times the size of its text (360 MB
-/// for the 11 MB 100,000-sphere scene; zeroing its fresh pages took a third
-/// of the parse), while a call per statement paid pest's set-up and the
-/// growth of its queue every time (5 % of the parse).
-/// Stops at the first syntax error or misused reserved word.
-fn parse_statements(file: FileId, text: &str, base: usize) -> Parsed {
+/// The statements of the piece `text[start..end]`: the whole piece in one
+/// pest call, or, if that fails, one statement at a time
+/// ([`recover::parse_from`]), past its errors up to the `limit`th. Pieces are
+/// small: pest queues two tokens of 40 bytes per pair, and a whole file's
+/// queue was 32 times the size of its text (360 MB for the 11 MB
+/// 100,000-sphere scene; zeroing its fresh pages took a third of the
+/// parse), while a call per statement paid pest's set-up and the growth of
+/// its queue every time (5 % of the parse).
+fn parse_piece(file: FileId, text: &str, start: usize, end: usize, limit: usize) -> Parsed {
+    let Ok(mut pairs) = PtsParser::parse(Rule::file, &text[start..end]) else {
+        return recover::parse_from(file, text, start, end, limit);
+    };
     let builder = build::Builder {
         file,
         reserved: Default::default(),
-        base: std::cell::Cell::new(base),
+        base: std::cell::Cell::new(start),
     };
     let mut parsed = Parsed {
+        start,
+        end,
         statements: Vec::new(),
-        error: None,
+        breaks: Vec::new(),
+        next: Some(end),
     };
-    // Builds a statement pair into `parsed`; false at a misused reserved word.
-    let keep = |pair, parsed: &mut Parsed| {
-        let statement = builder.build_statement(pair);
-        match builder.reserved.take() {
-            Some(d) => {
-                parsed.error = Some(PieceError::Reserved(d));
-                false
-            }
-            None => {
-                parsed.statements.push(statement);
-                true
-            }
-        }
-    };
-    if let Ok(mut pairs) = PtsParser::parse(Rule::file, text) {
-        let pairs = pairs.next().expect("file matched").into_inner();
-        for pair in pairs.filter(|p| p.as_rule() != Rule::EOI) {
-            if !keep(pair, &mut parsed) {
+    let pairs = pairs.next().expect("file matched").into_inner();
+    for pair in pairs.filter(|p| p.as_rule() != Rule::EOI) {
+        let span = pair.as_span();
+        parsed.statements.push(builder.build_statement(pair));
+        // A reserved word used as a name: reported, and the statement kept
+        // (when parsing goes on) so that its uses raise no second error.
+        if let Some(d) = builder.reserved.take() {
+            parsed.breaks.push(Break {
+                kept: parsed.statements.len() - 1,
+                at: start + span.start(),
+                seen: start + span.end(),
+                resume: Some(start + span.end()),
+                reserved: Some(d),
+            });
+            if parsed.breaks.len() == limit {
+                parsed.next = None;
                 break;
             }
         }
-        return parsed;
     }
-    let mut pos = 0;
-    loop {
-        let rest = &text[pos..];
-        match PtsParser::parse(Rule::next_statement, rest) {
-            Ok(mut pairs) => {
-                let pair = pairs.next().expect("next_statement matched");
-                let end = pair.as_span().end();
-                builder.base.set(base + pos);
-                if let Some(statement) = pair.into_inner().next() {
-                    if !keep(statement, &mut parsed) {
-                        return parsed;
-                    }
-                }
-                pos += end.max(1);
-            }
-            Err(_) if PtsParser::parse(Rule::only_blanks, rest).is_ok() => return parsed,
-            Err(_) => {
-                parsed.error = Some(PieceError::Syntax);
-                return parsed;
-            }
-        }
-    }
+    parsed
 }
 
 /// The whole file in one pest call: the path that reports syntax errors.
@@ -373,134 +321,4 @@ fn too_deep(file: FileId, i: usize) -> Diagnostic {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    fn scene_files(dir: &std::path::Path, out: &mut Vec<std::path::PathBuf>) {
-        for entry in std::fs::read_dir(dir).expect("readable folder").flatten() {
-            let path = entry.path();
-            if path.is_dir() {
-                scene_files(&path, out);
-            } else if path.extension().is_some_and(|e| e == "pts" || e == "ptsi") {
-                out.push(path);
-            }
-        }
-    }
-
-    #[test]
-    fn pieces_and_single_statements_build_the_whole_file_ast() {
-        let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
-        let mut files = Vec::new();
-        scene_files(&root.join("examples"), &mut files);
-        scene_files(&root.join("tests/golden/scenes"), &mut files);
-        assert!(files.len() >= 10, "{files:?}");
-        let mut texts: Vec<String> = files
-            .iter()
-            .map(|f| std::fs::read_to_string(f).expect("readable scene"))
-            .collect();
-        // Blanks and comments in every place a statement can start or end.
-        texts.push(
-            "\u{FEFF}// lead\r\n/* a */ let r = 2 * -(1 + 1);/**/\r\nfor i in 0..3 { sphere { radius r } }\
-             \n  background rgb 0.5 // tail\n/* end */\n"
-                .to_string(),
-        );
-        // `}` and `;` inside strings and comments must not cut a piece: three
-        // statements, three cuts, and the blank rest.
-        let tricky = "mesh { file \"a};b.obj\" // } ;\n material m } /* }; */ let s = \"x;}\";\n\
-                      render { output \"o}.png\" }\n";
-        assert_eq!(
-            pieces(tricky, 1).map(|p| p.len()),
-            Ok(4),
-            "{:?}",
-            pieces(tricky, 1)
-        );
-        texts.push(tricky.to_string());
-        for text in &texts {
-            let whole = parse_whole(FileId(0), text).expect("parses");
-            // Pieces as small as possible (cut after every statement), and
-            // the whole text as one piece.
-            for min_piece in [1, usize::MAX] {
-                let pieces = parse_in_pieces(FileId(0), text, min_piece).expect("parses");
-                assert_eq!(pieces, whole, "{text}");
-            }
-        }
-        // An error in a later piece is the error a whole-file parse reports.
-        let broken = "let a = 1;\nsphere { radius 1 }\nsphere { radius < 1, }\nlet b = 2;\n";
-        let expected = format!("{:?}", parse_whole(FileId(0), broken).unwrap_err());
-        for min_piece in [1, usize::MAX] {
-            let got = parse_in_pieces(FileId(0), broken, min_piece).unwrap_err();
-            assert_eq!(format!("{got:?}"), expected);
-        }
-    }
-
-    #[test]
-    fn a_byte_order_mark_is_blank_only_at_the_start() {
-        for min_piece in [1, usize::MAX] {
-            let parse = |text: &str| parse_in_pieces(FileId(0), text, min_piece);
-            assert!(parse("\u{FEFF}").is_ok());
-            assert_eq!(
-                parse("\u{FEFF}let a = 1;")
-                    .expect("parses")
-                    .statements
-                    .len(),
-                1
-            );
-            assert!(parse("let a = 1;\u{FEFF}let b = 2;").is_err());
-            // Rust's blanks: vertical tab, form feed, NEL and the line separator.
-            let blanks = "let\u{B}a\u{C}=\u{85}1\u{2028};";
-            assert_eq!(parse(blanks).expect("parses").statements.len(), 1);
-        }
-    }
-
-    /// Whole statements, blanks and comments (holding `}` and `;`), so that
-    /// most texts parse and are cut in many places.
-    const STATEMENTS: &[&str] = &[
-        "sphere { radius 1 }",
-        "let a = 1;",
-        "material m { diffuse rgb 0.5 }",
-        "sphere { center <1, 2, 3> material m radius -(2) * 3 }",
-        "background rgb 1",
-        "for i in 0..2 { sphere { radius i } }",
-        "mesh { file \"a};b.obj\" }",
-        "if a < b { let c = 1; } else if a > 2 { sphere { radius 1 } } else { }",
-        "if a <= 1 {}",
-        " else { let d = 2; }",
-        "let y = if a < 1 { [1, 2][0] } else { 3 } + 1;",
-        "fn f(x, y) = if x >= y && !(x == 2) { x } else { y };",
-        "group g { cylinder { base <0, 0, 0> top <0, a < 1, 0> radius 1 } }",
-        "instance g { translate <1, 0, 0> }",
-        "for x in [1, 2] { torus { minor_radius x } }",
-        "\n",
-        " ",
-        "// };\n",
-        "/* ; } */",
-        "\r\n",
-        "\t",
-    ];
-
-    /// Fragments that break a text, or nearly do.
-    const JUNK: &[&str] = &[
-        "{", "}", ";", "<", ">", "(", "\"", "/*", "\u{FEFF}", "let", "1", "else", "[", "]", "if",
-    ];
-
-    proptest::proptest! {
-        #[test]
-        fn pieces_and_the_whole_file_agree(
-            tokens in proptest::collection::vec(
-                proptest::prop_oneof![
-                    9 => proptest::sample::select(STATEMENTS),
-                    1 => proptest::sample::select(JUNK),
-                ],
-                0..16,
-            ),
-            bom in proptest::bool::ANY,
-        ) {
-            let text = format!("{}{}", if bom { "\u{FEFF}" } else { "" }, tokens.concat());
-            let whole = parse_whole(FileId(0), &text).map_err(|d| format!("{d:?}"));
-            for min_piece in [1, 7, usize::MAX] {
-                let pieces = parse_in_pieces(FileId(0), &text, min_piece).map_err(|d| format!("{d:?}"));
-                proptest::prop_assert_eq!(&pieces, &whole, "{:?}", text);
-            }
-        }
-    }
-}
+mod tests;

@@ -26,13 +26,14 @@ pub fn rule_name(rule: Rule) -> &'static str {
         Rule::EOI => "end of file",
         Rule::WHITESPACE | Rule::COMMENT => "a blank or comment",
         Rule::file | Rule::statement | Rule::next_statement | Rule::only_blanks => "a statement",
-        Rule::let_stmt | Rule::kw_let => "`let`",
+        Rule::let_stmt | Rule::let_head | Rule::kw_let => "`let`",
+        Rule::unended => "a statement",
         Rule::include_stmt | Rule::kw_include => "`include`",
         Rule::for_stmt | Rule::kw_for => "`for`",
         Rule::body => "statements in braces `{ … }`",
         Rule::if_stmt | Rule::if_expr | Rule::kw_if => "`if`",
         Rule::kw_else => "`else`",
-        Rule::fn_stmt | Rule::kw_fn => "`fn`",
+        Rule::fn_stmt | Rule::fn_head | Rule::kw_fn => "`fn`",
         Rule::group_stmt | Rule::kw_group => "`group`",
         Rule::instance_stmt | Rule::kw_instance => "`instance`",
         Rule::list => "a list `[a, b, c]`",
@@ -419,7 +420,7 @@ fn closing_helps(text: &str, base: usize, at: usize, pos: usize) -> bool {
 /// Words that open a statement: [`OPEN_NO_BLOCK`] that open no block
 /// (a `for`'s, an `if`'s or a group's braces hold statements), then
 /// `material`, `instance` and the block keywords.
-const STATEMENT_STARTS: &[&str] = &[
+pub(super) const STATEMENT_STARTS: &[&str] = &[
     "let",
     "include",
     "for",

@@ -651,6 +651,44 @@ fn work_that_statements_do_not_show() {
     }
 }
 
+/// Issue 37, item 5: parsing goes on past a syntax error. 99 mistakes
+/// spread over a scene of 100,000 spheres are all reported, and the
+/// statements after them checked (an unknown name at the end); a file of
+/// 100,000 broken statements, on lines or all on one line far from any `;`
+/// or `}`, stops at the hundred and first.
+#[test]
+fn many_broken_statements() {
+    let sphere = "sphere { center <0, 0, 0> radius 0.5 }\n";
+    let broken = "sphere { center <0, 0 0> radius 0.5 }\n";
+    let head = format!("{CAMERA}background rgb 1\n");
+    let spread = format!(
+        "{head}{}sphere {{ center <0, 0, 0> radius zz }}\n",
+        format!("{broken}{}", sphere.repeat(999)).repeat(99)
+    );
+    let case = generated(
+        "99 syntax errors in a large scene",
+        "// exit: 1\n// stderr: unknown name `zz`\n// stderr: 100 errors\n// stderr-not: more than 100\n// timeout: 30",
+    );
+    run_generated(&case, "spread.pts", spread.as_bytes());
+    // The human report shows the first hundred diagnostics; JSON all.
+    let too_many = "// run: check {scene} --format json\n// exit: 1\n// stdout: more than 100 syntax errors\n// timeout: 10";
+    let lines = format!(
+        "{head}{}",
+        format!("{broken}let x = 1\n{sphere}").repeat(100_000)
+    );
+    run_generated(
+        &generated("broken lines", too_many),
+        "lines.pts",
+        lines.as_bytes(),
+    );
+    let line = format!("{head}{}", "sphere ".repeat(2_000_000));
+    run_generated(
+        &generated("one broken line", too_many),
+        "line.pts",
+        line.as_bytes(),
+    );
+}
+
 #[test]
 fn povray_blocks_and_directives_at_the_largest_sizes() {
     // POV-Ray's blocks are read whole, to their matching brace: nested as

@@ -439,10 +439,8 @@ impl Nest {
                 open.push(b);
                 self.braces += usize::from(b == b'{');
             }
-            b')' | b']' => {
-                if open.last() == Some(&if b == b')' { b'(' } else { b'[' }) {
-                    open.pop();
-                }
+            b')' | b']' if open.last() == Some(&if b == b')' { b'(' } else { b'[' }) => {
+                open.pop();
             }
             b'}' if self.braces > 0 => {
                 let k = open
@@ -507,10 +505,10 @@ fn walk(text: &str, from: usize, mut f: impl FnMut(usize, u8) -> bool) {
                 }
                 stray_until = j;
             }
-            b'(' | b')' | b'[' | b']' | b'{' | b'}' | b';' | b' ' | b'\t' | b'\r' | b'\n' => {
-                if !f(i, b) {
-                    return;
-                }
+            b'(' | b')' | b'[' | b']' | b'{' | b'}' | b';' | b' ' | b'\t' | b'\r' | b'\n'
+                if !f(i, b) =>
+            {
+                return;
             }
             _ => {}
         }

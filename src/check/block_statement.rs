@@ -1,0 +1,200 @@
+//! A block statement (`sphere { … }`, `camera { … }`, a light): checked
+//! against its schema and converted into a piece of the scene.
+
+use super::*;
+
+impl Checker<'_> {
+    pub(super) fn block(
+        &mut self,
+        kind: BlockKind,
+        kind_span: Span,
+        block: &crate::syntax::ast::Block,
+        span: Span,
+        file: FileId,
+    ) {
+        if let Some(g) = self
+            .open_group
+            .filter(|_| !kind.is_shape() && !kind.is_light())
+        {
+            self.diags.push(not_in_group(
+                &format!("`{}`", kind.keyword()),
+                kind_span,
+                self.groups[g].span,
+                "settings and the sky belong at the top level of the scene",
+            ));
+            return;
+        }
+        let p = Params::collect(
+            kind.keyword(),
+            kind_span,
+            block,
+            &objects::shape_schemas(kind),
+            &mut self.env,
+            &mut self.diags,
+        );
+        let material_entries = material_entries(block);
+        if !kind.is_shape() {
+            for (_, s) in &material_entries {
+                self.diags.push(
+                    Diagnostic::error(
+                        codes::UNKNOWN_PARAM,
+                        format!("`{}` does not take a material", kind.keyword()),
+                        *s,
+                    )
+                    .with_label("not allowed here")
+                    .with_help("materials belong to objects such as `sphere { … }`"),
+                );
+            }
+        }
+        match kind {
+            BlockKind::Render => {
+                let base = folder_of(&self.sources, file);
+                let settings = blocks::render_settings(&p, base, &mut self.diags);
+                if let Some((_, first)) = &self.render {
+                    self.diags
+                        .push(duplicate_block("render", kind_span, *first));
+                    return;
+                }
+                self.ambient_span = p.get("ambient").map(|v| v.1);
+                self.light_samples_span = p.get("light_samples").map(|v| v.1);
+                self.render = Some((settings, kind_span));
+            }
+            BlockKind::Camera => {
+                let cam = blocks::camera(&p, span, &mut self.diags);
+                if let Some(first) = self.camera_span {
+                    self.diags.push(duplicate_block("camera", kind_span, first));
+                    return;
+                }
+                self.camera_span = Some(kind_span);
+                self.camera = cam;
+            }
+            BlockKind::Environment => {
+                let base = folder_of(&self.sources, file);
+                let environment = blocks::environment(&p, base, span, &mut self.diags);
+                if let Some(e) = &self.environment {
+                    self.diags
+                        .push(duplicate_block("environment", kind_span, e.span));
+                    return;
+                }
+                if let Some(first) = self.infinite_light() {
+                    self.diags.push(two_skies(kind_span, first));
+                    return;
+                }
+                self.environment = environment;
+            }
+            BlockKind::Sky => {
+                let sky = blocks::sky(&p, span, &mut self.diags);
+                if let Some(s) = &self.sky {
+                    self.diags.push(duplicate_block("sky", kind_span, s.span));
+                    return;
+                }
+                if let Some(first) = self.infinite_light() {
+                    self.diags.push(two_skies(kind_span, first));
+                    return;
+                }
+                self.sky = sky;
+            }
+            BlockKind::PointLight | BlockKind::SpotLight | BlockKind::DirectionalLight => {
+                if let Some(l) = blocks::light(kind, &p, &mut self.diags) {
+                    // A group's lights are the scene's once placed.
+                    match self.open_group {
+                        Some(g) => self.groups[g].lights.push((l, span)),
+                        None => self.lights.push((l, span)),
+                    }
+                }
+            }
+            _ => {
+                let material = self.object_material(&material_entries, span);
+                // Only a mesh has a path to resolve (Path::parent is not free).
+                let base = match kind {
+                    BlockKind::Mesh => folder_of(&self.sources, file),
+                    _ => Path::new(""),
+                };
+                let shape = objects::shape(kind, &p, (base, self.files), &mut self.diags);
+                let transform: DMat4 = objects::transform(&p, &mut self.diags);
+                let velocity = objects::velocity(&p);
+                if let (Some(shape), Some(material)) = (shape, material) {
+                    if matches!(shape, Shape::Plane { .. })
+                        && material != PENDING_MATERIAL
+                        && self.materials[material].is_emissive()
+                    {
+                        self.diags.push(emissive_plane(kind_span));
+                        return;
+                    }
+                    let object = Object {
+                        shape,
+                        material,
+                        transform,
+                        velocity,
+                        span,
+                    };
+                    let at = match self.open_group {
+                        Some(g) => {
+                            let group = &mut self.groups[g];
+                            group.objects.push(object);
+                            group.unmaterialled.push(material_entries.is_empty());
+                            ObjectRef {
+                                group: Some(g),
+                                index: group.objects.len() - 1,
+                            }
+                        }
+                        None => {
+                            self.objects.push(object);
+                            ObjectRef {
+                                group: None,
+                                index: self.objects.len() - 1,
+                            }
+                        }
+                    };
+                    if material == PENDING_MATERIAL {
+                        if let Some((MaterialRef::Named(name), _)) = material_entries.first() {
+                            self.pending_materials.push((at, (*name).clone()));
+                        }
+                    }
+                }
+            }
+        }
+    }
+
+    /// Resolves the material entries of an object to an index (a default one when absent).
+    pub(super) fn object_material(
+        &mut self,
+        entries: &[(&MaterialRef, Span)],
+        span: Span,
+    ) -> Option<usize> {
+        for (_, s) in entries.iter().skip(1) {
+            self.diags.push(
+                Diagnostic::error(codes::DUPLICATE_PARAM, "an object has one material", *s)
+                    .with_label("second material")
+                    .with_secondary(entries[0].1, "first material")
+                    .with_help("remove one of them"),
+            );
+        }
+        match entries.first() {
+            // One grey material serves every object without one (a loop of
+            // a million spheres made a million copies of it).
+            None => Some(*self.default_material.get_or_insert_with(|| {
+                self.materials.push(Material::default_at(span));
+                self.materials.len() - 1
+            })),
+            Some((MaterialRef::Named(name), _)) => match self.material_names.get(&name.name) {
+                Some(m) => {
+                    self.used_materials.insert(m.index);
+                    Some(m.index)
+                }
+                // Declared further on, perhaps: names of materials are
+                // resolved when the whole scene has been read.
+                None => Some(PENDING_MATERIAL),
+            },
+            Some((MaterialRef::Inline(block), s)) => {
+                let p = material::collect("material", *s, block, (&mut self.env, &mut self.diags));
+                let mut m = material::material(&p, None, *s, &mut self.diags);
+                m.resolve_paths(folder_of(&self.sources, s.file));
+                self.materials.push(m);
+                let i = self.materials.len() - 1;
+                self.used_materials.insert(i);
+                Some(i)
+            }
+        }
+    }
+}

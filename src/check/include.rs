@@ -1,0 +1,105 @@
+//! `include "file"`: another file's statements, read through the
+//! compile's `Files`, cycle-checked and bounded.
+
+use super::*;
+
+impl Checker<'_> {
+    pub(super) fn include(&mut self, path: &str, path_span: Span, file: FileId) {
+        let target = folder_of(&self.sources, file).join(path);
+        let canonical = self.files.canonical(&target);
+        if let Some(pos) = self.include_stack.iter().position(|(p, _)| *p == canonical) {
+            let mut d = Diagnostic::error(
+                codes::INCLUDE_CYCLE,
+                format!("`{path}` includes itself"),
+                path_span,
+            )
+            .with_label("this include closes a cycle")
+            .with_help("remove one of the includes in the cycle");
+            for (_, s) in self.include_stack[pos + 1..].iter() {
+                d = d.with_secondary(*s, "included from");
+            }
+            self.diags.push(d);
+            return;
+        }
+        if self.include_stack.len() >= MAX_INCLUDE_DEPTH {
+            self.diags.push(
+                Diagnostic::error(
+                    codes::INCLUDE_CYCLE,
+                    "includes nested too deeply",
+                    path_span,
+                )
+                .with_label(format!("more than {MAX_INCLUDE_DEPTH} levels"))
+                .with_help("flatten the chain of includes"),
+            );
+            return;
+        }
+        // A file already read (an include in a loop, or included twice) is
+        // not read again; but it is parsed again, which costs as many
+        // statements as a parse's set-up plus one per 64 bytes (a typical
+        // statement's size).
+        if let Some(id) = self.sources.find(&target) {
+            let bytes = self.sources.get(id).text.len() as u64;
+            self.enter_loop(path_span);
+            if self.charge_loop(INCLUDE_RUN_COST + bytes / STATEMENT_BYTES) {
+                self.include_stack.push((canonical, path_span));
+                self.run_file(id);
+                self.include_stack.pop();
+            }
+            self.leave_loop();
+            return;
+        }
+        let room = MAX_SCENE_BYTES.saturating_sub(self.sources.total_bytes() as u64);
+        let bytes = match self.files.read(&target, room) {
+            Ok(b) => b,
+            Err(e) => {
+                let (reason, help) = match &e {
+                    ReadError::NotFound => (
+                        "not found".to_string(),
+                        "include paths are relative to the file that contains the `include`"
+                            .to_string(),
+                    ),
+                    ReadError::NotRegular(FileKind::Folder) => (
+                        "it is a folder, not a file".to_string(),
+                        "include a `.pts` or `.ptsi` file".to_string(),
+                    ),
+                    ReadError::NotRegular(kind) => (
+                        format!("not a regular file: it is {kind}"),
+                        "devices, pipes and sockets are never read: include a file".to_string(),
+                    ),
+                    ReadError::TooLarge { size, .. } if *size <= MAX_SCENE_BYTES => (
+                        format!(
+                            "the scene's files would hold more than {} of text together",
+                            crate::source::human_bytes(MAX_SCENE_BYTES)
+                        ),
+                        "large generated geometry belongs in a mesh file (`mesh { file \"…\" }`)"
+                            .to_string(),
+                    ),
+                    other => (
+                        other.to_string(),
+                        "large generated geometry belongs in a mesh file (`mesh { file \"…\" }`)"
+                            .to_string(),
+                    ),
+                };
+                self.diags.push(
+                    Diagnostic::error(
+                        codes::INCLUDE_NOT_FOUND,
+                        format!("cannot include `{path}`: {reason}"),
+                        path_span,
+                    )
+                    .with_label(format!("looked for {}", target.display()))
+                    .with_help(help),
+                );
+                return;
+            }
+        };
+        let (text, bad) = decode(bytes);
+        let id = self.sources.add(target.clone(), text);
+        self.included_from.insert(id, path_span);
+        if let Some(at) = bad {
+            self.diags.push(invalid_utf8(id, at));
+        }
+        self.include_stack.push((canonical, path_span));
+        self.run_file(id);
+        self.include_stack.pop();
+    }
+}

@@ -1,0 +1,293 @@
+//! One function per statement kind: what each statement adds to the
+//! environment or the scene.
+
+use super::*;
+use crate::syntax::ast::{Block, Expr, Ident};
+use std::sync::Arc;
+
+impl Checker<'_> {
+    pub(super) fn statement(&mut self, st: &Statement, file: FileId) {
+        // Checking a statement takes time in proportion to its text.
+        if !self.charge_loop(1 + st.span().len() as u64 / STATEMENT_BYTES) {
+            return;
+        }
+        match st {
+            Statement::Let { name, value, .. } => self.let_statement(name, value),
+            Statement::Texture {
+                name,
+                kind,
+                block,
+                span,
+            } => self.texture_statement(name, kind, block, span),
+            Statement::Include {
+                path, path_span, ..
+            } => self.include(path, *path_span, file),
+            Statement::For {
+                var,
+                start,
+                end: None,
+                body,
+                ..
+            } => self.for_list(var, start, body, file),
+            Statement::For {
+                var,
+                start,
+                end: Some(end),
+                body,
+                ..
+            } => self.for_range(var, (start, end), body, file),
+            Statement::If {
+                arms, otherwise, ..
+            } => self.if_statement(arms, otherwise, file),
+            Statement::Function {
+                name, params, body, ..
+            } => self.function_statement(name, params, body),
+            Statement::Group { name, body, span } => self.group(name, body, *span, file),
+            Statement::Instance { group, block, span } => self.instance(group, block, *span),
+            Statement::Background { value, span } => self.background_statement(value, span),
+            Statement::Material { name, block, span } => self.material_statement(name, block, span),
+            Statement::Block {
+                kind,
+                kind_span,
+                block,
+                span,
+            } => self.block(*kind, *kind_span, block, *span, file),
+            Statement::Foreign { name, span } => {
+                self.diags.push(povray::foreign_statement(name, *span));
+            }
+            Statement::Directive {
+                name,
+                binding,
+                span,
+            } => {
+                self.diags.push(povray::directive(name));
+                // `#declare R = 1;` binds `R` as `let` would: its uses are fine.
+                if let Some((bound, value)) = binding {
+                    let name = bound.clone();
+                    let value = value.clone();
+                    let span = *span;
+                    self.statement(&Statement::Let { name, value, span }, file);
+                }
+            }
+        }
+    }
+
+    /// `let name = value;`: binds a constant.
+    fn let_statement(&mut self, name: &Ident, value: &Expr) {
+        // A texture's name is taken too (both are read as names).
+        if let Some(first) = self.name_taken(&name.name) {
+            self.diags.push(defined_again(
+                name,
+                first,
+                "constants cannot be redefined; pick another name",
+            ));
+            return;
+        }
+        let v = eval(value, &mut self.env, &mut self.diags);
+        if v.is_none() {
+            // Uses of a broken constant stay silent; don't call it unused either.
+            self.env.used.insert(name.span);
+        }
+        self.env.bind(
+            &name.name,
+            Binding {
+                value: v,
+                decl: name.span,
+            },
+        );
+        if self.let_spans.insert(name.span) {
+            self.lets.push((name.name.clone(), name.span));
+        }
+    }
+
+    /// `texture name kind { … }`: declares a texture.
+    fn texture_statement(&mut self, name: &Ident, kind: &Ident, block: &Block, span: &Span) {
+        let clash = (self.env.textures.get(&name.name).map(|t| t.1))
+            .or_else(|| self.env.in_current_frame(&name.name).map(|b| b.decl));
+        if let Some(first) = clash.filter(|&first| first != name.span) {
+            self.diags.push(defined_again(
+                name,
+                first,
+                "give each texture and constant its own name",
+            ));
+            return;
+        }
+        let texture = texture::check_texture(kind, block, *span, &mut self.env, &mut self.diags);
+        if let Some(mut texture) = texture {
+            texture.resolve_path(folder_of(&self.sources, span.file));
+            self.env
+                .textures
+                .insert(name.name.clone(), (texture, name.span));
+            if self.let_spans.insert(name.span) {
+                self.lets.push((name.name.clone(), name.span));
+            }
+        }
+    }
+
+    /// `if c { … } else …`: runs the first arm whose condition holds.
+    fn if_statement(
+        &mut self,
+        arms: &[(Expr, Vec<Statement>)],
+        otherwise: &Option<Vec<Statement>>,
+        file: FileId,
+    ) {
+        // A branch's statements run in the enclosing scope, as
+        // POV-Ray's `#if`: `if final { let spp = 1024; } else { let
+        // spp = 16; }` defines `spp` for what follows.
+        for (cond, body) in arms {
+            match eval::condition(cond, &mut self.env, &mut self.diags) {
+                Some(true) => return self.statements(body, file),
+                Some(false) => {}
+                None => return,
+            }
+        }
+        if let Some(body) = otherwise {
+            self.statements(body, file);
+        }
+    }
+
+    /// `fn name(params) = body;`: binds a user function.
+    fn function_statement(&mut self, name: &Ident, params: &[Ident], body: &Arc<Expr>) {
+        if let Some(first) = self.name_taken(&name.name) {
+            if first != name.span {
+                self.diags.push(defined_again(
+                    name,
+                    first,
+                    "give each function, constant and texture its own name",
+                ));
+                return;
+            }
+        }
+        if eval::FUNCTIONS.iter().any(|(f, _)| *f == name.name) {
+            self.diags.push(
+                Diagnostic::error(
+                    codes::DUPLICATE_NAME,
+                    format!("`{}` is a built-in function", name.name),
+                    name.span,
+                )
+                .with_label("defined again here")
+                .with_help(format!("pick another name, e.g. `my_{}`", name.name)),
+            );
+            return;
+        }
+        let mut seen: HashMap<&str, Span> = HashMap::new();
+        for p in params {
+            if let Some(first) = seen.insert(&p.name, p.span) {
+                self.diags
+                    .push(defined_again(p, first, "give each parameter its own name"));
+                return;
+            }
+        }
+        let f = eval::Function {
+            name: name.name.clone(),
+            params: params.iter().map(|p| p.name.clone()).collect(),
+            body: body.clone(),
+        };
+        self.env.bind(
+            &name.name,
+            Binding {
+                value: Some(Value::Function(std::sync::Arc::new(f))),
+                decl: name.span,
+            },
+        );
+        if self.let_spans.insert(name.span) {
+            self.lets.push((name.name.clone(), name.span));
+            self.functions.insert(name.span);
+        }
+    }
+
+    /// `background value`: the radiance from every direction.
+    fn background_statement(&mut self, value: &Expr, span: &Span) {
+        if let Some(g) = self.open_group {
+            self.diags.push(not_in_group(
+                "`background`",
+                *span,
+                self.groups[g].span,
+                "settings and the sky belong at the top level of the scene",
+            ));
+            return;
+        }
+        let v = eval(value, &mut self.env, &mut self.diags);
+        if let Some(first) = self.background.map(|b| b.1) {
+            self.diags.push(duplicate_block("background", *span, first));
+            return;
+        }
+        if let Some(first) = self.infinite_light() {
+            self.diags.push(two_skies(*span, first));
+            return;
+        }
+        match v {
+            Some(Value::Color(c)) if c.iter().all(|x| *x >= 0.0) => {
+                match domain::Quantity::Radiance.check_all(&c, "background", "", value.span) {
+                    Ok(()) => self.background = Some((c, *span)),
+                    Err(d) => self.diags.push(d),
+                }
+            }
+            Some(Value::Color(_)) => self.diags.push(
+                Diagnostic::error(
+                    codes::OUT_OF_RANGE,
+                    "the background must be non-negative",
+                    value.span,
+                )
+                .with_label("negative radiance")
+                .with_help("colour components are ≥ 0"),
+            ),
+            Some(other) => self.diags.push(
+                Diagnostic::error(
+                    codes::TYPE_MISMATCH,
+                    format!("`background` expects a colour, found {}", other.type_name()),
+                    value.span,
+                )
+                .with_label(format!("this is {}", other.type_name()))
+                .with_help("write e.g. `background rgb <0.7, 0.8, 1.0>`"),
+            ),
+            None => {}
+        }
+    }
+
+    /// `material name { … }`: declares a material.
+    fn material_statement(&mut self, name: &Ident, block: &Block, span: &Span) {
+        let what = format!("material {}", name.name);
+        let checking = (&mut self.env, &mut self.diags);
+        let p = material::collect(what, name.span, block, checking);
+        for e in &block.entries {
+            if let Entry::Material { span, .. } = e {
+                self.diags.push(
+                    Diagnostic::error(
+                        codes::UNKNOWN_PARAM,
+                        "a material cannot contain a material",
+                        *span,
+                    )
+                    .with_label("not allowed inside `material`")
+                    .with_help("put the material's parameters directly in its block"),
+                );
+            }
+        }
+        let mut m = material::material(&p, Some(name.name.clone()), *span, &mut self.diags);
+        m.resolve_paths(folder_of(&self.sources, span.file));
+        if let Some(prev) = self.material_names.get(&name.name) {
+            // Loops may redeclare the same declaration; only distinct declarations clash.
+            if prev.span != name.span {
+                self.diags.push(
+                    Diagnostic::error(
+                        codes::DUPLICATE_NAME,
+                        format!("material `{}` is already defined", name.name),
+                        name.span,
+                    )
+                    .with_label("defined again here")
+                    .with_secondary(prev.span, "first defined here")
+                    .with_help("give each material its own name"),
+                );
+                return;
+            }
+        }
+        self.materials.push(m);
+        self.material_names.insert(
+            name.name.clone(),
+            MaterialEntry {
+                index: self.materials.len() - 1,
+                span: name.span,
+            },
+        );
+    }
+}

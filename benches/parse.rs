@@ -46,7 +46,9 @@ fn bench(c: &mut Criterion) {
         })
     });
     g.bench_function("spheres_100k_parse_only", |b| {
-        b.iter(|| ptsc::syntax::parse(ptsc::source::FileId(0), &text).unwrap())
+        b.iter(|| {
+            ptsc::syntax::parse(ptsc::source::FileId(0), &text, &ptsc::check::kinds::NAMES).unwrap()
+        })
     });
     g.finish();
 }

@@ -4,41 +4,47 @@
 use super::*;
 
 impl Checker<'_> {
+    /// A block statement `kind { … }`: its kind looked up in the kind
+    /// table, its entries checked against the kind's schemas, and the
+    /// result kept as a setting, a light or an object.
     pub(super) fn block(
         &mut self,
-        kind: BlockKind,
-        kind_span: Span,
+        kind: &Ident,
         block: &crate::syntax::ast::Block,
         span: Span,
         file: FileId,
     ) {
+        let Some(row) = kinds::find(&kind.name) else {
+            self.diags.push(kinds::unknown_statement(kind, span));
+            return;
+        };
+        let kind_span = kind.span;
         if let Some(g) = self
             .open_group
-            .filter(|_| !kind.is_shape() && !kind.is_light())
+            .filter(|_| !row.is_shape() && !row.is_light())
         {
             self.diags.push(not_in_group(
-                &format!("`{}`", kind.keyword()),
+                &format!("`{}`", row.name),
                 kind_span,
                 self.groups[g].span,
                 "settings and the sky belong at the top level of the scene",
             ));
             return;
         }
-        let p = Params::collect(
-            kind.keyword(),
-            kind_span,
+        let p = Params::collect_block(
+            (row.name, kind_span),
             block,
-            &objects::shape_schemas(kind),
+            (&row.schemas(), row.positional),
             &mut self.env,
             &mut self.diags,
         );
         let material_entries = material_entries(block);
-        if !kind.is_shape() {
+        if !row.is_shape() {
             for (_, s) in &material_entries {
                 self.diags.push(
                     Diagnostic::error(
                         codes::UNKNOWN_PARAM,
-                        format!("`{}` does not take a material", kind.keyword()),
+                        format!("`{}` does not take a material", row.name),
                         *s,
                     )
                     .with_label("not allowed here")
@@ -46,10 +52,54 @@ impl Checker<'_> {
                 );
             }
         }
-        match kind {
-            BlockKind::Render => {
+        match row.role {
+            kinds::Role::Setting(setting) => self.setting(setting, &p, kind_span, span, file),
+            kinds::Role::Light(convert) => {
+                if let Some(l) = convert(&p, &mut self.diags) {
+                    // A group's lights are the scene's once placed.
+                    match self.open_group {
+                        Some(g) => self.groups[g].lights.push((l, span)),
+                        None => self.lights.push((l, span)),
+                    }
+                }
+            }
+            kinds::Role::Shape(convert) => {
+                let material = self.object_material(&material_entries, span);
+                // Only a file's shape has a path to resolve (Path::parent
+                // is not free).
+                let base = match row.params.iter().any(|p| p.ty == schema::Ty::Str) {
+                    true => folder_of(&self.sources, file),
+                    false => Path::new(""),
+                };
+                let mut input = kinds::ShapeInput {
+                    r: reader::Reader {
+                        p: &p,
+                        diags: &mut self.diags,
+                    },
+                    kind: row,
+                    base_dir: base,
+                    files: self.files,
+                };
+                let shape = convert(&mut input);
+                self.object(shape, material, &material_entries, (&p, kind_span, span));
+            }
+        }
+    }
+
+    /// A settings block (`render`, `camera`, `environment`, `sky`): kept,
+    /// unless given before.
+    fn setting(
+        &mut self,
+        setting: kinds::Setting,
+        p: &Params,
+        kind_span: Span,
+        span: Span,
+        file: FileId,
+    ) {
+        match setting {
+            kinds::Setting::Render => {
                 let base = folder_of(&self.sources, file);
-                let settings = blocks::render_settings(&p, base, &mut self.diags);
+                let settings = blocks::render_settings(p, base, &mut self.diags);
                 if let Some((_, first)) = &self.render {
                     self.diags
                         .push(duplicate_block("render", kind_span, *first));
@@ -59,8 +109,8 @@ impl Checker<'_> {
                 self.light_samples_span = p.get("light_samples").map(|v| v.1);
                 self.render = Some((settings, kind_span));
             }
-            BlockKind::Camera => {
-                let cam = blocks::camera(&p, span, &mut self.diags);
+            kinds::Setting::Camera => {
+                let cam = blocks::camera(p, span, &mut self.diags);
                 if let Some(first) = self.camera_span {
                     self.diags.push(duplicate_block("camera", kind_span, first));
                     return;
@@ -68,9 +118,9 @@ impl Checker<'_> {
                 self.camera_span = Some(kind_span);
                 self.camera = cam;
             }
-            BlockKind::Environment => {
+            kinds::Setting::Environment => {
                 let base = folder_of(&self.sources, file);
-                let environment = blocks::environment(&p, base, span, &mut self.diags);
+                let environment = blocks::environment(p, base, span, &mut self.diags);
                 if let Some(e) = &self.environment {
                     self.diags
                         .push(duplicate_block("environment", kind_span, e.span));
@@ -82,8 +132,8 @@ impl Checker<'_> {
                 }
                 self.environment = environment;
             }
-            BlockKind::Sky => {
-                let sky = blocks::sky(&p, span, &mut self.diags);
+            kinds::Setting::Sky => {
+                let sky = blocks::sky(p, span, &mut self.diags);
                 if let Some(s) = &self.sky {
                     self.diags.push(duplicate_block("sky", kind_span, s.span));
                     return;
@@ -94,64 +144,58 @@ impl Checker<'_> {
                 }
                 self.sky = sky;
             }
-            BlockKind::PointLight | BlockKind::SpotLight | BlockKind::DirectionalLight => {
-                if let Some(l) = blocks::light(kind, &p, &mut self.diags) {
-                    // A group's lights are the scene's once placed.
-                    match self.open_group {
-                        Some(g) => self.groups[g].lights.push((l, span)),
-                        None => self.lights.push((l, span)),
-                    }
+        }
+    }
+
+    /// An object of `shape` (when it checked) and `material`, with the
+    /// block's transforms and motion: kept in the open group or the scene.
+    fn object(
+        &mut self,
+        shape: Option<Shape>,
+        material: Option<usize>,
+        material_entries: &[(&MaterialRef, Span)],
+        (p, kind_span, span): (&Params, Span, Span),
+    ) {
+        let transform: DMat4 = objects::transform(p, &mut self.diags);
+        let velocity = objects::velocity(p);
+        let (Some(shape), Some(material)) = (shape, material) else {
+            return;
+        };
+        if matches!(shape, Shape::Plane { .. })
+            && material != PENDING_MATERIAL
+            && self.materials[material].is_emissive()
+        {
+            self.diags.push(emissive_plane(kind_span));
+            return;
+        }
+        let object = Object {
+            shape,
+            material,
+            transform,
+            velocity,
+            span,
+        };
+        let at = match self.open_group {
+            Some(g) => {
+                let group = &mut self.groups[g];
+                group.objects.push(object);
+                group.unmaterialled.push(material_entries.is_empty());
+                ObjectRef {
+                    group: Some(g),
+                    index: group.objects.len() - 1,
                 }
             }
-            _ => {
-                let material = self.object_material(&material_entries, span);
-                // Only a mesh has a path to resolve (Path::parent is not free).
-                let base = match kind {
-                    BlockKind::Mesh => folder_of(&self.sources, file),
-                    _ => Path::new(""),
-                };
-                let shape = objects::shape(kind, &p, (base, self.files), &mut self.diags);
-                let transform: DMat4 = objects::transform(&p, &mut self.diags);
-                let velocity = objects::velocity(&p);
-                if let (Some(shape), Some(material)) = (shape, material) {
-                    if matches!(shape, Shape::Plane { .. })
-                        && material != PENDING_MATERIAL
-                        && self.materials[material].is_emissive()
-                    {
-                        self.diags.push(emissive_plane(kind_span));
-                        return;
-                    }
-                    let object = Object {
-                        shape,
-                        material,
-                        transform,
-                        velocity,
-                        span,
-                    };
-                    let at = match self.open_group {
-                        Some(g) => {
-                            let group = &mut self.groups[g];
-                            group.objects.push(object);
-                            group.unmaterialled.push(material_entries.is_empty());
-                            ObjectRef {
-                                group: Some(g),
-                                index: group.objects.len() - 1,
-                            }
-                        }
-                        None => {
-                            self.objects.push(object);
-                            ObjectRef {
-                                group: None,
-                                index: self.objects.len() - 1,
-                            }
-                        }
-                    };
-                    if material == PENDING_MATERIAL {
-                        if let Some((MaterialRef::Named(name), _)) = material_entries.first() {
-                            self.pending_materials.push((at, (*name).clone()));
-                        }
-                    }
+            None => {
+                self.objects.push(object);
+                ObjectRef {
+                    group: None,
+                    index: self.objects.len() - 1,
                 }
+            }
+        };
+        if material == PENDING_MATERIAL {
+            if let Some((MaterialRef::Named(name), _)) = material_entries.first() {
+                self.pending_materials.push((at, (*name).clone()));
             }
         }
     }

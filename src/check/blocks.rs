@@ -7,7 +7,6 @@ use super::scene::*;
 use crate::diag::codes;
 use crate::diag::{Diagnostic, Diagnostics};
 use crate::span::Span;
-use crate::syntax::ast::BlockKind;
 use glam::DVec3;
 use std::path::Path;
 
@@ -196,7 +195,7 @@ pub fn environment(
 /// or from `sun_elevation` and `sun_azimuth` (degrees; azimuth 0 puts the
 /// sun ahead, towards −z, 90 to the right, towards +x), above the horizon.
 pub fn sky(p: &Params, span: Span, diags: &mut Diagnostics) -> Option<Sky> {
-    let schema = super::schema::shape_schema(BlockKind::Sky);
+    let schema = super::schema::SKY;
     let mut r = Reader { p, diags };
     let angles = p.given("sun_elevation") || p.given("sun_azimuth");
     let direction = if p.given("sun_direction") {
@@ -257,61 +256,4 @@ pub fn sky(p: &Params, span: Span, diags: &mut Diagnostics) -> Option<Sky> {
         sun_intensity: r.color("sun_intensity", [1.0; 3]),
         span,
     })
-}
-
-/// A light block → light.
-pub fn light(kind: BlockKind, p: &Params, diags: &mut Diagnostics) -> Option<Light> {
-    let schema = super::schema::shape_schema(kind);
-    let mut r = Reader { p, diags };
-    let need_color = |r: &mut Reader, name: &'static str| -> Option<Rgb> {
-        r.p.require(name, schema, r.diags)?;
-        Some(r.color(name, [0.0; 3]))
-    };
-    match kind {
-        BlockKind::PointLight => {
-            let pos = r.vec3_req("position", schema);
-            let i = need_color(&mut r, "intensity");
-            Some(Light::Point {
-                position: pos?.0,
-                intensity: i?,
-            })
-        }
-        BlockKind::SpotLight => {
-            let pos = r.vec3_req("position", schema);
-            let at = r.vec3_req("look_at", schema);
-            let i = need_color(&mut r, "intensity");
-            let angle = r.num_in("angle", 0.0, 90.0, true, 30.0);
-            let hotspot = r.num_in("hotspot", 0.0, angle, false, angle);
-            let (pos, s) = pos?;
-            let dir = at?.0 - pos;
-            if dir.length_squared() == 0.0 {
-                r.diags.push(
-                    Diagnostic::error(
-                        codes::DEGENERATE,
-                        "the spot light points at its own position",
-                        s,
-                    )
-                    .with_label("`position` equals `look_at`")
-                    .with_help("aim `look_at` at the lit point"),
-                );
-                return None;
-            }
-            Some(Light::Spot {
-                position: pos,
-                direction: dir.normalize(),
-                intensity: i?,
-                angle,
-                hotspot,
-            })
-        }
-        BlockKind::DirectionalLight => {
-            let d = r.direction("direction", schema);
-            let e = need_color(&mut r, "irradiance");
-            Some(Light::Directional {
-                direction: d?,
-                irradiance: e?,
-            })
-        }
-        _ => unreachable!("not a light: {kind:?}"),
-    }
 }

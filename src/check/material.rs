@@ -193,12 +193,13 @@ fn roughness(r: &mut Reader) -> Option<[f64; 2]> {
 /// constants from its `preset` or its `eta` and `k`.
 fn kind(r: &mut Reader) -> MaterialKind {
     let p = r.p;
-    let word = match p.get("type") {
-        Some((Val::Word(w), _)) => w.as_str(),
-        _ => "mix",
+    // A word checked against `MaterialType::WORDS` by the row's `Ty::Word`.
+    let model = match p.get("type") {
+        Some((Val::Word(w), _)) => MaterialType::from_name(w).unwrap_or(MaterialType::Mix),
+        _ => MaterialType::Mix,
     };
-    match word {
-        "conductor" => {
+    match model {
+        MaterialType::Conductor => {
             let preset = match p.get("preset") {
                 Some((Val::Word(w), s)) => Some((w.as_str(), *s)),
                 _ => None,
@@ -243,10 +244,10 @@ fn kind(r: &mut Reader) -> MaterialKind {
                 k: r.color("k", [0.0; 3]),
             }
         }
-        "plastic" => MaterialKind::Plastic,
-        "dielectric" => MaterialKind::Dielectric,
-        "thin_dielectric" => MaterialKind::ThinDielectric,
-        _ => MaterialKind::Mix,
+        MaterialType::Plastic => MaterialKind::Plastic,
+        MaterialType::Dielectric => MaterialKind::Dielectric,
+        MaterialType::ThinDielectric => MaterialKind::ThinDielectric,
+        MaterialType::Mix => MaterialKind::Mix,
     }
 }
 

@@ -10,6 +10,7 @@ mod finish;
 mod group_lights;
 mod groups;
 mod include;
+pub mod kinds;
 mod loops;
 mod material;
 mod objects;
@@ -29,7 +30,7 @@ pub(crate) use crate::diag::group_digits;
 use crate::diag::{codes, Diagnostic, Diagnostics};
 use crate::source::{Disk, FileId, FileKind, Files, ReadError, SourceMap, MAX_SCENE_BYTES};
 use crate::span::Span;
-use crate::syntax::ast::{BlockKind, Entry, MaterialRef, Statement};
+use crate::syntax::ast::{Entry, Ident, MaterialRef, Statement};
 use eval::{eval, Binding, Env, Value};
 use glam::DMat4;
 use params::Params;
@@ -344,7 +345,7 @@ impl<'f> Checker<'f> {
         // Statements are checked while later parts of the file are parsed.
         // Parsing goes on past a syntax error: the statements before and
         // after it are checked, and their mistakes reported with it.
-        let errors = crate::syntax::parse_each(id, &text, &mut |statements| {
+        let errors = crate::syntax::parse_each(id, &text, &kinds::NAMES, &mut |statements| {
             for st in &statements {
                 self.statement(st, id);
             }

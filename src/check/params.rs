@@ -151,6 +151,21 @@ impl Params {
         Collecting::new(what.into(), head, schemas, None).run(block, env, diags)
     }
 
+    /// [`Params::collect`] for a block statement whose kind has POV-Ray's
+    /// `positional` order (its row in `check/kinds`), which the help for
+    /// values without names writes out.
+    pub fn collect_block(
+        (what, head): (&'static str, Span),
+        block: &Block,
+        (schemas, positional): (&[&'static [ParamSpec]], Option<Positional>),
+        env: &mut Env,
+        diags: &mut Diagnostics,
+    ) -> Params {
+        let mut collecting = Collecting::new(what.into(), head, schemas, None);
+        collecting.positional = positional;
+        collecting.run(block, env, diags)
+    }
+
     /// [`Params::collect`] for a block whose parameters may be given
     /// textures (a material's), each checked by `texture`.
     pub fn collect_textured(
@@ -218,6 +233,8 @@ struct Collecting<'s> {
     texture: Option<CheckTexture>,
     /// Each parameter given once, where it was first given.
     first_seen: Vec<(&'static str, Span)>,
+    /// POV-Ray's order of the block's positional values, if it has one.
+    positional: Option<Positional>,
 }
 
 impl<'s> Collecting<'s> {
@@ -239,6 +256,7 @@ impl<'s> Collecting<'s> {
             schemas,
             texture,
             first_seen: Vec::new(),
+            positional: None,
         }
     }
 
@@ -312,7 +330,8 @@ impl<'s> Collecting<'s> {
                         self.suggest(crate::syntax::povray::parameter(taken).unwrap_or(taken))
                     }
                     None => {
-                        let (d, names) = super::povray::positional(&what, values, *span, env);
+                        let order = (what.as_ref(), self.positional);
+                        let (d, names) = super::povray::positional(order, values, *span, env);
                         diags.push(d);
                         // Not reported missing too: the help names them.
                         self.params.suggested.extend_from_slice(names);

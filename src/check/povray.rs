@@ -5,10 +5,10 @@
 //! of `params.rs` ([`super::schema::povray_positional`]).
 
 use super::eval::{eval, written, Env, Value};
-use super::schema::{povray_positional, ParamSpec};
+use super::schema::{ParamSpec, Positional};
 use crate::diag::{codes, did_you_mean, Diagnostic, Diagnostics};
 use crate::span::Span;
-use crate::syntax::ast::{BlockKind, Expr, Ident};
+use crate::syntax::ast::{Expr, Ident};
 
 /// The error for `name { … }` inside the block `what` (with the
 /// parameters `schemas`), at `span`.
@@ -53,19 +53,17 @@ pub fn foreign_block(
 
 /// The error for `values` written without parameter names in the block
 /// `what`, at `span`: the block written with the names they stand for
-/// where the kind has a POV-Ray order and the values evaluate; with the
-/// names of the parameters the values stand for.
+/// where the kind has a POV-Ray order (`row`, from the kind table) and the
+/// values evaluate; with the names of the parameters the values stand for.
 pub fn positional(
-    what: &str,
+    (what, row): (&str, Option<Positional>),
     values: &[Expr],
     span: Span,
     env: &mut Env,
 ) -> (Diagnostic, &'static [&'static str]) {
-    let kind = BlockKind::ALL.iter().copied().find(|k| k.keyword() == what);
-    let row = kind.and_then(povray_positional);
     let help = match row {
         Some((names, note)) => {
-            let rewritten = rewrite(kind, names, values, env).unwrap_or_else(|| {
+            let rewritten = rewrite(what, names, values, env).unwrap_or_else(|| {
                 names
                     .iter()
                     .map(|n| format!("{n} …"))
@@ -94,12 +92,7 @@ pub fn positional(
 /// `name value …` for `values` under `names`, from their evaluated values
 /// (a plane's distance becomes a point on it); `None` when a value does
 /// not evaluate or the counts differ.
-fn rewrite(
-    kind: Option<BlockKind>,
-    names: &[&str],
-    values: &[Expr],
-    env: &mut Env,
-) -> Option<String> {
+fn rewrite(kind: &str, names: &[&str], values: &[Expr], env: &mut Env) -> Option<String> {
     if names.len() != values.len() {
         return None;
     }
@@ -108,7 +101,7 @@ fn rewrite(
     for v in values {
         evaluated.push(eval(v, env, &mut quiet)?);
     }
-    if kind == Some(BlockKind::Plane) {
+    if kind == "plane" {
         // POV-Ray's plane { N, D }: the points p with p · N/|N| = D.
         let (Value::Vector(n), Value::Num(d)) = (&evaluated[0], &evaluated[1]) else {
             return None;
@@ -120,7 +113,7 @@ fn rewrite(
         let point: Vec<f64> = n.iter().map(|x| x / length * d).collect();
         evaluated[1] = Value::Vector(point.into());
     }
-    if kind == Some(BlockKind::Box) {
+    if kind == "box" {
         // POV-Ray takes any two opposite corners; ptsc the smaller first.
         if let (Value::Vector(a), Value::Vector(b)) = (&evaluated[0], &evaluated[1]) {
             let lo: Vec<f64> = a.iter().zip(b.iter()).map(|(x, y)| x.min(*y)).collect();
@@ -134,42 +127,6 @@ fn rewrite(
         .map(|(n, v)| format!("{n} {}", written(v)))
         .collect();
     Some(pairs.join(" "))
-}
-
-/// The error for `name { … }` where a statement goes, at `span`: the ptsc
-/// statement for POV-Ray's word, or the closest ptsc word.
-pub fn foreign_statement(name: &Ident, span: Span) -> Diagnostic {
-    let word = name.name.as_str();
-    if word == "background" {
-        return Diagnostic::error(
-            codes::FOREIGN_BLOCK,
-            "`background` takes a colour, not a block",
-            span,
-        )
-        .with_label("POV-Ray's `background { color … }`")
-        .with_help("write `background rgb <0.5, 0.7, 1>` (no braces); a daylight sky is `sky { … }`, an HDR image `environment { … }`");
-    }
-    if let Some(hint) = crate::syntax::povray::hint(word) {
-        return Diagnostic::error(
-            codes::FOREIGN_BLOCK,
-            format!("POV-Ray's `{word} {{ … }}` is not ptsc"),
-            span,
-        )
-        .with_label("a statement ptsc does not have")
-        .with_help(hint);
-    }
-    let words = crate::syntax::parser::KEYWORDS.iter().copied();
-    let help = match did_you_mean(word, words) {
-        Some(s) => format!("did you mean `{s}`?"),
-        None => "a scene is a list of statements: `let`, `fn`, `include`, `for`, `if`, `material`, `group`, `instance`, `camera { … }`, `render { … }`, a light or an object such as `sphere { … }`".to_string(),
-    };
-    Diagnostic::error(
-        codes::FOREIGN_BLOCK,
-        format!("unknown statement `{word}`"),
-        span,
-    )
-    .with_label("not a ptsc statement")
-    .with_help(help)
 }
 
 /// The error for a name alone before the `}` of the block `what`:

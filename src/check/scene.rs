@@ -166,6 +166,12 @@ pub enum TextureSpace {
     World,
 }
 
+named_values!(TextureSpace {
+    "uv" => Uv,
+    "object" => Object,
+    "world" => World,
+});
+
 /// The `camera { }` block.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Camera {
@@ -186,6 +192,29 @@ pub struct Camera {
     /// Where the block is.
     pub span: Span,
 }
+
+/// The word of a material's `type`: which scattering model it is.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum MaterialType {
+    /// The paper's weighted mix of lobes (no `type`).
+    Mix,
+    /// A metal.
+    Conductor,
+    /// `diffuse` under a dielectric coat.
+    Plastic,
+    /// Glass.
+    Dielectric,
+    /// A thin pane.
+    ThinDielectric,
+}
+
+named_values!(MaterialType {
+    "mix" => Mix,
+    "conductor" => Conductor,
+    "plastic" => Plastic,
+    "dielectric" => Dielectric,
+    "thin_dielectric" => ThinDielectric,
+});
 
 /// A material's scattering model (`type`).
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -56,6 +56,11 @@ impl Ty {
     }
 }
 
+/// POV-Ray's order of a kind's positional values (`sphere { <0, 1, 0>, 1 }`):
+/// the parameters they stand for, and a note on what ptsc means otherwise
+/// (empty if none).
+pub type Positional = (&'static [&'static str], &'static str);
+
 /// One parameter of a block.
 #[derive(Debug, Clone, Copy)]
 pub struct ParamSpec {
@@ -76,12 +81,20 @@ pub struct ParamSpec {
     /// does its job and a help line saying so. Not a parameter: refused
     /// with the line, left out of the lists of accepted names.
     pub povray: Option<(&'static str, &'static str)>,
+    /// What it means, its default and its range, in a line or two: the
+    /// text of hover and of the docs' tables (empty where not written yet).
+    pub doc: &'static str,
 }
 
 impl ParamSpec {
     /// The same parameter, its numbers standing for `quantity`.
-    const fn of(self, quantity: Quantity) -> ParamSpec {
+    pub(super) const fn of(self, quantity: Quantity) -> ParamSpec {
         ParamSpec { quantity, ..self }
+    }
+
+    /// The same parameter, documented by `doc` ([`ParamSpec::doc`]).
+    pub(super) const fn doc(self, doc: &'static str) -> ParamSpec {
+        ParamSpec { doc, ..self }
     }
 
     /// The same parameter, which may be given a texture.
@@ -93,7 +106,8 @@ impl ParamSpec {
     }
 }
 
-const fn p(name: &'static str, ty: Ty, example: &'static str) -> ParamSpec {
+/// A parameter given once.
+pub(super) const fn p(name: &'static str, ty: Ty, example: &'static str) -> ParamSpec {
     ParamSpec {
         name,
         ty,
@@ -102,10 +116,12 @@ const fn p(name: &'static str, ty: Ty, example: &'static str) -> ParamSpec {
         quantity: Quantity::Plain,
         texture: false,
         povray: None,
+        doc: "",
     }
 }
 
-const fn t(name: &'static str, ty: Ty, example: &'static str) -> ParamSpec {
+/// A parameter that may be given several times, in order (a transform).
+pub(super) const fn t(name: &'static str, ty: Ty, example: &'static str) -> ParamSpec {
     ParamSpec {
         name,
         ty,
@@ -114,17 +130,22 @@ const fn t(name: &'static str, ty: Ty, example: &'static str) -> ParamSpec {
         quantity: Quantity::Plain,
         texture: false,
         povray: None,
+        doc: "",
     }
 }
 
 /// The help for a light's `color`: POV-Ray's light colour.
-const LIGHT_COLOR: &str = "POV-Ray's light `color` is `intensity rgb …` in ptsc: radiant intensity, falling off with the squared distance (POV-Ray's light does not fall off unless told: give about 1.9 × its colour × the squared distance to what it lights)";
+pub(super) const LIGHT_COLOR: &str = "POV-Ray's light `color` is `intensity rgb …` in ptsc: radiant intensity, falling off with the squared distance (POV-Ray's light does not fall off unless told: give about 1.9 × its colour × the squared distance to what it lights)";
 /// [`LIGHT_COLOR`] spelt `colour`.
-const LIGHT_COLOUR: &str = "POV-Ray's light `colour` is `intensity rgb …` in ptsc: radiant intensity, falling off with the squared distance (POV-Ray's light does not fall off unless told: give about 1.9 × its colour × the squared distance to what it lights)";
+pub(super) const LIGHT_COLOUR: &str = "POV-Ray's light `colour` is `intensity rgb …` in ptsc: radiant intensity, falling off with the squared distance (POV-Ray's light does not fall off unless told: give about 1.9 × its colour × the squared distance to what it lights)";
 
 /// A POV-Ray word refused in one kind of block, with the ptsc parameter
 /// that does its job and the help line (see [`ParamSpec::povray`]).
-const fn povray(name: &'static str, instead: &'static str, help: &'static str) -> ParamSpec {
+pub(super) const fn povray(
+    name: &'static str,
+    instead: &'static str,
+    help: &'static str,
+) -> ParamSpec {
     ParamSpec {
         povray: Some((instead, help)),
         ..p(name, Ty::Num, "")
@@ -133,15 +154,20 @@ const fn povray(name: &'static str, instead: &'static str, help: &'static str) -
 
 /// The help line for POV-Ray's spot light angles, whose `falloff` is the
 /// opposite of what the word suggests: it is the outer angle.
-const SPOT_ANGLES: &str = "POV-Ray's `falloff` (the outer angle, where the light ends) is `angle` in ptsc; its `radius` (the hot spot, full light inside) is `hotspot`";
+pub(super) const SPOT_ANGLES: &str = "POV-Ray's `falloff` (the outer angle, where the light ends) is `angle` in ptsc; its `radius` (the hot spot, full light inside) is `hotspot`";
 
 /// Parameters every shape accepts besides `material`.
 pub const SHAPE_COMMON: &[ParamSpec] = &[
-    t("translate", Ty::Vec3, "<0, 1, 0>").of(Magnitude),
-    t("rotate", Ty::Vec3, "<0, 45, 0>"),
-    t("scale", Ty::NumOrVec3, "2").of(Quantity::Scale),
-    t("matrix", Ty::Matrix, "<1,0,0, 0,1,0, 0,0,1, 0,0,0>").of(Magnitude),
-    p("velocity", Ty::Vec3, "<1, 0, 0>").of(Magnitude),
+    t("translate", Ty::Vec3, "<0, 1, 0>").of(Magnitude)
+        .doc("moves the object (transforms apply in the order written)"),
+    t("rotate", Ty::Vec3, "<0, 45, 0>")
+        .doc("turns the object about x, then y, then z, in degrees"),
+    t("scale", Ty::NumOrVec3, "2").of(Quantity::Scale)
+        .doc("scales the object about the origin, by a number or per axis; no factor 0 (round shapes take uniform scales only)"),
+    t("matrix", Ty::Matrix, "<1,0,0, 0,1,0, 0,0,1, 0,0,0>").of(Magnitude)
+        .doc("an affine matrix, 12 numbers row by row (16 with a last row 0, 0, 0, 1)"),
+    p("velocity", Ty::Vec3, "<1, 0, 0>").of(Magnitude)
+        .doc("linear motion per unit of shutter time (motion blur). Default none"),
 ];
 
 /// Integrator names accepted by `render { integrator … }`.
@@ -152,49 +178,89 @@ pub const LIGHT_SELECTIONS: &[&str] = &crate::ir::settings::LightSelection::WORD
 
 /// `render { }`
 pub const RENDER: &[ParamSpec] = &[
-    p("resolution", Ty::Vec2, "<512, 512>"),
-    p("samples", Ty::Int, "64"),
-    p("max_depth", Ty::Int, "8"),
-    p("integrator", Ty::Word(INTEGRATORS), "path"),
-    p("seed", Ty::Int, "1"),
-    p("ambient", Ty::Color, "rgb 0.1").of(Radiance),
-    p("rr_depth", Ty::Int, "5"),
-    p("output", Ty::Str, "\"out.png\""),
-    p("hybrid_weight", Ty::Num, "0.5"),
-    p("clamp", Ty::Num, "10"),
-    p("light_sampling", Ty::Bool, "true"),
-    p("light_selection", Ty::Word(LIGHT_SELECTIONS), "auto"),
-    p("light_samples", Ty::Int, "4"),
-    p("exposure", Ty::Num, "0"),
+    p("resolution", Ty::Vec2, "<512, 512>")
+        .doc("image width and height in pixels; each side 1..16384, at most 8192 × 8192 pixels in all. Default `<512, 512>`"),
+    p("samples", Ty::Int, "64")
+        .doc("camera paths per pixel, 1..1000000. Default 16"),
+    p("max_depth", Ty::Int, "8")
+        .doc("path segments at most: 1 = emitters seen directly, 2 = direct light, … (Mitsuba's convention). Default 8"),
+    p("integrator", Ty::Word(INTEGRATORS), "path")
+        .doc("light transport: `path` (unbiased), `whitted`, `hybrid`, or a debug view (`normals`, `albedo`, `depth`, `uv`). Default `path`"),
+    p("seed", Ty::Int, "1")
+        .doc("seed of every random stream, 0..4294967295: same seed, same image. Default 0"),
+    p("ambient", Ty::Color, "rgb 0.1").of(Radiance)
+        .doc("a constant ambient term added at diffuse hits (the paper's); biased. Default black"),
+    p("rr_depth", Ty::Int, "5")
+        .doc("path segments before Russian roulette may end a path (unbiased). Default 5"),
+    p("output", Ty::Str, "\"out.png\"")
+        .doc("the output file, relative to the scene: `.png`, `.exr` or `.pfm`. Default: the scene's name with `.png`"),
+    p("hybrid_weight", Ty::Num, "0.5")
+        .doc("weight of the Whitted estimate in `hybrid`, 0..1 (the rest is path traced). Default 0.5"),
+    p("clamp", Ty::Num, "10")
+        .doc("largest RGB component of an indirect contribution (biased; fights fireflies). Default off"),
+    p("light_sampling", Ty::Bool, "true")
+        .doc("next-event estimation with multiple importance sampling; `false` is naive path tracing. Default `true`"),
+    p("light_selection", Ty::Word(LIGHT_SELECTIONS), "auto")
+        .doc("how a shadow ray chooses its light: `auto`, `bvh`, `exhaustive`, `power` or `uniform`. Default `auto`"),
+    p("light_samples", Ty::Int, "4")
+        .doc("shadow rays per area light at each Whitted hit (soft shadows). Default 4"),
+    p("exposure", Ty::Num, "0")
+        .doc("scales the image by 2^exposure before PNG encoding (stops). Default 0"),
 ];
 
 /// `camera { }`
 pub const CAMERA: &[ParamSpec] = &[
-    p("position", Ty::Vec3, "<0, 1, 5>").of(Magnitude),
-    p("look_at", Ty::Vec3, "<0, 0, 0>").of(Magnitude),
-    p("up", Ty::Vec3, "<0, 1, 0>").of(Direction),
-    p("fov", Ty::Num, "40"),
-    p("aperture", Ty::Num, "0.05").of(Magnitude),
-    p("focus_distance", Ty::Num, "5").of(Size),
-    p("shutter", Ty::Vec2, "<0, 1>").of(Magnitude),
+    p("position", Ty::Vec3, "<0, 1, 5>")
+        .of(Magnitude)
+        .doc("the eye. Required"),
+    p("look_at", Ty::Vec3, "<0, 0, 0>")
+        .of(Magnitude)
+        .doc("the point at the image centre. Required"),
+    p("up", Ty::Vec3, "<0, 1, 0>")
+        .of(Direction)
+        .doc("the image's up direction; not parallel to the view. Default `<0, 1, 0>`"),
+    p("fov", Ty::Num, "40").doc("full vertical field of view in degrees, 0..179. Default 40"),
+    p("aperture", Ty::Num, "0.05")
+        .of(Magnitude)
+        .doc("lens radius; 0 is a pinhole. Default 0"),
+    p("focus_distance", Ty::Num, "5")
+        .of(Size)
+        .doc("distance of the plane in focus (> 0). Default: the distance to `look_at`"),
+    p("shutter", Ty::Vec2, "<0, 1>")
+        .of(Magnitude)
+        .doc("the time interval of the exposure, for motion blur. Default `<0, 0>`"),
 ];
 
 /// `environment { }`
 pub const ENVIRONMENT: &[ParamSpec] = &[
-    p("file", Ty::Str, "\"studio.hdr\""),
-    p("intensity", Ty::Color, "rgb 1").of(Radiance),
-    t("rotate", Ty::Vec3, "<0, 90, 0>"),
+    p("file", Ty::Str, "\"studio.hdr\"")
+        .doc("an equirectangular image (`.hdr`, `.exr`; `.png`, `.jpg` from sRGB), relative to the scene. Required"),
+    p("intensity", Ty::Color, "rgb 1").of(Radiance)
+        .doc("scales the image's radiance. Default `rgb 1`"),
+    t("rotate", Ty::Vec3, "<0, 90, 0>")
+        .doc("turns the map about x, then y, then z, in degrees (repeatable, in order)"),
 ];
 
 /// `sky { }`
 pub const SKY: &[ParamSpec] = &[
-    p("sun_direction", Ty::Vec3, "<0.3, 0.6, -1>").of(Direction),
-    p("sun_elevation", Ty::Num, "35"),
-    p("sun_azimuth", Ty::Num, "20"),
-    p("turbidity", Ty::Num, "3"),
-    p("albedo", Ty::Color, "rgb 0.3").of(Magnitude),
-    p("intensity", Ty::Color, "rgb 1").of(Radiance),
-    p("sun_intensity", Ty::Color, "rgb 1").of(Radiance),
+    p("sun_direction", Ty::Vec3, "<0.3, 0.6, -1>")
+        .of(Direction)
+        .doc("towards the sun, instead of the two angles (y ≥ 0)"),
+    p("sun_elevation", Ty::Num, "35")
+        .doc("the sun's height above the horizon in degrees, 0..90. Default 45"),
+    p("sun_azimuth", Ty::Num, "20")
+        .doc("where the sun stands in degrees: 0 towards −z, 90 towards +x. Default 0"),
+    p("turbidity", Ty::Num, "3")
+        .doc("haze, 1..10: 1–2 a clear mountain sky, 3 a clear day, 6–10 hazy. Default 3"),
+    p("albedo", Ty::Color, "rgb 0.3").of(Magnitude).doc(
+        "the ground's reflectance, 0..1, which brightens the sky near the horizon. Default 0.3",
+    ),
+    p("intensity", Ty::Color, "rgb 1")
+        .of(Radiance)
+        .doc("scales the sky. Default 1"),
+    p("sun_intensity", Ty::Color, "rgb 1")
+        .of(Radiance)
+        .doc("scales the sun (0: the sky alone). Default 1"),
 ];
 
 /// `material { }`
@@ -230,13 +296,7 @@ pub const MATERIAL: &[ParamSpec] = &[
 
 /// The scattering models a material's `type` names (`mix`, the paper's
 /// weighted lobes, when none is given).
-pub const MATERIAL_TYPES: &[&str] = &[
-    "mix",
-    "conductor",
-    "plastic",
-    "dielectric",
-    "thin_dielectric",
-];
+pub const MATERIAL_TYPES: &[&str] = &super::scene::MaterialType::WORDS;
 
 /// The named metals of `type conductor` (their constants live with the
 /// conductor model, `material::conductor::PRESETS`, in this order).
@@ -312,7 +372,7 @@ pub const IMAGE: &[ParamSpec] = &[
 pub const COLOR_SPACES: &[&str] = &super::scene::ColorSpace::WORDS;
 
 /// The spaces a texture's pattern can live in.
-pub const TEXTURE_SPACES: &[&str] = &["uv", "object", "world"];
+pub const TEXTURE_SPACES: &[&str] = &super::scene::TextureSpace::WORDS;
 
 /// `checker { }`, besides the transforms of [`SHAPE_COMMON`] (velocity
 /// excepted).
@@ -328,173 +388,6 @@ pub const TEXTURE_TRANSFORMS: &[ParamSpec] = &[
     t("rotate", Ty::Vec3, "<0, 0, 45>"),
     t("scale", Ty::NumOrVec3, "0.25").of(Quantity::Scale),
 ];
-
-/// Every parameter name of every block and of materials, sorted (editors
-/// highlight them; their grammars are tested against this list).
-pub fn all_parameter_names() -> Vec<&'static str> {
-    let mut names: Vec<&'static str> = crate::syntax::ast::BlockKind::ALL
-        .iter()
-        .flat_map(|&k| shape_schema(k).iter())
-        .chain(SHAPE_COMMON)
-        .chain(MATERIAL)
-        .chain(CHECKER)
-        .chain(IMAGE)
-        .chain(NOISE)
-        .chain(BANDS)
-        .chain(GRADIENT)
-        .chain(COLOR_MAP)
-        .filter(|p| p.povray.is_none())
-        .map(|p| p.name)
-        .collect();
-    names.sort_unstable();
-    names.dedup();
-    names
-}
-
-/// The parameters of each shape, without [`SHAPE_COMMON`].
-pub fn shape_schema(kind: crate::syntax::ast::BlockKind) -> &'static [ParamSpec] {
-    use crate::syntax::ast::BlockKind::*;
-    match kind {
-        Sphere => {
-            const S: &[ParamSpec] = &[
-                p("center", Ty::Vec3, "<0, 1, 0>").of(Magnitude),
-                p("radius", Ty::Num, "1").of(Size),
-            ];
-            S
-        }
-        Plane => {
-            const S: &[ParamSpec] = &[
-                p("point", Ty::Vec3, "<0, 0, 0>").of(Magnitude),
-                p("normal", Ty::Vec3, "<0, 1, 0>").of(Direction),
-            ];
-            S
-        }
-        Quad => {
-            const S: &[ParamSpec] = &[
-                p("corner", Ty::Vec3, "<-1, 0, -1>").of(Magnitude),
-                p("edge1", Ty::Vec3, "<0, 0, 2>").of(Magnitude),
-                p("edge2", Ty::Vec3, "<2, 0, 0>").of(Magnitude),
-            ];
-            S
-        }
-        Disk => {
-            const S: &[ParamSpec] = &[
-                p("center", Ty::Vec3, "<0, 0, 0>").of(Magnitude),
-                p("normal", Ty::Vec3, "<0, 1, 0>").of(Direction),
-                p("radius", Ty::Num, "1").of(Size),
-            ];
-            S
-        }
-        Triangle => {
-            const S: &[ParamSpec] = &[
-                p("v0", Ty::Vec3, "<0, 0, 0>").of(Magnitude),
-                p("v1", Ty::Vec3, "<1, 0, 0>").of(Magnitude),
-                p("v2", Ty::Vec3, "<0, 1, 0>").of(Magnitude),
-            ];
-            S
-        }
-        Box => {
-            const S: &[ParamSpec] = &[
-                p("min", Ty::Vec3, "<-1, -1, -1>").of(Magnitude),
-                p("max", Ty::Vec3, "<1, 1, 1>").of(Magnitude),
-            ];
-            S
-        }
-        Cylinder => {
-            const S: &[ParamSpec] = &[
-                p("base", Ty::Vec3, "<0, 0, 0>").of(Magnitude),
-                p("top", Ty::Vec3, "<0, 2, 0>").of(Magnitude),
-                p("radius", Ty::Num, "0.5").of(Size),
-                p("open", Ty::Bool, "true"),
-            ];
-            S
-        }
-        Cone => {
-            const S: &[ParamSpec] = &[
-                p("base", Ty::Vec3, "<0, 0, 0>").of(Magnitude),
-                p("top", Ty::Vec3, "<0, 2, 0>").of(Magnitude),
-                p("base_radius", Ty::Num, "1").of(Size),
-                p("top_radius", Ty::Num, "0").of(Size),
-                p("open", Ty::Bool, "true"),
-            ];
-            S
-        }
-        Torus => {
-            const S: &[ParamSpec] = &[
-                p("center", Ty::Vec3, "<0, 0, 0>").of(Magnitude),
-                p("axis", Ty::Vec3, "<0, 1, 0>").of(Direction),
-                p("major_radius", Ty::Num, "1").of(Size),
-                p("minor_radius", Ty::Num, "0.25").of(Size),
-            ];
-            S
-        }
-        Mesh => {
-            const S: &[ParamSpec] = &[
-                p("file", Ty::Str, "\"bunny.ply\""),
-                p("smooth", Ty::Bool, "true"),
-            ];
-            S
-        }
-        PointLight => {
-            const S: &[ParamSpec] = &[
-                p("position", Ty::Vec3, "<0, 5, 0>").of(Magnitude),
-                p("intensity", Ty::Color, "rgb 100").of(Radiance),
-                povray("color", "intensity", LIGHT_COLOR),
-                povray("colour", "intensity", LIGHT_COLOUR),
-            ];
-            S
-        }
-        SpotLight => {
-            const S: &[ParamSpec] = &[
-                p("position", Ty::Vec3, "<0, 5, 0>").of(Magnitude),
-                p("look_at", Ty::Vec3, "<0, 0, 0>").of(Magnitude),
-                p("intensity", Ty::Color, "rgb 100").of(Radiance),
-                p("angle", Ty::Num, "30"),
-                p("hotspot", Ty::Num, "25"),
-                povray("falloff", "angle", SPOT_ANGLES),
-                povray("radius", "hotspot", SPOT_ANGLES),
-                povray("tightness", "hotspot", "POV-Ray's `tightness` has no ptsc equivalent: the light falls off smoothly from `hotspot` to `angle`"),
-                povray("point_at", "look_at", "POV-Ray's `point_at` is `look_at` in ptsc"),
-                povray("color", "intensity", LIGHT_COLOR),
-                povray("colour", "intensity", LIGHT_COLOUR),
-            ];
-            S
-        }
-        DirectionalLight => {
-            const S: &[ParamSpec] = &[
-                p("direction", Ty::Vec3, "<0, -1, 0>").of(Direction),
-                p("irradiance", Ty::Color, "rgb 3").of(Radiance),
-            ];
-            S
-        }
-        Render => RENDER,
-        Camera => CAMERA,
-        Environment => ENVIRONMENT,
-        Sky => SKY,
-    }
-}
-
-/// POV-Ray's positional values of a shape (`sphere { <0, 1, 0>, 1 }`):
-/// the ptsc parameters they stand for in POV-Ray's order, and what ptsc
-/// means otherwise. A plane's second value is POV-Ray's distance along the
-/// normal, written as a `point` (see `check::povray`).
-pub fn povray_positional(
-    kind: crate::syntax::ast::BlockKind,
-) -> Option<(&'static [&'static str], &'static str)> {
-    use crate::syntax::ast::BlockKind::*;
-    Some(match kind {
-        Sphere => (&["center", "radius"], ""),
-        Plane => (&["normal", "point"], "a plane is given by a point on it"),
-        Box => (&["min", "max"], "`min` is the smaller corner"),
-        Cylinder => (&["base", "top", "radius"], ""),
-        Cone => (&["base", "base_radius", "top", "top_radius"], ""),
-        Torus => (&["major_radius", "minor_radius"], ""),
-        Disk => (&["center", "normal", "radius"], ""),
-        Triangle => (&["v0", "v1", "v2"], ""),
-        PointLight => (&["position", "intensity"], "ptsc's lights fall off with the squared distance (POV-Ray's do not unless told): an `intensity` of about 1.9 × POV-Ray's colour × the squared distance to what it lights looks alike there"),
-        _ => return None,
-    })
-}
 
 /// The help for a metal `name` that is not one of the presets: the
 /// preset it is another name for, or how to give a metal's constants.
@@ -520,32 +413,4 @@ pub fn other_metal(name: &str) -> Option<String> {
         }
     };
     Some(format!("did you mean `{preset}`?"))
-}
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::syntax::ast::BlockKind;
-
-    #[test]
-    fn a_refused_povray_word_names_a_parameter_its_block_has() {
-        let rows = (BlockKind::ALL.iter().map(|&k| shape_schema(k)))
-            .chain([NOISE, BANDS, UNBANDED, GRADIENT, CHECKER, IMAGE, MATERIAL]);
-        let mut refused = 0;
-        for row in rows {
-            for spec in row.iter().filter(|s| s.povray.is_some()) {
-                let (instead, help) = spec.povray.unwrap();
-                refused += 1;
-                assert!(help.contains(&format!("`{}`", spec.name)), "{help}");
-                // `scale` is every texture's (TEXTURE_TRANSFORMS).
-                let has = row.iter().any(|s| s.name == instead && s.povray.is_none());
-                assert!(has || instead == "scale", "{}: {instead}", spec.name);
-            }
-        }
-        assert_eq!(refused, 9);
-        // Editors highlight parameters only: no word that is only refused.
-        let names = all_parameter_names();
-        for word in ["falloff", "tightness", "point_at"] {
-            assert!(!names.contains(&word), "{word}");
-        }
-    }
 }

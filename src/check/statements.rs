@@ -46,14 +46,12 @@ impl Checker<'_> {
             Statement::Instance { group, block, span } => self.instance(group, block, *span),
             Statement::Background { value, span } => self.background_statement(value, span),
             Statement::Material { name, block, span } => self.material_statement(name, block, span),
-            Statement::Block {
-                kind,
-                kind_span,
-                block,
-                span,
-            } => self.block(*kind, *kind_span, block, *span, file),
+            Statement::Block { kind, block, span } => self.block(kind, block, *span, file),
+            // A kind's block that did not parse was reported as a syntax
+            // error (see `syntax::parse_each`).
+            Statement::Foreign { name, .. } if kinds::find(&name.name).is_some() => {}
             Statement::Foreign { name, span } => {
-                self.diags.push(povray::foreign_statement(name, *span));
+                self.diags.push(kinds::unknown_statement(name, *span));
             }
             Statement::Directive {
                 name,

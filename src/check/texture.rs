@@ -61,10 +61,9 @@ pub fn check_texture(
         _ => None,
     };
     let solid = schema.as_ptr() != CHECKER.as_ptr() && !is_image;
-    let space = match word("space").as_deref() {
-        Some("object") => TextureSpace::Object,
-        Some("world") => TextureSpace::World,
-        Some(_) => TextureSpace::Uv,
+    // A word checked against `TextureSpace::WORDS` by the row's `Ty::Word`.
+    let space = match word("space").as_deref().and_then(TextureSpace::from_name) {
+        Some(space) => space,
         // Solid patterns live in the object by default, the others on the surface.
         None if solid => TextureSpace::Object,
         None => TextureSpace::Uv,

@@ -119,12 +119,11 @@ pub enum Statement {
         /// The whole declaration.
         span: Span,
     },
-    /// `render { }`, `camera { }`, a light or an object.
+    /// `render { }`, `camera { }`, a light or an object: `kind { … }`.
     Block {
-        /// What the block declares.
-        kind: BlockKind,
-        /// The keyword.
-        kind_span: Span,
+        /// The name of its kind (`sphere`), looked up in the checker's
+        /// kind table.
+        kind: Ident,
         /// Its entries.
         block: Block,
         /// The whole statement.
@@ -168,113 +167,6 @@ impl Statement {
             | Statement::Foreign { span, .. }
             | Statement::Directive { span, .. } => *span,
         }
-    }
-}
-
-/// The kinds of block statement.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum BlockKind {
-    /// `render { }` settings.
-    Render,
-    /// `camera { }`.
-    Camera,
-    /// `environment { }`: light from an image all around.
-    Environment,
-    /// `sky { }`: a daylight sky and its sun.
-    Sky,
-    /// `sphere { }`.
-    Sphere,
-    /// `plane { }` (infinite).
-    Plane,
-    /// `quad { }` (parallelogram).
-    Quad,
-    /// `disk { }`.
-    Disk,
-    /// `triangle { }`.
-    Triangle,
-    /// `box { }` (axis-aligned before transforms).
-    Box,
-    /// `cylinder { }`.
-    Cylinder,
-    /// `cone { }` (or a truncated cone).
-    Cone,
-    /// `torus { }`.
-    Torus,
-    /// `mesh { }` (OBJ or PLY file).
-    Mesh,
-    /// `point_light { }`.
-    PointLight,
-    /// `spot_light { }`.
-    SpotLight,
-    /// `directional_light { }`.
-    DirectionalLight,
-}
-
-impl BlockKind {
-    /// Every block kind.
-    pub const ALL: [BlockKind; 17] = [
-        BlockKind::Render,
-        BlockKind::Camera,
-        BlockKind::Environment,
-        BlockKind::Sky,
-        BlockKind::Sphere,
-        BlockKind::Plane,
-        BlockKind::Quad,
-        BlockKind::Disk,
-        BlockKind::Triangle,
-        BlockKind::Box,
-        BlockKind::Cylinder,
-        BlockKind::Cone,
-        BlockKind::Torus,
-        BlockKind::Mesh,
-        BlockKind::PointLight,
-        BlockKind::SpotLight,
-        BlockKind::DirectionalLight,
-    ];
-
-    /// The keyword that opens the block.
-    pub fn keyword(self) -> &'static str {
-        match self {
-            BlockKind::Render => "render",
-            BlockKind::Camera => "camera",
-            BlockKind::Environment => "environment",
-            BlockKind::Sky => "sky",
-            BlockKind::Sphere => "sphere",
-            BlockKind::Plane => "plane",
-            BlockKind::Quad => "quad",
-            BlockKind::Disk => "disk",
-            BlockKind::Triangle => "triangle",
-            BlockKind::Box => "box",
-            BlockKind::Cylinder => "cylinder",
-            BlockKind::Cone => "cone",
-            BlockKind::Torus => "torus",
-            BlockKind::Mesh => "mesh",
-            BlockKind::PointLight => "point_light",
-            BlockKind::SpotLight => "spot_light",
-            BlockKind::DirectionalLight => "directional_light",
-        }
-    }
-
-    /// Whether the block is a geometric object (takes a material and transforms).
-    pub fn is_shape(self) -> bool {
-        !matches!(
-            self,
-            BlockKind::Render
-                | BlockKind::Camera
-                | BlockKind::Environment
-                | BlockKind::Sky
-                | BlockKind::PointLight
-                | BlockKind::SpotLight
-                | BlockKind::DirectionalLight
-        )
-    }
-
-    /// Whether the block is an explicit light (point, spot, directional).
-    pub fn is_light(self) -> bool {
-        matches!(
-            self,
-            BlockKind::PointLight | BlockKind::SpotLight | BlockKind::DirectionalLight
-        )
     }
 }
 

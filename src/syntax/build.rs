@@ -8,16 +8,32 @@ use crate::span::Span;
 use pest::iterators::{Pair, Pairs};
 
 /// Builds AST nodes from the pairs of one file.
-pub struct Builder {
+pub struct Builder<'t> {
     /// The file the pairs come from.
     pub file: FileId,
-    /// The first declaration that uses a reserved word as its name.
+    /// The whole text of the file.
+    pub text: &'t str,
+    /// The names of the kinds of block statement (see [`super::parse_each`]).
+    pub kinds: &'t [&'t str],
+    /// The first statement refused while building: a declaration that uses
+    /// a reserved word as its name, or a kind's block that does not parse.
     pub reserved: std::cell::RefCell<Option<crate::diag::Diagnostic>>,
     /// Where in the file the parsed text starts (pairs count from there).
     pub base: std::cell::Cell<usize>,
 }
 
-impl Builder {
+impl<'t> Builder<'t> {
+    /// A builder of `file`'s pairs, parsed from byte `base` of its `text`.
+    pub fn new(file: FileId, text: &'t str, kinds: &'t [&'t str], base: usize) -> Self {
+        Builder {
+            file,
+            text,
+            kinds,
+            reserved: Default::default(),
+            base: std::cell::Cell::new(base),
+        }
+    }
+
     fn span(&self, pair: &Pair<Rule>) -> Span {
         let s = pair.as_span();
         let base = self.base.get();
@@ -188,36 +204,9 @@ impl Builder {
                 }
             }
             Rule::block_stmt => {
-                let kind_pair = inner.next().unwrap();
-                let kind_span = self.span(&kind_pair);
-                let kw = kind_pair.into_inner().next().unwrap();
-                let kind = match kw.as_rule() {
-                    Rule::kw_render => BlockKind::Render,
-                    Rule::kw_camera => BlockKind::Camera,
-                    Rule::kw_environment => BlockKind::Environment,
-                    Rule::kw_sky => BlockKind::Sky,
-                    Rule::kw_sphere => BlockKind::Sphere,
-                    Rule::kw_plane => BlockKind::Plane,
-                    Rule::kw_quad => BlockKind::Quad,
-                    Rule::kw_disk => BlockKind::Disk,
-                    Rule::kw_triangle => BlockKind::Triangle,
-                    Rule::kw_box => BlockKind::Box,
-                    Rule::kw_cylinder => BlockKind::Cylinder,
-                    Rule::kw_cone => BlockKind::Cone,
-                    Rule::kw_torus => BlockKind::Torus,
-                    Rule::kw_mesh => BlockKind::Mesh,
-                    Rule::kw_point_light => BlockKind::PointLight,
-                    Rule::kw_spot_light => BlockKind::SpotLight,
-                    Rule::kw_directional_light => BlockKind::DirectionalLight,
-                    r => unreachable!("block_kind holds only keywords, got {r:?}"),
-                };
+                let kind = self.build_ident(inner.next().unwrap());
                 let block = self.build_block(inner.next().unwrap());
-                Statement::Block {
-                    kind,
-                    kind_span,
-                    block,
-                    span,
-                }
+                Statement::Block { kind, block, span }
             }
             Rule::directive_stmt => {
                 let name = self.build_ident(inner.next().unwrap());
@@ -248,9 +237,33 @@ impl Builder {
             }
             Rule::foreign_stmt => {
                 let name = self.build_ident(inner.next().unwrap());
+                if self.kinds.contains(&name.name.as_str()) {
+                    self.refuse_broken_block(span);
+                }
                 Statement::Foreign { name, span }
             }
             r => unreachable!("not a statement: {r:?}"),
+        }
+    }
+
+    /// A kind's block at `span` that did not parse as one, and so was read
+    /// whole as a statement ptsc does not have: its syntax error, as a parse
+    /// of the statement as a block finds it.
+    fn refuse_broken_block(&self, span: Span) {
+        use pest::Parser;
+        let (start, end) = (span.start as usize, span.end as usize);
+        let Err(e) = super::parser::PtsParser::parse(Rule::block_stmt, &self.text[start..end])
+        else {
+            return;
+        };
+        let mut slot = self.reserved.borrow_mut();
+        if slot.is_none() {
+            *slot = Some(super::parser::convert_error(
+                e,
+                self.file,
+                (self.text, self.kinds),
+                start,
+            ));
         }
     }
 

@@ -24,6 +24,8 @@ pub(super) const MAX_ERRORS: usize = 100;
 pub(super) struct HandOver<'t> {
     file: FileId,
     text: &'t str,
+    /// The names of the kinds of block statement.
+    kinds: &'t [&'t str],
     /// Whether reading goes on after a broken statement.
     recover: bool,
     /// Where the next statement starts; `None` once nothing more is read.
@@ -40,11 +42,12 @@ pub(super) struct HandOver<'t> {
 impl<'t> HandOver<'t> {
     /// Nothing handed over yet of `text`; with `recover`, reading goes on
     /// after each broken statement, else it stops at the first.
-    pub fn new(file: FileId, text: &'t str, recover: bool) -> Self {
+    pub fn new(file: FileId, text: &'t str, kinds: &'t [&'t str], recover: bool) -> Self {
         let start = super::bom_len(text);
         HandOver {
             file,
             text,
+            kinds,
             recover,
             cursor: Some(start),
             errors: Vec::new(),
@@ -84,7 +87,13 @@ impl<'t> HandOver<'t> {
                 // A broken statement before it ran past it.
                 continue;
             } else {
-                parse_from(self.file, self.text, cursor, piece.end, self.limit())
+                parse_from(
+                    self.file,
+                    (self.text, self.kinds),
+                    cursor,
+                    piece.end,
+                    self.limit(),
+                )
             };
             self.take_one(piece, sink);
         }
@@ -132,8 +141,8 @@ impl<'t> HandOver<'t> {
         let d = match b.reserved {
             Some(d) => d,
             // The first exactly as a parse of the whole file reports it.
-            None if self.broken == 1 => first_error(self.file, self.text),
-            None => later_error(self.file, self.text, self.resumed, b.seen),
+            None if self.broken == 1 => first_error(self.file, self.text, self.kinds),
+            None => later_error(self.file, (self.text, self.kinds), self.resumed, b.seen),
         };
         self.errors.push(d);
         if let Some(r) = b.resume {
@@ -162,8 +171,8 @@ fn too_many(file: FileId, text: &str, at: usize) -> Diagnostic {
 
 /// The first syntax error of a file: the whole file in one pest call, so
 /// that it is exactly what a parse of the whole file reports.
-fn first_error(file: FileId, text: &str) -> Diagnostic {
-    match parse_whole(file, text) {
+fn first_error(file: FileId, text: &str, kinds: &[&str]) -> Diagnostic {
+    match parse_whole(file, text, kinds) {
         Err(d) => d,
         Ok(_) => disagreed(file),
     }
@@ -175,10 +184,15 @@ fn first_error(file: FileId, text: &str) -> Diagnostic {
 /// is the one in the whole rest of the file ([`Break::seen`]), so that the
 /// cost is that of the stretch, not of the rest of the file; the messages
 /// look at the rest of the file as for a first error.
-fn later_error(file: FileId, text: &str, from: usize, seen: usize) -> Diagnostic {
+fn later_error(
+    file: FileId,
+    (text, kinds): (&str, &[&str]),
+    from: usize,
+    seen: usize,
+) -> Diagnostic {
     match PtsParser::parse(Rule::file, &text[from..seen]) {
         Err(e) => shifted(
-            super::parser::convert_error(e, file, &text[from..], 0),
+            super::parser::convert_error(e, file, (&text[from..], kinds), 0),
             from,
         ),
         Ok(_) => disagreed(file),

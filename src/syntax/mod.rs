@@ -21,8 +21,8 @@ pub const MAX_NESTING: usize = 128;
 /// Parses one file into an AST, or returns its first error (a syntax error
 /// exactly as a whole-file parse reports it, or a misused reserved word);
 /// parsing stops there.
-pub fn parse(file: FileId, text: &str) -> Result<ast::File, Diagnostic> {
-    parse_in_pieces(file, text, PIECE)
+pub fn parse(file: FileId, text: &str, kinds: &[&str]) -> Result<ast::File, Diagnostic> {
+    parse_in_pieces(file, text, kinds, PIECE)
 }
 
 /// Parses `text` and hands its statements to `sink` in file order, a piece at
@@ -35,12 +35,19 @@ pub fn parse(file: FileId, text: &str) -> Result<ast::File, Diagnostic> {
 /// finds it (the first exactly as a whole-file parse). A `{` or comment
 /// never closed runs to the end of the file: nothing follows. After 100
 /// errors, one more diagnostic says that the rest of the file is not read.
+///
+/// `kinds` are the names of the kinds of block statement (the checker's
+/// kind table): the grammar reads any name before a block as a kind, and a
+/// name whose braces hold no ptsc block as a statement ptsc does not have
+/// (POV-Ray's `light_source { … }`), unless it is one of `kinds`: then the
+/// block has a syntax error.
 pub fn parse_each(
     file: FileId,
     text: &str,
+    kinds: &[&str],
     sink: &mut (dyn FnMut(Vec<ast::Statement>) + Send),
 ) -> Vec<Diagnostic> {
-    parse_each_in_pieces(file, text, PIECE, true, sink)
+    parse_each_in_pieces(file, text, kinds, PIECE, true, sink)
 }
 
 /// Least size of the pieces a file is cut into, each parsed in one pest call.
@@ -51,9 +58,14 @@ const PIECE: usize = 16 * 1024;
 const BATCH: usize = 32;
 
 /// [`parse`] with the text cut into pieces of at least `min_piece` bytes.
-fn parse_in_pieces(file: FileId, text: &str, min_piece: usize) -> Result<ast::File, Diagnostic> {
+fn parse_in_pieces(
+    file: FileId,
+    text: &str,
+    kinds: &[&str],
+    min_piece: usize,
+) -> Result<ast::File, Diagnostic> {
     let mut statements = Vec::new();
-    let errors = parse_each_in_pieces(file, text, min_piece, false, &mut |piece| {
+    let errors = parse_each_in_pieces(file, text, kinds, min_piece, false, &mut |piece| {
         statements.extend(piece)
     });
     match errors.into_iter().next() {
@@ -67,6 +79,7 @@ fn parse_in_pieces(file: FileId, text: &str, min_piece: usize) -> Result<ast::Fi
 fn parse_each_in_pieces(
     file: FileId,
     text: &str,
+    kinds: &[&str],
     min_piece: usize,
     recover: bool,
     sink: &mut (dyn FnMut(Vec<ast::Statement>) + Send),
@@ -76,7 +89,7 @@ fn parse_each_in_pieces(
         Ok(pieces) => pieces,
         Err(at) => return vec![too_deep(file, at)],
     };
-    let mut hand_over = hand_over::HandOver::new(file, text, recover);
+    let mut hand_over = hand_over::HandOver::new(file, text, kinds, recover);
     let limit = hand_over.limit();
     // Each round parses one batch while the sink takes the batch before it.
     let mut ready: Vec<Parsed> = Vec::new();
@@ -85,7 +98,7 @@ fn parse_each_in_pieces(
             || {
                 batch
                     .par_iter()
-                    .map(|&(start, end)| parse_piece(file, text, start, end, limit))
+                    .map(|&(start, end)| parse_piece(file, (text, kinds), start, end, limit))
                     .collect::<Vec<Parsed>>()
             },
             || hand_over.take(std::mem::take(&mut ready), sink),
@@ -107,15 +120,17 @@ fn parse_each_in_pieces(
 /// 100,000-sphere scene; zeroing its fresh pages took a third of the
 /// parse), while a call per statement paid pest's set-up and the growth of
 /// its queue every time (5 % of the parse).
-fn parse_piece(file: FileId, text: &str, start: usize, end: usize, limit: usize) -> Parsed {
+fn parse_piece(
+    file: FileId,
+    (text, kinds): (&str, &[&str]),
+    start: usize,
+    end: usize,
+    limit: usize,
+) -> Parsed {
     let Ok(mut pairs) = PtsParser::parse(Rule::file, &text[start..end]) else {
-        return recover::parse_from(file, text, start, end, limit);
+        return recover::parse_from(file, (text, kinds), start, end, limit);
     };
-    let builder = build::Builder {
-        file,
-        reserved: Default::default(),
-        base: std::cell::Cell::new(start),
-    };
+    let builder = build::Builder::new(file, text, kinds, start);
     let mut parsed = Parsed {
         start,
         end,
@@ -128,7 +143,9 @@ fn parse_piece(file: FileId, text: &str, start: usize, end: usize, limit: usize)
         let span = pair.as_span();
         parsed.statements.push(builder.build_statement(pair));
         // A reserved word used as a name: reported, and the statement kept
-        // (when parsing goes on) so that its uses raise no second error.
+        // (when parsing goes on) so that its uses raise no second error. A
+        // kind's broken block is kept as the statement ptsc does not have
+        // that it was read as (the checker knows it was reported).
         if let Some(d) = builder.reserved.take() {
             parsed.breaks.push(Break {
                 kept: parsed.statements.len() - 1,
@@ -147,15 +164,22 @@ fn parse_piece(file: FileId, text: &str, start: usize, end: usize, limit: usize)
 }
 
 /// The whole file in one pest call: the path that reports syntax errors.
-fn parse_whole(file: FileId, text: &str) -> Result<ast::File, Diagnostic> {
+fn parse_whole(file: FileId, text: &str, kinds: &[&str]) -> Result<ast::File, Diagnostic> {
     let bom = bom_len(text);
-    let mut pairs = PtsParser::parse(Rule::file, &text[bom..])
-        .map_err(|e| parser::convert_error(e, file, text, bom))?;
-    let builder = build::Builder {
-        file,
-        reserved: Default::default(),
-        base: std::cell::Cell::new(bom),
+    let mut pairs = match PtsParser::parse(Rule::file, &text[bom..]) {
+        Ok(pairs) => pairs,
+        Err(e) => {
+            // A statement the builder refuses (a kind's broken block read
+            // whole, a reserved word as a name) before where pest failed
+            // is the first error: read up to the first broken statement.
+            let read = recover::parse_from(file, (text, kinds), bom, text.len(), 1);
+            if let Some(d) = read.breaks.into_iter().next().and_then(|b| b.reserved) {
+                return Err(d);
+            }
+            return Err(parser::convert_error(e, file, (text, kinds), bom));
+        }
     };
+    let builder = build::Builder::new(file, text, kinds, bom);
     let ast = builder.build_file(pairs.next().expect("a file pair"));
     match builder.reserved.into_inner() {
         Some(d) => Err(d),
@@ -321,4 +345,4 @@ fn too_deep(file: FileId, i: usize) -> Diagnostic {
 }
 
 #[cfg(test)]
-mod tests;
+pub(crate) mod tests;

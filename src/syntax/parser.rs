@@ -42,13 +42,10 @@ pub fn rule_name(rule: Rule) -> &'static str {
         Rule::rbracket => "`]`",
         Rule::not => "`!`",
         Rule::component_op => "an operator (`+`, `-`, `*`, `/`, `%`, `==`, `&&`, …)",
-        Rule::kw_cylinder => "`cylinder`",
-        Rule::kw_cone => "`cone`",
-        Rule::kw_torus => "`torus`",
         Rule::kw_in => "`in`",
         Rule::background_stmt | Rule::kw_background => "`background`",
         Rule::material_decl | Rule::material_entry | Rule::kw_material => "`material`",
-        Rule::block_stmt | Rule::block_kind => "a block such as `sphere { … }`",
+        Rule::block_stmt => "a block such as `sphere { … }`",
         Rule::block => "a block `{ … }`",
         Rule::entry | Rule::param => "a parameter name",
         Rule::foreign_block | Rule::opaque_block | Rule::opaque_text => "a block `{ … }`",
@@ -85,20 +82,6 @@ pub fn rule_name(rule: Rule) -> &'static str {
         Rule::lbrace => "`{`",
         Rule::rbrace => "`}`",
         Rule::comma => "`,`",
-        Rule::kw_render => "`render`",
-        Rule::kw_camera => "`camera`",
-        Rule::kw_environment => "`environment`",
-        Rule::kw_sky => "`sky`",
-        Rule::kw_sphere => "`sphere`",
-        Rule::kw_plane => "`plane`",
-        Rule::kw_quad => "`quad`",
-        Rule::kw_disk => "`disk`",
-        Rule::kw_triangle => "`triangle`",
-        Rule::kw_box => "`box`",
-        Rule::kw_mesh => "`mesh`",
-        Rule::kw_point_light => "`point_light`",
-        Rule::kw_spot_light => "`spot_light`",
-        Rule::kw_directional_light => "`directional_light`",
     }
 }
 
@@ -146,7 +129,7 @@ fn describe_found(text: &str, pos: usize) -> String {
 pub fn convert_error(
     err: pest::error::Error<Rule>,
     file: FileId,
-    text: &str,
+    (text, kinds): (&str, &[&str]),
     base: usize,
 ) -> Diagnostic {
     let pos = base
@@ -202,7 +185,14 @@ pub fn convert_error(
     }
     if rest.trim().is_empty() {
         if let Some(&open) = open_braces(text).last() {
-            return unclosed_block(file, open);
+            let d = unclosed_block(file, open);
+            return match kind_inside(text, open, kinds) {
+                Some((at, kind)) => d.with_secondary(
+                    Span::new(file, at, at + kind.len()),
+                    format!("`{kind}` starts the next statement"),
+                ),
+                None => d,
+            };
         }
     }
     // A statement keyword at the start of a line inside a block opened on
@@ -296,7 +286,7 @@ pub fn convert_error(
     };
     // At the start of a statement the full list of statement kinds is noise.
     let mut expected = expected;
-    if expected.contains(&"`let`") && expected.contains(&"a block such as `sphere { … }`") {
+    if expected.contains(&"`let`") && expected.contains(&"`include`") {
         expected = vec!["a statement"];
     }
     let message = if !expected.is_empty() {
@@ -314,7 +304,7 @@ pub fn convert_error(
     let (previous, adjacent) = words_before(text, pos, 2);
     // `let ball = sphere { … }`: an object where a value goes.
     if found == "`{`" && expected.contains(&"`;`") {
-        if let Some(kind) = previous.last().filter(|w| STATEMENT_STARTS.contains(w)) {
+        if let Some(kind) = previous.last().filter(|w| !KEYWORDS.contains(w)) {
             return Diagnostic::error(
                 codes::OBJECT_AS_VALUE,
                 format!("a `{kind}` is not a value"),
@@ -389,6 +379,39 @@ fn open_braces(text: &str) -> Vec<usize> {
 }
 
 /// The error for the `{` at `open`, never closed.
+/// The first line directly inside the block opened at `open` (not inside a
+/// block within it) that starts with the name of a kind of block: where
+/// the statement after a block never closed starts (the grammar reads it as
+/// a block inside, so pest fails only at the end of the file).
+fn kind_inside<'t>(text: &'t str, open: usize, kinds: &[&str]) -> Option<(usize, &'t str)> {
+    let mut braces = Vec::new();
+    super::for_each_code_mark(&text[open..], |i, b| {
+        if b == b'{' || b == b'}' {
+            braces.push((open + i, b == b'{'));
+        }
+        true
+    });
+    let (mut depth, mut k) = (0i64, 0);
+    let mut line = open + text[open..].find('\n')? + 1;
+    loop {
+        while k < braces.len() && braces[k].0 < line {
+            depth += if braces[k].1 { 1 } else { -1 };
+            k += 1;
+        }
+        if depth <= 0 {
+            return None;
+        }
+        let rest = &text[line..];
+        let at = line + (rest.len() - rest.trim_start_matches([' ', '\t']).len());
+        if depth == 1 {
+            if let Some(word) = statement_word(text, at).filter(|w| kinds.contains(w)) {
+                return Some((at, word));
+            }
+        }
+        line += rest.find('\n')? + 1;
+    }
+}
+
 fn unclosed_block(file: FileId, open: usize) -> Diagnostic {
     Diagnostic::error(
         codes::UNCLOSED_BLOCK,
@@ -417,10 +440,9 @@ fn closing_helps(text: &str, base: usize, at: usize, pos: usize) -> bool {
     }
 }
 
-/// Words that open a statement: [`OPEN_NO_BLOCK`] that open no block
-/// (a `for`'s, an `if`'s or a group's braces hold statements), then
-/// `material`, `instance` and the block keywords.
-pub(super) const STATEMENT_STARTS: &[&str] = &[
+/// Keywords that open a statement. A block statement opens with its kind's
+/// name ([`statement_word`]).
+pub(super) const STATEMENT_KEYWORDS: &[&str] = &[
     "let",
     "include",
     "for",
@@ -430,51 +452,62 @@ pub(super) const STATEMENT_STARTS: &[&str] = &[
     "group",
     "material",
     "instance",
-    "render",
-    "environment",
-    "sky",
-    "camera",
-    "sphere",
-    "plane",
-    "quad",
-    "disk",
-    "triangle",
-    "box",
-    "cylinder",
-    "cone",
-    "torus",
-    "mesh",
-    "point_light",
-    "spot_light",
-    "directional_light",
 ];
 
-/// The statement keyword that opens the line holding byte `pos`, and where
-/// it stands: an error on such a line inside a block opened on an earlier
-/// line means that block was never closed.
+/// The word at `at`, if it opens a statement: a statement keyword (or
+/// `texture`), or a name followed by `{` where a statement may start
+/// (after blanks only): a block statement `kind { … }`. The grammar does not
+/// know the kinds (the checker's table does), so a name and a brace is
+/// taken for one.
+pub(super) fn statement_word(text: &str, at: usize) -> Option<&str> {
+    let rest = &text[at..];
+    let len = rest
+        .find(|c: char| !(c.is_alphanumeric() || c == '_'))
+        .unwrap_or(rest.len());
+    let word = &rest[..len];
+    if word.is_empty() || word.starts_with(|c: char| c.is_ascii_digit()) {
+        return None;
+    }
+    if STATEMENT_KEYWORDS.contains(&word) || word == "texture" {
+        return Some(word);
+    }
+    let opens_block = rest[len..].trim_start().starts_with('{');
+    (opens_block && !KEYWORDS.contains(&word)).then_some(word)
+}
+
+/// The statement word that opens the line holding byte `pos`
+/// ([`statement_word`]), and where it stands: an error on such a line
+/// inside a block opened on an earlier line means that block was never
+/// closed.
 fn statement_on_line(text: &str, pos: usize) -> Option<(usize, &str)> {
     let line_start = text[..pos].rfind('\n').map_or(0, |i| i + 1);
     let line = &text[line_start..];
     let indent = line.len() - line.trim_start().len();
     let at = line_start + indent;
-    let word: &str = text[at..]
-        .split(|c: char| !(c.is_alphanumeric() || c == '_'))
-        .next()?;
-    STATEMENT_STARTS.contains(&word).then_some((at, word))
+    statement_word(text, at).map(|w| (at, w))
 }
 
-/// How many of [`STATEMENT_STARTS`] open no block.
-const OPEN_NO_BLOCK: usize = 7;
-
 /// Whether the `{` at `open` opens a block statement or a material (where
-/// statements cannot stand), not the body of a `for` (where they can).
+/// statements cannot stand), not the body of a `for`, an `if` or a group
+/// (where they can): the name right before it stands where a statement
+/// starts (`sphere {`), or follows `material`, `instance` or a texture's
+/// `texture NAME`.
 fn block_brace(text: &str, open: usize) -> bool {
-    let mut words = text[..open]
+    let before = text[..open].trim_end();
+    let mut words = before
         .rsplit(|c: char| !(c.is_alphanumeric() || c == '_'))
         .filter(|w| !w.is_empty());
     let last = words.next().unwrap_or("");
-    let blocks = &STATEMENT_STARTS[OPEN_NO_BLOCK..];
-    blocks.contains(&last) || matches!(words.next(), Some("material" | "instance"))
+    if !before.ends_with(last) || last.is_empty() || KEYWORDS.contains(&last) {
+        return false;
+    }
+    let previous = words.next();
+    if matches!(previous, Some("material" | "instance")) || words.next() == Some("texture") {
+        return true;
+    }
+    // What stands before the name: nothing, or the end of a statement.
+    let head = before[..before.len() - last.len()].trim_end();
+    head.is_empty() || head.ends_with([';', '{', '}'])
 }
 
 /// The last `n` words before `pos` (letters, digits, `_`), nearest last,
@@ -538,27 +571,10 @@ pub const KEYWORDS: &[&str] = &[
     "fn",
     "group",
     "instance",
-    "cylinder",
-    "cone",
-    "torus",
     "background",
     "material",
     "texture",
     "rgb",
     "true",
     "false",
-    "render",
-    "environment",
-    "sky",
-    "camera",
-    "sphere",
-    "plane",
-    "quad",
-    "disk",
-    "triangle",
-    "box",
-    "mesh",
-    "point_light",
-    "spot_light",
-    "directional_light",
 ];

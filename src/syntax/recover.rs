@@ -13,7 +13,7 @@
 //! parse pieces.
 
 use super::build::Builder;
-use super::parser::{PtsParser, Rule, STATEMENT_STARTS};
+use super::parser::{statement_word, PtsParser, Rule};
 use super::statement_follows;
 use crate::diag::Diagnostic;
 use crate::source::FileId;
@@ -58,12 +58,14 @@ pub(super) struct Break {
 /// a parse piece that failed as a whole (`to` is its end), or the rest of
 /// one that a broken statement before it ran into. Stops at the `limit`th
 /// broken statement.
-pub(super) fn parse_from(file: FileId, text: &str, from: usize, to: usize, limit: usize) -> Parsed {
-    let builder = Builder {
-        file,
-        reserved: Default::default(),
-        base: Default::default(),
-    };
+pub(super) fn parse_from(
+    file: FileId,
+    (text, kinds): (&str, &[&str]),
+    from: usize,
+    to: usize,
+    limit: usize,
+) -> Parsed {
+    let builder = Builder::new(file, text, kinds, 0);
     let mut parsed = Parsed {
         start: from,
         end: to,
@@ -319,8 +321,8 @@ pub(super) fn resume_after(text: &str, at: usize, error: usize) -> Option<usize>
     found
 }
 
-/// Whether a statement starts at `at`: a statement keyword, or at the
-/// start of a line `if` and a `#` directive too (in the middle of a line,
+/// Whether a statement starts at `at`: a statement word
+/// ([`statement_word`]), or at the start of a line `if` and a `#` directive too (in the middle of a line,
 /// `if` may well be a value's).
 fn opens_statement(text: &str, at: usize, line_start: bool) -> bool {
     let rest = &text[at..];
@@ -330,10 +332,7 @@ fn opens_statement(text: &str, at: usize, line_start: bool) -> bool {
     {
         return true;
     }
-    let word = &rest[..rest
-        .find(|c: char| !(c.is_ascii_alphanumeric() || c == '_'))
-        .unwrap_or(rest.len())];
-    (STATEMENT_STARTS.contains(&word) || word == "texture") && (line_start || word != "if")
+    statement_word(text, at).is_some_and(|word| line_start || word != "if")
 }
 
 /// The first hard boundary after `pos`: just after a `;`, or a `}` followed

@@ -3,6 +3,28 @@
 
 use super::*;
 
+/// The kinds of block the checker's table has (`check::kinds::NAMES`, which
+/// the syntax module cannot import; a test in check/kinds compares them).
+pub(crate) const KINDS: &[&str] = &[
+    "render",
+    "camera",
+    "environment",
+    "sky",
+    "sphere",
+    "plane",
+    "quad",
+    "disk",
+    "triangle",
+    "box",
+    "cylinder",
+    "cone",
+    "torus",
+    "mesh",
+    "point_light",
+    "spot_light",
+    "directional_light",
+];
+
 fn scene_files(dir: &std::path::Path, out: &mut Vec<std::path::PathBuf>) {
     for entry in std::fs::read_dir(dir).expect("readable folder").flatten() {
         let path = entry.path();
@@ -43,23 +65,29 @@ fn pieces_and_single_statements_build_the_whole_file_ast() {
     );
     texts.push(tricky.to_string());
     for text in &texts {
-        let whole = parse_whole(FileId(0), text).expect("parses");
+        let whole = parse_whole(FileId(0), text, KINDS).expect("parses");
         // Pieces as small as possible (cut after every statement), and
         // the whole text as one piece.
         for min_piece in [1, usize::MAX] {
-            let pieces = parse_in_pieces(FileId(0), text, min_piece).expect("parses");
+            let pieces = parse_in_pieces(FileId(0), text, KINDS, min_piece).expect("parses");
             assert_eq!(pieces, whole, "{text}");
         }
         // One statement at a time, each in its window, as after an error.
-        let slow = recover::parse_from(FileId(0), text, bom_len(text), text.len(), usize::MAX);
+        let slow = recover::parse_from(
+            FileId(0),
+            (text, KINDS),
+            bom_len(text),
+            text.len(),
+            usize::MAX,
+        );
         assert!(slow.breaks.is_empty(), "{text}");
         assert_eq!(slow.statements, whole.statements, "{text}");
     }
     // An error in a later piece is the error a whole-file parse reports.
     let broken = "let a = 1;\nsphere { radius 1 }\nsphere { radius < 1, }\nlet b = 2;\n";
-    let expected = format!("{:?}", parse_whole(FileId(0), broken).unwrap_err());
+    let expected = format!("{:?}", parse_whole(FileId(0), broken, KINDS).unwrap_err());
     for min_piece in [1, usize::MAX] {
-        let got = parse_in_pieces(FileId(0), broken, min_piece).unwrap_err();
+        let got = parse_in_pieces(FileId(0), broken, KINDS, min_piece).unwrap_err();
         assert_eq!(format!("{got:?}"), expected);
     }
 }
@@ -67,7 +95,7 @@ fn pieces_and_single_statements_build_the_whole_file_ast() {
 #[test]
 fn a_byte_order_mark_is_blank_only_at_the_start() {
     for min_piece in [1, usize::MAX] {
-        let parse = |text: &str| parse_in_pieces(FileId(0), text, min_piece);
+        let parse = |text: &str| parse_in_pieces(FileId(0), text, KINDS, min_piece);
         assert!(parse("\u{FEFF}").is_ok());
         assert_eq!(
             parse("\u{FEFF}let a = 1;")
@@ -127,9 +155,9 @@ proptest::proptest! {
         bom in proptest::bool::ANY,
     ) {
         let text = format!("{}{}", if bom { "\u{FEFF}" } else { "" }, tokens.concat());
-        let whole = parse_whole(FileId(0), &text).map_err(|d| format!("{d:?}"));
+        let whole = parse_whole(FileId(0), &text, KINDS).map_err(|d| format!("{d:?}"));
         for min_piece in [1, 7, usize::MAX] {
-            let pieces = parse_in_pieces(FileId(0), &text, min_piece).map_err(|d| format!("{d:?}"));
+            let pieces = parse_in_pieces(FileId(0), &text, KINDS, min_piece).map_err(|d| format!("{d:?}"));
             proptest::prop_assert_eq!(&pieces, &whole, "{:?}", text);
         }
         // Read past errors, the statements and errors do not depend on the
@@ -139,7 +167,7 @@ proptest::proptest! {
             proptest::prop_assert_eq!(&recovered(&text, min_piece), &reference, "{:?}", text);
         }
         let (statements, errors) = reference;
-        let slow = recover::parse_from(FileId(0), &text, bom_len(&text), text.len(), usize::MAX);
+        let slow = recover::parse_from(FileId(0), (&text, KINDS), bom_len(&text), text.len(), usize::MAX);
         proptest::prop_assert_eq!(&slow.statements, &statements, "{:?}", text);
         proptest::prop_assert_eq!(slow.breaks.len(), errors.len(), "{:?}", text);
         // The first error is the one parsing stops at; without errors, the
@@ -163,7 +191,7 @@ proptest::proptest! {
 /// of at least `min_piece` bytes.
 fn recovered(text: &str, min_piece: usize) -> (Vec<ast::Statement>, Vec<Diagnostic>) {
     let mut statements = Vec::new();
-    let errors = parse_each_in_pieces(FileId(0), text, min_piece, true, &mut |s| {
+    let errors = parse_each_in_pieces(FileId(0), text, KINDS, min_piece, true, &mut |s| {
         statements.extend(s)
     });
     (statements, errors)
@@ -219,7 +247,7 @@ const BROKEN: &[(&str, &[&str])] = &[
         &["if true { 1 }\nelse { sphere { radius 1 } }"],
     ),
     // A reserved word as a name: that statement alone is dropped.
-    ("let sphere = 1;\nlet n = 2;\n", &["let sphere = 1;"]),
+    ("let group = 1;\nlet n = 2;\n", &["let group = 1;"]),
     // Two mistakes.
     (
         "let p = 1\nsphere { radius p }\nsphere { center <1, 2 radius 1 }\nlet q = 2;\n",
@@ -253,7 +281,7 @@ fn statements_before_and_after_an_error_are_read() {
             parts.push(at..at + part.len());
             from = at + part.len();
         }
-        let expected = parse_whole(FileId(0), &blanked).expect("the rest parses");
+        let expected = parse_whole(FileId(0), &blanked, KINDS).expect("the rest parses");
         for min_piece in [1, 7, usize::MAX] {
             let (statements, errors) = recovered(text, min_piece);
             let outside: Vec<_> = (statements.into_iter())
@@ -270,7 +298,7 @@ fn statements_before_and_after_an_error_are_read() {
                 );
             }
             // The first is exactly what parsing stops at.
-            let first = parse_in_pieces(FileId(0), text, min_piece).unwrap_err();
+            let first = parse_in_pieces(FileId(0), text, KINDS, min_piece).unwrap_err();
             assert_eq!(errors[0], first, "{text:?}");
         }
     }
@@ -296,7 +324,7 @@ fn a_later_error_is_reported_as_a_parse_from_the_previous_one_finds_it() {
     let head = "let a = 1\n";
     let rest = "sphere { radius a }\nsphere { center <1, 2 radius 1 }\nlet q = 2;\n";
     let (_, errors) = recovered(&format!("{head}{rest}"), usize::MAX);
-    let alone = parse_whole(FileId(0), rest).unwrap_err();
+    let alone = parse_whole(FileId(0), rest, KINDS).unwrap_err();
     let span = alone.span.unwrap();
     let moved = Span::new(
         FileId(0),

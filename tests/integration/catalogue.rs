@@ -169,7 +169,9 @@ fn language_reference_examples_parse() {
     let mut blocks = 0;
     for (k, block) in text.split("```pts\n").skip(1).enumerate() {
         let code = block.split("```").next().unwrap();
-        let parse = |text: &str| ptsc::syntax::parse(ptsc::source::FileId(0), text);
+        let parse = |text: &str| {
+            ptsc::syntax::parse(ptsc::source::FileId(0), text, &ptsc::check::kinds::NAMES)
+        };
         if let (Err(d), Err(_)) = (parse(code), parse(&format!("sphere {{ {code} }}"))) {
             panic!("block {k} of docs/language.md does not parse: {d:?}\n{code}");
         }

@@ -1,4 +1,5 @@
-//! The editors' keyword lists must match the grammar's keywords.
+//! The editors' keyword lists must match the grammar's keywords and the
+//! kinds of block of the checker's kind table (`check::kinds`).
 
 use std::collections::BTreeSet;
 
@@ -8,6 +9,14 @@ fn grammar_keywords() -> BTreeSet<String> {
         .filter_map(|l| l.strip_prefix("kw_"))
         .map(|l| l.split_whitespace().next().unwrap().to_string())
         .collect()
+}
+
+/// What the editors highlight as words of the language: the grammar's
+/// keywords and the names of the kinds of block.
+fn language_words() -> BTreeSet<String> {
+    let mut words = grammar_keywords();
+    words.extend(ptsc::check::kinds::names().map(str::to_string));
+    words
 }
 
 fn words_in(text: &str) -> BTreeSet<String> {
@@ -49,7 +58,7 @@ fn vscode_grammar_knows_every_keyword() {
             words.extend(names);
         }
     }
-    assert_eq!(words, grammar_keywords());
+    assert_eq!(words, language_words());
 }
 
 #[test]
@@ -70,7 +79,7 @@ fn vim_syntax_knows_every_keyword() {
             }
         }
     }
-    assert_eq!(words, grammar_keywords());
+    assert_eq!(words, language_words());
 }
 
 #[test]
@@ -102,7 +111,7 @@ fn vscode_grammar() -> serde_json::Value {
 
 #[test]
 fn editors_know_every_parameter_and_only_parameters() {
-    let names: BTreeSet<String> = ptsc::check::schema::all_parameter_names()
+    let names: BTreeSet<String> = ptsc::check::kinds::all_parameter_names()
         .into_iter()
         .map(str::to_string)
         .collect();

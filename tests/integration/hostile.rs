@@ -681,7 +681,8 @@ fn many_broken_statements() {
         "lines.pts",
         lines.as_bytes(),
     );
-    let line = format!("{head}{}", "sphere ".repeat(2_000_000));
+    // Each `let` is a broken statement (a keyword where a name goes).
+    let line = format!("{head}{}", "let ".repeat(2_000_000));
     run_generated(
         &generated("one broken line", too_many),
         "line.pts",

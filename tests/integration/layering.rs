@@ -194,3 +194,65 @@ fn only_cli_prints() {
         }
     }
 }
+
+/// Every word list of the checker's schemas (the kinds' rows, materials and
+/// textures): the enumerated words a scene may write.
+fn vocabulary() -> BTreeSet<&'static str> {
+    use ptsc::check::schema::{self, Ty};
+    let rows = (ptsc::check::kinds::KINDS.iter().map(|k| k.params)).chain([
+        schema::SHAPE_COMMON,
+        schema::MATERIAL,
+        schema::CHECKER,
+        schema::IMAGE,
+        schema::NOISE,
+        schema::BANDS,
+        schema::UNBANDED,
+        schema::GRADIENT,
+        schema::COLOR_MAP,
+    ]);
+    let mut words = BTreeSet::new();
+    for spec in rows.flatten() {
+        if let Ty::Word(list) = spec.ty {
+            words.extend(list.iter().copied());
+        }
+    }
+    words
+}
+
+/// No string vocabulary crosses from check to lowering: the checked scene
+/// holds typed values (enums defined once with their words), so lowering
+/// never matches an enumerated word, and the checked scene's strings are
+/// names only (for messages), never a word to be resolved later.
+#[test]
+fn no_word_of_the_language_crosses_from_check_to_lower() {
+    let words = vocabulary();
+    assert!(words.contains("conductor") && words.contains("world") && words.contains("clamp"));
+    let lower = crate::root().join("src/lower");
+    for entry in std::fs::read_dir(&lower).unwrap() {
+        let path = entry.unwrap().path();
+        let text = std::fs::read_to_string(&path).unwrap();
+        for word in &words {
+            for pattern in [
+                format!("\"{word}\" =>"),
+                format!("== \"{word}\""),
+                format!("(\"{word}\")"),
+            ] {
+                assert!(
+                    !text.contains(&pattern),
+                    "{} matches the word `{word}`: check should hand over a typed value",
+                    path.display()
+                );
+            }
+        }
+    }
+    let scene = std::fs::read_to_string(crate::root().join("src/check/scene.rs")).unwrap();
+    for line in scene.lines().map(str::trim) {
+        if line.starts_with("pub ") && line.contains("String") {
+            let field = line.trim_start_matches("pub ").split(':').next().unwrap();
+            assert_eq!(
+                field, "name",
+                "check::scene's `{line}` is a string: make it a typed value"
+            );
+        }
+    }
+}

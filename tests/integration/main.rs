@@ -15,6 +15,7 @@ mod group_lights;
 mod hostile;
 mod image_limits;
 mod instances;
+mod kinds;
 mod layering;
 mod lighting;
 mod materials;

@@ -68,7 +68,7 @@ fn partners(text: &str, toks: &[Token]) -> Vec<Option<usize>> {
 /// The offset of the `{` an unclosed-block error blames in `text`, if the
 /// parse reports one.
 fn blamed(text: &str) -> Option<usize> {
-    let d = ptsc::syntax::parse(FileId(0), text).err()?;
+    let d = ptsc::syntax::parse(FileId(0), text, &ptsc::check::kinds::NAMES).err()?;
     (d.code == codes::UNCLOSED_BLOCK).then(|| d.span.unwrap().start as usize)
 }
 

@@ -31,7 +31,7 @@ fn value(before: &str, expr: &str) -> Result<super::Value, String> {
 fn evaluate(work: u64, before: &str, expr: &str) -> Result<super::Value, Diagnostic> {
     use crate::syntax::ast::Statement;
     let src = format!("{before}\nlet v__ = {expr};");
-    let file = crate::syntax::parse(crate::source::FileId(0), &src)?;
+    let file = crate::syntax::parse(crate::source::FileId(0), &src, &crate::check::kinds::NAMES)?;
     let mut env = super::Env::with_work(work);
     let mut diags = crate::diag::Diagnostics::new();
     let mut out = None;

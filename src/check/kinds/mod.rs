@@ -1,0 +1,284 @@
+//! The kinds of block statement (`kind { … }`), one row each: the kind's
+//! name, what it is, its parameters with their documentation, what it
+//! becomes (a setting, a light or a shape, with the function that converts
+//! its checked parameters), POV-Ray's order of its positional values and
+//! the POV-Ray words for it. The grammar reads a block's kind as a name; the
+//! checker, the did-you-mean of an unknown kind, the docs' tables, the
+//! editors' word lists and hover all read this table. Adding a kind is
+//! adding a row.
+
+pub mod lights;
+pub mod settings;
+pub mod shapes;
+
+use super::params::Params;
+use super::scene::{Light, Shape};
+use super::schema::{ParamSpec, SHAPE_COMMON};
+use crate::diag::{codes, did_you_mean, Diagnostic, Diagnostics};
+use crate::span::Span;
+use crate::syntax::ast::Ident;
+pub use shapes::ShapeInput;
+
+/// One kind of block statement.
+#[derive(Debug)]
+pub struct Kind {
+    /// The name that opens the block (`sphere`).
+    pub name: &'static str,
+    /// What it is, in a line (hover, docs).
+    pub summary: &'static str,
+    /// Its own parameters (a shape's common ones are in [`SHAPE_COMMON`]).
+    pub params: &'static [ParamSpec],
+    /// What it becomes in the scene.
+    pub role: Role,
+    /// POV-Ray's positional values of the kind (`sphere { <0, 1, 0>, 1 }`):
+    /// the parameters they stand for in POV-Ray's order, and a note on what
+    /// ptsc means otherwise (empty if none).
+    pub positional: Option<(&'static [&'static str], &'static str)>,
+    /// POV-Ray statement words that this kind stands for in ptsc, each
+    /// with the help line that says how ptsc writes it.
+    pub povray: &'static [(&'static str, &'static str)],
+}
+
+/// What a block statement becomes.
+#[derive(Debug, Clone, Copy)]
+pub enum Role {
+    /// One of the scene's settings, kept by the checker.
+    Setting(Setting),
+    /// A light that is not a shape, from its checked parameters.
+    Light(fn(&Params, &mut Diagnostics) -> Option<Light>),
+    /// An object's shape before transforms, from its checked parameters.
+    Shape(fn(&mut ShapeInput) -> Option<Shape>),
+}
+
+/// The settings blocks, each given at most once.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Setting {
+    /// `render { }`
+    Render,
+    /// `camera { }`
+    Camera,
+    /// `environment { }`
+    Environment,
+    /// `sky { }`
+    Sky,
+}
+
+/// Every kind of block statement, in the order the docs list them: the
+/// settings, the shapes, the lights (each file lists its own rows).
+pub const KINDS: [&Kind; settings::ALL.len() + shapes::ALL.len() + lights::ALL.len()] = {
+    let mut all = [&settings::RENDER; settings::ALL.len() + shapes::ALL.len() + lights::ALL.len()];
+    let mut i = 0;
+    let parts = [settings::ALL, shapes::ALL, lights::ALL];
+    let mut part = 0;
+    while part < parts.len() {
+        let mut j = 0;
+        while j < parts[part].len() {
+            all[i] = parts[part][j];
+            i += 1;
+            j += 1;
+        }
+        part += 1;
+    }
+    all
+};
+
+/// The names of every kind, in the order of [`KINDS`] (the parser is
+/// given them: see `syntax::parse_each`).
+pub const NAMES: [&str; KINDS.len()] = {
+    let mut names = [""; KINDS.len()];
+    let mut i = 0;
+    while i < KINDS.len() {
+        names[i] = KINDS[i].name;
+        i += 1;
+    }
+    names
+};
+
+/// Every parameter name of every kind and of materials and textures,
+/// sorted (editors highlight them; their grammars are tested against this
+/// list).
+pub fn all_parameter_names() -> Vec<&'static str> {
+    use super::schema::{BANDS, CHECKER, COLOR_MAP, GRADIENT, IMAGE, MATERIAL, NOISE};
+    let mut names: Vec<&'static str> = (KINDS.iter().flat_map(|k| k.params.iter()))
+        .chain(SHAPE_COMMON)
+        .chain(MATERIAL)
+        .chain(CHECKER)
+        .chain(IMAGE)
+        .chain(NOISE)
+        .chain(BANDS)
+        .chain(GRADIENT)
+        .chain(COLOR_MAP)
+        .filter(|p| p.povray.is_none())
+        .map(|p| p.name)
+        .collect();
+    names.sort_unstable();
+    names.dedup();
+    names
+}
+
+/// The kind named `name`.
+pub fn find(name: &str) -> Option<&'static Kind> {
+    KINDS.iter().copied().find(|k| k.name == name)
+}
+
+/// The names of every kind.
+pub fn names() -> impl Iterator<Item = &'static str> {
+    NAMES.iter().copied()
+}
+
+impl Kind {
+    /// Whether it is an object's shape.
+    pub fn is_shape(&self) -> bool {
+        matches!(self.role, Role::Shape(_))
+    }
+
+    /// Whether it is a light that is not a shape.
+    pub fn is_light(&self) -> bool {
+        matches!(self.role, Role::Light(_))
+    }
+
+    /// The schemas its block is checked against: its own parameters, and
+    /// a shape's common ones (transforms, motion).
+    pub fn schemas(&self) -> [&'static [ParamSpec]; 2] {
+        let common: &[_] = if self.is_shape() { SHAPE_COMMON } else { &[] };
+        [self.params, common]
+    }
+
+    /// Its parameter `name`, if it has one (common ones included).
+    pub fn param(&self, name: &str) -> Option<&'static ParamSpec> {
+        self.schemas()
+            .into_iter()
+            .flatten()
+            .find(|p| p.name == name && p.povray.is_none())
+    }
+}
+
+/// What ptsc writes for POV-Ray's statement `word`, if a kind stands for
+/// it: the help line of its row.
+pub fn povray_hint(word: &str) -> Option<&'static str> {
+    KINDS
+        .iter()
+        .flat_map(|k| k.povray.iter())
+        .find(|(w, _)| *w == word)
+        .map(|(_, help)| *help)
+}
+
+/// The error for `name { … }` where a statement goes, at `span`: the ptsc
+/// statement for POV-Ray's word, or the closest ptsc word.
+pub fn unknown_statement(name: &Ident, span: Span) -> Diagnostic {
+    let word = name.name.as_str();
+    if word == "background" {
+        return Diagnostic::error(
+            codes::FOREIGN_BLOCK,
+            "`background` takes a colour, not a block",
+            span,
+        )
+        .with_label("POV-Ray's `background { color … }`")
+        .with_help("write `background rgb <0.5, 0.7, 1>` (no braces); a daylight sky is `sky { … }`, an HDR image `environment { … }`");
+    }
+    if let Some(hint) = povray_hint(word).or_else(|| crate::syntax::povray::hint(word)) {
+        return Diagnostic::error(
+            codes::FOREIGN_BLOCK,
+            format!("POV-Ray's `{word} {{ … }}` is not ptsc"),
+            span,
+        )
+        .with_label("a statement ptsc does not have")
+        .with_help(hint);
+    }
+    let words = (crate::syntax::parser::KEYWORDS.iter().copied()).chain(names());
+    let help = match did_you_mean(word, words) {
+        Some(s) => format!("did you mean `{s}`?"),
+        None => "a scene is a list of statements: `let`, `fn`, `include`, `for`, `if`, `material`, `group`, `instance`, `camera { … }`, `render { … }`, a light or an object such as `sphere { … }`".to_string(),
+    };
+    Diagnostic::error(
+        codes::FOREIGN_BLOCK,
+        format!("unknown statement `{word}`"),
+        span,
+    )
+    .with_label("not a ptsc statement")
+    .with_help(help)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn names_are_distinct_and_not_keywords() {
+        let mut seen = std::collections::HashSet::new();
+        for k in KINDS {
+            assert!(seen.insert(k.name), "{} twice", k.name);
+            assert!(
+                !crate::syntax::parser::KEYWORDS.contains(&k.name),
+                "{} is a keyword: the grammar would not read it as a kind",
+                k.name
+            );
+            assert!(!k.summary.is_empty(), "{} has no summary", k.name);
+        }
+    }
+
+    #[test]
+    fn every_parameter_is_documented() {
+        for k in KINDS {
+            for p in k.schemas().into_iter().flatten() {
+                if p.povray.is_none() {
+                    assert!(!p.doc.is_empty(), "`{}` of `{}` has no doc", p.name, k.name);
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn positional_orders_name_parameters_of_the_kind() {
+        for k in KINDS {
+            for name in k.positional.iter().flat_map(|(names, _)| names.iter()) {
+                assert!(
+                    k.param(name).is_some(),
+                    "`{name}` is no parameter of `{}`",
+                    k.name
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn povray_words_name_their_kind() {
+        assert!(povray_hint("light_source").unwrap().contains("point_light"));
+        assert!(povray_hint("cube").unwrap().contains("box"));
+        assert!(povray_hint("sphere").is_none());
+        for k in KINDS {
+            for (w, help) in k.povray {
+                assert!(find(w).is_none(), "{w} is a ptsc kind");
+                assert!(
+                    help.contains(k.name),
+                    "the help for {w} does not name `{}`",
+                    k.name
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn a_refused_povray_word_names_a_parameter_its_block_has() {
+        use crate::check::schema::*;
+        let rows = (KINDS.iter().map(|k| k.params))
+            .chain([NOISE, BANDS, UNBANDED, GRADIENT, CHECKER, IMAGE, MATERIAL]);
+        let mut refused = 0;
+        for row in rows {
+            for spec in row.iter().filter(|s| s.povray.is_some()) {
+                let (instead, help) = spec.povray.unwrap();
+                refused += 1;
+                assert!(help.contains(&format!("`{}`", spec.name)), "{help}");
+                // `scale` is every texture's (TEXTURE_TRANSFORMS).
+                let has = row.iter().any(|s| s.name == instead && s.povray.is_none());
+                assert!(has || instead == "scale", "{}: {instead}", spec.name);
+            }
+        }
+        assert_eq!(refused, 9);
+        // Editors highlight parameters only: no word that is only refused.
+        let names = all_parameter_names();
+        for word in ["falloff", "tightness", "point_at"] {
+            assert!(!names.contains(&word), "{word}");
+        }
+    }
+}

@@ -11,57 +11,22 @@ impl Checker<'_> {
         let render = self.render.take().map(|r| r.0).unwrap_or_default();
         // Warnings about the whole scene; a file that did not parse makes them noise.
         if self.syntax_failed {
+            // The symbols are still what an editor reads on a broken file.
+            self.pending_material_uses();
             self.show_include_chains();
             self.diags.settle();
             self.diags.sort();
+            let mut symbols = self.env.symbols;
+            symbols.settle();
             return Checked {
                 sources: self.sources,
                 scene: None,
                 diagnostics: self.diags,
+                symbols,
             };
         }
         self.resolve_pending_materials();
-        for (name, span) in &self.lets {
-            // A leading `_` says "unused on purpose".
-            if !self.env.used.contains(span) && !name.starts_with('_') {
-                self.diags.push(
-                    Diagnostic::warning(
-                        codes::UNUSED_CONSTANT,
-                        match self.env.textures.get(name) {
-                            Some((_, decl)) if decl == span => {
-                                format!("texture `{name}` is never used")
-                            }
-                            _ if self.functions.contains(span) => {
-                                format!("function `{name}` is never called")
-                            }
-                            _ => format!("constant `{name}` is never used"),
-                        },
-                        *span,
-                    )
-                    .with_label("defined here")
-                    .with_help(format!(
-                        "remove it, or start its name with `_` if that is intended: `_{name}`"
-                    )),
-                );
-            }
-        }
-        let mut unused: Vec<(&String, &MaterialEntry)> = self
-            .material_names
-            .iter()
-            .filter(|(n, m)| !self.used_materials.contains(&m.index) && !n.starts_with('_'))
-            .collect();
-        unused.sort_by_key(|(_, m)| m.index);
-        for (name, m) in unused {
-            self.diags.push(
-                Diagnostic::warning(
-                    codes::UNUSED_MATERIAL,
-                    format!("material `{name}` is never used"),
-                    m.span,
-                )
-                .with_label("declared here")
-                .with_help("remove it, or give it to an object with `material NAME`"),
-            );
-        }
+        self.report_unused();
         let background = self.background.map(|b| b.0).unwrap_or([0.0; 3]);
         // Objects of groups placed count (an instance's material makes
         // objects without one emissive too).
@@ -168,15 +133,60 @@ impl Checker<'_> {
                 instances: self.instances,
             })
         };
+        let mut symbols = self.env.symbols;
+        symbols.settle();
         Checked {
             sources: self.sources,
             scene,
             diagnostics: self.diags,
+            symbols,
+        }
+    }
+
+    /// Warns of every definition no use resolved to, as the symbols have
+    /// it ([`Symbols::unused`]).
+    fn report_unused(&mut self) {
+        for d in self.env.symbols.unused() {
+            let (name, span) = (&d.name, d.name_span);
+            let warning = match d.kind {
+                SymbolKind::Material => Diagnostic::warning(
+                    codes::UNUSED_MATERIAL,
+                    format!("material `{name}` is never used"),
+                    span,
+                )
+                .with_label("declared here")
+                .with_help("remove it, or give it to an object with `material NAME`"),
+                kind => Diagnostic::warning(
+                    codes::UNUSED_CONSTANT,
+                    match kind {
+                        SymbolKind::Function => format!("function `{name}` is never called"),
+                        SymbolKind::Texture => format!("texture `{name}` is never used"),
+                        _ => format!("constant `{name}` is never used"),
+                    },
+                    span,
+                )
+                .with_label("defined here")
+                .with_help(format!(
+                    "remove it, or start its name with `_` if that is intended: `_{name}`"
+                )),
+            };
+            self.diags.push(warning);
         }
     }
 }
 
 impl Checker<'_> {
+    /// Records the uses of materials named before their declaration, where
+    /// the scene is not resolved (a file did not parse): the symbols are
+    /// whole all the same.
+    fn pending_material_uses(&mut self) {
+        for (_, name) in &self.pending_materials {
+            if let Some(m) = self.material_names.get(&name.name) {
+                self.env.symbols.record_use(m.def, name.span);
+            }
+        }
+    }
+
     /// Gives the objects that named a material before its declaration
     /// their material, and reports the names never declared (with a
     /// did-you-mean, whose material then does not count as unused: the
@@ -190,7 +200,7 @@ impl Checker<'_> {
             let object = &mut objects[at.index];
             if let Some(m) = self.material_names.get(&name.name) {
                 let index = m.index;
-                self.used_materials.insert(index);
+                self.env.symbols.record_use(m.def, name.span);
                 object.material = index;
                 if matches!(object.shape, Shape::Plane { .. })
                     && self.materials[index].is_emissive()
@@ -215,8 +225,8 @@ impl Checker<'_> {
                 .map(str::to_string);
             let help = match &suggestion {
                 Some(s) => {
-                    let index = self.material_names[s].index;
-                    self.used_materials.insert(index);
+                    // The typo already explains why it is not used.
+                    self.env.symbols.excuse(self.material_names[s].def);
                     format!("did you mean `{s}`?")
                 }
                 None => format!(

@@ -191,7 +191,7 @@ fn eval_inner(e: &Expr, env: &mut Env, diags: &mut Diagnostics) -> Option<Value>
             }
         },
         ExprKind::Name(name) => {
-            if let Some(v) = env.lookup(name) {
+            if let Some(v) = env.lookup(name, e.span) {
                 return v;
             }
             let mut d = Diagnostic::error(
@@ -339,7 +339,7 @@ fn eval_inner(e: &Expr, env: &mut Env, diags: &mut Diagnostics) -> Option<Value>
         }
         ExprKind::Call { func, args } => {
             let builtin = FUNCTIONS.iter().find(|(n, _)| *n == func.name);
-            match env.lookup(&func.name) {
+            match env.lookup(&func.name, func.span) {
                 Some(Some(Value::Function(f))) => return call_user(&f, args, e.span, env, diags),
                 // Its declaration failed and said why.
                 Some(None) if builtin.is_none() => return None,
@@ -438,7 +438,13 @@ fn call_user(
                 span,
             )
             .with_label("wrong number of arguments")
-            .with_help(format!("call it as `{}({})`", f.name, f.params.join(", "))),
+            .with_help(format!(
+                "call it as `{}({})`",
+                f.name,
+                (f.params.iter().map(|(p, _)| p.as_str()))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            )),
         );
         return None;
     }
@@ -475,12 +481,13 @@ fn call_user(
     env.push();
     env.base = env.frames.len() - 1;
     env.call_depth += 1;
-    for (name, v) in f.params.iter().zip(vals) {
+    for ((name, def), v) in f.params.iter().zip(vals) {
+        let def = *def;
         env.bind(
             name,
             Binding {
                 value: Some(v),
-                decl: span,
+                def,
             },
         );
     }

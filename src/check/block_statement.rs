@@ -179,7 +179,7 @@ impl Checker<'_> {
             })),
             Some((MaterialRef::Named(name), _)) => match self.material_names.get(&name.name) {
                 Some(m) => {
-                    self.env.symbols.record_use(m.def, name.span);
+                    self.env.record_use(m.def, name.span);
                     Some(m.index)
                 }
                 // Declared further on, perhaps: names of materials are

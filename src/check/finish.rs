@@ -182,7 +182,7 @@ impl Checker<'_> {
     fn pending_material_uses(&mut self) {
         for (_, name) in &self.pending_materials {
             if let Some(m) = self.material_names.get(&name.name) {
-                self.env.symbols.record_use(m.def, name.span);
+                self.env.symbols.record_use(m.def, name.span, true);
             }
         }
     }
@@ -200,7 +200,8 @@ impl Checker<'_> {
             let object = &mut objects[at.index];
             if let Some(m) = self.material_names.get(&name.name) {
                 let index = m.index;
-                self.env.symbols.record_use(m.def, name.span);
+                // The objects of a loop name it at one place, once per iteration.
+                self.env.symbols.record_use(m.def, name.span, true);
                 object.material = index;
                 if matches!(object.shape, Shape::Plane { .. })
                     && self.materials[index].is_emissive()

@@ -81,7 +81,7 @@ impl Checker<'_> {
         };
         let group = match self.group_names.get(&name.name) {
             Some(&(g, _, def)) => {
-                self.env.symbols.record_use(def, name.span);
+                self.env.record_use(def, name.span);
                 g
             }
             None => {

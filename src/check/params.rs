@@ -116,7 +116,7 @@ fn named_texture(value: &crate::syntax::ast::Expr, env: &mut Env) -> Option<supe
         return None;
     }
     let (texture, def) = env.textures.get(name)?.clone();
-    env.symbols.record_use(def, value.span);
+    env.record_use(def, value.span);
     Some(texture)
 }
 

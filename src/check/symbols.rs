@@ -79,8 +79,9 @@ pub struct Symbols {
     /// Each definition by the span of its name: running a statement again
     /// finds the definition it made before.
     by_name: HashMap<Span, DefId>,
-    /// Uses recorded so far (a loop's body resolves the same name at the
-    /// same place at every iteration); emptied by [`Symbols::settle`].
+    /// The uses recorded at places that may be met again (a loop's body
+    /// resolves the same name at the same place at every iteration);
+    /// emptied by [`Symbols::settle`].
     seen: HashSet<(Span, DefId)>,
 }
 
@@ -110,10 +111,16 @@ impl Symbols {
     }
 
     /// Records that the name at `at` resolved to `def` (once per place).
-    pub fn record_use(&mut self, def: DefId, at: Span) {
+    /// `repeating`: the place may be met again (in a loop, a repeated
+    /// include, a function's body), so that a use already recorded is
+    /// looked for now, keeping the uses as many as the places. A place met
+    /// once is only pushed: hashing each use of a scene written out (a
+    /// name in each of 100,000 spheres) cost 2 % of its check; the rare
+    /// second meeting (a file included again) is removed by `settle`.
+    pub fn record_use(&mut self, def: DefId, at: Span, repeating: bool) {
         let uses = &mut self.defs[def.0 as usize].uses;
         // A loop over one use meets the same place again and again.
-        if uses.last() == Some(&at) || !self.seen.insert((at, def)) {
+        if uses.last() == Some(&at) || (repeating && !self.seen.insert((at, def))) {
             return;
         }
         uses.push(at);
@@ -137,6 +144,7 @@ impl Symbols {
         self.defs.sort_by_key(|d| order(&d.name_span));
         for d in &mut self.defs {
             d.uses.sort_by_key(order);
+            d.uses.dedup();
         }
         self.by_name = (self.defs.iter().enumerate())
             .map(|(i, d)| (d.name_span, DefId(i as u32)))

@@ -181,8 +181,15 @@ impl Env {
             return predefined.map(|(_, v)| Some(v.clone()));
         };
         let (def, value) = (b.def, b.value.clone());
-        self.symbols.record_use(def, at);
+        self.record_use(def, at);
         Some(value)
+    }
+
+    /// Records a use at `at` of the definition `def` (a texture, a
+    /// material or a group, named where evaluation does not look names up).
+    pub fn record_use(&mut self, def: DefId, at: Span) {
+        let repeating = self.repeating > 0 || self.call_depth > 0;
+        self.symbols.record_use(def, at, repeating);
     }
 
     /// The name in scope (or of `also`) closest to `word`, while the

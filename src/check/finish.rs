@@ -1,33 +1,75 @@
-//! The end of a check: whole-scene warnings (no light, unused materials and
-//! constants, integrator settings that make no sense), the camera and render
-//! defaults, duplicate removal and source order.
+//! The end of a check: whole-scene warnings (no light, integrator settings
+//! that make no sense), the unused names (read from the symbols), the
+//! camera and render defaults, duplicate removal and source order, the
+//! symbols settled.
 
 use super::*;
 
 impl Checker<'_> {
     /// Runs the whole-scene checks and assembles the result.
     pub(super) fn finish(mut self) -> Checked {
-        let root = FileId(0);
         let render = self.render.take().map(|r| r.0).unwrap_or_default();
         // Warnings about the whole scene; a file that did not parse makes them noise.
         if self.syntax_failed {
             // The symbols are still what an editor reads on a broken file.
             self.pending_material_uses();
-            self.show_include_chains();
-            self.diags.settle();
-            self.diags.sort();
-            let mut symbols = self.env.symbols;
-            symbols.settle();
-            return Checked {
-                sources: self.sources,
-                scene: None,
-                diagnostics: self.diags,
-                symbols,
-            };
+            return self.checked(None);
         }
         self.resolve_pending_materials();
         self.report_unused();
         let background = self.background.map(|b| b.0).unwrap_or([0.0; 3]);
+        self.light_warnings(&render, background);
+        let camera = self.camera.take();
+        if self.camera_span.is_none() {
+            self.diags.push(
+                Diagnostic::error(
+                    codes::MISSING_CAMERA,
+                    "the scene has no camera",
+                    Span::new(FileId(0), 0, 0),
+                )
+                .with_label("the scene starts here")
+                .with_help("add `camera { position <0, 1, 5> look_at <0, 0, 0> }`"),
+            );
+        }
+        let scene = match camera {
+            Some(camera) if !self.diags.has_errors() => Some(Scene {
+                render,
+                camera,
+                background,
+                environment: self.environment.take(),
+                sky: self.sky.take(),
+                materials: std::mem::take(&mut self.materials),
+                objects: std::mem::take(&mut self.objects),
+                lights: std::mem::take(&mut self.lights),
+                groups: std::mem::take(&mut self.groups),
+                instances: std::mem::take(&mut self.instances),
+            }),
+            _ => None,
+        };
+        self.checked(scene)
+    }
+
+    /// The result of the check with `scene`: the diagnostics with their
+    /// chains of includes, folded and in source order, the symbols settled.
+    fn checked(mut self, scene: Option<Scene>) -> Checked {
+        self.show_include_chains();
+        self.diags.settle();
+        self.diags.sort();
+        let mut symbols = self.env.symbols;
+        symbols.settle();
+        Checked {
+            sources: self.sources,
+            scene,
+            diagnostics: self.diags,
+            symbols,
+        }
+    }
+
+    /// The warnings about the scene's light: none at all, an ambient term
+    /// under the path integrator, whitted shading that ignores the only
+    /// lights.
+    fn light_warnings(&mut self, render: &RenderSettings, background: [f64; 3]) {
+        let root = FileId(0);
         // Objects of groups placed count (an instance's material makes
         // objects without one emissive too).
         let placed = |g: &usize| self.placed_groups.contains(g);
@@ -101,45 +143,6 @@ impl Checker<'_> {
                 d = d.with_secondary(o.span, "this emissive shape is such a light");
             }
             self.diags.push(d);
-        }
-        let camera = self.camera.take();
-        if self.camera_span.is_none() {
-            self.diags.push(
-                Diagnostic::error(
-                    codes::MISSING_CAMERA,
-                    "the scene has no camera",
-                    Span::new(root, 0, 0),
-                )
-                .with_label("the scene starts here")
-                .with_help("add `camera { position <0, 1, 5> look_at <0, 0, 0> }`"),
-            );
-        }
-        self.show_include_chains();
-        self.diags.settle();
-        self.diags.sort();
-        let scene = if self.diags.has_errors() {
-            None
-        } else {
-            camera.map(|camera| Scene {
-                render,
-                camera,
-                background,
-                environment: self.environment,
-                sky: self.sky,
-                materials: self.materials,
-                objects: self.objects,
-                lights: self.lights,
-                groups: self.groups,
-                instances: self.instances,
-            })
-        };
-        let mut symbols = self.env.symbols;
-        symbols.settle();
-        Checked {
-            sources: self.sources,
-            scene,
-            diagnostics: self.diags,
-            symbols,
         }
     }
 

@@ -30,21 +30,6 @@ pub enum SymbolKind {
     Group,
 }
 
-impl SymbolKind {
-    /// The word messages and outlines call it by.
-    pub fn word(self) -> &'static str {
-        match self {
-            SymbolKind::Constant => "constant",
-            SymbolKind::Function => "function",
-            SymbolKind::Parameter => "parameter",
-            SymbolKind::LoopVariable => "loop variable",
-            SymbolKind::Texture => "texture",
-            SymbolKind::Material => "material",
-            SymbolKind::Group => "group",
-        }
-    }
-}
-
 /// The number of a definition in its [`Symbols`].
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub struct DefId(pub u32);
@@ -64,6 +49,8 @@ pub struct Definition {
     pub span: Span,
     /// Every place a use of the name resolved to this definition, once
     /// each however often it ran; in source order once the check is over.
+    /// Only what ran counts: the names in a function's body are resolved
+    /// when it is called, those of an `if` arm not taken never.
     pub uses: Vec<Span>,
     /// Its lack of uses is explained otherwise, so that it is not reported
     /// unused: its value had an error, or a misspelt name was pointed to it.

@@ -149,11 +149,6 @@ impl Env {
         def
     }
 
-    /// Where the binding `b` was defined (the name at its definition).
-    pub fn defined_at(&self, b: &Binding) -> Span {
-        self.symbols.get(b.def).name_span
-    }
-
     /// Binds a name in the innermost frame.
     pub fn bind(&mut self, name: &str, b: Binding) {
         self.frames

@@ -7,7 +7,7 @@
 //! path ──read──▶ bytes ──check──▶ check::Scene ──lower──▶ ir::Scene
 //!                  │ (syntax + check diagnostics)  │ (lowering diagnostics)
 //!                  ▼                               ▼
-//!        Compiled { sources, diagnostics (one list), ir, dependencies, output }
+//!        Compiled { sources, diagnostics (one list), symbols, ir, dependencies, output }
 //! ```
 
 use crate::check::{self, Animation, Budgets, MAX_LOOP_STATEMENTS};
@@ -73,6 +73,11 @@ pub struct Compiled {
     pub sources: SourceMap,
     /// Every diagnostic, syntax, check and lowering in one list.
     pub diagnostics: Diagnostics,
+    /// Every name the scene defines and where each is used, across its
+    /// files: what editors read (hover, go to definition, references,
+    /// rename, outline). A scene with errors has them as far as it was
+    /// checked.
+    pub symbols: check::Symbols,
     /// The scene ready to render, when there were no errors and lowering
     /// was asked for.
     pub ir: Option<crate::ir::Scene>,
@@ -132,6 +137,7 @@ fn compile_from(path: &Path, bytes: Vec<u8>, options: Options, start: Instant) -
     let mut compiled = Compiled {
         sources: checked.sources,
         diagnostics: checked.diagnostics,
+        symbols: checked.symbols,
         ir: None,
         dependencies: Vec::new(),
         output: None,

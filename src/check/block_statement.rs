@@ -223,7 +223,7 @@ impl Checker<'_> {
             })),
             Some((MaterialRef::Named(name), _)) => match self.material_names.get(&name.name) {
                 Some(m) => {
-                    self.used_materials.insert(m.index);
+                    self.env.record_use(m.def, name.span);
                     Some(m.index)
                 }
                 // Declared further on, perhaps: names of materials are
@@ -235,9 +235,7 @@ impl Checker<'_> {
                 let mut m = material::material(&p, None, *s, &mut self.diags);
                 m.resolve_paths(folder_of(&self.sources, s.file));
                 self.materials.push(m);
-                let i = self.materials.len() - 1;
-                self.used_materials.insert(i);
-                Some(i)
+                Some(self.materials.len() - 1)
             }
         }
     }

@@ -1,68 +1,75 @@
-//! The end of a check: whole-scene warnings (no light, unused materials and
-//! constants, integrator settings that make no sense), the camera and render
-//! defaults, duplicate removal and source order.
+//! The end of a check: whole-scene warnings (no light, integrator settings
+//! that make no sense), the unused names (read from the symbols), the
+//! camera and render defaults, duplicate removal and source order, the
+//! symbols settled.
 
 use super::*;
 
 impl Checker<'_> {
     /// Runs the whole-scene checks and assembles the result.
     pub(super) fn finish(mut self) -> Checked {
-        let root = FileId(0);
         let render = self.render.take().map(|r| r.0).unwrap_or_default();
         // Warnings about the whole scene; a file that did not parse makes them noise.
         if self.syntax_failed {
-            self.show_include_chains();
-            self.diags.settle();
-            self.diags.sort();
-            return Checked {
-                sources: self.sources,
-                scene: None,
-                diagnostics: self.diags,
-            };
+            // The symbols are still what an editor reads on a broken file.
+            self.pending_material_uses();
+            return self.checked(None);
         }
         self.resolve_pending_materials();
-        for (name, span) in &self.lets {
-            // A leading `_` says "unused on purpose".
-            if !self.env.used.contains(span) && !name.starts_with('_') {
-                self.diags.push(
-                    Diagnostic::warning(
-                        codes::UNUSED_CONSTANT,
-                        match self.env.textures.get(name) {
-                            Some((_, decl)) if decl == span => {
-                                format!("texture `{name}` is never used")
-                            }
-                            _ if self.functions.contains(span) => {
-                                format!("function `{name}` is never called")
-                            }
-                            _ => format!("constant `{name}` is never used"),
-                        },
-                        *span,
-                    )
-                    .with_label("defined here")
-                    .with_help(format!(
-                        "remove it, or start its name with `_` if that is intended: `_{name}`"
-                    )),
-                );
-            }
-        }
-        let mut unused: Vec<(&String, &MaterialEntry)> = self
-            .material_names
-            .iter()
-            .filter(|(n, m)| !self.used_materials.contains(&m.index) && !n.starts_with('_'))
-            .collect();
-        unused.sort_by_key(|(_, m)| m.index);
-        for (name, m) in unused {
+        self.report_unused();
+        let background = self.background.map(|b| b.0).unwrap_or([0.0; 3]);
+        self.light_warnings(&render, background);
+        let camera = self.camera.take();
+        if self.camera_span.is_none() {
             self.diags.push(
-                Diagnostic::warning(
-                    codes::UNUSED_MATERIAL,
-                    format!("material `{name}` is never used"),
-                    m.span,
+                Diagnostic::error(
+                    codes::MISSING_CAMERA,
+                    "the scene has no camera",
+                    Span::new(FileId(0), 0, 0),
                 )
-                .with_label("declared here")
-                .with_help("remove it, or give it to an object with `material NAME`"),
+                .with_label("the scene starts here")
+                .with_help("add `camera { position <0, 1, 5> look_at <0, 0, 0> }`"),
             );
         }
-        let background = self.background.map(|b| b.0).unwrap_or([0.0; 3]);
+        let scene = match camera {
+            Some(camera) if !self.diags.has_errors() => Some(Scene {
+                render,
+                camera,
+                background,
+                environment: self.environment.take(),
+                sky: self.sky.take(),
+                materials: std::mem::take(&mut self.materials),
+                objects: std::mem::take(&mut self.objects),
+                lights: std::mem::take(&mut self.lights),
+                groups: std::mem::take(&mut self.groups),
+                instances: std::mem::take(&mut self.instances),
+            }),
+            _ => None,
+        };
+        self.checked(scene)
+    }
+
+    /// The result of the check with `scene`: the diagnostics with their
+    /// chains of includes, folded and in source order, the symbols settled.
+    fn checked(mut self, scene: Option<Scene>) -> Checked {
+        self.show_include_chains();
+        self.diags.settle();
+        self.diags.sort();
+        let mut symbols = self.env.symbols;
+        symbols.settle();
+        Checked {
+            sources: self.sources,
+            scene,
+            diagnostics: self.diags,
+            symbols,
+        }
+    }
+
+    /// The warnings about the scene's light: none at all, an ambient term
+    /// under the path integrator, whitted shading that ignores the only
+    /// lights.
+    fn light_warnings(&mut self, render: &RenderSettings, background: [f64; 3]) {
+        let root = FileId(0);
         // Objects of groups placed count (an instance's material makes
         // objects without one emissive too).
         let placed = |g: &usize| self.placed_groups.contains(g);
@@ -137,46 +144,52 @@ impl Checker<'_> {
             }
             self.diags.push(d);
         }
-        let camera = self.camera.take();
-        if self.camera_span.is_none() {
-            self.diags.push(
-                Diagnostic::error(
-                    codes::MISSING_CAMERA,
-                    "the scene has no camera",
-                    Span::new(root, 0, 0),
+    }
+
+    /// Warns of every definition no use resolved to, as the symbols have
+    /// it ([`Symbols::unused`]).
+    fn report_unused(&mut self) {
+        for d in self.env.symbols.unused() {
+            let (name, span) = (&d.name, d.name_span);
+            let warning = match d.kind {
+                SymbolKind::Material => Diagnostic::warning(
+                    codes::UNUSED_MATERIAL,
+                    format!("material `{name}` is never used"),
+                    span,
                 )
-                .with_label("the scene starts here")
-                .with_help("add `camera { position <0, 1, 5> look_at <0, 0, 0> }`"),
-            );
-        }
-        self.show_include_chains();
-        self.diags.settle();
-        self.diags.sort();
-        let scene = if self.diags.has_errors() {
-            None
-        } else {
-            camera.map(|camera| Scene {
-                render,
-                camera,
-                background,
-                environment: self.environment,
-                sky: self.sky,
-                materials: self.materials,
-                objects: self.objects,
-                lights: self.lights,
-                groups: self.groups,
-                instances: self.instances,
-            })
-        };
-        Checked {
-            sources: self.sources,
-            scene,
-            diagnostics: self.diags,
+                .with_label("declared here")
+                .with_help("remove it, or give it to an object with `material NAME`"),
+                kind => Diagnostic::warning(
+                    codes::UNUSED_CONSTANT,
+                    match kind {
+                        SymbolKind::Function => format!("function `{name}` is never called"),
+                        SymbolKind::Texture => format!("texture `{name}` is never used"),
+                        _ => format!("constant `{name}` is never used"),
+                    },
+                    span,
+                )
+                .with_label("defined here")
+                .with_help(format!(
+                    "remove it, or start its name with `_` if that is intended: `_{name}`"
+                )),
+            };
+            self.diags.push(warning);
         }
     }
 }
 
 impl Checker<'_> {
+    /// Records the uses of materials named before their declaration, where
+    /// the scene is not resolved (a file did not parse): the symbols are
+    /// whole all the same.
+    fn pending_material_uses(&mut self) {
+        for (_, name) in &self.pending_materials {
+            if let Some(m) = self.material_names.get(&name.name) {
+                self.env.symbols.record_use(m.def, name.span, true);
+            }
+        }
+    }
+
     /// Gives the objects that named a material before its declaration
     /// their material, and reports the names never declared (with a
     /// did-you-mean, whose material then does not count as unused: the
@@ -190,7 +203,8 @@ impl Checker<'_> {
             let object = &mut objects[at.index];
             if let Some(m) = self.material_names.get(&name.name) {
                 let index = m.index;
-                self.used_materials.insert(index);
+                // The objects of a loop name it at one place, once per iteration.
+                self.env.symbols.record_use(m.def, name.span, true);
                 object.material = index;
                 if matches!(object.shape, Shape::Plane { .. })
                     && self.materials[index].is_emissive()
@@ -215,8 +229,8 @@ impl Checker<'_> {
                 .map(str::to_string);
             let help = match &suggestion {
                 Some(s) => {
-                    let index = self.material_names[s].index;
-                    self.used_materials.insert(index);
+                    // The typo already explains why it is not used.
+                    self.env.symbols.excuse(self.material_names[s].def);
                     format!("did you mean `{s}`?")
                 }
                 None => format!(

@@ -23,7 +23,7 @@ impl Checker<'_> {
             ));
             return;
         }
-        if let Some(&(_, first)) = self.group_names.get(&name.name) {
+        if let Some(&(_, first, _)) = self.group_names.get(&name.name) {
             // A loop or a second include runs one declaration again: it
             // declares the same group again, once.
             if first != name.span {
@@ -50,8 +50,10 @@ impl Checker<'_> {
         self.env.pop();
         self.open_group = None;
         self.count_placements(index);
+        let symbols = &mut self.env.symbols;
+        let def = symbols.define(SymbolKind::Group, &name.name, name.span, span);
         self.group_names
-            .insert(name.name.clone(), (index, name.span));
+            .insert(name.name.clone(), (index, name.span, def));
     }
 
     /// `instance name { … }`: a placement of a declared group.
@@ -78,7 +80,10 @@ impl Checker<'_> {
             self.object_material(&material_entries, span)
         };
         let group = match self.group_names.get(&name.name) {
-            Some(&(g, _)) => g,
+            Some(&(g, _, def)) => {
+                self.env.record_use(def, name.span);
+                g
+            }
             None => {
                 let open = self.open_group.map(|g| &self.groups[g]);
                 if let Some(open) = open.filter(|g| g.name == name.name) {

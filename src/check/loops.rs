@@ -65,7 +65,13 @@ impl Checker<'_> {
     }
 
     /// `for var in list { body }`.
-    pub(super) fn for_list(&mut self, var: &Ident, list: &Expr, body: &[Statement], file: FileId) {
+    pub(super) fn for_list(
+        &mut self,
+        var: (&Ident, Span),
+        list: &Expr,
+        body: &[Statement],
+        file: FileId,
+    ) {
         let Some(value) = eval(list, &mut self.env, &mut self.diags) else {
             return;
         };
@@ -96,7 +102,7 @@ impl Checker<'_> {
     /// `for var in start..end { body }`.
     pub(super) fn for_range(
         &mut self,
-        var: &Ident,
+        var: (&Ident, Span),
         (start, end): (&Expr, &Expr),
         body: &[Statement],
         file: FileId,
@@ -175,16 +181,19 @@ impl Checker<'_> {
 
     /// Runs `body` once per item of `items` with `var` bound to it, each
     /// statement charged to the loop budget (`range` is the loop's range
-    /// or list, where a runaway is reported).
+    /// or list, where a runaway is reported; `var` comes with the loop's
+    /// span).
     fn run_loop(
         &mut self,
-        var: &Ident,
+        (var, span): (&Ident, Span),
         items: impl Iterator<Item = Value>,
         range: Span,
         body: &[Statement],
         file: FileId,
     ) {
-        self.env.used.insert(var.span);
+        // One definition, however many iterations bind it.
+        let symbols = &mut self.env.symbols;
+        let def = symbols.define(SymbolKind::LoopVariable, &var.name, var.span, span);
         self.enter_loop(range);
         for item in items {
             // A spent work budget fails every expression silently: the
@@ -199,13 +208,8 @@ impl Checker<'_> {
             // a loop with a warning per iteration quadratic.
             let errors_before = self.diags.errors_pushed();
             self.env.push();
-            self.env.bind(
-                &var.name,
-                Binding {
-                    value: Some(item),
-                    decl: var.span,
-                },
-            );
+            let value = Some(item);
+            self.env.bind(&var.name, Binding { value, def });
             self.statements(body, file);
             self.env.pop();
             // One broken iteration is enough to report; the others repeat it.

@@ -20,11 +20,13 @@ mod reader;
 pub mod scene;
 pub mod schema;
 mod statements;
+pub mod symbols;
 mod texture;
 
 pub use blocks::{MAX_PIXELS, MAX_SIDE, SAMPLES, SEED};
 pub use reader::WholeSetting;
 pub use scene::*;
+pub use symbols::{DefId, Definition, SymbolKind, Symbols};
 
 pub(crate) use crate::diag::group_digits;
 use crate::diag::{codes, Diagnostic, Diagnostics};
@@ -92,6 +94,9 @@ pub struct Checked {
     pub scene: Option<Scene>,
     /// Errors and warnings, sorted by position.
     pub diagnostics: Diagnostics,
+    /// Every name the scene defines and where each is used, as far as the
+    /// check went (a scene with errors has them too).
+    pub symbols: Symbols,
 }
 
 /// Reads, parses and checks the scene at `path` and everything it includes.
@@ -216,6 +221,8 @@ fn folder_of(sources: &SourceMap, file: FileId) -> &Path {
 struct MaterialEntry {
     index: usize,
     span: Span,
+    /// Its definition in the symbols, which uses are recorded against.
+    def: DefId,
 }
 
 /// An object of the scene or of a group.
@@ -253,7 +260,6 @@ struct Checker<'f> {
     sky: Option<scene::Sky>,
     materials: Vec<Material>,
     material_names: HashMap<String, MaterialEntry>,
-    used_materials: HashSet<usize>,
     /// The material of objects that name none, once one needs it.
     default_material: Option<usize>,
     /// Where each included file was first included (the include's path).
@@ -264,8 +270,9 @@ struct Checker<'f> {
     objects: Vec<Object>,
     /// Declared groups (the one being declared too, last).
     groups: Vec<Group>,
-    /// The groups' names, once declared whole: index and name's span.
-    group_names: HashMap<String, (usize, Span)>,
+    /// The groups' names, once declared whole: index, name's span and
+    /// definition.
+    group_names: HashMap<String, (usize, Span, DefId)>,
     /// The group whose body runs now: objects and instances go there.
     open_group: Option<usize>,
     /// Placements of groups at the top level.
@@ -277,11 +284,6 @@ struct Checker<'f> {
     /// [`MAX_PLACED_OBJECTS`] was passed (reported once).
     placements_exhausted: bool,
     lights: Vec<(Light, Span)>,
-    lets: Vec<(String, Span)>,
-    /// The declarations in `lets` (a loop runs one declaration many times).
-    let_spans: HashSet<Span>,
-    /// The declarations in `lets` that are functions.
-    functions: HashSet<Span>,
     ambient_span: Option<Span>,
     /// Where `light_samples` was set, for the Whitted warning.
     light_samples_span: Option<Span>,
@@ -318,7 +320,6 @@ impl<'f> Checker<'f> {
             sky: None,
             materials: Vec::new(),
             material_names: HashMap::new(),
-            used_materials: HashSet::new(),
             default_material: None,
             pending_materials: Vec::new(),
             included_from: HashMap::new(),
@@ -331,9 +332,6 @@ impl<'f> Checker<'f> {
             placed_objects: 0,
             placements_exhausted: false,
             lights: Vec::new(),
-            lets: Vec::new(),
-            let_spans: HashSet::new(),
-            functions: HashSet::new(),
             ambient_span: None,
             light_samples_span: None,
             syntax_failed: false,
@@ -357,8 +355,9 @@ impl<'f> Checker<'f> {
     /// Where the constant, function or texture named `name` visible in
     /// the current frame is declared, if there is one.
     fn name_taken(&self, name: &str) -> Option<Span> {
-        (self.env.in_current_frame(name).map(|b| b.decl))
+        (self.env.in_current_frame(name).map(|b| b.def))
             .or_else(|| self.env.textures.get(name).map(|t| t.1))
+            .map(|def| self.env.symbols.get(def).name_span)
     }
 
     /// Checks `body` in order.

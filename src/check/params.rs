@@ -115,8 +115,8 @@ fn named_texture(value: &crate::syntax::ast::Expr, env: &mut Env) -> Option<supe
     if env.is_bound(name) {
         return None;
     }
-    let (texture, decl) = env.textures.get(name)?.clone();
-    env.used.insert(decl);
+    let (texture, def) = env.textures.get(name)?.clone();
+    env.record_use(def, value.span);
     Some(texture)
 }
 
@@ -529,7 +529,7 @@ fn took_next_word<'a>(entries: &'a [Entry], i: usize, env: &mut Env) -> Option<&
         return None;
     };
     match &value.kind {
-        ExprKind::Name(n) if env.lookup(n).is_none() => Some(n),
+        ExprKind::Name(n) if env.lookup(n, value.span).is_none() => Some(n),
         _ => None,
     }
 }

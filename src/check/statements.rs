@@ -12,7 +12,7 @@ impl Checker<'_> {
             return;
         }
         match st {
-            Statement::Let { name, value, .. } => self.let_statement(name, value),
+            Statement::Let { name, value, span } => self.let_statement(name, value, *span),
             Statement::Texture {
                 name,
                 kind,
@@ -27,21 +27,24 @@ impl Checker<'_> {
                 start,
                 end: None,
                 body,
-                ..
-            } => self.for_list(var, start, body, file),
+                span,
+            } => self.for_list((var, *span), start, body, file),
             Statement::For {
                 var,
                 start,
                 end: Some(end),
                 body,
-                ..
-            } => self.for_range(var, (start, end), body, file),
+                span,
+            } => self.for_range((var, *span), (start, end), body, file),
             Statement::If {
                 arms, otherwise, ..
             } => self.if_statement(arms, otherwise, file),
             Statement::Function {
-                name, params, body, ..
-            } => self.function_statement(name, params, body),
+                name,
+                params,
+                body,
+                span,
+            } => self.function_statement(name, params, body, *span),
             Statement::Group { name, body, span } => self.group(name, body, *span, file),
             Statement::Instance { group, block, span } => self.instance(group, block, *span),
             Statement::Background { value, span } => self.background_statement(value, span),
@@ -71,7 +74,7 @@ impl Checker<'_> {
     }
 
     /// `let name = value;`: binds a constant.
-    fn let_statement(&mut self, name: &Ident, value: &Expr) {
+    fn let_statement(&mut self, name: &Ident, value: &Expr, span: Span) {
         // A texture's name is taken too (both are read as names).
         if let Some(first) = self.name_taken(&name.name) {
             self.diags.push(defined_again(
@@ -82,26 +85,20 @@ impl Checker<'_> {
             return;
         }
         let v = eval(value, &mut self.env, &mut self.diags);
-        if v.is_none() {
+        let broken = v.is_none();
+        let named = (name.name.as_str(), name.span);
+        let def = self.env.define(SymbolKind::Constant, named, span, v);
+        if broken {
             // Uses of a broken constant stay silent; don't call it unused either.
-            self.env.used.insert(name.span);
-        }
-        self.env.bind(
-            &name.name,
-            Binding {
-                value: v,
-                decl: name.span,
-            },
-        );
-        if self.let_spans.insert(name.span) {
-            self.lets.push((name.name.clone(), name.span));
+            self.env.symbols.excuse(def);
         }
     }
 
     /// `texture name kind { … }`: declares a texture.
     fn texture_statement(&mut self, name: &Ident, kind: &Ident, block: &Block, span: &Span) {
         let clash = (self.env.textures.get(&name.name).map(|t| t.1))
-            .or_else(|| self.env.in_current_frame(&name.name).map(|b| b.decl));
+            .or_else(|| self.env.in_current_frame(&name.name).map(|b| b.def))
+            .map(|def| self.env.symbols.get(def).name_span);
         if let Some(first) = clash.filter(|&first| first != name.span) {
             self.diags.push(defined_again(
                 name,
@@ -113,12 +110,9 @@ impl Checker<'_> {
         let texture = texture::check_texture(kind, block, *span, &mut self.env, &mut self.diags);
         if let Some(mut texture) = texture {
             texture.resolve_path(folder_of(&self.sources, span.file));
-            self.env
-                .textures
-                .insert(name.name.clone(), (texture, name.span));
-            if self.let_spans.insert(name.span) {
-                self.lets.push((name.name.clone(), name.span));
-            }
+            let symbols = &mut self.env.symbols;
+            let def = symbols.define(SymbolKind::Texture, &name.name, name.span, *span);
+            self.env.textures.insert(name.name.clone(), (texture, def));
         }
     }
 
@@ -145,7 +139,7 @@ impl Checker<'_> {
     }
 
     /// `fn name(params) = body;`: binds a user function.
-    fn function_statement(&mut self, name: &Ident, params: &[Ident], body: &Arc<Expr>) {
+    fn function_statement(&mut self, name: &Ident, params: &[Ident], body: &Arc<Expr>, span: Span) {
         if let Some(first) = self.name_taken(&name.name) {
             if first != name.span {
                 self.diags.push(defined_again(
@@ -176,22 +170,21 @@ impl Checker<'_> {
                 return;
             }
         }
+        let symbols = &mut self.env.symbols;
+        let params = (params.iter())
+            .map(|p| {
+                let def = symbols.define(SymbolKind::Parameter, &p.name, p.span, span);
+                (p.name.clone(), def)
+            })
+            .collect();
         let f = eval::Function {
             name: name.name.clone(),
-            params: params.iter().map(|p| p.name.clone()).collect(),
+            params,
             body: body.clone(),
         };
-        self.env.bind(
-            &name.name,
-            Binding {
-                value: Some(Value::Function(std::sync::Arc::new(f))),
-                decl: name.span,
-            },
-        );
-        if self.let_spans.insert(name.span) {
-            self.lets.push((name.name.clone(), name.span));
-            self.functions.insert(name.span);
-        }
+        let value = Some(Value::Function(std::sync::Arc::new(f)));
+        let named = (name.name.as_str(), name.span);
+        self.env.define(SymbolKind::Function, named, span, value);
     }
 
     /// `background value`: the radiance from every direction.
@@ -280,11 +273,14 @@ impl Checker<'_> {
             }
         }
         self.materials.push(m);
+        let symbols = &mut self.env.symbols;
+        let def = symbols.define(SymbolKind::Material, &name.name, name.span, *span);
         self.material_names.insert(
             name.name.clone(),
             MaterialEntry {
                 index: self.materials.len() - 1,
                 span: name.span,
+                def,
             },
         );
     }

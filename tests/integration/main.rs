@@ -27,6 +27,7 @@ mod render;
 mod shapes;
 #[cfg(unix)]
 mod special_files;
+mod symbols;
 mod texture_inputs;
 mod textures;
 mod unclosed_blocks;

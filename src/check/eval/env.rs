@@ -6,18 +6,19 @@ use super::budget::{self, Work};
 use super::budget::{MAX_SUGGESTIONS, MAX_WORK};
 use super::limits::{MAX_ITEMS, MAX_STRING};
 use super::value::{List, Value, MAX_LIST_DEPTH};
+use crate::check::symbols::{DefId, SymbolKind, Symbols};
 use crate::diag::{codes, did_you_mean, Diagnostic, Diagnostics};
 use crate::span::Span;
 use std::collections::HashMap;
 use std::sync::Arc;
 
-/// One bound name: a constant or a loop variable.
+/// One bound name: a constant, a function, a parameter or a loop variable.
 #[derive(Debug, Clone)]
 pub struct Binding {
     /// Its value (`None` when its definition had an error: uses stay silent).
     pub value: Option<Value>,
-    /// Where it is declared (identifies it for the unused-constant warning).
-    pub decl: Span,
+    /// Its definition in [`Env::symbols`], which a use is recorded against.
+    pub def: DefId,
 }
 
 /// Names in scope: a stack of frames (the file level, then one per loop
@@ -51,11 +52,12 @@ pub struct Env {
     /// Loops and repeated includes running now: an expression they
     /// evaluate costs a step (one the text bounds does not).
     pub repeating: usize,
-    /// Declarations that were read at least once.
-    pub used: std::collections::HashSet<Span>,
-    /// Declared textures (`texture name kind { … }`), with the span of
-    /// each one's name.
-    pub textures: HashMap<String, (crate::check::scene::Texture, Span)>,
+    /// Every definition met so far and the uses resolved to each: where
+    /// a name resolves is where its use is recorded.
+    pub symbols: Symbols,
+    /// Declared textures (`texture name kind { … }`), with each one's
+    /// definition.
+    pub textures: HashMap<String, (crate::check::scene::Texture, DefId)>,
     /// Names every scene sees unless it binds them itself (`frame`,
     /// `clock`).
     pub predefined: Vec<(&'static str, Value)>,
@@ -133,6 +135,20 @@ impl Env {
         self.frames.last().and_then(|f| f.get(name))
     }
 
+    /// Records the definition of `name`, written at `name_span` in the
+    /// statement `span`, and binds it to `value` in the innermost frame.
+    pub fn define(
+        &mut self,
+        kind: SymbolKind,
+        (name, name_span): (&str, Span),
+        span: Span,
+        value: Option<Value>,
+    ) -> DefId {
+        let def = self.symbols.define(kind, name, name_span, span);
+        self.bind(name, Binding { value, def });
+        def
+    }
+
     /// Binds a name in the innermost frame.
     pub fn bind(&mut self, name: &str, b: Binding) {
         self.frames
@@ -152,15 +168,23 @@ impl Env {
         inner.rev().chain(self.frames.first())
     }
 
-    /// Looks a name up, innermost first, marking it used.
-    pub fn lookup(&mut self, name: &str) -> Option<Option<Value>> {
+    /// Looks up the name written at `at`, innermost first, recording the
+    /// use against the definition it resolves to.
+    pub fn lookup(&mut self, name: &str, at: Span) -> Option<Option<Value>> {
         let Some(b) = self.visible().find_map(|f| f.get(name)) else {
             let predefined = self.predefined.iter().find(|(n, _)| *n == name);
             return predefined.map(|(_, v)| Some(v.clone()));
         };
-        let (decl, value) = (b.decl, b.value.clone());
-        self.used.insert(decl);
+        let (def, value) = (b.def, b.value.clone());
+        self.record_use(def, at);
         Some(value)
+    }
+
+    /// Records a use at `at` of the definition `def` (a texture, a
+    /// material or a group, named where evaluation does not look names up).
+    pub fn record_use(&mut self, def: DefId, at: Span) {
+        let repeating = self.repeating > 0 || self.call_depth > 0;
+        self.symbols.record_use(def, at, repeating);
     }
 
     /// The name in scope (or of `also`) closest to `word`, while the

@@ -29,7 +29,7 @@ pub use value::{shown, Function, List, Value, MAX_LIST_DEPTH};
 use crate::diag::codes;
 use crate::diag::{Diagnostic, Diagnostics};
 use crate::span::Span;
-use crate::syntax::ast::{BinOp, Expr, ExprKind};
+use crate::syntax::ast::{BinOp, Expr, ExprKind, Ident};
 use operators::{binary, index, Operands};
 
 /// Evaluates `e`; on failure the reason is in `diags` and `None` is returned.
@@ -144,97 +144,10 @@ fn eval_inner(e: &Expr, env: &mut Env, diags: &mut Diagnostics) -> Option<Value>
             (!repeated || env.charge(v.weight(), e.span, diags)).then_some(v)
         }
         ExprKind::Bool(b) => Some(Value::Bool(*b)),
-        ExprKind::Vector(items) => {
-            let mut out = Vec::with_capacity(items.len());
-            let mut ok = true;
-            for it in items {
-                match eval(it, env, diags) {
-                    Some(Value::Num(x)) => out.push(x),
-                    Some(other) => {
-                        diags.push(
-                            Diagnostic::error(
-                                codes::TYPE_MISMATCH,
-                                format!(
-                                    "a vector component must be a number, found {}",
-                                    other.type_name()
-                                ),
-                                it.span,
-                            )
-                            .with_label("not a number")
-                            .with_help("vectors hold numbers: `<1, 2, 3>`"),
-                        );
-                        ok = false;
-                    }
-                    None => ok = false,
-                }
-            }
-            ok.then_some(Value::Vector(out.into()))
-        }
-        ExprKind::Color(inner) => match eval(inner, env, diags)? {
-            Value::Num(x) => Some(Value::Color([x; 3])),
-            Value::Vector(v) if v.len() == 3 => Some(Value::Color([v[0], v[1], v[2]])),
-            Value::Color(c) => Some(Value::Color(c)),
-            other => {
-                diags.push(
-                    Diagnostic::error(
-                        codes::TYPE_MISMATCH,
-                        format!(
-                            "`rgb` needs a number or a vector of 3, found {}",
-                            other.type_name()
-                        ),
-                        inner.span,
-                    )
-                    .with_label("not a grey level or an <r, g, b> triple")
-                    .with_help("write `rgb <0.8, 0.2, 0.1>` or `rgb 0.5`"),
-                );
-                None
-            }
-        },
-        ExprKind::Name(name) => {
-            if let Some(v) = env.lookup(name) {
-                return v;
-            }
-            let mut d = Diagnostic::error(
-                codes::UNKNOWN_NAME,
-                format!("unknown name `{name}`"),
-                e.span,
-            )
-            .with_label("not defined");
-            d = match (
-                crate::syntax::povray::hint(name),
-                env.suggest_name(name, &[]),
-            ) {
-                (Some(hint), _) => d.with_help(hint),
-                (None, Some(s)) => d.with_help(format!("did you mean `{s}`?")),
-                (None, None) => d.with_help(format!("define it first with `let {name} = …;`")),
-            };
-            diags.push(d);
-            None
-        }
-        ExprKind::Neg(inner) => match eval(inner, env, diags)? {
-            Value::Num(x) => Some(Value::Num(-x)),
-            Value::Vector(v) => {
-                // Counted before it is made: a budget spent stops the work.
-                let weight = Value::Vector(v.clone()).weight();
-                if !env.charge(weight, e.span, diags) {
-                    return None;
-                }
-                Some(Value::Vector(v.iter().map(|x| -x).collect()))
-            }
-            Value::Color(c) => Some(Value::Color(c.map(|x| -x))),
-            other => {
-                diags.push(
-                    Diagnostic::error(
-                        codes::TYPE_MISMATCH,
-                        format!("cannot negate {}", other.type_name()),
-                        e.span,
-                    )
-                    .with_label("`-` needs a number, vector or colour")
-                    .with_help("remove the minus sign"),
-                );
-                None
-            }
-        },
+        ExprKind::Vector(items) => vector(items, env, diags),
+        ExprKind::Color(inner) => color(inner, env, diags),
+        ExprKind::Name(name) => name_value(name, e.span, env, diags),
+        ExprKind::Neg(inner) => negate(inner, e.span, env, diags),
         ExprKind::Not(inner) => match eval(inner, env, diags)? {
             Value::Bool(b) => Some(Value::Bool(!b)),
             other => {
@@ -310,109 +223,229 @@ fn eval_inner(e: &Expr, env: &mut Env, diags: &mut Diagnostics) -> Option<Value>
             }
             Some(Value::Bool(and))
         }
-        ExprKind::Chain { first, rest } => {
-            // Left to right, as `((a op b) op c) …`: every operand is
-            // evaluated (all their mistakes reported), the fold stops at the
-            // first failure.
-            let mut acc = eval(first, env, diags);
-            let mut acc_span = first.span;
-            // `rgb 0.5 + 0.1` is `(rgb 0.5) + 0.1`: worth a hint when it fails.
-            let mut bare_rgb = matches!(first.kind, ExprKind::Color(_));
-            for (op, op_span, operand) in rest {
-                let b = eval(operand, env, diags);
-                let span = acc_span.join(operand.span);
-                let at = Operands {
-                    lhs: acc_span,
-                    op: *op_span,
-                    rhs: operand.span,
-                    bare_rgb,
-                };
-                acc = match (acc, b) {
-                    (Some(a), Some(b)) => binary(*op, a, b, at, env, diags)
-                        .and_then(|v| finite(v, span, false, diags)),
-                    _ => None,
-                };
-                acc_span = span;
-                bare_rgb = false;
-            }
-            acc
-        }
-        ExprKind::Call { func, args } => {
-            let builtin = FUNCTIONS.iter().find(|(n, _)| *n == func.name);
-            match env.lookup(&func.name) {
-                Some(Some(Value::Function(f))) => return call_user(&f, args, e.span, env, diags),
-                // Its declaration failed and said why.
-                Some(None) if builtin.is_none() => return None,
-                Some(Some(v)) if builtin.is_none() => {
-                    diags.push(
-                        Diagnostic::error(
-                            codes::TYPE_MISMATCH,
-                            format!("`{}` is not a function", func.name),
-                            func.span,
-                        )
-                        .with_label(format!("this is {}", v.type_name()))
-                        .with_help("declare a function with `fn name(x) = …;`"),
-                    );
-                    return None;
-                }
-                _ => {}
-            }
-            let Some(&(_, (least, most))) = builtin else {
-                let built_in: Vec<&str> = FUNCTIONS.iter().map(|(n, _)| *n).collect();
-                let pov = crate::syntax::povray::function(&func.name);
-                let help = match pov
-                    .map(str::to_string)
-                    .or_else(|| env.suggest_name(&func.name, &built_in))
-                {
-                    Some(hint) if pov.is_some() => hint,
-                    Some(s) => format!("did you mean `{s}`?"),
-                    None => format!(
-                        "the built-in functions are {}; declare your own with `fn {}(x) = …;`",
-                        built_in.join(", "),
-                        func.name
-                    ),
-                };
+        ExprKind::Chain { first, rest } => fold_chain(first, rest, env, diags),
+        ExprKind::Call { func, args } => call(func, args, e.span, env, diags),
+    }
+}
+
+/// `<a, b, …>`: a vector of numbers.
+fn vector(items: &[Expr], env: &mut Env, diags: &mut Diagnostics) -> Option<Value> {
+    let mut out = Vec::with_capacity(items.len());
+    let mut ok = true;
+    for it in items {
+        match eval(it, env, diags) {
+            Some(Value::Num(x)) => out.push(x),
+            Some(other) => {
                 diags.push(
                     Diagnostic::error(
-                        codes::UNKNOWN_FUNCTION,
-                        format!("unknown function `{}`", func.name),
-                        func.span,
+                        codes::TYPE_MISMATCH,
+                        format!(
+                            "a vector component must be a number, found {}",
+                            other.type_name()
+                        ),
+                        it.span,
                     )
-                    .with_label("no such function")
-                    .with_help(help),
+                    .with_label("not a number")
+                    .with_help("vectors hold numbers: `<1, 2, 3>`"),
                 );
-                return None;
-            };
-            if !(least..=most).contains(&args.len()) {
-                let takes = if least == most {
-                    format!("{least} argument{}", if least == 1 { "" } else { "s" })
-                } else {
-                    format!("{least} or {most} arguments")
-                };
-                diags.push(
-                    Diagnostic::error(
-                        codes::WRONG_ARGUMENT_COUNT,
-                        format!("`{}` takes {takes}, found {}", func.name, args.len()),
-                        e.span,
-                    )
-                    .with_label("wrong number of arguments")
-                    .with_help(format!(
-                        "call it as `{}({})`",
-                        func.name,
-                        vec!["x"; least].join(", ")
-                    )),
-                );
-                return None;
+                ok = false;
             }
-            let mut vals = Vec::new();
-            for a in args {
-                vals.push(eval(a, env, diags));
-            }
-            let vals: Option<Vec<Value>> = vals.into_iter().collect();
-            builtins::call(&func.name, &vals?, args, e.span, env, diags)
-                .and_then(|v| finite(v, e.span, false, diags))
+            None => ok = false,
         }
     }
+    ok.then_some(Value::Vector(out.into()))
+}
+
+/// `rgb value`: a grey level, an `<r, g, b>` triple or a colour.
+fn color(inner: &Expr, env: &mut Env, diags: &mut Diagnostics) -> Option<Value> {
+    match eval(inner, env, diags)? {
+        Value::Num(x) => Some(Value::Color([x; 3])),
+        Value::Vector(v) if v.len() == 3 => Some(Value::Color([v[0], v[1], v[2]])),
+        Value::Color(c) => Some(Value::Color(c)),
+        other => {
+            diags.push(
+                Diagnostic::error(
+                    codes::TYPE_MISMATCH,
+                    format!(
+                        "`rgb` needs a number or a vector of 3, found {}",
+                        other.type_name()
+                    ),
+                    inner.span,
+                )
+                .with_label("not a grey level or an <r, g, b> triple")
+                .with_help("write `rgb <0.8, 0.2, 0.1>` or `rgb 0.5`"),
+            );
+            None
+        }
+    }
+}
+
+/// The value of `name`, used at `span`, or why there is none.
+fn name_value(name: &str, span: Span, env: &mut Env, diags: &mut Diagnostics) -> Option<Value> {
+    if let Some(v) = env.lookup(name, span) {
+        return v;
+    }
+    let mut d = Diagnostic::error(codes::UNKNOWN_NAME, format!("unknown name `{name}`"), span)
+        .with_label("not defined");
+    d = match (
+        crate::syntax::povray::hint(name),
+        env.suggest_name(name, &[]),
+    ) {
+        (Some(hint), _) => d.with_help(hint),
+        (None, Some(s)) => d.with_help(format!("did you mean `{s}`?")),
+        (None, None) => d.with_help(format!("define it first with `let {name} = …;`")),
+    };
+    diags.push(d);
+    None
+}
+
+/// `-value` at `span`: a number, vector or colour negated.
+fn negate(inner: &Expr, span: Span, env: &mut Env, diags: &mut Diagnostics) -> Option<Value> {
+    match eval(inner, env, diags)? {
+        Value::Num(x) => Some(Value::Num(-x)),
+        Value::Vector(v) => {
+            // Counted before it is made: a budget spent stops the work.
+            let weight = Value::Vector(v.clone()).weight();
+            if !env.charge(weight, span, diags) {
+                return None;
+            }
+            Some(Value::Vector(v.iter().map(|x| -x).collect()))
+        }
+        Value::Color(c) => Some(Value::Color(c.map(|x| -x))),
+        other => {
+            diags.push(
+                Diagnostic::error(
+                    codes::TYPE_MISMATCH,
+                    format!("cannot negate {}", other.type_name()),
+                    span,
+                )
+                .with_label("`-` needs a number, vector or colour")
+                .with_help("remove the minus sign"),
+            );
+            None
+        }
+    }
+}
+
+/// `a op b op c …` (not `&&` or `||`): left to right, as `((a op b) op c)
+/// …`; every operand is evaluated (all their mistakes reported), the fold
+/// stops at the first failure.
+fn fold_chain(
+    first: &Expr,
+    rest: &[(BinOp, Span, Expr)],
+    env: &mut Env,
+    diags: &mut Diagnostics,
+) -> Option<Value> {
+    // Left to right, as `((a op b) op c) …`: every operand is
+    // evaluated (all their mistakes reported), the fold stops at the
+    // first failure.
+    let mut acc = eval(first, env, diags);
+    let mut acc_span = first.span;
+    // `rgb 0.5 + 0.1` is `(rgb 0.5) + 0.1`: worth a hint when it fails.
+    let mut bare_rgb = matches!(first.kind, ExprKind::Color(_));
+    for (op, op_span, operand) in rest {
+        let b = eval(operand, env, diags);
+        let span = acc_span.join(operand.span);
+        let at = Operands {
+            lhs: acc_span,
+            op: *op_span,
+            rhs: operand.span,
+            bare_rgb,
+        };
+        acc = match (acc, b) {
+            (Some(a), Some(b)) => {
+                binary(*op, a, b, at, env, diags).and_then(|v| finite(v, span, false, diags))
+            }
+            _ => None,
+        };
+        acc_span = span;
+        bare_rgb = false;
+    }
+    acc
+}
+
+/// A call of `func` with `args` at `span`: a user function, or a built-in
+/// one with the right number of arguments.
+fn call(
+    func: &Ident,
+    args: &[Expr],
+    span: Span,
+    env: &mut Env,
+    diags: &mut Diagnostics,
+) -> Option<Value> {
+    let builtin = FUNCTIONS.iter().find(|(n, _)| *n == func.name);
+    match env.lookup(&func.name, func.span) {
+        Some(Some(Value::Function(f))) => return call_user(&f, args, span, env, diags),
+        // Its declaration failed and said why.
+        Some(None) if builtin.is_none() => return None,
+        Some(Some(v)) if builtin.is_none() => {
+            diags.push(
+                Diagnostic::error(
+                    codes::TYPE_MISMATCH,
+                    format!("`{}` is not a function", func.name),
+                    func.span,
+                )
+                .with_label(format!("this is {}", v.type_name()))
+                .with_help("declare a function with `fn name(x) = …;`"),
+            );
+            return None;
+        }
+        _ => {}
+    }
+    let Some(&(_, (least, most))) = builtin else {
+        let built_in: Vec<&str> = FUNCTIONS.iter().map(|(n, _)| *n).collect();
+        let pov = crate::syntax::povray::function(&func.name);
+        let help = match pov
+            .map(str::to_string)
+            .or_else(|| env.suggest_name(&func.name, &built_in))
+        {
+            Some(hint) if pov.is_some() => hint,
+            Some(s) => format!("did you mean `{s}`?"),
+            None => format!(
+                "the built-in functions are {}; declare your own with `fn {}(x) = …;`",
+                built_in.join(", "),
+                func.name
+            ),
+        };
+        diags.push(
+            Diagnostic::error(
+                codes::UNKNOWN_FUNCTION,
+                format!("unknown function `{}`", func.name),
+                func.span,
+            )
+            .with_label("no such function")
+            .with_help(help),
+        );
+        return None;
+    };
+    if !(least..=most).contains(&args.len()) {
+        let takes = if least == most {
+            format!("{least} argument{}", if least == 1 { "" } else { "s" })
+        } else {
+            format!("{least} or {most} arguments")
+        };
+        diags.push(
+            Diagnostic::error(
+                codes::WRONG_ARGUMENT_COUNT,
+                format!("`{}` takes {takes}, found {}", func.name, args.len()),
+                span,
+            )
+            .with_label("wrong number of arguments")
+            .with_help(format!(
+                "call it as `{}({})`",
+                func.name,
+                vec!["x"; least].join(", ")
+            )),
+        );
+        return None;
+    }
+    let mut vals = Vec::new();
+    for a in args {
+        vals.push(eval(a, env, diags));
+    }
+    let vals: Option<Vec<Value>> = vals.into_iter().collect();
+    builtins::call(&func.name, &vals?, args, span, env, diags)
+        .and_then(|v| finite(v, span, false, diags))
 }
 
 /// Calls the user function `f` with `args` (evaluated here, in the
@@ -438,7 +471,13 @@ fn call_user(
                 span,
             )
             .with_label("wrong number of arguments")
-            .with_help(format!("call it as `{}({})`", f.name, f.params.join(", "))),
+            .with_help(format!(
+                "call it as `{}({})`",
+                f.name,
+                (f.params.iter().map(|(p, _)| p.as_str()))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            )),
         );
         return None;
     }
@@ -475,12 +514,13 @@ fn call_user(
     env.push();
     env.base = env.frames.len() - 1;
     env.call_depth += 1;
-    for (name, v) in f.params.iter().zip(vals) {
+    for ((name, def), v) in f.params.iter().zip(vals) {
+        let def = *def;
         env.bind(
             name,
             Binding {
                 value: Some(v),
-                decl: span,
+                def,
             },
         );
     }

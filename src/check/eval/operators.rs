@@ -205,6 +205,22 @@ pub(super) fn binary(
         (BinOp::And | BinOp::Or, _, _) => unreachable!("`&&` and `||` are evaluated lazily"),
         _ => {}
     }
+    arithmetic(op, a, b, at, env, diags)
+}
+
+/// `a op b` for `+`, `-`, `*`, `/` and `%` on numbers, vectors and
+/// colours, component by component (a vector or colour scaled by a
+/// number), or why it cannot be.
+fn arithmetic(
+    op: BinOp,
+    a: Value,
+    b: Value,
+    at: Operands,
+    env: &mut Env,
+    diags: &mut Diagnostics,
+) -> Option<Value> {
+    let (a_span, b_span) = (at.lhs, at.rhs);
+    use Value::*;
     let f = |x: f64, y: f64| match op {
         BinOp::Add => x + y,
         BinOp::Sub => x - y,

@@ -1,6 +1,6 @@
 //! The evaluator's tests: operators, lists, functions, built-ins, budgets.
 
-use crate::check::{check_str, Shape};
+use crate::check::{check_str, Shape, SymbolKind};
 use crate::diag::{codes, Diagnostic};
 use std::path::Path;
 
@@ -37,30 +37,37 @@ fn evaluate(work: u64, before: &str, expr: &str) -> Result<super::Value, Diagnos
     let mut out = None;
     for st in &file.statements {
         match st {
-            Statement::Let { name, value, .. } => {
+            Statement::Let {
+                name, value, span, ..
+            } => {
                 let v = super::eval(value, &mut env, &mut diags);
                 if name.name == "v__" {
                     out = v.clone();
                 }
-                let decl = name.span;
-                env.bind(&name.name, super::Binding { value: v, decl });
+                let named = (name.name.as_str(), name.span);
+                env.define(SymbolKind::Constant, named, *span, v);
             }
             Statement::Function {
-                name, params, body, ..
+                name,
+                params,
+                body,
+                span,
             } => {
+                let params = (params.iter())
+                    .map(|p| {
+                        let kind = SymbolKind::Parameter;
+                        let def = env.symbols.define(kind, &p.name, p.span, *span);
+                        (p.name.clone(), def)
+                    })
+                    .collect();
                 let f = super::Function {
                     name: name.name.clone(),
-                    params: params.iter().map(|p| p.name.clone()).collect(),
+                    params,
                     body: body.clone(),
                 };
                 let value = Some(super::Value::Function(std::sync::Arc::new(f)));
-                env.bind(
-                    &name.name,
-                    super::Binding {
-                        value,
-                        decl: name.span,
-                    },
-                );
+                let named = (name.name.as_str(), name.span);
+                env.define(SymbolKind::Function, named, *span, value);
             }
             _ => {}
         }

@@ -4,6 +4,7 @@
 //! compared in a loop stops the loop at the budget, not after hours.
 
 use super::budget::Work;
+use crate::check::symbols::DefId;
 use crate::syntax::ast::Expr;
 use std::fmt::Write;
 use std::sync::Arc;
@@ -19,8 +20,9 @@ pub const MAX_LIST_DEPTH: u32 = 256;
 pub struct Function {
     /// Its name as declared.
     pub name: String,
-    /// Its parameters' names.
-    pub params: Vec<String>,
+    /// Its parameters' names, with the definition of each (the body's
+    /// uses of a parameter are recorded against it).
+    pub params: Vec<(String, DefId)>,
     /// Its value.
     pub body: Arc<Expr>,
 }

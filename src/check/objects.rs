@@ -7,6 +7,7 @@ use super::scene::*;
 use super::schema::SHAPE_COMMON;
 use crate::diag::codes;
 use crate::diag::{Diagnostic, Diagnostics};
+use crate::geometry::round::{cone::ConeDesc, torus::TorusDesc};
 use crate::source::{Files, ReadError};
 use crate::syntax::ast::BlockKind;
 use glam::{DMat4, DVec3};
@@ -277,13 +278,13 @@ pub fn shape(
                 );
                 return None;
             }
-            Shape::Cone {
+            Shape::Round(RoundDesc::Cone(ConeDesc {
                 base,
                 top,
                 base_radius,
                 top_radius,
                 open: r.boolean("open", false),
-            }
+            }))
         }
         BlockKind::Torus => {
             let center = r.vec3("center").map(|v| v.0).unwrap_or(DVec3::ZERO);
@@ -305,12 +306,12 @@ pub fn shape(
                 ));
                 return None;
             }
-            Shape::Torus {
+            Shape::Round(RoundDesc::Torus(TorusDesc {
                 center,
                 axis,
                 major,
                 minor,
-            }
+            }))
         }
         _ => unreachable!("not a shape: {kind:?}"),
     };

@@ -153,26 +153,12 @@ pub fn out_of_range(name: &str, what: &str, span: Span, needs: &str, help: Strin
         .with_help(help)
 }
 
-/// The unit vector along `v`, computed without overflow or underflow
-/// (`<1e200, 1e200, 0>` and `<1e-200, 0, 0>` have directions); `None` for a
-/// zero or non-finite vector.
-pub fn unit(v: glam::DVec3) -> Option<glam::DVec3> {
-    let big = v.abs().max_element();
-    if big == 0.0 || !big.is_finite() {
-        return None;
-    }
-    Some((v / big).normalize())
-}
-
-/// [`unit`] rounded to f32 (zero for a vector without a direction).
-pub fn unit_f32(v: glam::DVec3) -> glam::Vec3 {
-    unit(v).map_or(glam::Vec3::ZERO, |u| u.as_vec3())
-}
+// Directions are the geometry's (placing a round shape needs them too).
+pub use crate::geometry::{unit, unit_f32};
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use glam::DVec3;
 
     #[test]
     fn each_quantity_has_its_range() {
@@ -204,14 +190,5 @@ mod tests {
         assert_eq!(number(2e9), "2e9");
         assert_eq!(number(1e-9), "1e-9");
         assert_eq!(number(0.0), "0");
-    }
-
-    #[test]
-    fn directions_survive_f32() {
-        let u = unit_f32(DVec3::new(3.4e300, 1.0, 0.0));
-        assert_eq!(u, glam::Vec3::X);
-        let u = unit_f32(DVec3::new(1e-300, 1e-300, 0.0));
-        assert!((u.length() - 1.0).abs() < 1e-6);
-        assert_eq!(unit_f32(DVec3::ZERO), glam::Vec3::ZERO);
     }
 }

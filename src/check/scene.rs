@@ -1,6 +1,7 @@
 //! The checked scene: every expression evaluated, every name resolved, every
 //! value in range. Lowering turns it into the render IR.
 
+pub use crate::geometry::round::RoundDesc;
 use crate::span::Span;
 use glam::{DMat4, DVec3};
 use std::path::{Path, PathBuf};
@@ -361,32 +362,9 @@ pub enum Shape {
         /// Maximum corner.
         max: DVec3,
     },
-    /// A cone, a truncated cone or (equal radii) a cylinder, from the
-    /// centre of its base to the centre of its top.
-    Cone {
-        /// Centre of the base.
-        base: DVec3,
-        /// Centre of the top.
-        top: DVec3,
-        /// Radius at the base.
-        base_radius: f64,
-        /// Radius at the top (0: a point).
-        top_radius: f64,
-        /// Without the end disks.
-        open: bool,
-    },
-    /// A torus: a circle of radius `minor` swept around a circle of radius
-    /// `major` about `axis`.
-    Torus {
-        /// Centre.
-        center: DVec3,
-        /// Unit axis of symmetry.
-        axis: DVec3,
-        /// Distance from the centre to the tube's centre line.
-        major: f64,
-        /// Radius of the tube.
-        minor: f64,
-    },
+    /// A curved shape of the renderer's registry (a cone or cylinder, a
+    /// torus), described in the object's frame.
+    Round(RoundDesc),
     /// Triangle mesh from a file.
     Mesh {
         /// Resolved path.
@@ -405,13 +383,7 @@ impl Shape {
         Some(match self {
             Shape::Sphere { .. } => "sphere",
             Shape::Disk { .. } => "disk",
-            Shape::Cone {
-                base_radius,
-                top_radius,
-                ..
-            } if base_radius == top_radius => "cylinder",
-            Shape::Cone { .. } => "cone",
-            Shape::Torus { .. } => "torus",
+            Shape::Round(r) => r.name(),
             _ => return None,
         })
     }

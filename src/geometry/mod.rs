@@ -1,17 +1,16 @@
 //! Geometry: rays, bounds, the shapes (one file each) and the BVH over them.
 
-pub mod cone;
 pub mod disk;
 pub mod plane;
 pub mod polynomial;
 pub mod quad;
+pub mod round;
 pub mod shape;
 pub mod sphere;
 pub mod texcoord;
-pub mod torus;
 pub mod triangle;
 
-use glam::Vec3;
+use glam::{DVec3, Vec3};
 
 /// A ray with the time it was sent (for motion blur).
 #[derive(Debug, Clone, Copy)]
@@ -105,6 +104,22 @@ pub fn offset_origin(p: Vec3, n_geo: Vec3, dir: Vec3) -> Vec3 {
     Vec3::new(offset(p.x, n.x), offset(p.y, n.y), offset(p.z, n.z))
 }
 
+/// The unit vector along `v`, computed without overflow or underflow
+/// (`<1e200, 1e200, 0>` and `<1e-200, 0, 0>` have directions); `None` for a
+/// zero or non-finite vector.
+pub fn unit(v: DVec3) -> Option<DVec3> {
+    let big = v.abs().max_element();
+    if big == 0.0 || !big.is_finite() {
+        return None;
+    }
+    Some((v / big).normalize())
+}
+
+/// [`unit`] rounded to f32 (zero for a vector without a direction).
+pub fn unit_f32(v: DVec3) -> Vec3 {
+    unit(v).map_or(Vec3::ZERO, |u| u.as_vec3())
+}
+
 /// An orthonormal basis around a unit normal (Duff et al. 2017, "Building an
 /// Orthonormal Basis, Revisited").
 pub fn orthonormal_basis(n: Vec3) -> (Vec3, Vec3) {
@@ -120,6 +135,15 @@ pub fn orthonormal_basis(n: Vec3) -> (Vec3, Vec3) {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn directions_survive_f32() {
+        let u = unit_f32(DVec3::new(3.4e300, 1.0, 0.0));
+        assert_eq!(u, Vec3::X);
+        let u = unit_f32(DVec3::new(1e-300, 1e-300, 0.0));
+        assert!((u.length() - 1.0).abs() < 1e-6);
+        assert_eq!(unit_f32(DVec3::ZERO), Vec3::ZERO);
+    }
 
     #[test]
     fn basis_is_orthonormal() {

@@ -1,12 +1,12 @@
 //! The primitives the renderer intersects, after lowering: transforms are
 //! baked in, boxes are six quads (`lower`), meshes are triangles
 //! (`lower::mesh`). One file per shape holds its intersection routine and tests:
-//! `sphere.rs`, `quad.rs`, `disk.rs`, `triangle.rs`, `plane.rs`, `cone.rs`
-//! (cylinders too), `torus.rs`; this enum dispatches and holds what lights
-//! need (area, sampling).
+//! `sphere.rs`, `quad.rs`, `disk.rs`, `triangle.rs`, `plane.rs`, and the
+//! curved shapes of the registry `round.rs` (cones and cylinders, tori, one
+//! file each in `round/`); this enum dispatches and holds what lights need
+//! (area, sampling).
 
-use super::cone::Cone;
-use super::torus::Torus;
+use super::round::Round;
 use super::{disk, plane, quad, sphere, triangle, Aabb, Ray};
 use glam::{Vec2, Vec3};
 
@@ -63,11 +63,14 @@ pub enum Shape {
         /// Unit normal.
         normal: Vec3,
     },
-    /// The lateral surface of a cone or cylinder (its end disks are disks).
-    Cone(Cone),
-    /// A torus.
-    Torus(Torus),
+    /// A curved shape of the registry ([`Round`]): a cone's or cylinder's
+    /// lateral surface (its end disks are disks), a torus.
+    Round(Round),
 }
+
+// Every primitive's record is 64 bytes (`ir::Prim`): the registry's
+// shapes must not make the enum grow.
+const _: () = assert!(std::mem::size_of::<Shape>() == 44);
 
 /// Where a ray hits a shape (before shading).
 #[derive(Debug, Clone, Copy)]
@@ -174,8 +177,7 @@ impl Shape {
                 min: Vec3::splat(f32::NEG_INFINITY),
                 max: Vec3::splat(f32::INFINITY),
             },
-            Shape::Cone(c) => c.bounds(),
-            Shape::Torus(t) => t.bounds(),
+            Shape::Round(r) => r.bounds(),
         }
     }
 
@@ -197,19 +199,18 @@ impl Shape {
                 radius,
             } => disk::intersect(center, normal, radius, ray, t_min, t_max),
             Shape::Plane { point, normal } => plane::intersect(point, normal, ray, t_min, t_max),
-            Shape::Cone(_) | Shape::Torus(_) => self.intersect_curved(ray, t_min, t_max),
+            Shape::Round(_) => self.intersect_curved(ray, t_min, t_max),
         }
     }
 
-    /// [`Shape::intersect`] for cones and tori: one cold call out of the
+    /// [`Shape::intersect`] for the round shapes: one cold call out of the
     /// dispatch, so that the common shapes' code around it keeps its
     /// registers.
     #[cold]
     #[inline(never)]
     fn intersect_curved(&self, ray: &Ray, t_min: f32, t_max: f32) -> Option<ShapeHit> {
         match self {
-            Shape::Cone(c) => c.intersect(ray, t_min, t_max),
-            Shape::Torus(t) => t.intersect(ray, t_min, t_max),
+            Shape::Round(r) => r.intersect(ray, t_min, t_max),
             _ => None,
         }
     }
@@ -217,7 +218,7 @@ impl Shape {
     /// The hit point recomputed on the surface from the hit, accurate to a few
     /// ulps whatever the ray's length (the ray's `o + t·d` carries the error of
     /// `t` times the distance travelled), which keeps `offset_origin` small.
-    // `always`, like `intersect`: with the cone's and torus's arms (out of
+    // `always`, like `intersect`: with the round shapes' arm (out of
     // line) LLVM stopped inlining it into the hit's finishing, +1.3 % of a
     // render's instructions.
     #[inline(always)]
@@ -239,8 +240,7 @@ impl Shape {
                 let q = ray.at(hit.t);
                 q - normal * (q - point).dot(normal)
             }
-            Shape::Cone(ref c) => c.project(ray.at(hit.t)),
-            Shape::Torus(ref t) => t.project(ray.at(hit.t)),
+            Shape::Round(ref r) => r.project(ray.at(hit.t)),
         }
     }
 
@@ -251,8 +251,7 @@ impl Shape {
             Shape::Sphere { center, .. } => (p - center).normalize(),
             Shape::Quad { e1, e2, .. } | Shape::Triangle { e1, e2, .. } => e1.cross(e2).normalize(),
             Shape::Disk { normal, .. } | Shape::Plane { normal, .. } => normal,
-            Shape::Cone(ref c) => c.normal_at(p),
-            Shape::Torus(ref t) => t.normal_at(p),
+            Shape::Round(ref r) => r.normal_at(p),
         }
     }
 
@@ -265,8 +264,7 @@ impl Shape {
             Shape::Triangle { e1, e2, .. } => 0.5 * e1.cross(e2).length(),
             Shape::Disk { radius, .. } => std::f32::consts::PI * radius * radius,
             Shape::Plane { .. } => f32::INFINITY,
-            Shape::Cone(ref c) => c.area(),
-            Shape::Torus(ref t) => t.area(),
+            Shape::Round(ref r) => r.area(),
         }
     }
 
@@ -310,12 +308,8 @@ impl Shape {
                 (center + radius * (d.x * t + d.y * b), normal, Vec2::ZERO)
             }
             Shape::Plane { point, normal } => (point, normal, Vec2::ZERO),
-            Shape::Cone(ref c) => {
-                let (p, n) = c.sample_area(u);
-                (p, n, Vec2::ZERO)
-            }
-            Shape::Torus(ref t) => {
-                let (p, n) = t.sample_area(u);
+            Shape::Round(ref r) => {
+                let (p, n) = r.sample_area(u);
                 (p, n, Vec2::ZERO)
             }
         }
@@ -325,6 +319,7 @@ impl Shape {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::geometry::round::{cone::Cone, torus::Torus};
 
     #[test]
     fn area_samples_lie_on_the_shape() {
@@ -340,19 +335,19 @@ mod tests {
                 radius: 1.0,
             },
             Shape::flat_triangle([Vec3::ZERO, Vec3::X, Vec3::Y]),
-            Shape::Cone(Cone {
+            Shape::Round(Round::Cone(Cone {
                 base: Vec3::new(0.0, -1.0, 0.5),
                 axis: Vec3::new(0.6, 0.0, 0.8),
                 height: 1.5,
                 r0: 0.7,
                 r1: 0.2,
-            }),
-            Shape::Torus(Torus {
+            })),
+            Shape::Round(Round::Torus(Torus {
                 center: Vec3::ONE,
                 axis: Vec3::X,
                 major: 1.0,
                 minor: 0.3,
-            }),
+            })),
         ];
         for s in shapes {
             for i in 0..16 {

@@ -325,13 +325,10 @@ impl Scene {
                 let (local, _) = in_plane(direction(p - point), direction(normal));
                 texcoord::plane(local, 1.0)
             }
-            Shape::Cone(c) => {
-                let (local, scale) = in_plane(direction(p - c.base), direction(c.axis));
-                texcoord::cone(local, c.height * scale)
-            }
-            Shape::Torus(t) => {
-                let (local, scale) = in_plane(direction(p - t.center), direction(t.axis));
-                texcoord::torus(local, t.major * scale)
+            Shape::Round(r) => {
+                let (origin, axis) = r.uv_frame();
+                let (local, scale) = in_plane(direction(p - origin), direction(axis));
+                r.texcoord(local, scale)
             }
         }
     }
@@ -391,18 +388,11 @@ impl Scene {
                 let (x, z) = texcoord::axis_frame(n / n.length());
                 (to_world(x), to_world(z))
             }
-            Shape::Cone(c) => {
-                let n = direction(c.axis);
-                let (local, scale) = in_plane(direction(p - c.base), n);
-                let (dpdu, dpdv) =
-                    texcoord::cone_derivatives(local, c.height * scale, (c.r1 - c.r0) * scale);
-                let back = from_axis_frame(n / scale);
-                (to_world(back(dpdu)), to_world(back(dpdv)))
-            }
-            Shape::Torus(t) => {
-                let n = direction(t.axis);
-                let (local, scale) = in_plane(direction(p - t.center), n);
-                let (dpdu, dpdv) = texcoord::torus_derivatives(local, t.major * scale);
+            Shape::Round(r) => {
+                let (origin, axis) = r.uv_frame();
+                let n = direction(axis);
+                let (local, scale) = in_plane(direction(p - origin), n);
+                let (dpdu, dpdv) = r.texcoord_derivatives(local, scale);
                 let back = from_axis_frame(n / scale);
                 (to_world(back(dpdu)), to_world(back(dpdv)))
             }

@@ -198,9 +198,7 @@ impl Light {
                 let phi = self.power(emitter, b);
                 match shape {
                     // Round shapes face every way.
-                    Shape::Sphere { .. } | Shape::Cone(_) | Shape::Torus(_) => {
-                        everywhere(bounds, phi)
-                    }
+                    Shape::Sphere { .. } | Shape::Round(_) => everywhere(bounds, phi),
                     _ => LightBounds {
                         bounds,
                         // The emitting side, as `Material::emitted` sees it.

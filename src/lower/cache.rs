@@ -135,28 +135,7 @@ impl LowerCache {
                 } => points(&[*corner, *edge1, *edge2], &mut h),
                 check::Shape::Triangle { v } => points(v, &mut h),
                 check::Shape::Box { min, max } => points(&[*min, *max], &mut h),
-                check::Shape::Cone {
-                    base,
-                    top,
-                    base_radius,
-                    top_radius,
-                    open,
-                } => {
-                    points(&[*base, *top], &mut h);
-                    number(*base_radius, &mut h);
-                    number(*top_radius, &mut h);
-                    open.hash(&mut h);
-                }
-                check::Shape::Torus {
-                    center,
-                    axis,
-                    major,
-                    minor,
-                } => {
-                    points(&[*center, *axis], &mut h);
-                    number(*major, &mut h);
-                    number(*minor, &mut h);
-                }
+                check::Shape::Round(round) => round.hash_key(&mut h),
                 check::Shape::Mesh { path, smooth, .. } => {
                     path.hash(&mut h);
                     smooth.hash(&mut h);

@@ -14,12 +14,13 @@
 //! placed a thousand times is refused by the primitive limit
 //! (`shapes::MAX_PRIMITIVES`), not built.
 
-use super::shapes::{self, non_uniform, uniform_scale, within_domain};
+use super::shapes::{self, non_uniform, within_domain};
 use super::{geometry, LowerCache};
 use crate::accel::bvh::Bvh;
 use crate::accel::bvh4::Bvh4;
 use crate::check::{self, Instance, Object};
 use crate::diag::{codes, Diagnostic, Diagnostics};
+use crate::geometry::round::similarity_scale;
 use crate::geometry::Aabb;
 use crate::ir::instance::{Instances, Placement, Prototype, INHERITED};
 use crate::source::Files;
@@ -225,8 +226,8 @@ pub fn gather(
             // object uneven by itself is the group's own problem.
             let round = object.shape.round_kind().is_some();
             if round
-                && uniform_scale(&object.transform).is_some()
-                && uniform_scale(&(leaf.transform * object.transform)).is_none()
+                && similarity_scale(&object.transform).is_some()
+                && similarity_scale(&(leaf.transform * object.transform)).is_none()
             {
                 let at = *uneven_at.entry((leaf.group, k)).or_insert_with(|| {
                     uneven.push(((leaf.group, k), Vec::new()));

@@ -12,10 +12,9 @@ use crate::check;
 use crate::check::domain::{self, unit_f32, MAX_MAGNITUDE, MIN_SIZE};
 use crate::diag::codes;
 use crate::diag::{Diagnostic, Diagnostics};
-use crate::geometry::cone::Cone;
+use crate::geometry::round::similarity_scale;
 use crate::geometry::shape::Shape;
 use crate::geometry::texcoord;
-use crate::geometry::torus::Torus;
 use crate::geometry::Aabb;
 use crate::ir::Prim;
 use crate::source::Files;
@@ -259,7 +258,12 @@ impl Gathering<'_> {
                     shapes.push(parallelogram(pt(c), vec(a), vec(b), flip));
                 }
             }
-            round => match uniform_scale(&m) {
+            check::Shape::Round(round) => {
+                if round.place(&m, &mut shapes).is_err() {
+                    self.diags.push(non_uniform(obj.span, round.name()));
+                }
+            }
+            round => match similarity_scale(&m) {
                 Some(s) => round_shapes(round, &m, s, &mut shapes),
                 None => {
                     let what = obj.shape.round_kind().unwrap_or("shape");
@@ -377,8 +381,8 @@ impl Gathering<'_> {
     }
 }
 
-/// The primitives of a sphere, cylinder, cone, torus or disk under the
-/// similarity `m` of scale `s`.
+/// The primitives of a sphere or disk under the similarity `m` of scale
+/// `s` (the registry's round shapes place themselves).
 fn round_shapes(shape: &check::Shape, m: &DMat4, s: f64, out: &mut Vec<Shape>) {
     let pt = |p: DVec3| m.transform_point3(p).as_vec3();
     match shape {
@@ -386,30 +390,6 @@ fn round_shapes(shape: &check::Shape, m: &DMat4, s: f64, out: &mut Vec<Shape>) {
             center: pt(*center),
             radius: (radius * s) as f32,
         }),
-        check::Shape::Cone {
-            base,
-            top,
-            base_radius,
-            top_radius,
-            open,
-        } => round_solid(
-            pt(*base),
-            pt(*top),
-            [base_radius * s, top_radius * s],
-            *open,
-            out,
-        ),
-        check::Shape::Torus {
-            center,
-            axis,
-            major,
-            minor,
-        } => out.push(Shape::Torus(Torus {
-            center: pt(*center),
-            axis: unit_f32(m.transform_vector3(*axis)),
-            major: (major * s) as f32,
-            minor: (minor * s) as f32,
-        })),
         check::Shape::Disk {
             center,
             normal,
@@ -443,23 +423,6 @@ fn box_faces(lo: DVec3, hi: DVec3) -> [(DVec3, DVec3, DVec3); 6] {
         (lo + ex, -ex, ey),      // −z
         (lo + ez, ex, ey),       // +z
     ]
-}
-
-/// The uniform scale factor of a similarity transform, or `None` if the
-/// linear part shears or scales unevenly.
-pub(super) fn uniform_scale(m: &DMat4) -> Option<f64> {
-    let (x, y, z) = (
-        m.x_axis.truncate(),
-        m.y_axis.truncate(),
-        m.z_axis.truncate(),
-    );
-    let s = x.length();
-    let ok = (y.length() - s).abs() <= 1e-9 * s.max(1.0)
-        && (z.length() - s).abs() <= 1e-9 * s.max(1.0)
-        && x.dot(y).abs() <= 1e-9 * s * s
-        && y.dot(z).abs() <= 1e-9 * s * s
-        && x.dot(z).abs() <= 1e-9 * s * s;
-    ok.then_some(s)
 }
 
 /// Whether a primitive survives f32 ([`representable`]).
@@ -511,35 +474,6 @@ pub(super) fn within_domain(b: Aabb, velocity: Vec3, (t0, t1): (f32, f32)) -> bo
         let (lo, hi) = (b.min + velocity * t, b.max + velocity * t);
         lo.is_finite() && hi.is_finite() && lo.abs().max(hi.abs()).max_element() <= limit
     })
-}
-
-/// A cylinder or cone from `base` to `top` (world space) with the radii at
-/// each end: its lateral surface and, unless `open`, the disks that close
-/// it (a radius of 0 closes itself).
-fn round_solid(base: Vec3, top: Vec3, radii: [f64; 2], open: bool, out: &mut Vec<Shape>) {
-    let along = top - base;
-    let height = along.length();
-    let axis = along / height;
-    let [r0, r1] = radii.map(|r| r as f32);
-    out.push(Shape::Cone(Cone {
-        base,
-        axis,
-        height,
-        r0,
-        r1,
-    }));
-    if open {
-        return;
-    }
-    for (center, normal, radius) in [(base, -axis, r0), (top, axis, r1)] {
-        if radius > 0.0 {
-            out.push(Shape::Disk {
-                center,
-                normal,
-                radius,
-            });
-        }
-    }
 }
 
 /// The parallelogram `p + s·e1 + t·e2`, stored with its edges swapped when

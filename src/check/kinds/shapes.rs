@@ -9,6 +9,7 @@ use super::super::schema::{p, ParamSpec, Ty};
 use super::{Kind, Role};
 use crate::check::domain::Quantity::{Direction, Magnitude, Size};
 use crate::diag::{codes, Diagnostic, Diagnostics};
+use crate::geometry::round::{cone::ConeDesc, torus::TorusDesc, RoundDesc};
 use crate::source::{Files, ReadError};
 use crate::span::Span;
 use glam::DVec3;
@@ -379,13 +380,13 @@ fn axial(
             "move `top` away from `base` along the axis, e.g. `top <0, 1, 0>`",
         );
     }
-    Some(Shape::Cone {
+    Some(Shape::Round(RoundDesc::Cone(ConeDesc {
         base,
         top,
         base_radius,
         top_radius,
         open: s.boolean("open", false),
-    })
+    })))
 }
 
 /// `torus { }`
@@ -432,12 +433,12 @@ fn torus(s: &mut ShapeInput) -> Option<Shape> {
         ));
         return None;
     }
-    Some(Shape::Torus {
+    Some(Shape::Round(RoundDesc::Torus(TorusDesc {
         center,
         axis,
         major,
         minor,
-    })
+    })))
 }
 
 /// `mesh { }`

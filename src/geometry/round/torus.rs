@@ -7,11 +7,46 @@
 //! whatever the distance the ray came from (pbrt-v3's and Graphics Gems'
 //! advice: a far origin makes the quartic ill-conditioned).
 
-use super::polynomial::{self, MAX_DEGREE};
-use super::shape::ShapeHit;
-use super::Ray;
-use glam::{Vec2, Vec3};
+use super::{Description, Round, Surface};
+use crate::geometry::polynomial::{self, MAX_DEGREE};
+use crate::geometry::shape::{Shape, ShapeHit};
+use crate::geometry::{texcoord, unit_f32, Aabb, Ray};
+use glam::{DMat4, DVec3, Vec2, Vec3};
 use std::f32::consts::TAU;
+
+/// A torus in its object's frame: a circle of radius `minor` swept around
+/// a circle of radius `major` about `axis`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TorusDesc {
+    /// Centre.
+    pub center: DVec3,
+    /// Unit axis of symmetry.
+    pub axis: DVec3,
+    /// Distance from the centre to the tube's centre line.
+    pub major: f64,
+    /// Radius of the tube.
+    pub minor: f64,
+}
+
+impl Description for TorusDesc {
+    fn name(&self) -> &'static str {
+        "torus"
+    }
+
+    fn place(&self, m: &DMat4, scale: f64, out: &mut Vec<Shape>) {
+        out.push(Shape::Round(Round::Torus(Torus {
+            center: m.transform_point3(self.center).as_vec3(),
+            axis: unit_f32(m.transform_vector3(self.axis)),
+            major: (self.major * scale) as f32,
+            minor: (self.minor * scale) as f32,
+        })));
+    }
+
+    fn numbers(&self) -> Vec<f64> {
+        let [c, a] = [self.center, self.axis].map(|p| p.to_array());
+        [&c[..], &a[..], &[self.major, self.minor]].concat()
+    }
+}
 
 /// A ring torus (`minor` < `major`).
 #[derive(Debug, Clone, Copy)]
@@ -27,9 +62,18 @@ pub struct Torus {
 }
 
 impl Torus {
-    /// The closest hit in `(t_min, t_max)`, from outside or inside the tube.
+    /// The point of the tube's centre circle nearest `p`.
+    fn ring_point(&self, p: Vec3) -> Vec3 {
+        let d = p - self.center;
+        let across = d - d.dot(self.axis) * self.axis;
+        let dir = across.normalize_or(crate::geometry::orthonormal_basis(self.axis).0);
+        self.center + self.major * dir
+    }
+}
+
+impl Surface for Torus {
     #[inline(never)]
-    pub fn intersect(&self, ray: &Ray, t_min: f32, t_max: f32) -> Option<ShapeHit> {
+    fn intersect(&self, ray: &Ray, t_min: f32, t_max: f32) -> Option<ShapeHit> {
         let (big, small) = (self.major as f64, self.minor as f64);
         let a = self.axis.as_dvec3();
         let d = ray.d.as_dvec3();
@@ -69,17 +113,8 @@ impl Torus {
         })
     }
 
-    /// The point of the tube's centre circle nearest `p`.
-    fn ring_point(&self, p: Vec3) -> Vec3 {
-        let d = p - self.center;
-        let across = d - d.dot(self.axis) * self.axis;
-        let dir = across.normalize_or(super::orthonormal_basis(self.axis).0);
-        self.center + self.major * dir
-    }
-
-    /// The point of the surface nearest `p`.
     #[inline(never)]
-    pub fn project(&self, p: Vec3) -> Vec3 {
+    fn project(&self, p: Vec3) -> Vec3 {
         let q = self.ring_point(p);
         match (p - q).try_normalize() {
             Some(n) => q + self.minor * n,
@@ -87,15 +122,14 @@ impl Torus {
         }
     }
 
-    /// The outward unit normal at the surface point `p`.
     #[inline(never)]
-    pub fn normal_at(&self, p: Vec3) -> Vec3 {
+    fn normal_at(&self, p: Vec3) -> Vec3 {
         (p - self.ring_point(p)).normalize_or(self.axis)
     }
 
     /// The area, 4π² R r.
     #[inline(never)]
-    pub fn area(&self) -> f32 {
+    fn area(&self) -> f32 {
         TAU * TAU * self.major * self.minor
     }
 
@@ -103,7 +137,7 @@ impl Torus {
     /// angle around the axis uniform, the angle around the tube θ with
     /// density ∝ R + r cos θ (the outer side has more area), by inverting
     /// its CDF (Rθ + r sin θ) / 2πR with Newton's method in a bracket.
-    pub fn sample_area(&self, u: Vec2) -> (Vec3, Vec3) {
+    fn sample_area(&self, u: Vec2) -> (Vec3, Vec3) {
         let (big, small) = (self.major as f64, self.minor as f64);
         let target = std::f64::consts::TAU * big * u.y as f64;
         let (mut lo, mut hi) = (0.0, std::f64::consts::TAU);
@@ -126,7 +160,7 @@ impl Torus {
             };
         }
         let phi = TAU * u.x;
-        let (x, z) = super::orthonormal_basis(self.axis);
+        let (x, z) = crate::geometry::orthonormal_basis(self.axis);
         let radial = phi.cos() * x + phi.sin() * z;
         let (s, c) = (theta as f32).sin_cos();
         let n = c * radial + s * self.axis;
@@ -134,12 +168,24 @@ impl Torus {
     }
 
     /// Bounds: along each axis i the torus extends R·sqrt(1 − aᵢ²) + r.
-    pub fn bounds(&self) -> super::Aabb {
-        let e = super::disk::extent(self.axis, self.major) + Vec3::splat(self.minor);
-        super::Aabb {
+    fn bounds(&self) -> Aabb {
+        let e = crate::geometry::disk::extent(self.axis, self.major) + Vec3::splat(self.minor);
+        Aabb {
             min: self.center - e,
             max: self.center + e,
         }
+    }
+
+    fn uv_frame(&self) -> (Vec3, Vec3) {
+        (self.center, self.axis)
+    }
+
+    fn texcoord(&self, local: Vec3, scale: f32) -> Vec2 {
+        texcoord::torus(local, self.major * scale)
+    }
+
+    fn texcoord_derivatives(&self, local: Vec3, scale: f32) -> (Vec3, Vec3) {
+        texcoord::torus_derivatives(local, self.major * scale)
     }
 }
 

@@ -1,12 +1,76 @@
 //! Cones, truncated cones and cylinders (a cylinder is a cone whose two
 //! radii are equal): the lateral surface between two planes across the
-//! axis, without its end disks (lowering adds those as `disk`s). The
-//! quadric's roots are taken in f64 with the cancellation-free form of the
-//! quadratic (pbrt-v4 §6.3; Haines et al., Ray Tracing Gems ch. 7).
+//! axis, without its end disks (placing a closed one adds those as
+//! `disk`s). The quadric's roots are taken in f64 with the
+//! cancellation-free form of the quadratic (pbrt-v4 §6.3; Haines et al.,
+//! Ray Tracing Gems ch. 7).
 
-use super::shape::ShapeHit;
-use super::Ray;
-use glam::{DVec3, Vec2, Vec3};
+use super::{Description, Round, Surface};
+use crate::geometry::shape::{Shape, ShapeHit};
+use crate::geometry::{texcoord, Aabb, Ray};
+use glam::{DMat4, DVec3, Vec2, Vec3};
+
+/// A cone, a truncated cone or (equal radii) a cylinder in its object's
+/// frame, from the centre of its base to the centre of its top.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ConeDesc {
+    /// Centre of the base.
+    pub base: DVec3,
+    /// Centre of the top.
+    pub top: DVec3,
+    /// Radius at the base.
+    pub base_radius: f64,
+    /// Radius at the top (0: a point).
+    pub top_radius: f64,
+    /// Without the end disks.
+    pub open: bool,
+}
+
+impl Description for ConeDesc {
+    fn name(&self) -> &'static str {
+        if self.base_radius == self.top_radius {
+            "cylinder"
+        } else {
+            "cone"
+        }
+    }
+
+    /// Its lateral surface and, unless `open`, the disks that close it (a
+    /// radius of 0 closes itself).
+    fn place(&self, m: &DMat4, scale: f64, out: &mut Vec<Shape>) {
+        let base = m.transform_point3(self.base).as_vec3();
+        let top = m.transform_point3(self.top).as_vec3();
+        let along = top - base;
+        let height = along.length();
+        let axis = along / height;
+        let [r0, r1] = [self.base_radius * scale, self.top_radius * scale].map(|r| r as f32);
+        out.push(Shape::Round(Round::Cone(Cone {
+            base,
+            axis,
+            height,
+            r0,
+            r1,
+        })));
+        if self.open {
+            return;
+        }
+        for (center, normal, radius) in [(base, -axis, r0), (top, axis, r1)] {
+            if radius > 0.0 {
+                out.push(Shape::Disk {
+                    center,
+                    normal,
+                    radius,
+                });
+            }
+        }
+    }
+
+    fn numbers(&self) -> Vec<f64> {
+        let open = if self.open { 1.0 } else { 0.0 };
+        let [b, t] = [self.base, self.top].map(|p| p.to_array());
+        [&b[..], &t[..], &[self.base_radius, self.top_radius, open]].concat()
+    }
+}
 
 /// A cone's lateral surface: from `base` along the unit `axis` for
 /// `height`, its radius going linearly from `r0` at the base to `r1`.
@@ -34,12 +98,13 @@ impl Cone {
     fn radius_at(&self, h: f32) -> f32 {
         self.r0 + (self.r1 - self.r0) * (h / self.height)
     }
+}
 
-    /// The closest hit in `(t_min, t_max)`, from outside or inside.
+impl Surface for Cone {
     // Out of line: inlined into every primitive test's dispatch it cost
     // scenes without cones registers (docs/performance.md, "Instancing").
     #[inline(never)]
-    pub fn intersect(&self, ray: &Ray, t_min: f32, t_max: f32) -> Option<ShapeHit> {
+    fn intersect(&self, ray: &Ray, t_min: f32, t_max: f32) -> Option<ShapeHit> {
         let a = self.axis.as_dvec3();
         let o = ray.o.as_dvec3() - self.base.as_dvec3();
         let d = ray.d.as_dvec3();
@@ -64,10 +129,9 @@ impl Cone {
         })
     }
 
-    /// The point of the surface nearest `p` (a hit point moved onto the
-    /// surface: its height kept, its distance from the axis made exact).
+    /// Its height kept, its distance from the axis made exact.
     #[inline(never)]
-    pub fn project(&self, p: Vec3) -> Vec3 {
+    fn project(&self, p: Vec3) -> Vec3 {
         let d = (p - self.base).as_dvec3();
         let a = self.axis.as_dvec3();
         let h = d.dot(a).clamp(0.0, self.height as f64);
@@ -80,9 +144,8 @@ impl Cone {
         (self.base.as_dvec3() + h * a + radial * (r / len)).as_vec3()
     }
 
-    /// The outward unit normal at the surface point `p`.
     #[inline(never)]
-    pub fn normal_at(&self, p: Vec3) -> Vec3 {
+    fn normal_at(&self, p: Vec3) -> Vec3 {
         let d: DVec3 = (p - self.base).as_dvec3();
         let a = self.axis.as_dvec3();
         let radial = d - d.dot(a) * a;
@@ -102,13 +165,12 @@ impl Cone {
 
     /// The lateral area: π (r0 + r1) × the slant height.
     #[inline(never)]
-    pub fn area(&self) -> f32 {
+    fn area(&self) -> f32 {
         let dr = self.r1 - self.r0;
         std::f32::consts::PI * (self.r0 + self.r1) * (self.height * self.height + dr * dr).sqrt()
     }
 
-    /// A point uniform by area from `u` in [0,1)², with its normal.
-    pub fn sample_area(&self, u: Vec2) -> (Vec3, Vec3) {
+    fn sample_area(&self, u: Vec2) -> (Vec3, Vec3) {
         // The area at height h is proportional to the radius there: the
         // inverse of the CDF of a linear density (r² interpolates).
         let h = if self.r0 == self.r1 {
@@ -119,7 +181,7 @@ impl Cone {
             ((r - r0) / (r1 - r0) * self.height as f64) as f32
         };
         let phi = std::f32::consts::TAU * u.y;
-        let (x, z) = super::orthonormal_basis(self.axis);
+        let (x, z) = crate::geometry::orthonormal_basis(self.axis);
         let radial = phi.cos() * x + phi.sin() * z;
         let p = self.base + h * self.axis + self.radius_at(h) * radial;
         let dr = self.r1 - self.r0;
@@ -127,17 +189,29 @@ impl Cone {
         (p, n)
     }
 
-    /// Bounds: the boxes of the two end circles.
-    pub fn bounds(&self) -> super::Aabb {
+    /// The boxes of the two end circles.
+    fn bounds(&self) -> Aabb {
         let top = self.base + self.height * self.axis;
         let (e0, e1) = (
-            super::disk::extent(self.axis, self.r0),
-            super::disk::extent(self.axis, self.r1),
+            crate::geometry::disk::extent(self.axis, self.r0),
+            crate::geometry::disk::extent(self.axis, self.r1),
         );
-        super::Aabb {
+        Aabb {
             min: (self.base - e0).min(top - e1),
             max: (self.base + e0).max(top + e1),
         }
+    }
+
+    fn uv_frame(&self) -> (Vec3, Vec3) {
+        (self.base, self.axis)
+    }
+
+    fn texcoord(&self, local: Vec3, scale: f32) -> Vec2 {
+        texcoord::cone(local, self.height * scale)
+    }
+
+    fn texcoord_derivatives(&self, local: Vec3, scale: f32) -> (Vec3, Vec3) {
+        texcoord::cone_derivatives(local, self.height * scale, (self.r1 - self.r0) * scale)
     }
 }
 

@@ -19,6 +19,7 @@ impl Checker<'_> {
             return;
         };
         let kind_span = kind.span;
+        self.env.symbols.record_block(kind_span, row.name);
         if let Some(g) = self
             .open_group
             .filter(|_| !row.is_shape() && !row.is_light())

@@ -26,7 +26,7 @@ mod texture;
 pub use blocks::{MAX_PIXELS, MAX_SIDE, SAMPLES, SEED};
 pub use reader::WholeSetting;
 pub use scene::*;
-pub use symbols::{DefId, Definition, SymbolKind, Symbols};
+pub use symbols::{DefId, Definition, ParamUse, SymbolKind, Symbols};
 
 pub(crate) use crate::diag::group_digits;
 use crate::diag::{codes, Diagnostic, Diagnostics};

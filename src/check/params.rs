@@ -284,6 +284,7 @@ impl<'s> Collecting<'s> {
             let Some(spec) = self.spec(name, &value, diags) else {
                 continue;
             };
+            env.record_param(name.span, spec);
             let Some(val) = self.value(spec, &value, env, diags) else {
                 continue;
             };

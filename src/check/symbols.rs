@@ -7,6 +7,7 @@
 //! references, rename, outline) and the unused-name warnings are computed
 //! from it. It sits below the rest of `check/`: it imports only spans.
 
+use super::schema::ParamSpec;
 use crate::source::FileId;
 use crate::span::Span;
 use std::collections::{HashMap, HashSet};
@@ -57,6 +58,16 @@ pub struct Definition {
     pub excused: bool,
 }
 
+/// A parameter written in a block (`radius 1`), with the row of the
+/// block's schema it is: what hover shows and completion leaves out.
+#[derive(Debug, Clone, Copy)]
+pub struct ParamUse {
+    /// Where its name is written.
+    pub name_span: Span,
+    /// Its row: name, type, example, range and doc line.
+    pub spec: &'static ParamSpec,
+}
+
 /// Every definition of a scene and the uses of each ([`crate::check::Checked::symbols`]).
 #[derive(Debug, Default)]
 pub struct Symbols {
@@ -70,6 +81,14 @@ pub struct Symbols {
     /// resolves the same name at the same place at every iteration);
     /// emptied by [`Symbols::settle`].
     seen: HashSet<(Span, DefId)>,
+    /// Every parameter written in a block (of a kind, a material or a
+    /// texture), with its schema row; in source order once settled.
+    params: Vec<ParamUse>,
+    /// The parameters recorded at places that may be met again.
+    params_seen: HashSet<Span>,
+    /// Every block statement's kind: where its name is written and the
+    /// name of its row in `check::kinds` (in source order once settled).
+    blocks: Vec<(Span, &'static str)>,
 }
 
 impl Symbols {
@@ -114,6 +133,43 @@ impl Symbols {
         uses.push(at);
     }
 
+    /// Records that the parameter written at `name_span` is the schema row
+    /// `spec` (once per place; `repeating` as for [`Symbols::record_use`]).
+    pub fn record_param(&mut self, name_span: Span, spec: &'static ParamSpec, repeating: bool) {
+        if repeating && !self.params_seen.insert(name_span) {
+            return;
+        }
+        self.params.push(ParamUse { name_span, spec });
+    }
+
+    /// Records that the block statement whose kind is written at
+    /// `kind_span` is of the kind named `kind` (a row of `check::kinds`).
+    pub fn record_block(&mut self, kind_span: Span, kind: &'static str) {
+        if self.blocks.last().map(|b| b.0) != Some(kind_span) {
+            self.blocks.push((kind_span, kind));
+        }
+    }
+
+    /// Every block statement: where its kind is written and the kind's
+    /// name, in source order.
+    pub fn blocks(&self) -> &[(Span, &'static str)] {
+        &self.blocks
+    }
+
+    /// Every parameter written in the scene's blocks, with its schema row,
+    /// in source order.
+    pub fn params(&self) -> &[ParamUse] {
+        &self.params
+    }
+
+    /// The parameter whose name covers `offset` of `file`, if any.
+    pub fn param_at(&self, file: FileId, offset: usize) -> Option<&ParamUse> {
+        let offset = offset as u32;
+        (self.params.iter()).find(|p| {
+            p.name_span.file == file && p.name_span.start <= offset && offset < p.name_span.end
+        })
+    }
+
     /// Marks `def` as one not to report unused ([`Definition::excused`]).
     pub fn excuse(&mut self, def: DefId) {
         self.defs[def.0 as usize].excused = true;
@@ -138,6 +194,12 @@ impl Symbols {
             .map(|(i, d)| (d.name_span, DefId(i as u32)))
             .collect();
         self.seen = HashSet::new();
+        // A file included twice records its parameters at each reading.
+        self.params.sort_by_key(|p| order(&p.name_span));
+        self.params.dedup_by_key(|p| p.name_span);
+        self.params_seen = HashSet::new();
+        self.blocks.sort_by_key(|b| order(&b.0));
+        self.blocks.dedup_by_key(|b| b.0);
     }
 
     /// The definition numbered `id`.

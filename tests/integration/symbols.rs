@@ -516,3 +516,38 @@ fn every_use_in_every_kept_scene_is_its_definitions_name() {
         "{scenes} {uses} {included}"
     );
 }
+
+/// Which schema row each parameter and which kind each block statement is:
+/// a sphere's parameters written once in a loop run four times are one
+/// occurrence each, with the row hover will show; a material's too.
+#[test]
+fn every_parameter_and_block_is_its_schema_row() {
+    let scene = "camera { position <0, 1, 5> look_at <0, 0, 0> }\n\
+                 material red { diffuse rgb <0.8, 0.1, 0.1> }\n\
+                 for i in 0..4 {\n    sphere { center <i, 0, 0> radius 0.4 material red }\n}\n";
+    let c = compile(&[("params.pts", scene)]);
+    let s = &c.symbols;
+    let radius = at(&c, "params.pts", "radius 0.4", "radius");
+    let found: Vec<_> = (s.params().iter())
+        .filter(|p| p.name_span == radius)
+        .collect();
+    assert_eq!(found.len(), 1, "one occurrence per place: {:?}", s.params());
+    assert_eq!(found[0].spec.name, "radius");
+    assert!(
+        found[0].spec.doc.contains("radius"),
+        "{}",
+        found[0].spec.doc
+    );
+    let diffuse = at(&c, "params.pts", "diffuse rgb", "diffuse");
+    let at_diffuse = s
+        .param_at(diffuse.file, diffuse.start as usize + 2)
+        .unwrap();
+    assert_eq!(at_diffuse.spec.name, "diffuse");
+    for p in s.params() {
+        assert_eq!(text_of(&c, p.name_span), p.spec.name);
+    }
+    let kinds: Vec<(&str, &str)> = (s.blocks().iter())
+        .map(|&(span, kind)| (text_of(&c, span), kind))
+        .collect();
+    assert_eq!(kinds, [("camera", "camera"), ("sphere", "sphere")]);
+}

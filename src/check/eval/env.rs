@@ -180,6 +180,17 @@ impl Env {
         Some(value)
     }
 
+    /// Records that the parameter named at `name_span` is the schema row
+    /// `spec` (once per place).
+    pub fn record_param(
+        &mut self,
+        name_span: Span,
+        spec: &'static crate::check::schema::ParamSpec,
+    ) {
+        let repeating = self.repeating > 0 || self.call_depth > 0;
+        self.symbols.record_param(name_span, spec, repeating);
+    }
+
     /// Records a use at `at` of the definition `def` (a texture, a
     /// material or a group, named where evaluation does not look names up).
     pub fn record_use(&mut self, def: DefId, at: Span) {

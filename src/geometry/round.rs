@@ -1,11 +1,12 @@
 //! The registry of round shapes: the curved shapes stored exactly by
-//! centres, axes and radii (cones and cylinders, tori), which keep their
-//! kind only under similarity transforms (an uneven scale would make an
-//! elliptic one). The checker builds a shape's object-space description
-//! in f64 ([`RoundDesc`]), lowering places it under the object's transform
-//! ([`RoundDesc::place`]) as world-space f32 primitives ([`Round`], inside
-//! `Shape::Round`), and everything after (the BVH, lights, texture frames,
-//! the cache) asks [`Round`] and [`RoundDesc`], never a kind.
+//! centres, axes and radii (cones and cylinders, tori, capsules), which
+//! keep their kind only under similarity transforms (an uneven scale would
+//! make an elliptic one). The checker builds a shape's object-space
+//! description in f64 ([`RoundDesc`]), lowering places it under the
+//! object's transform ([`RoundDesc::place`]) as world-space f32 primitives
+//! ([`Round`], inside `Shape::Round`), and everything after (the BVH,
+//! lights, texture frames, the cache) asks [`Round`] and [`RoundDesc`],
+//! never a kind.
 //!
 //! Adding a round shape: its file in `round/` with its two types (the
 //! description implementing [`Description`], the primitive implementing
@@ -14,6 +15,7 @@
 //! plain variants of `Shape` (hot paths: one inlined test each); the
 //! round shapes here sit behind one cold call in `Shape::intersect`.
 
+pub mod capsule;
 pub mod cone;
 pub mod torus;
 
@@ -173,6 +175,8 @@ registry! {
     Cone(cone::ConeDesc, cone::Cone),
     /// A torus.
     Torus(torus::TorusDesc, torus::Torus),
+    /// A capsule: a cylinder closed by two hemispheres.
+    Capsule(capsule::CapsuleDesc, capsule::Capsule),
 }
 
 /// The refusal of [`RoundDesc::place`]: the transform is not a similarity.

@@ -399,6 +399,14 @@ fn mitsuba_reference_composition() {
     check_scene("composition");
 }
 
+/// Capsules (issue 37): a diffuse one and a tube lamp, which Mitsuba makes
+/// of an open `cylinder` and two `sphere`s. scripts/mitsuba_capsule.py
+/// writes the same scene for Mitsuba.
+#[test]
+fn mitsuba_reference_capsule() {
+    check_scene("capsule");
+}
+
 /// Light selection with a textured lamp whose image has a hot spot, a dim
 /// environment map, a sun and two small lamps (issue 34).
 #[test]

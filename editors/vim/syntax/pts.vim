@@ -6,7 +6,7 @@ if exists("b:current_syntax")
 endif
 
 syn keyword ptsControl let include for in if else fn group instance
-syn keyword ptsBlock render camera environment sky background material texture sphere plane quad disk triangle box cylinder cone torus mesh point_light spot_light directional_light
+syn keyword ptsBlock render camera environment sky background material texture sphere plane quad disk triangle box cylinder cone torus capsule mesh point_light spot_light directional_light
 syn keyword ptsColour rgb
 syn keyword ptsBoolean true false
 " The predefined names of an animation.

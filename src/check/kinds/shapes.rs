@@ -9,7 +9,7 @@ use super::super::schema::{p, ParamSpec, Ty};
 use super::{Kind, Role};
 use crate::check::domain::Quantity::{Direction, Magnitude, Size};
 use crate::diag::{codes, Diagnostic, Diagnostics};
-use crate::geometry::round::{cone::ConeDesc, torus::TorusDesc, RoundDesc};
+use crate::geometry::round::{capsule::CapsuleDesc, cone::ConeDesc, torus::TorusDesc, RoundDesc};
 use crate::source::{Files, ReadError};
 use crate::span::Span;
 use glam::DVec3;
@@ -100,7 +100,7 @@ impl ShapeInput<'_> {
 
 /// The rows of this file, in the order the docs list them.
 pub const ALL: &[&Kind] = &[
-    &SPHERE, &PLANE, &QUAD, &DISK, &TRIANGLE, &BOX, &CYLINDER, &CONE, &TORUS, &MESH,
+    &SPHERE, &PLANE, &QUAD, &DISK, &TRIANGLE, &BOX, &CYLINDER, &CONE, &TORUS, &CAPSULE, &MESH,
 ];
 
 /// `sphere { }`
@@ -438,6 +438,31 @@ fn torus(s: &mut ShapeInput) -> Option<Shape> {
         axis,
         major,
         minor,
+    })))
+}
+
+/// `capsule { }`
+pub const CAPSULE: Kind = Kind {
+    name: "capsule",
+    summary: "a capsule: the points within `radius` of the segment from `base` to `top`, a cylinder closed by two hemispheres",
+    params: &[
+        p("base", Ty::Vec3, "<0, 0, 0>").of(Magnitude).doc("one end of the axis: the centre of the base's hemisphere. Required"),
+        p("top", Ty::Vec3, "<0, 2, 0>").of(Magnitude).doc("the other end: the centre of the top's hemisphere (equal to `base`: a sphere). Required"),
+        p("radius", Ty::Num, "0.5").of(Size).doc("the distance of the surface from the axis (> 0). Required"),
+    ],
+    role: Role::Shape(capsule),
+    positional: None,
+    povray: &[("sphere_sweep", "a `sphere_sweep` of two points with one radius is ptsc's `capsule { base <…> top <…> radius … }`; a longer sweep is a row of capsules")],
+};
+
+fn capsule(s: &mut ShapeInput) -> Option<Shape> {
+    let base = s.vec3("base");
+    let top = s.vec3("top");
+    let radius = s.positive("radius");
+    Some(Shape::Round(RoundDesc::Capsule(CapsuleDesc {
+        base: base?.0,
+        top: top?.0,
+        radius: radius?,
     })))
 }
 

@@ -60,7 +60,7 @@ impl<'t> Builder<'t> {
     /// A name being declared: reserved words are refused.
     fn build_decl_name(&self, pair: Pair<Rule>) -> Ident {
         let id = self.build_ident(pair);
-        if super::parser::KEYWORDS.contains(&id.name.as_str()) {
+        if super::words::KEYWORDS.contains(&id.name.as_str()) {
             let mut slot = self.reserved.borrow_mut();
             if slot.is_none() {
                 *slot = Some(

@@ -8,8 +8,12 @@
 //! meets the start of a later piece again. So the statements and errors of
 //! a file are the same however it was cut.
 
+use super::ast;
+use super::build;
+use super::parser::{self, PtsParser, Rule};
+use super::recover;
 use super::recover::{parse_from, Break, Parsed};
-use super::{ast, parse_whole, PtsParser, Rule};
+use super::scan::bom_len;
 use crate::diag::{codes, Diagnostic};
 use crate::source::FileId;
 use crate::span::Span;
@@ -43,7 +47,7 @@ impl<'t> HandOver<'t> {
     /// Nothing handed over yet of `text`; with `recover`, reading goes on
     /// after each broken statement, else it stops at the first.
     pub fn new(file: FileId, text: &'t str, kinds: &'t [&'t str], recover: bool) -> Self {
-        let start = super::bom_len(text);
+        let start = bom_len(text);
         HandOver {
             file,
             text,
@@ -226,4 +230,32 @@ fn disagreed(file: FileId) -> Diagnostic {
     )
     .with_label("parsed whole but not in pieces")
     .with_help("please report this file as a ptsc bug")
+}
+
+/// The whole file in one pest call: the path that reports syntax errors.
+pub(super) fn parse_whole(
+    file: FileId,
+    text: &str,
+    kinds: &[&str],
+) -> Result<ast::File, Diagnostic> {
+    let bom = bom_len(text);
+    let mut pairs = match PtsParser::parse(Rule::file, &text[bom..]) {
+        Ok(pairs) => pairs,
+        Err(e) => {
+            // A statement the builder refuses (a kind's broken block read
+            // whole, a reserved word as a name) before where pest failed
+            // is the first error: read up to the first broken statement.
+            let read = recover::parse_from(file, (text, kinds), bom, text.len(), 1);
+            if let Some(d) = read.breaks.into_iter().next().and_then(|b| b.reserved) {
+                return Err(d);
+            }
+            return Err(parser::convert_error(e, file, (text, kinds), bom));
+        }
+    };
+    let builder = build::Builder::new(file, text, kinds, bom);
+    let ast = builder.build_file(pairs.next().expect("a file pair"));
+    match builder.reserved.into_inner() {
+        Some(d) => Err(d),
+        None => Ok(ast),
+    }
 }

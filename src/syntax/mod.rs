@@ -6,13 +6,18 @@ mod hand_over;
 pub mod parser;
 pub mod povray;
 mod recover;
+mod scan;
+pub mod words;
 
 use crate::diag::{codes, Diagnostic};
 use crate::source::FileId;
 use crate::span::Span;
+#[cfg(test)]
+use hand_over::parse_whole;
 use parser::{PtsParser, Rule};
 use pest::Parser;
 use recover::{Break, Parsed};
+use scan::{bom_len, for_each_code_mark, statement_follows};
 
 /// The deepest nesting of `(`, `[`, `<` and `{` the parser accepts. Deeper input is
 /// reported instead of risking the stack of a recursive-descent parser.
@@ -163,40 +168,6 @@ fn parse_piece(
     parsed
 }
 
-/// The whole file in one pest call: the path that reports syntax errors.
-fn parse_whole(file: FileId, text: &str, kinds: &[&str]) -> Result<ast::File, Diagnostic> {
-    let bom = bom_len(text);
-    let mut pairs = match PtsParser::parse(Rule::file, &text[bom..]) {
-        Ok(pairs) => pairs,
-        Err(e) => {
-            // A statement the builder refuses (a kind's broken block read
-            // whole, a reserved word as a name) before where pest failed
-            // is the first error: read up to the first broken statement.
-            let read = recover::parse_from(file, (text, kinds), bom, text.len(), 1);
-            if let Some(d) = read.breaks.into_iter().next().and_then(|b| b.reserved) {
-                return Err(d);
-            }
-            return Err(parser::convert_error(e, file, (text, kinds), bom));
-        }
-    };
-    let builder = build::Builder::new(file, text, kinds, bom);
-    let ast = builder.build_file(pairs.next().expect("a file pair"));
-    match builder.reserved.into_inner() {
-        Some(d) => Err(d),
-        None => Ok(ast),
-    }
-}
-
-/// The length of the byte order mark that may open a file (and only there):
-/// both parse paths start after it.
-fn bom_len(text: &str) -> usize {
-    if text.starts_with('\u{FEFF}') {
-        '\u{FEFF}'.len_utf8()
-    } else {
-        0
-    }
-}
-
 /// Cuts `text` into pieces of at least `min_piece` bytes, each ending just
 /// after a `}` or `;` at nesting depth 0 outside comments and strings. In a
 /// valid file such a character ends a statement (blocks close statements, `;`
@@ -252,85 +223,6 @@ fn pieces(text: &str, min_piece: usize) -> Result<Vec<(usize, usize)>, usize> {
     }
     out.push((start, text.len()));
     Ok(out)
-}
-
-/// Whether `rest` (what follows a `}` at nesting depth 0) goes on with a
-/// new statement: a word other than `else`, or nothing. A `}` followed by
-/// `else`, `;`, `{` or an operator closes a branch of an `if` (a statement
-/// or a value, `let y = if a { 1 } else { 2 };`), not a statement.
-fn statement_follows(rest: &str) -> bool {
-    let mut rest = rest;
-    loop {
-        rest = rest.trim_start();
-        if let Some(r) = rest.strip_prefix("//") {
-            rest = r.find('\n').map_or("", |k| &r[k..]);
-        } else if let Some(r) = rest.strip_prefix("/*") {
-            rest = r.find("*/").map_or("", |k| &r[k + 2..]);
-        } else {
-            break;
-        }
-    }
-    let word_len = rest
-        .find(|c: char| !(c.is_alphanumeric() || c == '_'))
-        .unwrap_or(rest.len());
-    rest.is_empty() || (word_len > 0 && &rest[..word_len] != "else")
-}
-
-/// Calls `f(offset, byte)` for every bracket (`(`, `)`, `[`, `]`, `<`, `>`, `{`, `}`)
-/// and `;` of `text` outside comments and strings: the scans for parse pieces
-/// and unclosed blocks need to see those only. `f` returns `false` to stop.
-pub(crate) fn for_each_code_mark(text: &str, mut f: impl FnMut(usize, u8) -> bool) {
-    /// Bytes the loop stops at: the marks, and what opens a comment or string.
-    const STOP: [bool; 256] = {
-        let mut t = [false; 256];
-        let mut k = 0;
-        let marks = b"()[]<>{};/\"";
-        while k < marks.len() {
-            t[marks[k] as usize] = true;
-            k += 1;
-        }
-        t
-    };
-    let bytes = text.as_bytes();
-    let mut i = 0;
-    while i < bytes.len() {
-        // Most bytes are none of these: one table load each (this scan runs
-        // before the parallel parse starts, over the whole file).
-        if !STOP[bytes[i] as usize] {
-            i += 1;
-            continue;
-        }
-        match bytes[i] {
-            b'/' if bytes.get(i + 1) == Some(&b'/') => {
-                while i < bytes.len() && bytes[i] != b'\n' {
-                    i += 1;
-                }
-            }
-            b'/' if bytes.get(i + 1) == Some(&b'*') => {
-                i += 2;
-                while i < bytes.len() && !(bytes[i] == b'*' && bytes.get(i + 1) == Some(&b'/')) {
-                    i += 1;
-                }
-                i += 1;
-            }
-            b'"' => {
-                i += 1;
-                while i < bytes.len() && bytes[i] != b'"' && bytes[i] != b'\n' {
-                    if bytes[i] == b'\\' {
-                        i += 1;
-                    }
-                    i += 1;
-                }
-            }
-            b'/' => {}
-            b => {
-                if !f(i, b) {
-                    return;
-                }
-            }
-        }
-        i += 1;
-    }
 }
 
 /// The error for a bracket at `i` nested deeper than [`MAX_NESTING`].

@@ -7,6 +7,8 @@ use crate::span::Span;
 use pest::error::{ErrorVariant, InputLocation};
 use pest_derive::Parser;
 
+use super::words::statement_word;
+pub use super::words::KEYWORDS;
 pub use generated::{PtsParser, Rule};
 
 mod generated {
@@ -365,7 +367,7 @@ fn after_rgb(before: &str) -> bool {
 /// outermost first, skipping comments and strings.
 fn open_braces(text: &str) -> Vec<usize> {
     let mut stack = Vec::new();
-    super::for_each_code_mark(text, |i, b| {
+    super::scan::for_each_code_mark(text, |i, b| {
         match b {
             b'{' => stack.push(i),
             b'}' => {
@@ -385,7 +387,7 @@ fn open_braces(text: &str) -> Vec<usize> {
 /// a block inside, so pest fails only at the end of the file).
 fn kind_inside<'t>(text: &'t str, open: usize, kinds: &[&str]) -> Option<(usize, &'t str)> {
     let mut braces = Vec::new();
-    super::for_each_code_mark(&text[open..], |i, b| {
+    super::scan::for_each_code_mark(&text[open..], |i, b| {
         if b == b'{' || b == b'}' {
             braces.push((open + i, b == b'{'));
         }
@@ -438,41 +440,6 @@ fn closing_helps(text: &str, base: usize, at: usize, pos: usize) -> bool {
             failed > pos + 1 - base
         }
     }
-}
-
-/// Keywords that open a statement. A block statement opens with its kind's
-/// name ([`statement_word`]).
-pub(super) const STATEMENT_KEYWORDS: &[&str] = &[
-    "let",
-    "include",
-    "for",
-    "background",
-    "if",
-    "fn",
-    "group",
-    "material",
-    "instance",
-];
-
-/// The word at `at`, if it opens a statement: a statement keyword (or
-/// `texture`), or a name followed by `{` where a statement may start
-/// (after blanks only): a block statement `kind { … }`. The grammar does not
-/// know the kinds (the checker's table does), so a name and a brace is
-/// taken for one.
-pub(super) fn statement_word(text: &str, at: usize) -> Option<&str> {
-    let rest = &text[at..];
-    let len = rest
-        .find(|c: char| !(c.is_alphanumeric() || c == '_'))
-        .unwrap_or(rest.len());
-    let word = &rest[..len];
-    if word.is_empty() || word.starts_with(|c: char| c.is_ascii_digit()) {
-        return None;
-    }
-    if STATEMENT_KEYWORDS.contains(&word) || word == "texture" {
-        return Some(word);
-    }
-    let opens_block = rest[len..].trim_start().starts_with('{');
-    (opens_block && !KEYWORDS.contains(&word)).then_some(word)
 }
 
 /// The statement word that opens the line holding byte `pos`
@@ -559,22 +526,3 @@ fn help_for(expected: &[&str], found: &str) -> String {
     }
     "check the syntax near this point (see docs/language.md)".into()
 }
-
-/// Every reserved word of the language (kept in sync with the grammar by a test).
-pub const KEYWORDS: &[&str] = &[
-    "let",
-    "include",
-    "for",
-    "in",
-    "if",
-    "else",
-    "fn",
-    "group",
-    "instance",
-    "background",
-    "material",
-    "texture",
-    "rgb",
-    "true",
-    "false",
-];

@@ -169,7 +169,7 @@ pub fn parameter(word: &str) -> Option<&'static str> {
 pub fn hint(word: &str) -> Option<&'static str> {
     let word = word.trim_start_matches('#');
     // ptsc's own words (`if`, `for`, `texture`) are not taken for POV-Ray's.
-    if super::parser::KEYWORDS.contains(&word) {
+    if super::words::KEYWORDS.contains(&word) {
         return None;
     }
     [WORDS, BLOCKS, FLAGS, DIRECTIVES, FUNCTIONS, NAMES]
@@ -203,7 +203,7 @@ mod tests {
         // No entry for a word ptsc has.
         for (w, _) in [WORDS, FLAGS, FUNCTIONS, NAMES].concat() {
             assert!(
-                !super::super::parser::KEYWORDS.contains(&w),
+                !super::super::words::KEYWORDS.contains(&w),
                 "{w} is a ptsc keyword"
             );
         }

@@ -13,8 +13,9 @@
 //! parse pieces.
 
 use super::build::Builder;
-use super::parser::{statement_word, PtsParser, Rule};
-use super::statement_follows;
+use super::parser::{PtsParser, Rule};
+use super::scan::statement_follows;
+use super::words::statement_word;
 use crate::diag::Diagnostic;
 use crate::source::FileId;
 use pest::iterators::Pair;
@@ -464,7 +465,7 @@ impl Nest {
 
 /// Calls `f(offset, byte)` from byte `from` on for every bracket (`(`, `)`,
 /// `[`, `]`, `{`, `}`), `;` and ASCII blank outside comments and strings,
-/// until `f` returns `false`. Unlike [`super::for_each_code_mark`] (the
+/// until `f` returns `false`. Unlike [`super::scan::for_each_code_mark`] (the
 /// scan of whole files), it reads as pest does where a file is broken: a
 /// `"` whose string does not close on its line, or a `/*` that never
 /// closes, is one stray character, and what follows it is code.

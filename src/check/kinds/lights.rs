@@ -5,7 +5,7 @@ use super::super::params::Params;
 use super::super::reader::Reader;
 use super::super::scene::{Light, Rgb};
 use super::super::schema::{p, povray, ParamSpec, Ty, LIGHT_COLOR, LIGHT_COLOUR, SPOT_ANGLES};
-use super::{Kind, Role};
+use super::kind::{Kind, Role};
 use crate::check::domain::Quantity::{Direction, Magnitude, Radiance};
 use crate::diag::{codes, Diagnostic, Diagnostics};
 

@@ -7,61 +7,16 @@
 //! editors' word lists and hover all read this table. Adding a kind is
 //! adding a row.
 
+mod kind;
 pub mod lights;
 pub mod settings;
 pub mod shapes;
 
-use super::params::Params;
-use super::scene::{Light, Shape};
-use super::schema::{ParamSpec, SHAPE_COMMON};
-use crate::diag::{codes, did_you_mean, Diagnostic, Diagnostics};
+use super::schema::SHAPE_COMMON;
+use crate::diag::{codes, did_you_mean, Diagnostic};
 use crate::span::Span;
 use crate::syntax::ast::Ident;
-pub use shapes::ShapeInput;
-
-/// One kind of block statement.
-#[derive(Debug)]
-pub struct Kind {
-    /// The name that opens the block (`sphere`).
-    pub name: &'static str,
-    /// What it is, in a line (hover, docs).
-    pub summary: &'static str,
-    /// Its own parameters (a shape's common ones are in [`SHAPE_COMMON`]).
-    pub params: &'static [ParamSpec],
-    /// What it becomes in the scene.
-    pub role: Role,
-    /// POV-Ray's positional values of the kind (`sphere { <0, 1, 0>, 1 }`):
-    /// the parameters they stand for in POV-Ray's order, and a note on what
-    /// ptsc means otherwise (empty if none).
-    pub positional: Option<(&'static [&'static str], &'static str)>,
-    /// POV-Ray statement words that this kind stands for in ptsc, each
-    /// with the help line that says how ptsc writes it.
-    pub povray: &'static [(&'static str, &'static str)],
-}
-
-/// What a block statement becomes.
-#[derive(Debug, Clone, Copy)]
-pub enum Role {
-    /// One of the scene's settings, kept by the checker.
-    Setting(Setting),
-    /// A light that is not a shape, from its checked parameters.
-    Light(fn(&Params, &mut Diagnostics) -> Option<Light>),
-    /// An object's shape before transforms, from its checked parameters.
-    Shape(fn(&mut ShapeInput) -> Option<Shape>),
-}
-
-/// The settings blocks, each given at most once.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Setting {
-    /// `render { }`
-    Render,
-    /// `camera { }`
-    Camera,
-    /// `environment { }`
-    Environment,
-    /// `sky { }`
-    Sky,
-}
+pub use kind::{Kind, Role, Setting, ShapeInput};
 
 /// Every kind of block statement, in the order the docs list them: the
 /// settings, the shapes, the lights (each file lists its own rows).
@@ -124,33 +79,6 @@ pub fn find(name: &str) -> Option<&'static Kind> {
 /// The names of every kind.
 pub fn names() -> impl Iterator<Item = &'static str> {
     NAMES.iter().copied()
-}
-
-impl Kind {
-    /// Whether it is an object's shape.
-    pub fn is_shape(&self) -> bool {
-        matches!(self.role, Role::Shape(_))
-    }
-
-    /// Whether it is a light that is not a shape.
-    pub fn is_light(&self) -> bool {
-        matches!(self.role, Role::Light(_))
-    }
-
-    /// The schemas its block is checked against: its own parameters, and
-    /// a shape's common ones (transforms, motion).
-    pub fn schemas(&self) -> [&'static [ParamSpec]; 2] {
-        let common: &[_] = if self.is_shape() { SHAPE_COMMON } else { &[] };
-        [self.params, common]
-    }
-
-    /// Its parameter `name`, if it has one (common ones included).
-    pub fn param(&self, name: &str) -> Option<&'static ParamSpec> {
-        self.schemas()
-            .into_iter()
-            .flatten()
-            .find(|p| p.name == name && p.povray.is_none())
-    }
 }
 
 /// What ptsc writes for POV-Ray's statement `word`, if a kind stands for

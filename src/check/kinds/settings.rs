@@ -3,7 +3,7 @@
 //! see `check/block_statement.rs`).
 
 use super::super::schema;
-use super::{Kind, Role, Setting};
+use super::kind::{Kind, Role, Setting};
 
 /// The rows of this file, in the order the docs list them.
 pub const ALL: &[&Kind] = &[&RENDER, &CAMERA, &ENVIRONMENT, &SKY];

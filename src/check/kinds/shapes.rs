@@ -2,101 +2,16 @@
 //! into a [`Shape`] before transforms (the transforms and the material are
 //! every shape's, read by `check/block_statement.rs`).
 
-use super::super::params::{Params, Val};
-use super::super::reader::{range_error, Reader};
+use super::super::params::Val;
+use super::super::reader::range_error;
 use super::super::scene::Shape;
 use super::super::schema::{p, ParamSpec, Ty};
-use super::{Kind, Role};
+use super::kind::{Kind, Role, ShapeInput};
 use crate::check::domain::Quantity::{Direction, Magnitude, Size};
-use crate::diag::{codes, Diagnostic, Diagnostics};
+use crate::diag::{codes, Diagnostic};
 use crate::geometry::round::{capsule::CapsuleDesc, cone::ConeDesc, torus::TorusDesc, RoundDesc};
-use crate::source::{Files, ReadError};
-use crate::span::Span;
+use crate::source::ReadError;
 use glam::DVec3;
-use std::path::Path;
-
-/// What a shape's conversion reads: its checked parameters, where problems
-/// go, and where the files it names are found.
-pub struct ShapeInput<'a> {
-    /// The parameters, with typed getters.
-    pub r: Reader<'a>,
-    /// The shape's row.
-    pub kind: &'static Kind,
-    /// The folder of the scene file that holds the block.
-    pub base_dir: &'a Path,
-    /// Where files are read.
-    pub files: &'a dyn Files,
-}
-
-impl ShapeInput<'_> {
-    /// The checked parameters.
-    pub fn params(&self) -> &Params {
-        self.r.p
-    }
-
-    /// A required vector of 3 and where it is written.
-    pub fn vec3(&mut self, name: &'static str) -> Option<(DVec3, Span)> {
-        self.r.vec3_req(name, self.kind.params)
-    }
-
-    /// A required number and where it is written.
-    pub fn num(&mut self, name: &'static str) -> Option<(f64, Span)> {
-        self.r.num_req(name, self.kind.params)
-    }
-
-    /// A required non-zero vector, normalised.
-    pub fn direction(&mut self, name: &'static str) -> Option<DVec3> {
-        self.r.direction(name, self.kind.params)
-    }
-
-    /// A vector of 3, or `default` when not given.
-    pub fn vec3_or(&mut self, name: &str, default: DVec3) -> DVec3 {
-        self.r.vec3(name).map_or(default, |v| v.0)
-    }
-
-    /// A required number above 0 (a size).
-    pub fn positive(&mut self, name: &'static str) -> Option<f64> {
-        let (x, s) = self.num(name)?;
-        if x > 0.0 {
-            return Some(x);
-        }
-        self.r.diags.push(range_error(
-            self.kind.name,
-            name,
-            s,
-            "greater than 0",
-            format!("`{name}` is {x} here; give a positive size"),
-        ));
-        None
-    }
-
-    /// A boolean, or `default`.
-    pub fn boolean(&mut self, name: &str, default: bool) -> bool {
-        self.r.boolean(name, default)
-    }
-
-    /// Reports a shape without area or volume (`message` at `span`, with
-    /// its `label` and `help`); always `None`.
-    pub fn degenerate(
-        &mut self,
-        message: impl Into<String>,
-        span: Span,
-        label: &str,
-        help: &str,
-    ) -> Option<Shape> {
-        self.r.diags.push(
-            Diagnostic::error(codes::DEGENERATE, message, span)
-                .with_label(label)
-                .with_help(help),
-        );
-        None
-    }
-
-    /// Where problems go.
-    pub fn diags(&mut self) -> &mut Diagnostics {
-        self.r.diags
-    }
-}
 
 /// The rows of this file, in the order the docs list them.
 pub const ALL: &[&Kind] = &[

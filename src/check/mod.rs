@@ -14,6 +14,7 @@ pub mod kinds;
 mod loops;
 mod material;
 mod objects;
+mod param_errors;
 pub mod params;
 mod povray;
 mod reader;

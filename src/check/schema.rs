@@ -267,31 +267,49 @@ pub const SKY: &[ParamSpec] = &[
 pub const MATERIAL: &[ParamSpec] = &[
     p("diffuse", Ty::Color, "rgb <0.8, 0.8, 0.8>")
         .of(Magnitude)
-        .textured(),
-    p("reflection", Ty::Color, "rgb 1").of(Magnitude).textured(),
-    p("gloss", Ty::Num, "0.3").textured(),
-    p("transmission", Ty::Num, "1").textured(),
-    p("ior", Ty::Num, "1.5"),
-    p("ior_outside", Ty::Num, "1.33"),
-    p("roughness", Ty::NumOrVec2, "<0.05, 0.3>"),
+        .textured()
+        .doc("Lambertian albedo, a colour or a texture. Default 0.5 grey when no lobe is given, else black"),
+    p("reflection", Ty::Color, "rgb 1").of(Magnitude).textured()
+        .doc("specular reflectance (a mirror; a metal's or a coat's tint), a colour or a texture. Default black"),
+    p("gloss", Ty::Num, "0.3").textured()
+        .doc("roughness of the reflection, 0..1 or a texture: 0 a mirror, 1 very rough (GGX α = gloss²). Default 0"),
+    p("transmission", Ty::Num, "1").textured()
+        .doc("weight of a smooth dielectric lobe (glass), 0..1 or a texture. Default 0"),
+    p("ior", Ty::Num, "1.5")
+        .doc("index of refraction inside (≥ 1). Default 1.5"),
+    p("ior_outside", Ty::Num, "1.33")
+        .doc("index of refraction of the medium outside (≥ 1; water 1.33). Default 1"),
+    p("roughness", Ty::NumOrVec2, "<0.05, 0.3>")
+        .doc("a metal's GGX α itself instead of `gloss`: one number, or `<α along u, α along v>`"),
     p("absorption", Ty::Color, "rgb <0.5, 0.1, 0.1>")
         .of(Magnitude)
-        .textured(),
-    p("emission", Ty::Color, "rgb 10").of(Radiance).textured(),
-    p("two_sided", Ty::Bool, "true"),
+        .textured()
+        .doc("Beer's law inside a dielectric, per scene unit travelled (colour ≥ 0 or texture). Default black"),
+    p("emission", Ty::Color, "rgb 10").of(Radiance).textured()
+        .doc("emitted radiance (colour ≥ 0 or texture): the object becomes an area light. Default black"),
+    p("two_sided", Ty::Bool, "true")
+        .doc("emission from both sides. Default `false`"),
     p(
         "normal_map",
         Ty::Texture,
         "image { file \"bricks_normal.png\" }",
     )
-    .textured(),
-    p("bump", Ty::Texture, "noise { scale 0.05 }").textured(),
-    p("bump_height", Ty::Num, "0.01").of(Magnitude),
-    p("type", Ty::Word(MATERIAL_TYPES), "plastic"),
-    p("preset", Ty::Word(METAL_PRESETS), "gold"),
-    p("eta", Ty::Color, "rgb <0.2, 0.92, 1.1>").of(Magnitude),
-    p("k", Ty::Color, "rgb <3.9, 2.45, 2.14>").of(Magnitude),
-    p("multiscatter", Ty::Bool, "false"),
+    .textured()
+        .doc("a tangent-space normal map (texture) bending the shading normal. Default none"),
+    p("bump", Ty::Texture, "noise { scale 0.05 }").textured()
+        .doc("a height field (texture) bending the shading normal, times `bump_height`. Default none"),
+    p("bump_height", Ty::Num, "0.01").of(Magnitude)
+        .doc("scene units of height per unit of the `bump` texture (negative: dents). Default 0.01"),
+    p("type", Ty::Word(MATERIAL_TYPES), "plastic")
+        .doc("the scattering model: `mix`, `conductor`, `plastic`, `dielectric` or `thin_dielectric`. Default `mix`"),
+    p("preset", Ty::Word(METAL_PRESETS), "gold")
+        .doc("a named metal of `type conductor`: gold, silver, copper, aluminium, chromium"),
+    p("eta", Ty::Color, "rgb <0.2, 0.92, 1.1>").of(Magnitude)
+        .doc("a metal's index of refraction per channel (with `k`, instead of `preset`)"),
+    p("k", Ty::Color, "rgb <3.9, 2.45, 2.14>").of(Magnitude)
+        .doc("a metal's extinction coefficient per channel (with `eta`, instead of `preset`)"),
+    p("multiscatter", Ty::Bool, "false")
+        .doc("the multiple-scattering compensation of glossy reflection; `false` is plain GGX. Default `true`"),
 ];
 
 /// The scattering models a material's `type` names (`mix`, the paper's

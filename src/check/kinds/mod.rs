@@ -147,6 +147,9 @@ mod tests {
 
     #[test]
     fn every_parameter_is_documented() {
+        for p in crate::check::schema::MATERIAL {
+            assert!(!p.doc.is_empty(), "the material's `{}` has no doc", p.name);
+        }
         for k in KINDS {
             for p in k.schemas().into_iter().flatten() {
                 if p.povray.is_none() {

@@ -11,7 +11,6 @@
 use super::ast;
 use super::build;
 use super::parser::{self, PtsParser, Rule};
-use super::recover;
 use super::recover::{parse_from, Break, Parsed};
 use super::scan::bom_len;
 use crate::diag::{codes, Diagnostic};
@@ -239,19 +238,8 @@ pub(super) fn parse_whole(
     kinds: &[&str],
 ) -> Result<ast::File, Diagnostic> {
     let bom = bom_len(text);
-    let mut pairs = match PtsParser::parse(Rule::file, &text[bom..]) {
-        Ok(pairs) => pairs,
-        Err(e) => {
-            // A statement the builder refuses (a kind's broken block read
-            // whole, a reserved word as a name) before where pest failed
-            // is the first error: read up to the first broken statement.
-            let read = recover::parse_from(file, (text, kinds), bom, text.len(), 1);
-            if let Some(d) = read.breaks.into_iter().next().and_then(|b| b.reserved) {
-                return Err(d);
-            }
-            return Err(parser::convert_error(e, file, (text, kinds), bom));
-        }
-    };
+    let mut pairs = PtsParser::parse(Rule::file, &text[bom..])
+        .map_err(|e| parser::convert_error(e, file, (text, kinds), bom))?;
     let builder = build::Builder::new(file, text, kinds, bom);
     let ast = builder.build_file(pairs.next().expect("a file pair"));
     match builder.reserved.into_inner() {

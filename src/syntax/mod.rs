@@ -12,8 +12,6 @@ pub mod words;
 use crate::diag::{codes, Diagnostic};
 use crate::source::FileId;
 use crate::span::Span;
-#[cfg(test)]
-use hand_over::parse_whole;
 use parser::{PtsParser, Rule};
 use pest::Parser;
 use recover::{Break, Parsed};

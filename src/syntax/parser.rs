@@ -5,7 +5,6 @@ use crate::diag::{codes, Diagnostic};
 use crate::source::FileId;
 use crate::span::Span;
 use pest::error::{ErrorVariant, InputLocation};
-use pest_derive::Parser;
 
 use super::words::statement_word;
 pub use super::words::KEYWORDS;
@@ -13,7 +12,7 @@ pub use generated::{PtsParser, Rule};
 
 mod generated {
     #![allow(missing_docs)]
-    use super::Parser;
+    use pest_derive::Parser;
 
     /// The parser generated from `grammar/pts.pest`.
     #[derive(Parser)]

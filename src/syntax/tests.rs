@@ -3,9 +3,10 @@
 
 use super::*;
 
-/// The kinds of block the checker's table has (`check::kinds::NAMES`, which
-/// the syntax module cannot import; a test in check/kinds compares them).
-pub(crate) const KINDS: &[&str] = &[
+/// Kinds of block for these tests (the checker gives the parser its
+/// table's names, `check::kinds::NAMES`, which the syntax module cannot
+/// import; any list of names serves a test of the parser).
+const KINDS: &[&str] = &[
     "render",
     "camera",
     "environment",
@@ -24,6 +25,18 @@ pub(crate) const KINDS: &[&str] = &[
     "spot_light",
     "directional_light",
 ];
+
+/// The first error of `text` as the parser reports it: a whole-file parse,
+/// unless a statement before where pest failed is refused while it is
+/// built (a kind's broken block read whole, a reserved word as a name),
+/// which the statement-by-statement reading finds first. (In the parser
+/// itself the first broken statement is known, so no second reading.)
+fn parse_whole(file: FileId, text: &str, kinds: &[&str]) -> Result<ast::File, Diagnostic> {
+    hand_over::parse_whole(file, text, kinds).map_err(|d| {
+        let read = recover::parse_from(file, (text, kinds), bom_len(text), text.len(), 1);
+        (read.breaks.into_iter().next().and_then(|b| b.reserved)).unwrap_or(d)
+    })
+}
 
 fn scene_files(dir: &std::path::Path, out: &mut Vec<std::path::PathBuf>) {
     for entry in std::fs::read_dir(dir).expect("readable folder").flatten() {

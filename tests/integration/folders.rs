@@ -29,9 +29,11 @@ fn module_path(src: &Path, file: &Path) -> Vec<String> {
     parts
 }
 
-/// A file's code: no test module (they come last), no comments.
+/// A file's code: no test module (they come last), no comments. Only a
+/// test module ends it: an import under `#[cfg(test)]` is code (cutting
+/// there hid every import after it).
 fn code_of(text: &str) -> String {
-    let text = text.split("#[cfg(test)]").next().unwrap_or(text);
+    let text = text.split("#[cfg(test)]\nmod ").next().unwrap_or(text);
     text.lines()
         .map(|l| l.split("//").next().unwrap_or(""))
         .collect::<Vec<_>>()

@@ -206,7 +206,11 @@ pub fn convert_error(
             // further: a closed block is never blamed for an error on a
             // line that happens to start with a statement's word.
             // A file whose braces all pair up has no unclosed block.
-            if block_brace(text, open)
+            // The line may start before the piece being parsed (from
+            // `base`) when that piece starts mid-line: then there is
+            // nothing of the piece to close before it.
+            if at >= base
+                && block_brace(text, open)
                 && !open_braces(text).is_empty()
                 && closing_helps(text, base, at, pos)
             {

@@ -367,6 +367,24 @@ fn reading_stops_after_a_hundred_errors() {
 }
 
 #[test]
+fn an_error_in_a_block_that_starts_mid_line_is_read_without_a_panic() {
+    // Found by the fuzzer after issue 37: the unclosed-block guess sliced
+    // the file from the broken statement (`sphere`, after `for … {`) back
+    // to the start of its line. The string left open on the first line
+    // makes the first statement a piece of its own.
+    let text = "era { p <0, 0,\"0> }\nfor i in 0..1 { sphere { center <0, 0, 0m1> } }\n";
+    for min_piece in [1, 7, usize::MAX] {
+        let (_, errors) = recovered(text, min_piece);
+        assert!(
+            errors
+                .iter()
+                .any(|d| d.message.contains("expected `>` or `,`")),
+            "{errors:?}"
+        );
+    }
+}
+
+#[test]
 fn many_broken_statements_cost_linear_time() {
     // Broken statements far from any `;` or `}` (each window is small),
     // on one line, on many lines, and valid statements between broken ones.

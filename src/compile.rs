@@ -47,6 +47,10 @@ pub struct Options<'a> {
     /// Where the scene, its includes, meshes and images are read: the
     /// disk, or files in memory (tests, an editor's unsaved buffers).
     pub files: &'a dyn Files,
+    /// Set by another thread when the result is no longer wanted (an
+    /// editor's newer text): checking stops early, the result is
+    /// incomplete and is to be dropped.
+    pub cancel: Option<std::sync::Arc<std::sync::atomic::AtomicBool>>,
 }
 
 impl Default for Options<'_> {
@@ -62,6 +66,7 @@ impl Default for Options<'_> {
             fingerprint: false,
             output_elsewhere: false,
             files: &Disk,
+            cancel: None,
         }
     }
 }
@@ -127,6 +132,7 @@ fn compile_from(path: &Path, bytes: Vec<u8>, options: Options, start: Instant) -
     let budgets = Budgets {
         loop_statements: options.loop_statements,
         work: options.work,
+        cancel: options.cancel.clone(),
     };
     // The root was read already (or given): it is asked first all the same.
     let asked = Asked::new(options.files);

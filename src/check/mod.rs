@@ -22,7 +22,7 @@ pub mod scene;
 pub mod schema;
 mod statements;
 pub mod symbols;
-mod texture;
+pub mod texture;
 
 pub use blocks::{MAX_PIXELS, MAX_SIDE, SAMPLES, SEED};
 pub use reader::WholeSetting;
@@ -121,26 +121,37 @@ pub fn read_scene_file(files: &dyn Files, path: &Path) -> std::io::Result<Vec<u8
 /// Checks a scene given as bytes, as if read from `path` (includes are
 /// resolved relative to it).
 pub fn check_bytes(path: &Path, bytes: Vec<u8>) -> Checked {
-    check_bytes_within(path, bytes, Budgets::default(), Animation::default(), &Disk)
+    check_bytes_within(
+        path,
+        bytes,
+        Budgets::standard(),
+        Animation::default(),
+        &Disk,
+    )
 }
 
 /// What the loops and expressions of one compile may do: the statements
 /// loops may run ([`MAX_LOOP_STATEMENTS`]) and the steps of work
 /// expressions may take ([`eval::MAX_WORK`]).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone)]
 pub struct Budgets {
     /// Statements loops and repeated includes may run in all.
     pub loop_statements: u64,
     /// Steps of work evaluation may take in all.
     pub work: u64,
+    /// Set by another thread when the result is no longer wanted (an
+    /// editor's newer text): checking stops at the next statement, and
+    /// the result is incomplete.
+    pub cancel: Option<std::sync::Arc<std::sync::atomic::AtomicBool>>,
 }
 
-impl Default for Budgets {
+impl Budgets {
     /// The budgets of every compile but a fuzzer's.
-    fn default() -> Self {
+    pub fn standard() -> Self {
         Budgets {
             loop_statements: MAX_LOOP_STATEMENTS,
             work: eval::MAX_WORK,
+            cancel: None,
         }
     }
 }
@@ -251,6 +262,8 @@ struct Checker<'f> {
     loops: Vec<Span>,
     /// The budget ran out: every loop stops (reported once).
     loops_exhausted: bool,
+    /// Set when the result is no longer wanted ([`Budgets::cancel`]).
+    cancel: Option<std::sync::Arc<std::sync::atomic::AtomicBool>>,
     render: Option<(RenderSettings, Span)>,
     camera: Option<Camera>,
     camera_span: Option<Span>,
@@ -311,6 +324,7 @@ impl<'f> Checker<'f> {
             include_stack: Vec::new(),
             loop_budget: budgets.loop_statements,
             loop_statements: budgets.loop_statements,
+            cancel: budgets.cancel,
             loops: Vec::new(),
             loops_exhausted: false,
             render: None,

@@ -321,7 +321,10 @@ impl<'s> Collecting<'s> {
         }) = found
         {
             self.params.suggested.push(instead);
-            diags.push(refused_povray_word(name, &what, help, &self.accepted()));
+            diags.push(
+                refused_povray_word(name, &what, help, &self.accepted())
+                    .with_fix(name.span, instead),
+            );
             return None;
         }
         let Some(spec) = found else {
@@ -346,9 +349,11 @@ impl<'s> Collecting<'s> {
     fn unknown_parameter(&mut self, name: &Ident) -> Diagnostic {
         let what = self.params.what.clone();
         let all = self.accepted();
+        let mut fix = None;
         let help = match did_you_mean(&name.name, all.iter().copied()) {
             Some(s) => {
                 self.params.suggested.push(s);
+                fix = Some(s);
                 format!("did you mean `{s}`?")
             }
             None => {
@@ -357,6 +362,7 @@ impl<'s> Collecting<'s> {
                     Some(instead) => {
                         if let Some(&known) = all.iter().find(|&&n| n == instead) {
                             self.params.suggested.push(known);
+                            fix = Some(known);
                         }
                         let hint = hint.map(String::from).unwrap_or_else(|| {
                             format!("POV-Ray's `{}` is `{instead}` in ptsc", name.name)
@@ -370,7 +376,11 @@ impl<'s> Collecting<'s> {
                 }
             }
         };
-        unknown_parameter(name, &what, help)
+        let d = unknown_parameter(name, &what, help);
+        match fix {
+            Some(word) => d.with_fix(name.span, word),
+            None => d,
+        }
     }
 
     /// The value `source` gives the parameter `spec`: a value of its type

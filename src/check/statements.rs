@@ -7,6 +7,9 @@ use std::sync::Arc;
 
 impl Checker<'_> {
     pub(super) fn statement(&mut self, st: &Statement, file: FileId) {
+        if (self.cancel.as_ref()).is_some_and(|c| c.load(std::sync::atomic::Ordering::Relaxed)) {
+            return;
+        }
         // Checking a statement takes time in proportion to its text.
         if !self.charge_loop(1 + st.span().len() as u64 / STATEMENT_BYTES) {
             return;
@@ -86,8 +89,12 @@ impl Checker<'_> {
         }
         let v = eval(value, &mut self.env, &mut self.diags);
         let broken = v.is_none();
+        let shown = v.clone();
         let named = (name.name.as_str(), name.span);
         let def = self.env.define(SymbolKind::Constant, named, span, v);
+        if let Some(v) = shown {
+            self.env.symbols.set_value(def, || eval::written(&v));
+        }
         if broken {
             // Uses of a broken constant stay silent; don't call it unused either.
             self.env.symbols.excuse(def);

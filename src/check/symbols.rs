@@ -56,6 +56,9 @@ pub struct Definition {
     /// Its lack of uses is explained otherwise, so that it is not reported
     /// unused: its value had an error, or a misspelt name was pointed to it.
     pub excused: bool,
+    /// A constant's value as a scene writes it (short values only), from
+    /// the first time its statement ran: what hover shows.
+    pub value: Option<String>,
 }
 
 /// A parameter written in a block (`radius 1`), with the row of the
@@ -111,9 +114,18 @@ impl Symbols {
             span,
             uses: Vec::new(),
             excused: false,
+            value: None,
         });
         self.by_name.insert(name_span, id);
         id
+    }
+
+    /// Records a constant's value as written (kept from the first run).
+    pub fn set_value(&mut self, def: DefId, value: impl FnOnce() -> String) {
+        let slot = &mut self.defs[def.0 as usize].value;
+        if slot.is_none() {
+            *slot = Some(value());
+        }
     }
 
     /// Records that the name at `at` resolved to `def` (once per place).

@@ -7,13 +7,29 @@ use super::params::{Params, Val};
 use super::reader::Reader;
 use super::scene::{ColorSpace, Rgb, Texture, TextureKind, TextureSpace};
 use super::schema::{
-    BANDS, CHECKER, COLOR_MAP, GRADIENT, IMAGE, NOISE, TEXTURE_KINDS, TEXTURE_TRANSFORMS, UNBANDED,
+    ParamSpec, BANDS, CHECKER, COLOR_MAP, GRADIENT, IMAGE, NOISE, TEXTURE_KINDS,
+    TEXTURE_TRANSFORMS, UNBANDED,
 };
 use crate::diag::{codes, did_you_mean, Diagnostic, Diagnostics};
 use crate::span::Span;
 use crate::syntax::ast::{Block, Entry, Ident};
 use crate::texture::image::Wrap;
 use crate::texture::noise::{NoiseKind, NoiseParams};
+
+/// The parameter rows of the texture kind `name` (its own first, then its
+/// bands or colour map and its transforms), `None` for a name that is not
+/// a texture: what the checker reads a texture's block against, and what
+/// an editor offers inside one.
+pub fn texture_schemas(name: &str) -> Option<&'static [&'static [ParamSpec]]> {
+    Some(match name {
+        "checker" => &[CHECKER, COLOR_MAP, TEXTURE_TRANSFORMS],
+        "image" => &[IMAGE, TEXTURE_TRANSFORMS],
+        "marble" | "wood" => &[NOISE, BANDS, COLOR_MAP, TEXTURE_TRANSFORMS],
+        "noise" | "turbulence" => &[NOISE, UNBANDED, COLOR_MAP, TEXTURE_TRANSFORMS],
+        "gradient" | "stripes" => &[GRADIENT, COLOR_MAP, TEXTURE_TRANSFORMS],
+        _ => return None,
+    })
+}
 
 /// The texture `kind { block }` written at `span`; `None` after reporting
 /// why not.
@@ -24,36 +40,24 @@ pub fn check_texture(
     env: &mut Env,
     diags: &mut Diagnostics,
 ) -> Option<Texture> {
-    let schema: &'static [super::schema::ParamSpec] = match kind.name.as_str() {
-        "checker" => CHECKER,
-        "image" => IMAGE,
-        "noise" | "turbulence" | "marble" | "wood" => NOISE,
-        "gradient" | "stripes" => GRADIENT,
-        _ => {
-            let help = match did_you_mean(&kind.name, TEXTURE_KINDS.iter().copied()) {
-                Some(s) => format!("did you mean `{s}`?"),
-                None => format!("the textures are: {}", TEXTURE_KINDS.join(", ")),
-            };
-            diags.push(
-                Diagnostic::error(
-                    codes::UNKNOWN_TEXTURE,
-                    format!("unknown texture `{}`", kind.name),
-                    kind.span,
-                )
-                .with_label("not a texture")
-                .with_help(help),
-            );
-            return None;
-        }
+    let Some(schemas) = texture_schemas(&kind.name) else {
+        let help = match did_you_mean(&kind.name, TEXTURE_KINDS.iter().copied()) {
+            Some(s) => format!("did you mean `{s}`?"),
+            None => format!("the textures are: {}", TEXTURE_KINDS.join(", ")),
+        };
+        diags.push(
+            Diagnostic::error(
+                codes::UNKNOWN_TEXTURE,
+                format!("unknown texture `{}`", kind.name),
+                kind.span,
+            )
+            .with_label("not a texture")
+            .with_help(help),
+        );
+        return None;
     };
-    let is_image = kind.name == "image";
+    let (schema, is_image) = (schemas[0], kind.name == "image");
     let noise = NoiseKind::from_name(&kind.name);
-    let schemas: &[&'static [super::schema::ParamSpec]] = match noise {
-        _ if is_image => &[schema, TEXTURE_TRANSFORMS],
-        Some(n) if n.has_bands() => &[schema, BANDS, COLOR_MAP, TEXTURE_TRANSFORMS],
-        Some(_) => &[schema, UNBANDED, COLOR_MAP, TEXTURE_TRANSFORMS],
-        None => &[schema, COLOR_MAP, TEXTURE_TRANSFORMS],
-    };
     let p = Params::collect(kind.name.clone(), kind.span, block, schemas, env, diags);
     let transform = super::objects::transform(&p, diags);
     let word = |name: &str| match p.get(name) {

@@ -37,6 +37,10 @@ pub struct Diagnostic {
     pub secondary: Vec<(Span, String)>,
     /// What the user can do about it.
     pub help: Option<String>,
+    /// A replacement that fixes it (a did-you-mean, the ptsc word for a
+    /// POV-Ray one): the span's text becomes the string. Editors offer it
+    /// as a quick fix.
+    pub fix: Option<(Span, String)>,
 }
 
 impl Diagnostic {
@@ -50,6 +54,7 @@ impl Diagnostic {
             label: String::new(),
             secondary: Vec::new(),
             help: None,
+            fix: None,
         }
     }
 
@@ -70,6 +75,12 @@ impl Diagnostic {
     /// Sets the help line.
     pub fn with_help(mut self, help: impl Into<String>) -> Self {
         self.help = Some(help.into());
+        self
+    }
+
+    /// Sets the replacement that fixes it ([`Diagnostic::fix`]).
+    pub fn with_fix(mut self, span: Span, replacement: impl Into<String>) -> Self {
+        self.fix = Some((span, replacement.into()));
         self
     }
 

@@ -215,6 +215,9 @@ fn shifted(mut d: Diagnostic, by: usize) -> Diagnostic {
     for (s, _) in &mut d.secondary {
         shift(s);
     }
+    if let Some((s, _)) = &mut d.fix {
+        shift(s);
+    }
     d
 }
 

@@ -47,6 +47,39 @@ pub const FUNCTIONS: &[(&str, (usize, usize))] = &[
     ("rand", (2, 2)),
 ];
 
+/// Each built-in function's signature and meaning, in the order of
+/// [`FUNCTIONS`] (tested): what hover and completion show.
+pub const FUNCTION_DOCS: &[(&str, &str, &str)] = &[
+    ("sin", "sin(x)", "sine of `x` in radians"),
+    ("cos", "cos(x)", "cosine of `x` in radians"),
+    ("tan", "tan(x)", "tangent of `x` in radians"),
+    ("asin", "asin(x)", "arc sine in radians, `x` in [-1, 1]"),
+    ("acos", "acos(x)", "arc cosine in radians, `x` in [-1, 1]"),
+    ("atan2", "atan2(y, x)", "the angle of the point `<x, y>` in radians, in (-π, π]"),
+    ("sqrt", "sqrt(x)", "square root, `x` ≥ 0"),
+    ("pow", "pow(x, y)", "`x` to the power `y` (a negative `x` only to a whole power)"),
+    ("exp", "exp(x)", "e to the power `x`"),
+    ("log", "log(x)", "natural logarithm, `x` > 0"),
+    ("abs", "abs(x)", "absolute value"),
+    ("min", "min(a, b)", "the smaller of two numbers"),
+    ("max", "max(a, b)", "the larger of two numbers"),
+    ("clamp", "clamp(x, lo, hi)", "`x` limited to [lo, hi]"),
+    ("floor", "floor(x)", "the largest whole number ≤ `x`"),
+    ("ceil", "ceil(x)", "the smallest whole number ≥ `x`"),
+    ("round", "round(x)", "the nearest whole number (halves away from zero)"),
+    ("int", "int(x)", "`x` with its fraction dropped (toward zero)"),
+    ("mod", "mod(a, b)", "the remainder of `a / b`, with the sign of `a`"),
+    ("radians", "radians(degrees)", "degrees to radians"),
+    ("degrees", "degrees(radians)", "radians to degrees"),
+    ("normalize", "normalize(v)", "the vector `v` scaled to length 1"),
+    ("length", "length(v)", "the length of vector `v`"),
+    ("dot", "dot(a, b)", "the dot product of two vectors"),
+    ("cross", "cross(a, b)", "the cross product of two vectors of 3"),
+    ("len", "len(list)", "the number of items of a list (or components of a vector)"),
+    ("str", "str(x[, width])", "a value as text; a whole number zero-padded to `width` digits (0 to 32), as frame numbers in file names"),
+    ("rand", "rand(seed, i)", "a uniform random number in [0, 1), the same for the same seed and index"),
+];
+
 /// The evaluated arguments of a call of a built-in function, and where
 /// each is written.
 struct Args<'a> {
@@ -392,4 +425,14 @@ pub fn random(seed: f64, index: f64) -> f64 {
     let bits = |x: f64| (x + 0.0).to_bits();
     let h = mix(mix(bits(seed)) ^ bits(index));
     (h >> 11) as f64 / (1u64 << 53) as f64
+}
+
+#[cfg(test)]
+mod doc_tests {
+    #[test]
+    fn every_function_has_its_doc_line_in_order() {
+        let names: Vec<_> = super::FUNCTIONS.iter().map(|f| f.0).collect();
+        let documented: Vec<_> = super::FUNCTION_DOCS.iter().map(|f| f.0).collect();
+        assert_eq!(names, documented);
+    }
 }

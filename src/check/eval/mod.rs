@@ -20,7 +20,7 @@ mod povray;
 mod value;
 
 pub use budget::{MAX_SUGGESTIONS, MAX_WORK};
-pub use builtins::{random, FUNCTIONS};
+pub use builtins::{random, FUNCTIONS, FUNCTION_DOCS};
 pub use env::{Binding, Env};
 pub use limits::*;
 pub use povray::written;

@@ -105,26 +105,39 @@ pub fn unknown_statement(name: &Ident, span: Span) -> Diagnostic {
         .with_help("write `background rgb <0.5, 0.7, 1>` (no braces); a daylight sky is `sky { … }`, an HDR image `environment { … }`");
     }
     if let Some(hint) = povray_hint(word).or_else(|| crate::syntax::povray::hint(word)) {
-        return Diagnostic::error(
+        let d = Diagnostic::error(
             codes::FOREIGN_BLOCK,
             format!("POV-Ray's `{word} {{ … }}` is not ptsc"),
             span,
         )
         .with_label("a statement ptsc does not have")
         .with_help(hint);
+        // The kind that stands for the POV-Ray word: its name replaces it.
+        let kind = KINDS
+            .iter()
+            .find(|k| k.povray.iter().any(|(w, _)| *w == word));
+        return match kind {
+            Some(k) => d.with_fix(name.span, k.name),
+            None => d,
+        };
     }
     let words = (crate::syntax::parser::KEYWORDS.iter().copied()).chain(names());
-    let help = match did_you_mean(word, words) {
+    let suggestion = did_you_mean(word, words);
+    let help = match suggestion {
         Some(s) => format!("did you mean `{s}`?"),
         None => "a scene is a list of statements: `let`, `fn`, `include`, `for`, `if`, `material`, `group`, `instance`, `camera { … }`, `render { … }`, a light or an object such as `sphere { … }`".to_string(),
     };
-    Diagnostic::error(
+    let d = Diagnostic::error(
         codes::FOREIGN_BLOCK,
         format!("unknown statement `{word}`"),
         span,
     )
     .with_label("not a ptsc statement")
-    .with_help(help)
+    .with_help(help);
+    match suggestion {
+        Some(s) => d.with_fix(name.span, s),
+        None => d,
+    }
 }
 
 #[cfg(test)]

@@ -196,6 +196,15 @@ async function main() {
     'engines.vscode should be what vscode-languageclient requires',
   );
 
+  // The docs name the .vsix this version makes (not checked in the unpacked .vsix).
+  for (const doc of ['../README.md', '../../README.md']) {
+    const file = path.join(root, doc);
+    if (fs.existsSync(path.join(root, 'package.sh')) && fs.existsSync(file)) {
+      const vsix = `ptsc-pts-${manifest.version}.vsix`;
+      assert(fs.readFileSync(file, 'utf8').includes(vsix), `${path.normalize(file)} should name ${vsix}`);
+    }
+  }
+
   const ext = require(path.join(root, 'extension.js'));
   assert(realClientModule && typeof realClientModule.LanguageClient === 'function', 'the real client did not load');
   assert.strictEqual(typeof ext.activate, 'function');

@@ -20,6 +20,8 @@ let terminal;
 let terminalWatching = false;
 /** @type {vscode.OutputChannel | undefined} */
 let output;
+/** @type {vscode.FileSystemWatcher | undefined} */
+let watcher;
 
 /** The `ptsc.path` setting, with `~` and `${workspaceFolder}` expanded. */
 function configuredPath() {
@@ -99,10 +101,8 @@ function clientOptions() {
       { scheme: 'untitled', language: 'pts' },
     ],
     outputChannel: output,
-    synchronize: {
-      // Included fragments and meshes change on disk: tell the server.
-      fileEvents: vscode.workspace.createFileSystemWatcher('**/*.{pts,ptsi}'),
-    },
+    // Included fragments change on disk (other programs, git): tell the server.
+    synchronize: { fileEvents: watcher },
   };
 }
 
@@ -223,8 +223,10 @@ async function runInTerminal(sub, uri) {
 
 async function activate(context) {
   output = vscode.window.createOutputChannel('ptsc language server');
+  watcher = vscode.workspace.createFileSystemWatcher('**/*.{pts,ptsi}');
   context.subscriptions.push(
     output,
+    watcher,
     vscode.commands.registerCommand('ptsc.render', (uri) => runInTerminal('render', uri)),
     vscode.commands.registerCommand('ptsc.watch', (uri) => runInTerminal('watch', uri)),
     vscode.commands.registerCommand('ptsc.restartServer', restartClient),

@@ -189,6 +189,8 @@ async function main() {
   const props = manifest.contributes.configuration.properties;
   assert.strictEqual(props['ptsc.path'].default, 'ptsc');
   assert.deepStrictEqual(props['ptsc.trace.server'].enum, ['off', 'messages', 'verbose']);
+  // In an untrusted workspace, its ptsc.path (a program to run) is ignored.
+  assert.deepStrictEqual(manifest.capabilities.untrustedWorkspaces.restrictedConfigurations, ['ptsc.path']);
   const clientManifest = require(path.join(root, 'node_modules/vscode-languageclient/package.json'));
   assert.strictEqual(
     manifest.engines.vscode,
@@ -229,6 +231,7 @@ async function main() {
   assert.strictEqual(c.serverOptions.run.transport, realClientModule.TransportKind.stdio);
   assert(c.clientOptions.documentSelector.every((s) => s.language === 'pts'));
   assert(c.clientOptions.documentSelector.some((s) => s.scheme === 'file'));
+  assert.strictEqual(c.clientOptions.synchronize.fileEvents.glob, '**/*.{pts,ptsi}');
   assert.deepStrictEqual(errors, []);
 
   // Render: saves the scene, one terminal named ptsc, a command line bash reads back.
@@ -287,6 +290,7 @@ async function main() {
   await registered.get('ptsc.restartServer')();
   assert.strictEqual(clients.length, 2);
   assert.strictEqual(clients[1].serverOptions.run.command, fakePtsc);
+  assert.strictEqual(clients[1].clientOptions.synchronize.fileEvents, c.clientOptions.synchronize.fileEvents);
   await ext.deactivate();
   assert(clients[1].stopped);
 

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Builds the VS Code extension: editors/vscode/ptsc-pts-<version>.vsix.
-# npm ci (the locked dependencies), the smoke test (test/smoke.js), then
+# npm ci (the locked dependencies), the smoke test (test/smoke.js), with
+# PTSC_BIN a handshake with the real server (test/handshake.js), then
 # vsce package with the runtime dependencies (vscode-languageclient), and a
 # check that the .vsix holds what VS Code needs. Needs node >= 18 and npm.
 set -euo pipefail
@@ -13,6 +14,16 @@ out="ptsc-pts-$version.vsix"
 # keytar (a native module, only for publishing) would try to.
 npm ci --ignore-scripts --no-audit --no-fund --prefer-offline --loglevel=error
 node test/smoke.js
+# With PTSC_BIN (a ptsc binary; CI passes the one its tests built), the
+# client library against the real server: initialize, a scene's diagnostics,
+# shutdown (test/handshake.js). Skipped for a ptsc without the lsp command.
+if [ -n "${PTSC_BIN:-}" ]; then
+  if "$PTSC_BIN" help lsp >/dev/null 2>&1; then
+    node test/handshake.js "$PTSC_BIN"
+  else
+    echo "package.sh: skipping the server handshake: $PTSC_BIN has no lsp command"
+  fi
+fi
 
 rm -f "$out"
 # Non-interactive: the licence is the project's (package.json's "license";

@@ -37,6 +37,7 @@ pub mod check;
 pub mod cli;
 pub mod compile;
 pub mod diag;
+pub mod format;
 pub mod fuzz;
 pub mod geometry;
 pub mod ide;

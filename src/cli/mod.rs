@@ -1,8 +1,10 @@
-//! The command line: `ptsc check`, `ptsc render`, `ptsc merge`, `ptsc watch`.
+//! The command line: `ptsc check`, `ptsc render`, `ptsc merge`, `ptsc watch`,
+//! `ptsc fmt`.
 
 mod args;
 mod check;
 mod farm;
+mod fmt;
 mod render;
 mod signals;
 mod watch;
@@ -96,6 +98,22 @@ pub enum Command {
     /// atomically), then full-resolution passes of 1, 2, 4, … spp to the image
     /// itself: the image only ever holds full-resolution results.
     Watch(render::RenderArgs),
+    /// Rewrite scenes in the canonical layout (docs/language.md, "Formatting").
+    ///
+    /// Each file is rewritten in place (atomically, and only if it changes);
+    /// `-` or no file formats stdin to stdout. A folder stands for its .pts
+    /// and .ptsi files (not its subfolders). A file with a syntax error is
+    /// left as it is. Exit status: 0 fine, 1 a syntax error (or, with
+    /// --check, a file that would change), 2 a file cannot be read or
+    /// written, or the formatter failed its own check.
+    Fmt {
+        /// The files and folders to format; `-` or none: stdin.
+        #[arg(value_name = "FILE|FOLDER|-")]
+        files: Vec<std::path::PathBuf>,
+        /// Change nothing: list the files that would change (exit status 1 if any).
+        #[arg(long)]
+        check: bool,
+    },
     /// Explain a diagnostic code: what it means, an example (as `rustc --explain`).
     Explain {
         /// The code, in full (`pts::check::unknown_param`) or its last part (`unknown_param`).
@@ -125,6 +143,7 @@ pub fn run() -> ExitCode {
         Command::Render { args, farm } => render::run(&args, &farm),
         Command::Merge(args) => farm::merge(&args),
         Command::Watch(args) => watch::run(&args),
+        Command::Fmt { files, check } => fmt::run(&files, check),
         Command::Explain { code, all } => explain(code.as_deref(), all),
     };
     ExitCode::from(code)

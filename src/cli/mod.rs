@@ -114,6 +114,10 @@ pub enum Command {
         #[arg(long)]
         check: bool,
     },
+    /// Serve the Language Server Protocol over stdin and stdout, for editors
+    /// (diagnostics as you type, hover, completion, go to definition,
+    /// rename, outline, colours, quick fixes, formatting; editors/README.md).
+    Lsp,
     /// Explain a diagnostic code: what it means, an example (as `rustc --explain`).
     Explain {
         /// The code, in full (`pts::check::unknown_param`) or its last part (`unknown_param`).
@@ -145,6 +149,13 @@ pub fn run() -> ExitCode {
         Command::Watch(args) => watch::run(&args),
         Command::Fmt { files, check } => fmt::run(&files, check),
         Command::Explain { code, all } => explain(code.as_deref(), all),
+        Command::Lsp => {
+            if crate::lsp::run_stdio() {
+                EXIT_OK
+            } else {
+                EXIT_SCENE_ERROR
+            }
+        }
     };
     ExitCode::from(code)
 }

@@ -187,8 +187,8 @@ impl<'t> Printer<'t> {
     pub fn trailing(&mut self, end: usize, limit: usize) {
         self.last_end = self.last_end.max(end);
         while let Some(c) = self.comments.get(self.next).copied() {
-            let same_line = c.start < self.last_end
-                || !self.text[self.last_end..c.start].contains('\n');
+            let same_line =
+                c.start < self.last_end || !self.text[self.last_end..c.start].contains('\n');
             if c.start >= limit || !same_line {
                 break;
             }

@@ -1,0 +1,524 @@
+//! The main loop: documents the editor holds, the last check of each, the
+//! answers to requests. Requests are answered on this thread from the
+//! last check (never waiting for one); checks run on the checker's thread
+//! ([`super::checker`]). A request that panics is answered with an error
+//! and the server goes on; a malformed message is reported in the log.
+
+use super::checker::{Checker, Done, Job, DEBOUNCE};
+use super::convert::{diagnostic, path_to_uri, uri_to_path, Lines};
+use super::position::{Encoding, LineIndex};
+use super::transport::MALFORMED;
+use crate::compile::Compiled;
+use crate::ide::View;
+use crate::source::MemoryFiles;
+use crossbeam_channel::{select, unbounded, Receiver};
+use lsp_server::{Connection, ErrorCode, Message, Notification, Request, RequestId, Response};
+use lsp_types as lsp;
+use serde_json::Value;
+use std::collections::{HashMap, HashSet};
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+use std::time::Instant;
+
+/// A document the editor holds.
+pub struct Document {
+    /// Its URI as the editor wrote it.
+    pub uri: lsp::Uri,
+    /// Its path.
+    pub path: PathBuf,
+    /// Its text now.
+    pub text: Arc<String>,
+    /// Its lines.
+    pub index: LineIndex,
+    /// Its version.
+    pub version: i32,
+}
+
+/// The server's state.
+pub struct Server {
+    pub(super) sender: crossbeam_channel::Sender<Message>,
+    pub(super) encoding: Encoding,
+    pub(super) documents: HashMap<String, Document>,
+    /// The last check of each open document, with the version it read.
+    pub(super) checks: HashMap<String, (i32, Arc<Compiled>)>,
+    /// The URIs each open document's last publication covered (itself and
+    /// the files it includes), to clear them when they are gone.
+    published: HashMap<String, Vec<String>>,
+    checker: Checker,
+    shutdown: bool,
+}
+
+/// How the session ended.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Ending {
+    /// `shutdown` then `exit`.
+    Clean,
+    /// `exit` without `shutdown`, or the input ended.
+    Abrupt,
+}
+
+/// Serves `connection` until `exit` or the end of its input.
+pub fn serve(connection: &Connection) -> Ending {
+    let Some((encoding, messages)) = initialize(connection) else {
+        return Ending::Abrupt;
+    };
+    let (done_tx, done_rx) = unbounded::<Done>();
+    let mut server = Server {
+        sender: connection.sender.clone(),
+        encoding,
+        documents: HashMap::new(),
+        checks: HashMap::new(),
+        published: HashMap::new(),
+        checker: Checker::start(done_tx),
+        shutdown: false,
+    };
+    for m in messages {
+        if let Some(end) = server.message(m) {
+            return end;
+        }
+    }
+    server.run(&connection.receiver, &done_rx)
+}
+
+/// Waits for `initialize` (answering anything else before it with an
+/// error) and answers it: the encoding chosen, and the messages that came
+/// with it to handle next.
+fn initialize(connection: &Connection) -> Option<(Encoding, Vec<Message>)> {
+    loop {
+        let message = connection.receiver.recv().ok()?;
+        match message {
+            Message::Request(req) if req.method == "initialize" => {
+                let params: lsp::InitializeParams =
+                    serde_json::from_value(req.params).unwrap_or_default();
+                let utf8 = (params.capabilities.general.as_ref())
+                    .and_then(|g| g.position_encodings.as_ref())
+                    .is_some_and(|e| e.contains(&lsp::PositionEncodingKind::UTF8));
+                let encoding = if utf8 {
+                    Encoding::Utf8
+                } else {
+                    Encoding::Utf16
+                };
+                let result = lsp::InitializeResult {
+                    capabilities: super::handlers::capabilities(encoding),
+                    server_info: Some(lsp::ServerInfo {
+                        name: "ptsc".to_string(),
+                        version: Some(env!("CARGO_PKG_VERSION").to_string()),
+                    }),
+                };
+                let _ = connection
+                    .sender
+                    .send(Response::new_ok(req.id, result).into());
+                return Some((encoding, Vec::new()));
+            }
+            Message::Request(req) => {
+                let e = Response::new_err(
+                    req.id,
+                    ErrorCode::ServerNotInitialized as i32,
+                    "the server is not initialized".into(),
+                );
+                let _ = connection.sender.send(e.into());
+            }
+            Message::Notification(n) if n.method == "exit" => return None,
+            _ => {}
+        }
+    }
+}
+
+impl Server {
+    fn run(&mut self, input: &Receiver<Message>, done: &Receiver<Done>) -> Ending {
+        loop {
+            select! {
+                recv(input) -> m => match m {
+                    Ok(m) => if let Some(end) = self.message(m) { return end },
+                    Err(_) => return Ending::Abrupt,
+                },
+                recv(done) -> d => if let Ok(d) = d { self.checked(d) },
+            }
+        }
+    }
+
+    /// Handles one message; `Some` when the session is over.
+    fn message(&mut self, message: Message) -> Option<Ending> {
+        match message {
+            Message::Request(req) => self.request(req),
+            Message::Notification(n) if n.method == "exit" => {
+                return Some(if self.shutdown {
+                    Ending::Clean
+                } else {
+                    Ending::Abrupt
+                });
+            }
+            Message::Notification(n) => self.notification(n),
+            Message::Response(_) => {}
+        }
+        None
+    }
+
+    fn request(&mut self, req: Request) {
+        if req.method == "shutdown" {
+            self.shutdown = true;
+            self.respond(Response::new_ok(req.id, Value::Null));
+            return;
+        }
+        if self.shutdown {
+            let e = Response::new_err(
+                req.id,
+                ErrorCode::InvalidRequest as i32,
+                "the server is shutting down".into(),
+            );
+            self.respond(e);
+            return;
+        }
+        let id = req.id.clone();
+        let started = Instant::now();
+        let answer = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+            super::handlers::handle(self, req)
+        }));
+        let response = match answer {
+            Ok(Ok(result)) => Response::new_ok(id, result),
+            Ok(Err((code, message))) => Response::new_err(id, code, message),
+            Err(panic) => {
+                let what = panic
+                    .downcast_ref::<&str>()
+                    .map(|s| s.to_string())
+                    .or_else(|| panic.downcast_ref::<String>().cloned())
+                    .unwrap_or_default();
+                self.log(
+                    lsp::MessageType::ERROR,
+                    format!("a request failed (a bug in ptsc): {what}"),
+                );
+                Response::new_err(
+                    id,
+                    ErrorCode::InternalError as i32,
+                    format!("ptsc failed on this request (a bug): {what}"),
+                )
+            }
+        };
+        let _ = started;
+        self.respond(response);
+    }
+
+    pub(super) fn respond(&self, response: Response) {
+        let _ = self.sender.send(response.into());
+    }
+
+    pub(super) fn notify(&self, method: &str, params: impl serde::Serialize) {
+        let _ = self
+            .sender
+            .send(Notification::new(method.to_string(), params).into());
+    }
+
+    pub(super) fn log(&self, typ: lsp::MessageType, message: String) {
+        self.notify("window/logMessage", lsp::LogMessageParams { typ, message });
+    }
+
+    fn notification(&mut self, n: Notification) {
+        let method = n.method.clone();
+        let result =
+            std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| self.document_event(n)));
+        match result {
+            Ok(Ok(())) => {}
+            Ok(Err(e)) => self.log(lsp::MessageType::WARNING, format!("{method}: {e}")),
+            Err(_) => self.log(
+                lsp::MessageType::ERROR,
+                format!("{method} failed (a bug in ptsc)"),
+            ),
+        }
+    }
+
+    fn document_event(&mut self, n: Notification) -> Result<(), String> {
+        let bad = |e: serde_json::Error| format!("bad parameters: {e}");
+        match n.method.as_str() {
+            MALFORMED => {
+                let error = n
+                    .params
+                    .get("error")
+                    .and_then(Value::as_str)
+                    .unwrap_or("")
+                    .to_string();
+                self.log(
+                    lsp::MessageType::ERROR,
+                    format!("ignored a malformed message: {error}"),
+                );
+            }
+            "textDocument/didOpen" => {
+                let p: lsp::DidOpenTextDocumentParams =
+                    serde_json::from_value(n.params).map_err(bad)?;
+                let d = p.text_document;
+                let key = d.uri.as_str().to_string();
+                let path = uri_to_path(&key);
+                let index = LineIndex::new(&d.text);
+                let doc = Document {
+                    uri: d.uri,
+                    path,
+                    text: Arc::new(d.text),
+                    index,
+                    version: d.version,
+                };
+                self.documents.insert(key.clone(), doc);
+                self.changed(&key, false);
+            }
+            "textDocument/didChange" => {
+                let p: lsp::DidChangeTextDocumentParams =
+                    serde_json::from_value(n.params).map_err(bad)?;
+                let key = p.text_document.uri.as_str().to_string();
+                let encoding = self.encoding;
+                let doc = self
+                    .documents
+                    .get_mut(&key)
+                    .ok_or("a change to a document that is not open")?;
+                let mut text = doc.text.as_str().to_string();
+                for change in p.content_changes {
+                    apply(&mut text, &change, encoding);
+                }
+                doc.index = LineIndex::new(&text);
+                doc.text = Arc::new(text);
+                doc.version = p.text_document.version;
+                self.changed(&key, true);
+            }
+            "textDocument/didClose" => {
+                let p: lsp::DidCloseTextDocumentParams =
+                    serde_json::from_value(n.params).map_err(bad)?;
+                let key = p.text_document.uri.as_str().to_string();
+                self.documents.remove(&key);
+                self.checks.remove(&key);
+                self.checker.forget(&key);
+                for uri in self.published.remove(&key).unwrap_or_default() {
+                    self.publish(&uri, Vec::new(), None);
+                }
+                // The scenes that include it read it from the disk again.
+                self.recheck_readers(&uri_to_path(&key));
+            }
+            "workspace/didChangeWatchedFiles" => {
+                let p: lsp::DidChangeWatchedFilesParams =
+                    serde_json::from_value(n.params).map_err(bad)?;
+                for change in p.changes {
+                    self.recheck_readers(&uri_to_path(change.uri.as_str()));
+                }
+            }
+            _ => {}
+        }
+        Ok(())
+    }
+
+    /// Schedules the check of `key` and of every open scene that read it.
+    fn changed(&mut self, key: &str, debounce: bool) {
+        self.schedule(key, debounce);
+        if let Some(path) = self.documents.get(key).map(|d| d.path.clone()) {
+            let readers: Vec<String> = self
+                .readers_of(&path)
+                .into_iter()
+                .filter(|k| k != key)
+                .collect();
+            for k in readers {
+                self.schedule(&k, debounce);
+            }
+        }
+    }
+
+    fn recheck_readers(&mut self, path: &Path) {
+        for k in self.readers_of(path) {
+            self.schedule(&k, false);
+        }
+    }
+
+    /// The open documents whose last check read `path`.
+    fn readers_of(&self, path: &Path) -> Vec<String> {
+        let path = crate::ide::normal(path);
+        (self.checks.iter())
+            .filter(|(_, (_, c))| c.dependencies.iter().any(|d| crate::ide::normal(d) == path))
+            .map(|(k, _)| k.clone())
+            .collect()
+    }
+
+    fn schedule(&mut self, key: &str, debounce: bool) {
+        let Some(doc) = self.documents.get(key) else {
+            return;
+        };
+        let mut files = MemoryFiles::over_disk();
+        for d in self.documents.values() {
+            files.insert(d.path.clone(), d.text.as_bytes().to_vec());
+        }
+        self.checker.schedule(Job {
+            uri: key.to_string(),
+            path: doc.path.clone(),
+            version: doc.version,
+            text: doc.text.clone(),
+            files,
+            due: Instant::now()
+                + if debounce {
+                    DEBOUNCE
+                } else {
+                    std::time::Duration::ZERO
+                },
+        });
+    }
+
+    /// A check finished: keep it and publish its diagnostics, unless the
+    /// document changed since.
+    fn checked(&mut self, done: Done) {
+        let current = self.documents.get(&done.uri).map(|d| d.version);
+        if current != Some(done.version) {
+            return;
+        }
+        self.checks
+            .insert(done.uri.clone(), (done.version, done.compiled.clone()));
+        self.publish_check(&done.uri, &done.compiled);
+    }
+
+    /// The diagnostics of a check, each file's under its own URI. A file
+    /// another open scene includes is reported by that scene's check (its
+    /// names are defined there), not by its own.
+    fn publish_check(&mut self, key: &str, compiled: &Compiled) {
+        let root = self
+            .documents
+            .get(key)
+            .map(|d| d.path.clone())
+            .unwrap_or_default();
+        let included_elsewhere = (self.checks.iter()).any(|(k, (_, c))| {
+            k != key
+                && c.sources
+                    .files()
+                    .iter()
+                    .skip(1)
+                    .any(|f| crate::ide::normal(&f.path) == root)
+        });
+        let mut by_file: HashMap<u32, Vec<&crate::diag::Diagnostic>> = HashMap::new();
+        for d in &compiled.diagnostics.items {
+            let file = d.span.map_or(0, |s| s.file.0);
+            by_file.entry(file).or_default().push(d);
+        }
+        let mut uris = Vec::new();
+        for (i, source) in compiled.sources.files().iter().enumerate() {
+            if i == 0 && included_elsewhere {
+                continue;
+            }
+            let Some(uri) = self.uri_of(&source.path) else {
+                continue;
+            };
+            let index = LineIndex::new(&source.text);
+            let lines = Lines {
+                text: &source.text,
+                index: &index,
+                encoding: self.encoding,
+            };
+            let mut related = |span: crate::span::Span| self.location(compiled, span);
+            let items: Vec<lsp::Diagnostic> = (by_file.get(&(i as u32)).into_iter().flatten())
+                .map(|d| diagnostic(d, &lines, &mut related))
+                .collect();
+            let version = self.documents.get(uri.as_str()).map(|d| d.version);
+            uris.push(uri.as_str().to_string());
+            self.publish(uri.as_str(), items, version);
+        }
+        // Files it included before and does not now: cleared.
+        let before = self
+            .published
+            .insert(key.to_string(), uris.clone())
+            .unwrap_or_default();
+        let still: HashSet<&String> = self.published.values().flatten().collect();
+        let gone: Vec<String> = before
+            .into_iter()
+            .filter(|u| !uris.contains(u) && !still.contains(u))
+            .collect();
+        for uri in gone {
+            self.publish(&uri, Vec::new(), None);
+        }
+    }
+
+    fn publish(&self, uri: &str, diagnostics: Vec<lsp::Diagnostic>, version: Option<i32>) {
+        let Ok(uri) = uri.parse::<lsp::Uri>() else {
+            return;
+        };
+        self.notify(
+            "textDocument/publishDiagnostics",
+            lsp::PublishDiagnosticsParams {
+                uri,
+                diagnostics,
+                version,
+            },
+        );
+    }
+
+    /// The URI of `path`: an open document's own, else a `file:` URI.
+    pub(super) fn uri_of(&self, path: &Path) -> Option<lsp::Uri> {
+        let path = crate::ide::normal(path);
+        match self.documents.values().find(|d| d.path == path) {
+            Some(d) => Some(d.uri.clone()),
+            None => path_to_uri(&path),
+        }
+    }
+
+    /// The protocol location of a span of a check.
+    pub(super) fn location(
+        &self,
+        compiled: &Compiled,
+        span: crate::span::Span,
+    ) -> Option<lsp::Location> {
+        let source = compiled.sources.files().get(span.file.0 as usize)?;
+        let uri = self.uri_of(&source.path)?;
+        let index = LineIndex::new(&source.text);
+        let lines = Lines {
+            text: &source.text,
+            index: &index,
+            encoding: self.encoding,
+        };
+        Some(lsp::Location {
+            uri,
+            range: lines.range(span.start as usize, span.end as usize),
+        })
+    }
+
+    /// The view of an open document: its text and the check to answer
+    /// from (its own, or that of an open scene that includes it).
+    pub(super) fn view<'a>(&'a self, uri: &str) -> Option<(View<'a>, &'a Document)> {
+        let doc = self.documents.get(uri)?;
+        let own = self.checks.get(uri).map(|(_, c)| c.as_ref());
+        let is_fragment = doc.path.extension().is_some_and(|e| e == "ptsi");
+        let includer = || {
+            (self.checks.iter())
+                .filter(|(k, _)| k.as_str() != uri)
+                .map(|(_, (_, c))| c.as_ref())
+                .find(|c| {
+                    c.sources
+                        .files()
+                        .iter()
+                        .skip(1)
+                        .any(|f| crate::ide::normal(&f.path) == doc.path)
+                })
+        };
+        let compiled = if is_fragment {
+            includer().or(own)
+        } else {
+            own.or_else(includer)
+        };
+        Some((
+            View {
+                path: &doc.path,
+                text: &doc.text,
+                compiled,
+            },
+            doc,
+        ))
+    }
+}
+
+/// Applies one change (a range replaced, or the whole text) to `text`.
+fn apply(text: &mut String, change: &lsp::TextDocumentContentChangeEvent, encoding: Encoding) {
+    match change.range {
+        None => text.clone_from(&change.text),
+        Some(range) => {
+            let index = LineIndex::new(text);
+            let start = index.offset(text, range.start.line, range.start.character, encoding);
+            let end = index
+                .offset(text, range.end.line, range.end.character, encoding)
+                .max(start);
+            text.replace_range(start..end, &change.text);
+        }
+    }
+}
+
+/// A request's id for logs.
+#[allow(dead_code)]
+fn id_text(id: &RequestId) -> String {
+    id.to_string()
+}

@@ -3,8 +3,7 @@
 //! error is left as it is (its diagnostics say why), as `ptsc fmt` does.
 
 use super::convert::Lines;
-use super::handlers::Answer;
-use super::server::Server;
+use super::state::{Answer, Server};
 use crate::format::{format_range, format_text, FormatError};
 use lsp_types as lsp;
 use serde_json::Value;

@@ -3,15 +3,12 @@
 
 use super::convert::Lines;
 use super::position::Encoding;
-use super::server::{Document, Server};
+use super::state::{Answer, Document, Server};
 use crate::ide::{self, View};
 use lsp_server::{ErrorCode, Request};
 use lsp_types as lsp;
 use serde_json::Value;
 use std::collections::HashMap;
-
-/// A request's answer, or its error code and message.
-pub type Answer = Result<Value, (i32, String)>;
 
 /// What the server can do.
 pub fn capabilities(encoding: Encoding) -> lsp::ServerCapabilities {

@@ -17,6 +17,7 @@ mod format;
 pub mod handlers;
 pub mod position;
 pub mod server;
+pub mod state;
 pub mod transport;
 
 pub use server::{serve, Ending};

@@ -5,48 +5,20 @@
 //! and the server goes on; a malformed message is reported in the log.
 
 use super::checker::{Checker, Done, Job, DEBOUNCE};
-use super::convert::{diagnostic, path_to_uri, uri_to_path, Lines};
+use super::convert::{diagnostic, uri_to_path, Lines};
 use super::position::{Encoding, LineIndex};
+use super::state::{Document, Server};
 use super::transport::MALFORMED;
 use crate::compile::Compiled;
-use crate::ide::View;
 use crate::source::MemoryFiles;
 use crossbeam_channel::{select, unbounded, Receiver};
-use lsp_server::{Connection, ErrorCode, Message, Notification, Request, RequestId, Response};
+use lsp_server::{Connection, ErrorCode, Message, Notification, Request, Response};
 use lsp_types as lsp;
 use serde_json::Value;
 use std::collections::{HashMap, HashSet};
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::sync::Arc;
 use std::time::Instant;
-
-/// A document the editor holds.
-pub struct Document {
-    /// Its URI as the editor wrote it.
-    pub uri: lsp::Uri,
-    /// Its path.
-    pub path: PathBuf,
-    /// Its text now.
-    pub text: Arc<String>,
-    /// Its lines.
-    pub index: LineIndex,
-    /// Its version.
-    pub version: i32,
-}
-
-/// The server's state.
-pub struct Server {
-    pub(super) sender: crossbeam_channel::Sender<Message>,
-    pub(super) encoding: Encoding,
-    pub(super) documents: HashMap<String, Document>,
-    /// The last check of each open document, with the version it read.
-    pub(super) checks: HashMap<String, (i32, Arc<Compiled>)>,
-    /// The URIs each open document's last publication covered (itself and
-    /// the files it includes), to clear them when they are gone.
-    published: HashMap<String, Vec<String>>,
-    checker: Checker,
-    shutdown: bool,
-}
 
 /// How the session ended.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -170,7 +142,6 @@ impl Server {
             return;
         }
         let id = req.id.clone();
-        let started = Instant::now();
         let answer = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
             super::handlers::handle(self, req)
         }));
@@ -194,22 +165,7 @@ impl Server {
                 )
             }
         };
-        let _ = started;
         self.respond(response);
-    }
-
-    pub(super) fn respond(&self, response: Response) {
-        let _ = self.sender.send(response.into());
-    }
-
-    pub(super) fn notify(&self, method: &str, params: impl serde::Serialize) {
-        let _ = self
-            .sender
-            .send(Notification::new(method.to_string(), params).into());
-    }
-
-    pub(super) fn log(&self, typ: lsp::MessageType, message: String) {
-        self.notify("window/logMessage", lsp::LogMessageParams { typ, message });
     }
 
     fn notification(&mut self, n: Notification) {
@@ -438,68 +394,6 @@ impl Server {
             },
         );
     }
-
-    /// The URI of `path`: an open document's own, else a `file:` URI.
-    pub(super) fn uri_of(&self, path: &Path) -> Option<lsp::Uri> {
-        let path = crate::ide::normal(path);
-        match self.documents.values().find(|d| d.path == path) {
-            Some(d) => Some(d.uri.clone()),
-            None => path_to_uri(&path),
-        }
-    }
-
-    /// The protocol location of a span of a check.
-    pub(super) fn location(
-        &self,
-        compiled: &Compiled,
-        span: crate::span::Span,
-    ) -> Option<lsp::Location> {
-        let source = compiled.sources.files().get(span.file.0 as usize)?;
-        let uri = self.uri_of(&source.path)?;
-        let index = LineIndex::new(&source.text);
-        let lines = Lines {
-            text: &source.text,
-            index: &index,
-            encoding: self.encoding,
-        };
-        Some(lsp::Location {
-            uri,
-            range: lines.range(span.start as usize, span.end as usize),
-        })
-    }
-
-    /// The view of an open document: its text and the check to answer
-    /// from (its own, or that of an open scene that includes it).
-    pub(super) fn view<'a>(&'a self, uri: &str) -> Option<(View<'a>, &'a Document)> {
-        let doc = self.documents.get(uri)?;
-        let own = self.checks.get(uri).map(|(_, c)| c.as_ref());
-        let is_fragment = doc.path.extension().is_some_and(|e| e == "ptsi");
-        let includer = || {
-            (self.checks.iter())
-                .filter(|(k, _)| k.as_str() != uri)
-                .map(|(_, (_, c))| c.as_ref())
-                .find(|c| {
-                    c.sources
-                        .files()
-                        .iter()
-                        .skip(1)
-                        .any(|f| crate::ide::normal(&f.path) == doc.path)
-                })
-        };
-        let compiled = if is_fragment {
-            includer().or(own)
-        } else {
-            own.or_else(includer)
-        };
-        Some((
-            View {
-                path: &doc.path,
-                text: &doc.text,
-                compiled,
-            },
-            doc,
-        ))
-    }
 }
 
 /// Applies one change (a range replaced, or the whole text) to `text`.
@@ -515,10 +409,4 @@ fn apply(text: &mut String, change: &lsp::TextDocumentContentChangeEvent, encodi
             text.replace_range(start..end, &change.text);
         }
     }
-}
-
-/// A request's id for logs.
-#[allow(dead_code)]
-fn id_text(id: &RequestId) -> String {
-    id.to_string()
 }

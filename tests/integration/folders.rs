@@ -13,6 +13,9 @@ const CHECKED: &[&str] = &[
     "src/check",
     "src/check/eval",
     "src/check/kinds",
+    "src/format",
+    "src/ide",
+    "src/lsp",
 ];
 
 /// A file's module path from the crate root (`check::eval::env`; a

@@ -32,8 +32,13 @@ const FLOORS: &[(&str, u32)] = &[
     // Between them: lowering, then the driver, then the front doors.
     ("lower", 8),
     ("compile", 9),
+    // The editor's side: the formatter (syntax and the kinds' names), the
+    // answers over a check, the language server.
+    ("format", 7),
+    ("ide", 10),
+    ("lsp", 11),
     ("fuzz", 10),
-    ("cli", 10),
+    ("cli", 12),
 ];
 
 /// Modules that never import the front end (`syntax`, `check`), the
@@ -53,7 +58,9 @@ const RENDER_SIDE: &[&str] = &[
 ];
 
 /// The front end and the stages above the renderer.
-const FRONT: &[&str] = &["syntax", "check", "lower", "compile", "fuzz", "cli"];
+const FRONT: &[&str] = &[
+    "syntax", "check", "lower", "compile", "format", "ide", "lsp", "fuzz", "cli",
+];
 
 /// The top-level module a file of `src/` belongs to (`None`: lib.rs, main.rs).
 fn module_of(src: &Path, file: &Path) -> Option<String> {

@@ -55,7 +55,8 @@ fn broken(p: &mut Printer, b: &Block) {
             .entries
             .get(k + 1)
             .map_or(close, |n| entry_span(n).start as usize);
-        p.trailing(span.end as usize, limit);
+        let item_end = p.code_end(span.start as usize, span.end as usize);
+        p.trailing(item_end, limit);
         p.end_line();
         first = false;
     }

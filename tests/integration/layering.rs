@@ -29,6 +29,8 @@ const FLOORS: &[(&str, u32)] = &[
     // The front end.
     ("syntax", 3),
     ("check", 6),
+    // The formatter reads the syntax and the kind table's names.
+    ("format", 7),
     // Between them: lowering, then the driver, then the front doors.
     ("lower", 8),
     ("compile", 9),
@@ -53,7 +55,9 @@ const RENDER_SIDE: &[&str] = &[
 ];
 
 /// The front end and the stages above the renderer.
-const FRONT: &[&str] = &["syntax", "check", "lower", "compile", "fuzz", "cli"];
+const FRONT: &[&str] = &[
+    "syntax", "check", "format", "lower", "compile", "fuzz", "cli",
+];
 
 /// The top-level module a file of `src/` belongs to (`None`: lib.rs, main.rs).
 fn module_of(src: &Path, file: &Path) -> Option<String> {

@@ -211,6 +211,10 @@ impl<'t> Printer<'t> {
             self.space = true;
             self.write(c.text(self.text));
             self.last_end = self.last_end.max(c.end);
+            if c.is_line(self.text) {
+                // Nothing more on this line: it is the comment's.
+                break;
+            }
         }
     }
 }

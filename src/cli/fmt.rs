@@ -63,7 +63,10 @@ fn expand(args: &[PathBuf]) -> Vec<Result<PathBuf, String>> {
                 found.sort();
                 out.extend(found.into_iter().map(Ok));
             }
-            Err(e) => out.push(Err(format!("cannot read the folder {}: {e}", arg.display()))),
+            Err(e) => out.push(Err(format!(
+                "cannot read the folder {}: {e}",
+                arg.display()
+            ))),
         }
     }
     out
@@ -149,7 +152,10 @@ fn stdin(check: bool) -> u8 {
         return code;
     }
     let mut stdout = std::io::stdout().lock();
-    if let Err(e) = stdout.write_all(out.as_bytes()).and_then(|()| stdout.flush()) {
+    if let Err(e) = stdout
+        .write_all(out.as_bytes())
+        .and_then(|()| stdout.flush())
+    {
         eprintln!("error: cannot write stdout: {e}");
         return EXIT_USAGE;
     }

@@ -116,28 +116,7 @@ fn entry(p: &mut Printer, e: &Entry, after: bool) {
             apart(p, color, true);
         }
         Entry::Foreign { span, .. } => verbatim(p, *span),
-        Entry::Positional { values, .. } => match values.split_first() {
-            Some((head, tail)) => {
-                // A bare word first would read as a parameter's name or a
-                // flag: only `name, …` is a positional list that starts so.
-                // It came from signs that cancelled (`!!a` is `a`): keep two.
-                let bare_name = matches!(head.kind, ExprKind::Name(_))
-                    && !parenthesised(p.text, head)
-                    && !tail.is_empty();
-                if starts_with_word(p.text, head) && !bare_name {
-                    p.write("!!");
-                    expr(p, head);
-                } else {
-                    apart(p, head, after);
-                }
-                for v in tail {
-                    p.write(",");
-                    p.space();
-                    expr(p, v);
-                }
-            }
-            None => {}
-        },
+        Entry::Positional { values, .. } => positional(p, values, after),
         Entry::Material { material, span } => {
             p.token(span.start as usize, "material");
             p.space();
@@ -146,6 +125,29 @@ fn entry(p: &mut Printer, e: &Entry, after: bool) {
                 MaterialRef::Inline(b) => block(p, b),
             }
         }
+    }
+}
+
+/// Writes a positional list (`after`: another entry comes before it).
+fn positional(p: &mut Printer, values: &[Expr], after: bool) {
+    let Some((head, tail)) = values.split_first() else {
+        return;
+    };
+    // A bare word first would read as a parameter's name or a
+    // flag: only `name, …` is a positional list that starts so.
+    // It came from signs that cancelled (`!!a` is `a`): keep two.
+    let bare_name =
+        matches!(head.kind, ExprKind::Name(_)) && !parenthesised(p.text, head) && !tail.is_empty();
+    if starts_with_word(p.text, head) && !bare_name {
+        p.write("!!");
+        expr(p, head);
+    } else {
+        apart(p, head, after);
+    }
+    for v in tail {
+        p.write(",");
+        p.space();
+        expr(p, v);
     }
 }
 

@@ -92,7 +92,11 @@ fn bare(p: &mut Printer, e: &Expr, own_span: bool) {
             close(p, ")");
         }
         ExprKind::Neg(inner) | ExprKind::Not(inner) => {
-            let sign = if matches!(e.kind, ExprKind::Neg(_)) { "-" } else { "!" };
+            let sign = if matches!(e.kind, ExprKind::Neg(_)) {
+                "-"
+            } else {
+                "!"
+            };
             p.token(first, sign);
             expr(p, inner);
         }

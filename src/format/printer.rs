@@ -128,7 +128,11 @@ impl<'t> Printer<'t> {
         let mut end = end;
         loop {
             end = start + self.text[start..end].trim_end().len();
-            let inside = self.comments.iter().rev().find(|c| c.start < end && end <= c.end);
+            let inside = self
+                .comments
+                .iter()
+                .rev()
+                .find(|c| c.start < end && end <= c.end);
             match inside {
                 Some(c) if c.start >= start => end = c.start,
                 _ => return end,
@@ -202,8 +206,8 @@ impl<'t> Printer<'t> {
     pub fn trailing(&mut self, end: usize, limit: usize) {
         self.last_end = self.last_end.max(end);
         while let Some(c) = self.comments.get(self.next).copied() {
-            let same_line = c.start < self.last_end
-                || !self.text[self.last_end..c.start].contains('\n');
+            let same_line =
+                c.start < self.last_end || !self.text[self.last_end..c.start].contains('\n');
             if c.start >= limit || !same_line {
                 break;
             }

@@ -56,7 +56,9 @@ pub(super) fn comments(text: &str, verbatim: &[(usize, usize)]) -> Vec<Comment> 
                 i = end;
             }
             b'/' if bytes.get(i + 1) == Some(&b'*') => {
-                let end = text[i + 2..].find("*/").map_or(text.len(), |k| i + 2 + k + 2);
+                let end = text[i + 2..]
+                    .find("*/")
+                    .map_or(text.len(), |k| i + 2 + k + 2);
                 out.push(Comment { start: i, end });
                 i = end;
             }
@@ -113,7 +115,9 @@ pub(super) fn next_code(text: &str, from: usize, also: &[u8]) -> usize {
         if b == b'/' && bytes.get(i + 1) == Some(&b'/') {
             i = text[i..].find('\n').map_or(text.len(), |k| i + k);
         } else if b == b'/' && bytes.get(i + 1) == Some(&b'*') {
-            i = text[i + 2..].find("*/").map_or(text.len(), |k| i + 2 + k + 2);
+            i = text[i + 2..]
+                .find("*/")
+                .map_or(text.len(), |k| i + 2 + k + 2);
         } else if b.is_ascii_whitespace() || also.contains(&b) {
             i += 1;
         } else if b >= 0x80 && text[i..].starts_with(char::is_whitespace) {

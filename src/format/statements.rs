@@ -120,11 +120,17 @@ fn statement(p: &mut Printer, s: &Statement) {
             expr(p, value);
             p.token(end - 1, ";");
         }
-        Statement::Group { name, body: list, .. } => {
+        Statement::Group {
+            name, body: list, ..
+        } => {
             word_and_name(p, start, "group", name);
             body(p, name.span.end as usize, list);
         }
-        Statement::Instance { group: name, block: b, .. } => {
+        Statement::Instance {
+            group: name,
+            block: b,
+            ..
+        } => {
             word_and_name(p, start, "instance", name);
             p.space();
             block(p, b);
@@ -140,7 +146,10 @@ fn statement(p: &mut Printer, s: &Statement) {
             block(p, b);
         }
         Statement::Texture {
-            name, kind, block: b, ..
+            name,
+            kind,
+            block: b,
+            ..
         } => {
             word_and_name(p, start, "texture", name);
             p.space();

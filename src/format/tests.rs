@@ -92,9 +92,8 @@ fn a_block_that_does_not_fit_is_broken_and_nested_ones_decide_alone() {
     let out = fmt(long);
     assert!(out.lines().all(|l| l.chars().count() <= 100), "{out}");
     assert!(out.contains("\n    material {"), "{out}");
-    assert!(out.contains(
-        "        diffuse checker { even rgb 0.9 odd rgb 0.1 space world scale 0.5 }\n"
-    ));
+    assert!(out
+        .contains("        diffuse checker { even rgb 0.9 odd rgb 0.1 space world scale 0.5 }\n"));
 }
 
 #[test]

@@ -76,7 +76,13 @@ mod tests {
         let text = "let a = 1; // one\n";
         let file = parse(text);
         assert!(verify(text, &file, "let a = 1; // one\n").is_ok());
-        assert!(matches!(verify(text, &file, "let a = 1;\n"), Err(FormatError::Bug(_))));
-        assert!(matches!(verify(text, &file, "let a = 2; // one\n"), Err(FormatError::Bug(_))));
+        assert!(matches!(
+            verify(text, &file, "let a = 1;\n"),
+            Err(FormatError::Bug(_))
+        ));
+        assert!(matches!(
+            verify(text, &file, "let a = 2; // one\n"),
+            Err(FormatError::Bug(_))
+        ));
     }
 }

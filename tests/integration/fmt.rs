@@ -48,7 +48,11 @@ fn check_one(name: &str, text: &str) -> bool {
         return false;
     };
     let once = format_text(text).unwrap_or_else(|e| panic!("{name}: {e}"));
-    assert_eq!(tree(&once).as_deref(), Some(before.as_str()), "{name}: tree");
+    assert_eq!(
+        tree(&once).as_deref(),
+        Some(before.as_str()),
+        "{name}: tree"
+    );
     assert_eq!(comments(&once), comments(text), "{name}: comments");
     let twice = format_text(&once).unwrap_or_else(|e| panic!("{name} (twice): {e}"));
     assert_eq!(once, twice, "{name}: not idempotent");
@@ -73,7 +77,12 @@ fn doc_snippets() -> Vec<(String, String)> {
 #[test]
 fn fmt_is_idempotent_and_faithful_on_every_kept_scene() {
     let mut files = Vec::new();
-    for dir in ["examples", "tests/diagnostics", "tests/golden", "tests/hostile"] {
+    for dir in [
+        "examples",
+        "tests/diagnostics",
+        "tests/golden",
+        "tests/hostile",
+    ] {
         files.extend(files_below(&root().join(dir), "pts"));
         files.extend(files_below(&root().join(dir), "ptsi"));
     }
@@ -108,7 +117,9 @@ fn component() -> BoxedStrategy<Vec<String>> {
             inner.clone().prop_map(|e| wrap("(", vec![e], ")")),
             inner.clone().prop_map(|e| cat([vec!["-".into()], e])),
             inner.clone().prop_map(|e| cat([vec!["!".into()], e])),
-            inner.clone().prop_map(|e| cat([vec!["xs".into(), "[".into()], e, vec!["]".into()]])),
+            inner
+                .clone()
+                .prop_map(|e| cat([vec!["xs".into(), "[".into()], e, vec!["]".into()]])),
             (inner.clone(), inner.clone(), inner).prop_map(|(c, a, b)| cat([
                 vec!["if".into()],
                 c,
@@ -178,8 +189,25 @@ fn block() -> BoxedStrategy<Vec<String>> {
 /// A statement's tokens.
 fn statement() -> BoxedStrategy<Vec<String>> {
     let simple = prop_oneof![
-        expr().prop_map(|e| cat([vec!["let".into(), "a".into(), "=".into()], e, vec![";".into()]])),
-        expr().prop_map(|e| cat([vec!["fn".into(), "g".into(), "(".into(), "x".into(), ",".into(), "y".into(), ")".into(), "=".into()], e, vec![";".into()]])),
+        expr().prop_map(|e| cat([
+            vec!["let".into(), "a".into(), "=".into()],
+            e,
+            vec![";".into()]
+        ])),
+        expr().prop_map(|e| cat([
+            vec![
+                "fn".into(),
+                "g".into(),
+                "(".into(),
+                "x".into(),
+                ",".into(),
+                "y".into(),
+                ")".into(),
+                "=".into()
+            ],
+            e,
+            vec![";".into()]
+        ])),
         block().prop_map(|b| cat([vec!["sphere".into()], b])),
         block().prop_map(|b| cat([vec!["material".into(), "m".into()], b])),
         block().prop_map(|b| cat([vec!["texture".into(), "t".into(), "wood".into()], b])),
@@ -188,11 +216,27 @@ fn statement() -> BoxedStrategy<Vec<String>> {
     ];
     simple
         .prop_recursive(2, 12, 3, |inner| {
-            let body = prop::collection::vec(inner, 0..3)
-                .prop_map(|s| cat([vec!["{".into()], s.into_iter().flatten().collect(), vec!["}".into()]]));
+            let body = prop::collection::vec(inner, 0..3).prop_map(|s| {
+                cat([
+                    vec!["{".into()],
+                    s.into_iter().flatten().collect(),
+                    vec!["}".into()],
+                ])
+            });
             prop_oneof![
-                body.clone().prop_map(|b| cat([vec!["group".into(), "g".into()], b])),
-                (component(), body.clone()).prop_map(|(n, b)| cat([vec!["for".into(), "i".into(), "in".into(), "0".into(), "..".into()], n, b])),
+                body.clone()
+                    .prop_map(|b| cat([vec!["group".into(), "g".into()], b])),
+                (component(), body.clone()).prop_map(|(n, b)| cat([
+                    vec![
+                        "for".into(),
+                        "i".into(),
+                        "in".into(),
+                        "0".into(),
+                        "..".into()
+                    ],
+                    n,
+                    b
+                ])),
                 (expr(), body.clone(), prop::option::of(body)).prop_map(|(c, b, e)| {
                     let mut out = cat([vec!["if".into()], c, b]);
                     if let Some(e) = e {
@@ -288,7 +332,12 @@ fn fmt_reads_stdin_and_writes_stdout() {
             .stderr(std::process::Stdio::piped())
             .spawn()
             .unwrap();
-        child.stdin.take().unwrap().write_all(input.as_bytes()).unwrap();
+        child
+            .stdin
+            .take()
+            .unwrap()
+            .write_all(input.as_bytes())
+            .unwrap();
         let out = child.wait_with_output().unwrap();
         (out.status.code(), String::from_utf8(out.stdout).unwrap())
     };
@@ -297,6 +346,9 @@ fn fmt_reads_stdin_and_writes_stdout() {
         (Some(0), "let a = 1; // one\n".to_string())
     );
     assert_eq!(run(&["fmt"], "box{}"), (Some(0), "box {}\n".to_string()));
-    assert_eq!(run(&["fmt", "--check", "-"], "box{}"), (Some(1), "<stdin>\n".to_string()));
+    assert_eq!(
+        run(&["fmt", "--check", "-"], "box{}"),
+        (Some(1), "<stdin>\n".to_string())
+    );
     assert_eq!(run(&["fmt", "-"], "box{"), (Some(1), "box{".to_string()));
 }

@@ -2,10 +2,10 @@
 //! one line when it fits in [`WIDTH`] columns and holds no comment, else
 //! one entry per line, indented one level; values are not aligned.
 
-use super::exprs::{expr, list};
+use super::exprs::{expr, parenthesised};
 use super::printer::{Printer, WIDTH};
 use crate::span::Span;
-use crate::syntax::ast::{Block, Entry, MaterialRef};
+use crate::syntax::ast::{Block, Entry, Expr, ExprKind, MaterialRef};
 
 /// Writes a block, on the line or broken.
 pub(super) fn block(p: &mut Printer, b: &Block) {
@@ -27,9 +27,9 @@ fn flat(p: &Printer, b: &Block) -> Option<String> {
         sub.write("{}");
     } else {
         sub.write("{");
-        for e in &b.entries {
+        for (k, e) in b.entries.iter().enumerate() {
             sub.space();
-            entry(&mut sub, e);
+            entry(&mut sub, e, k > 0);
         }
         sub.space();
         sub.write("}");
@@ -49,13 +49,20 @@ fn broken(p: &mut Printer, b: &Block) {
     let mut first = true;
     for (k, e) in b.entries.iter().enumerate() {
         let span = entry_span(e);
-        p.leading(span.start as usize, first);
-        entry(p, e);
+        // A positional list's first value may start after signs that
+        // cancelled out (`!!1`): a comment between them leads the entry.
+        let lead = match e {
+            Entry::Positional { values, .. } => values.first().map_or(span, |v| v.span),
+            _ => span,
+        };
+        p.leading(lead.start as usize, first);
+        entry(p, e, k > 0);
         let limit = b
             .entries
             .get(k + 1)
             .map_or(close, |n| entry_span(n).start as usize);
-        p.trailing(span.end as usize, limit);
+        let item_end = p.code_end(span.start as usize, span.end as usize);
+        p.trailing(item_end, limit);
         p.end_line();
         first = false;
     }
@@ -78,8 +85,8 @@ fn entry_span(e: &Entry) -> Span {
     }
 }
 
-/// Writes one entry.
-fn entry(p: &mut Printer, e: &Entry) {
+/// Writes one entry (`after`: another entry comes before it).
+fn entry(p: &mut Printer, e: &Entry, after: bool) {
     match e {
         Entry::Flag { name } => p.token(name.span.start as usize, &name.name),
         Entry::Param { name, value, .. } => {
@@ -106,10 +113,10 @@ fn entry(p: &mut Printer, e: &Entry) {
             p.space();
             expr(p, position);
             p.space();
-            expr(p, color);
+            apart(p, color, true);
         }
         Entry::Foreign { span, .. } => verbatim(p, *span),
-        Entry::Positional { values, .. } => list(p, values),
+        Entry::Positional { values, .. } => positional(p, values, after),
         Entry::Material { material, span } => {
             p.token(span.start as usize, "material");
             p.space();
@@ -118,6 +125,76 @@ fn entry(p: &mut Printer, e: &Entry) {
                 MaterialRef::Inline(b) => block(p, b),
             }
         }
+    }
+}
+
+/// Writes a positional list (`after`: another entry comes before it).
+fn positional(p: &mut Printer, values: &[Expr], after: bool) {
+    let Some((head, tail)) = values.split_first() else {
+        return;
+    };
+    // A bare word first would read as a parameter's name or a
+    // flag: only `name, …` is a positional list that starts so.
+    // It came from signs that cancelled (`!!a` is `a`): keep two.
+    let bare_name =
+        matches!(head.kind, ExprKind::Name(_)) && !parenthesised(p.text, head) && !tail.is_empty();
+    if starts_with_word(p.text, head) && !bare_name {
+        p.write("!!");
+        expr(p, head);
+    } else {
+        apart(p, head, after);
+    }
+    for v in tail {
+        p.write(",");
+        p.space();
+        expr(p, v);
+    }
+}
+
+/// Writes `e`, which follows a value with nothing between them: after
+/// `!!` if it would start with a `-` (the parser reads `!-!x` as `-!x`,
+/// and `1 -!x` would be a subtraction; `!!` cancels out, and parentheses
+/// after a name would make a call).
+fn apart(p: &mut Printer, e: &Expr, after_value: bool) {
+    if after_value && starts_with_minus(p.text, e) {
+        p.write("!!");
+    }
+    expr(p, e);
+}
+
+/// Whether `e` is written starting with a `-`.
+fn starts_with_minus(text: &str, e: &Expr) -> bool {
+    if parenthesised(text, e) {
+        return false;
+    }
+    match &e.kind {
+        ExprKind::Neg(_) => true,
+        ExprKind::Chain { first, .. } => starts_with_minus(text, first),
+        ExprKind::Index { base, .. } | ExprKind::Member { base, .. } => {
+            starts_with_minus(text, base)
+        }
+        _ => false,
+    }
+}
+
+/// Whether `e` is written starting with a word (a name, `true`, `rgb`,
+/// `if`, a call).
+fn starts_with_word(text: &str, e: &Expr) -> bool {
+    if parenthesised(text, e) {
+        return false;
+    }
+    match &e.kind {
+        ExprKind::Name(_)
+        | ExprKind::Bool(_)
+        | ExprKind::Call { .. }
+        | ExprKind::Color(_)
+        | ExprKind::FilterColor { .. }
+        | ExprKind::If { .. } => true,
+        ExprKind::Chain { first, .. } => starts_with_word(text, first),
+        ExprKind::Index { base, .. } | ExprKind::Member { base, .. } => {
+            starts_with_word(text, base)
+        }
+        _ => false,
     }
 }
 

@@ -35,11 +35,17 @@ pub(super) fn parenthesised(text: &str, e: &Expr) -> bool {
 /// parentheses), so its first and last tokens are where the span says.
 fn bare(p: &mut Printer, e: &Expr, own_span: bool) {
     let start = e.span.start as usize;
-    // Where the first token is: inside the parentheses when there are some.
-    let first = if own_span {
-        start
-    } else {
-        next_code(p.text, start, b"(")
+    // Where the first token is: inside the parentheses when there are
+    // some (and, for a literal or a name, past the signs that cancelled
+    // out: `(--1)` is the number 1).
+    let leaf = matches!(
+        e.kind,
+        ExprKind::Number(_) | ExprKind::Str(_) | ExprKind::Bool(_) | ExprKind::Name(_)
+    );
+    let first = match (own_span, leaf) {
+        (true, _) => start,
+        (false, false) => next_code(p.text, start, b"("),
+        (false, true) => next_code(p.text, start, b"(-!"),
     };
     let close = |p: &mut Printer, s: &str| {
         if own_span {

@@ -121,6 +121,25 @@ impl<'t> Printer<'t> {
         }
     }
 
+    /// Where the item spanning `start..end` really ends: a parse's span
+    /// may take in the blanks and comments that follow it (pest's search
+    /// for one more repetition skips them), which are not the item's.
+    pub fn code_end(&self, start: usize, end: usize) -> usize {
+        let mut end = end;
+        loop {
+            end = start + self.text[start..end].trim_end().len();
+            let inside = self
+                .comments
+                .iter()
+                .rev()
+                .find(|c| c.start < end && end <= c.end);
+            match inside {
+                Some(c) if c.start >= start => end = c.start,
+                _ => return end,
+            }
+        }
+    }
+
     /// Whether a comment not written yet starts before `end`.
     pub fn comment_before(&self, end: usize) -> bool {
         self.comments.get(self.next).is_some_and(|c| c.start < end)
@@ -196,6 +215,10 @@ impl<'t> Printer<'t> {
             self.space = true;
             self.write(c.text(self.text));
             self.last_end = self.last_end.max(c.end);
+            if c.is_line(self.text) {
+                // Nothing more on this line: it is the comment's.
+                break;
+            }
         }
     }
 }

@@ -23,7 +23,8 @@ fn statements(p: &mut Printer, list: &[Statement], end: usize) {
         p.leading(span.start as usize, first);
         statement(p, s);
         let limit = list.get(k + 1).map_or(end, |n| n.span().start as usize);
-        p.trailing(span.end as usize, limit);
+        let item_end = p.code_end(span.start as usize, span.end as usize);
+        p.trailing(item_end, limit);
         p.end_line();
         first = false;
     }

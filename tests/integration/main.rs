@@ -8,6 +8,7 @@ mod environment;
 mod examples;
 mod farm;
 mod files;
+mod fmt;
 mod folders;
 mod frames;
 mod golden;

@@ -946,6 +946,202 @@ fn formatting_gives_what_ptsc_fmt_gives() {
 }
 
 #[test]
+fn typing_a_word_key_by_key_ends_on_the_last_versions_diagnostics() {
+    let text = format!("{CAMERA_AND_LIGHT}sphere {{ center <0, 0, 0>  }}\n");
+    let (_dir, uris) = folder(&[("scene.pts", &text)]);
+    let mut c = Client::start(false);
+    assert!(
+        !errors(&c.open(&uris[0], &text)).is_empty(),
+        "no radius yet"
+    );
+    let mut at = nth(&text, "0>  }", 0) + "0> ".len();
+    let mut typed = text.clone();
+    let mut version = 1;
+    for key in "radius 2".chars() {
+        version += 1;
+        let p = position(&typed, at, false);
+        c.notify(
+            "textDocument/didChange",
+            json!({ "textDocument": { "uri": uris[0], "version": version },
+                    "contentChanges": [{ "range": { "start": p, "end": p }, "text": key.to_string() }] }),
+        );
+        typed.insert(at, key);
+        at += key.len_utf8();
+    }
+    assert_eq!(
+        c.diagnostics_of_version(&uris[0], version),
+        Vec::<Value>::new()
+    );
+    // No older version is published after the newest.
+    c.ok(
+        "textDocument/hover",
+        json!({ "textDocument": { "uri": uris[0] }, "position": { "line": 0, "character": 0 } }),
+    );
+    std::thread::sleep(Duration::from_millis(300));
+    while let Ok(m) = c.incoming.try_recv() {
+        if m["method"] == "textDocument/publishDiagnostics" && m["params"]["uri"] == uris[0] {
+            assert_eq!(m["params"]["version"], version, "{m}");
+        }
+    }
+    let hover = c.at(
+        "textDocument/hover",
+        &uris[0],
+        &typed,
+        nth(&typed, "radius", 0),
+    );
+    assert!(hover["contents"]["value"]
+        .as_str()
+        .unwrap()
+        .contains("**radius**"));
+}
+
+#[test]
+fn an_open_included_file_wins_over_the_disk() {
+    let lib_on_disk =
+        "material red { diffuse rgb <1, 0, 0> }\nsphere { center <0, 0, 0> radus 2 }\n";
+    let (scene, _) = scene_and_library();
+    let (dir, uris) = folder(&[("scene.pts", &scene), ("lib.ptsi", lib_on_disk)]);
+    let mut c = Client::start(false);
+    c.open(&uris[0], &scene);
+    let on_disk = c.diagnostics(&uris[1], |p| {
+        p["diagnostics"].as_array().unwrap().len() == 1
+    });
+    assert_eq!(on_disk["version"], Value::Null, "not open: no version");
+
+    // The editor's text of the library, fixed and not saved.
+    let fixed = lib_on_disk.replace("radus", "radius");
+    c.notify(
+        "textDocument/didOpen",
+        json!({ "textDocument": { "uri": uris[1], "languageId": "pts", "version": 7, "text": fixed } }),
+    );
+    let p = c.diagnostics(&uris[1], |p| p["version"] == 7);
+    assert_eq!(
+        p["diagnostics"],
+        json!([]),
+        "the scene's check reads the editor's text"
+    );
+
+    // Broken again in the editor: the scene's check says so, under the library's URI.
+    c.notify(
+        "textDocument/didChange",
+        json!({ "textDocument": { "uri": uris[1], "version": 8 },
+                "contentChanges": [{ "text": lib_on_disk.replace("radus", "radiuss") }] }),
+    );
+    let p = c.diagnostics(&uris[1], |p| {
+        p["version"] == 8 && p["diagnostics"] != json!([])
+    });
+    let d = &p["diagnostics"][0];
+    assert_eq!(code(d), "pts::check::unknown_param");
+    // A name only the scene defines is not an error in the library.
+    assert!(p["diagnostics"].as_array().unwrap().len() == 1, "{p}");
+
+    // Closed: the disk again.
+    std::fs::write(dir.path().join("lib.ptsi"), &fixed).unwrap();
+    c.notify(
+        "textDocument/didClose",
+        json!({ "textDocument": { "uri": uris[1] } }),
+    );
+    c.diagnostics(&uris[1], |p| p["diagnostics"] == json!([]));
+    let p = c.diagnostics(&uris[0], |p| p["version"] == 1);
+    assert_eq!(p["diagnostics"], json!([]));
+}
+
+#[test]
+fn a_watched_file_changed_on_disk_rechecks_the_scenes_that_read_it() {
+    let lib = "material red { diffuse rgb <1, 0, 0> }\n";
+    let (scene, _) = scene_and_library();
+    let (dir, uris) = folder(&[("scene.pts", &scene), ("lib.ptsi", lib)]);
+    let mut c = Client::start(false);
+    assert_eq!(c.open(&uris[0], &scene), Vec::<Value>::new());
+    std::fs::write(
+        dir.path().join("lib.ptsi"),
+        "material blue { diffuse rgb <0, 0, 1> }\n",
+    )
+    .unwrap();
+    c.notify(
+        "workspace/didChangeWatchedFiles",
+        json!({ "changes": [{ "uri": uris[1], "type": 2 }] }),
+    );
+    let p = c.diagnostics(&uris[0], |p| p["diagnostics"] != json!([]));
+    let codes: Vec<&str> = p["diagnostics"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(code)
+        .collect();
+    assert!(
+        !codes.is_empty() && codes.iter().all(|c| c.contains("material")),
+        "{codes:?}"
+    );
+}
+
+#[test]
+fn uris_of_folders_with_spaces_and_accents_round_trip() {
+    let root = tempfile::tempdir().unwrap();
+    let dir = root.path().join("my scènes #1");
+    std::fs::create_dir(&dir).unwrap();
+    let (scene, lib) = scene_and_library();
+    std::fs::write(dir.join("lib.ptsi"), &lib).unwrap();
+    let scene_uri = uri(&dir.join("scene.pts"));
+    assert!(scene_uri.contains("%20"), "{scene_uri}");
+    let mut c = Client::start(true);
+    assert_eq!(
+        c.open(&scene_uri, &scene),
+        Vec::<Value>::new(),
+        "the include is found"
+    );
+    let use_ = nth(&scene, "material red", 0) + "material r".len();
+    let def = c.at("textDocument/definition", &scene_uri, &scene, use_);
+    assert_eq!(def["uri"], uri(&dir.join("lib.ptsi")));
+}
+
+#[test]
+fn inlay_hints_folding_and_include_paths() {
+    let text = format!(
+        "let half = 1 / 2;\nlet one = 1;\n{CAMERA_AND_LIGHT}group g {{\n  sphere {{ center <0, 0, 0> radius half }}\n}}\ninstance g {{ translate <one, 0, 0> }}\ninclude \"\"\n"
+    );
+    let (_dir, uris) = folder(&[("scene.pts", &text), ("lib.ptsi", ""), ("other.txt", "")]);
+    let mut c = Client::start(false);
+    c.open(&uris[0], &text);
+    let whole = json!({ "start": { "line": 0, "character": 0 }, "end": position(&text, text.len(), false) });
+    let hints = c.ok(
+        "textDocument/inlayHint",
+        json!({ "textDocument": { "uri": uris[0] }, "range": whole }),
+    );
+    let hints = hints.as_array().unwrap();
+    assert_eq!(
+        hints.len(),
+        1,
+        "only where the value is not written: {hints:?}"
+    );
+    assert_eq!(hints[0]["label"], " = 0.5");
+    assert_eq!(
+        hints[0]["position"],
+        position(&text, text.find(';').unwrap() + 1, false)
+    );
+
+    let folds = c.ok(
+        "textDocument/foldingRange",
+        json!({ "textDocument": { "uri": uris[0] } }),
+    );
+    let group_line = text[..text.find("group").unwrap()].matches('\n').count();
+    assert!(
+        folds
+            .as_array()
+            .unwrap()
+            .iter()
+            .any(|f| f["startLine"] == group_line && f["endLine"] == group_line + 2),
+        "{folds}"
+    );
+
+    let quote = nth(&text, "include \"", 0) + "include \"".len();
+    let items = items(&c.at("textDocument/completion", &uris[0], &text, quote));
+    let labels: Vec<&str> = items.iter().filter_map(|i| i["label"].as_str()).collect();
+    assert!(labels.contains(&"lib.ptsi"), "{labels:?}");
+    assert!(!labels.contains(&"other.txt"), "{labels:?}");
+}
+
+#[test]
 fn malformed_messages_are_logged_and_the_server_goes_on() {
     let mut c = Client::start(false);
     c.send_raw(b"Content-Length: 9\r\n\r\n{not json");

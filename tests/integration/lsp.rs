@@ -706,6 +706,22 @@ fn definition_and_references_cross_an_include() {
     );
     assert_eq!(refs.as_array().unwrap().len(), 2);
 
+    let edit = c.ok(
+        "textDocument/rename",
+        json!({ "textDocument": { "uri": uris[0] }, "position": p, "newName": "crimson" }),
+    );
+    let changes = &edit["changes"];
+    let scene_edits = changes[&uris[0]].as_array().expect("the scene's edits");
+    let lib_edits = changes[&uris[1]].as_array().expect("the library's edits");
+    assert_eq!(
+        apply_edits(&scene, scene_edits, false),
+        scene.replace("material red", "material crimson")
+    );
+    assert_eq!(
+        apply_edits(&lib, lib_edits, false),
+        lib.replace("material red", "material crimson")
+    );
+
     let path = nth(&scene, "lib.ptsi", 0) + 2;
     let def = c.at("textDocument/definition", &uris[0], &scene, path);
     assert_eq!(def["uri"], uris[1]);
@@ -1296,6 +1312,11 @@ fn exit_without_shutdown_is_not() {
 }
 
 #[test]
+fn the_end_of_the_input_ends_the_server_uncleanly() {
+    assert_ne!(Client::start(false).wait_exit(), 0);
+}
+
+#[test]
 fn requests_after_shutdown_are_refused() {
     let mut c = Client::start(false);
     assert_eq!(c.ok("shutdown", Value::Null), Value::Null);
@@ -1403,6 +1424,82 @@ fn random_position(rng: &mut Rng, text: &str) -> Value {
 /// comments and strings, CRLF line ends, an unfinished block.
 const ODD_SCENE: &str = "// é𝄞 ünïcödé 😀\r\nlet k = 2; /* 𝄞𝄞 */ let s = \"é😀\";\r\ncamera { position <0, 1, 5> look_at <0, 0, 0> }\r\nsphere { center <0, 𝄞k, 0> radus 1 material { diffuse rgb <1, 0.5, 0> } }\r\nlight_source { }\r\ngroup g { sphere { center <0,0,0> radius 1 } }\r\ninstance g { translate <1, 0, 0> }\r\nsphere { center <";
 
+/// The requests the fuzz sends.
+const FUZZED_METHODS: [&str; 11] = [
+    "textDocument/hover",
+    "textDocument/completion",
+    "textDocument/definition",
+    "textDocument/references",
+    "textDocument/prepareRename",
+    "textDocument/documentSymbol",
+    "textDocument/foldingRange",
+    "textDocument/documentColor",
+    "textDocument/codeAction",
+    "textDocument/inlayHint",
+    "textDocument/rangeFormatting",
+];
+
+/// Texts the fuzz inserts: pieces of scenes, multi-byte characters,
+/// unbalanced braces and quotes.
+const FUZZED_INSERTS: [&str; 12] = [
+    "",
+    "{",
+    "}",
+    "\"",
+    "𝄞",
+    "é",
+    "\r\n",
+    "sphere { ",
+    "material ",
+    "<1, 2",
+    "/* ",
+    "let x = ",
+];
+
+/// Sends `count` random requests about `uri` (whose text is `text`) at
+/// once, then checks each answer is not a panic; how many answers had
+/// something in them, by method.
+fn fuzz_requests(
+    c: &mut Client,
+    rng: &mut Rng,
+    (uri, text): (&str, &str),
+    count: usize,
+    found: &mut std::collections::HashMap<&'static str, usize>,
+) {
+    let mut sent = Vec::new();
+    for _ in 0..count {
+        let method = FUZZED_METHODS[rng.below(FUZZED_METHODS.len())];
+        let (a, b) = (random_position(rng, text), random_position(rng, text));
+        let params = json!({
+            "textDocument": { "uri": uri },
+            "position": a,
+            "range": { "start": a, "end": b },
+            "context": { "includeDeclaration": rng.below(2) == 0, "diagnostics": [], "triggerKind": 1 },
+            "options": { "tabSize": 4, "insertSpaces": true },
+        });
+        let id = c.send_request(method, params.clone());
+        sent.push((id, method, params));
+    }
+    for (id, method, params) in sent {
+        let r = c.response(id);
+        assert!(
+            r.get("error").is_none() || method == "textDocument/prepareRename",
+            "{method} on {uri} at {params}: {r}"
+        );
+        assert_ne!(
+            r["error"]["code"], INTERNAL_ERROR,
+            "{method} on {uri} at {params}: {r}"
+        );
+        let something = match &r["result"] {
+            Value::Null => false,
+            Value::Array(a) => !a.is_empty(),
+            Value::Object(o) => o.get("items").is_none_or(|i| i != &json!([])),
+            _ => true,
+        };
+        *found.entry(method).or_default() += something as usize;
+    }
+}
+
 #[test]
 fn fuzzed_requests_over_every_example_are_answered_without_panics() {
     let mut scenes: Vec<(String, String)> =
@@ -1414,61 +1511,60 @@ fn fuzzed_requests_over_every_example_are_answered_without_panics() {
     assert!(scenes.len() > 10, "the examples are found");
     scenes.push(("untitled:odd".to_string(), ODD_SCENE.to_string()));
 
-    let methods = [
-        "textDocument/hover",
-        "textDocument/completion",
-        "textDocument/definition",
-        "textDocument/references",
-        "textDocument/prepareRename",
-        "textDocument/documentSymbol",
-        "textDocument/foldingRange",
-        "textDocument/documentColor",
-        "textDocument/codeAction",
-        "textDocument/inlayHint",
-        "textDocument/rangeFormatting",
-    ];
     let mut c = Client::in_memory();
     c.initialize(false);
-    let t0 = std::time::Instant::now();
+    let mut found = std::collections::HashMap::new();
     for (n, (uri, text)) in scenes.iter().enumerate() {
         c.open(uri, text);
-        let mut rng =
-            Rng(0x9E37_79B9_7F4A_7C15 ^ (n as u64 + 1).wrapping_mul(0x2545_F491_4F6C_DD1D));
+        let seed = 0x9E37_79B9_7F4A_7C15 ^ (n as u64 + 1).wrapping_mul(0x2545_F491_4F6C_DD1D);
+        let mut rng = Rng(seed);
         // The large benchmark scene gets fewer: whole-text requests on it
         // take a while, and the small ones find more.
-        let count = if text.len() > 100_000 { 40 } else { 200 };
-        let mut sent = Vec::new();
-        for _ in 0..count {
-            let method = methods[rng.below(methods.len())];
-            let doc = json!({ "uri": uri });
-            let (a, b) = (
-                random_position(&mut rng, text),
-                random_position(&mut rng, text),
+        let big = text.len() > 100_000;
+        fuzz_requests(
+            &mut c,
+            &mut rng,
+            (uri, text),
+            if big { 40 } else { 200 },
+            &mut found,
+        );
+        // Then edits, each answered from a check that may be older than
+        // the text (the checks are debounced) or of a broken scene.
+        let mut text = text.clone();
+        for version in 2..if big { 2 } else { 12 } {
+            let (a, b) = (rng.below(text.len() + 1), rng.below(text.len() + 1));
+            let (mut start, mut end) = (a.min(b), a.max(b).min(a.min(b) + 40));
+            while !text.is_char_boundary(start) {
+                start -= 1;
+            }
+            while !text.is_char_boundary(end) {
+                end -= 1;
+            }
+            let insert = FUZZED_INSERTS[rng.below(FUZZED_INSERTS.len())];
+            let range = json!({ "start": position(&text, start, false), "end": position(&text, end, false) });
+            c.notify(
+                "textDocument/didChange",
+                json!({ "textDocument": { "uri": uri, "version": version },
+                        "contentChanges": [{ "range": range, "text": insert }] }),
             );
-            let params = json!({
-                "textDocument": doc,
-                "position": a,
-                "range": { "start": a, "end": b },
-                "context": { "includeDeclaration": rng.below(2) == 0, "diagnostics": [] },
-                "options": { "tabSize": 4, "insertSpaces": true },
-            });
-            let id = c.send_request(method, params.clone());
-            sent.push((id, method, params));
-        }
-        for (id, method, params) in sent {
-            let r = c.response(id);
-            assert_ne!(
-                r["error"]["code"], INTERNAL_ERROR,
-                "{method} on {uri} at {params}: {r}"
-            );
+            text.replace_range(start..end, insert);
+            fuzz_requests(&mut c, &mut rng, (uri, &text), 20, &mut found);
         }
         c.notify(
             "textDocument/didClose",
             json!({ "textDocument": { "uri": uri } }),
         );
     }
-    let panics: Vec<&String> = c.log.iter().filter(|l| l.contains("bug")).collect();
-    assert!(panics.is_empty(), "{panics:?}");
-    assert!(t0.elapsed() < Duration::from_secs(60), "{:?}", t0.elapsed());
+    let bugs: Vec<&String> = c.log.iter().filter(|l| l.contains("bug")).collect();
+    assert!(bugs.is_empty(), "{bugs:?}");
+    // The positions found names, parameters and blocks, not only nothing.
+    for method in FUZZED_METHODS {
+        if method != "textDocument/inlayHint" && method != "textDocument/rangeFormatting" {
+            assert!(
+                found.get(method).copied().unwrap_or(0) > 0,
+                "{method}: {found:?}"
+            );
+        }
+    }
     assert_eq!(c.end_in_memory(), ptsc::lsp::Ending::Clean);
 }

@@ -19,6 +19,7 @@ mod instances;
 mod kinds;
 mod layering;
 mod lighting;
+mod lsp;
 mod materials;
 mod mitsuba;
 mod nasty;

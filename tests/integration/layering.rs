@@ -29,8 +29,6 @@ const FLOORS: &[(&str, u32)] = &[
     // The front end.
     ("syntax", 3),
     ("check", 6),
-    // The formatter reads the syntax and the kind table's names.
-    ("format", 7),
     // Between them: lowering, then the driver, then the front doors.
     ("lower", 8),
     ("compile", 9),

@@ -77,7 +77,7 @@ pub fn format_range(
     let Some(first) = hit.next() else {
         return Ok((start..start, String::new()));
     };
-    let last = hit.last().unwrap_or(first);
+    let last = hit.next_back().unwrap_or(first);
     let range = first.span().start as usize..last.span().end as usize;
     let out = format_text(&text[range.clone()]).map_err(|e| match e {
         FormatError::Syntax(_) => FormatError::Bug("a statement does not parse alone".into()),

@@ -235,6 +235,9 @@ fn prepare_rename(server: &Server, p: lsp::TextDocumentPositionParams) -> Answer
     }
 }
 
+// `WorkspaceEdit::changes` is keyed by `Uri` (lsp-types' choice); its
+// interior cells cache its parsed parts, not part of its hash.
+#[allow(clippy::mutable_key_type)]
 fn rename(server: &Server, p: lsp::RenameParams) -> Answer {
     let at = p.text_document_position;
     let Some((view, _, lines)) = open(server, &at.text_document.uri) else {

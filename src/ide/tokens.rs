@@ -60,7 +60,9 @@ pub fn tokens(text: &str) -> Vec<Token> {
             i = (i + usize::from(i < bytes.len() && bytes[i] == b'"')).min(bytes.len());
             TokenKind::String
         } else if b.is_ascii_digit()
-            || (b == b'.' && bytes.get(i + 1).is_some_and(u8::is_ascii_digit))
+            || (b == b'.'
+                && bytes.get(i + 1).is_some_and(u8::is_ascii_digit)
+                && (i == 0 || bytes[i - 1] != b'.'))
         {
             i = number_end(bytes, i);
             TokenKind::Number

@@ -132,20 +132,3 @@ fn a_range_formats_the_statements_it_touches() {
     let (range, new) = format_range("// only\n", 0, 3).unwrap();
     assert_eq!((range, new.as_str()), (0..0, ""));
 }
-
-/// Prints the raw formatting of the file `PTS_FMT_DEBUG` (no safety net):
-/// `PTS_FMT_DEBUG=x.pts cargo test --lib format::tests::debug -- --ignored --nocapture`.
-#[test]
-#[ignore]
-fn debug() {
-    let path = std::env::var("PTS_FMT_DEBUG").expect("PTS_FMT_DEBUG");
-    let text = std::fs::read_to_string(path).unwrap();
-    let file = super::parse(&text).unwrap();
-    let out = super::print(&text, &file);
-    println!("{out}");
-    println!("{:?}", super::verify::verify(&text, &file, &out));
-    if let Ok(after) = super::parse(&out) {
-        println!("{:?}", super::verify::comment_texts(&text, &file));
-        println!("{:?}", super::verify::comment_texts(&out, &after));
-    }
-}

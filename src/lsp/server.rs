@@ -16,7 +16,7 @@ use lsp_server::{Connection, ErrorCode, Message, Notification, Request, Response
 use lsp_types as lsp;
 use serde_json::Value;
 use std::collections::{HashMap, HashSet};
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::time::Instant;
 
@@ -237,13 +237,25 @@ impl Server {
                     serde_json::from_value(n.params).map_err(bad)?;
                 let key = p.text_document.uri.as_str().to_string();
                 self.documents.remove(&key);
-                self.checks.remove(&key);
+                let closed = self.checks.remove(&key);
                 self.checker.forget(&key);
                 for uri in self.published.remove(&key).unwrap_or_default() {
                     self.publish(&uri, Vec::new(), None);
                 }
                 // The scenes that include it read it from the disk again.
                 self.recheck_readers(&uri_to_path(&key));
+                // Open files it included are reported by their own checks again.
+                let included: Vec<PathBuf> = (closed.iter())
+                    .flat_map(|(_, c)| c.sources.files().iter().skip(1))
+                    .map(|f| crate::ide::normal(&f.path))
+                    .collect();
+                let reopened: Vec<String> = (self.documents.iter())
+                    .filter(|(_, d)| included.contains(&d.path))
+                    .map(|(k, _)| k.clone())
+                    .collect();
+                for k in reopened {
+                    self.schedule(&k, false);
+                }
             }
             "workspace/didChangeWatchedFiles" => {
                 let p: lsp::DidChangeWatchedFilesParams =

@@ -1568,3 +1568,36 @@ fn fuzzed_requests_over_every_example_are_answered_without_panics() {
     }
     assert_eq!(c.end_in_memory(), ptsc::lsp::Ending::Clean);
 }
+
+#[test]
+fn closing_a_scene_leaves_an_open_fragment_reported_by_its_own_check() {
+    let lib = "sphere { radus 1 }\n";
+    let scene = "include \"lib.ptsi\"\ncamera { position <0, 0, 5> look_at <0, 0, 0> }\npoint_light { position <0, 5, 0> intensity rgb 10 }\n";
+    let (_dir, uris) = folder(&[("scene.pts", scene), ("lib.ptsi", lib)]);
+    let mut c = Client::start(false);
+    c.notify(
+        "textDocument/didOpen",
+        json!({ "textDocument": { "uri": uris[1], "languageId": "pts", "version": 3, "text": lib } }),
+    );
+    c.diagnostics(&uris[1], |p| {
+        p["version"] == 3 && p["diagnostics"] != json!([])
+    });
+    c.open(&uris[0], scene);
+    // The scene's check reports the fragment too (after the scene's own file).
+    c.diagnostics(&uris[1], |p| p["version"] == 3);
+    c.notify(
+        "textDocument/didClose",
+        json!({ "textDocument": { "uri": uris[0] } }),
+    );
+    // The scene's publication is cleared, then the fragment's own check speaks again.
+    let p = c.diagnostics(&uris[1], |p| {
+        p["version"] == 3 && p["diagnostics"] != json!([])
+    });
+    let codes: Vec<&str> = p["diagnostics"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(code)
+        .collect();
+    assert!(codes.contains(&"pts::check::unknown_param"), "{codes:?}");
+}

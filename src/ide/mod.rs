@@ -20,7 +20,7 @@ pub mod tokens;
 
 use crate::compile::Compiled;
 use crate::source::FileId;
-use std::path::{Component, Path, PathBuf};
+use std::path::Path;
 
 /// A document as the editor holds it, and the last check that read it.
 #[derive(Clone, Copy)]
@@ -55,17 +55,6 @@ impl<'a> View<'a> {
 }
 
 /// `path` with its `.` and `..` parts resolved lexically (an include's
-/// path is its scene's folder joined with what the scene wrote).
-pub fn normal(path: &Path) -> PathBuf {
-    let mut out = PathBuf::new();
-    for part in path.components() {
-        match part {
-            Component::CurDir => {}
-            Component::ParentDir if out.file_name().is_some() => {
-                out.pop();
-            }
-            other => out.push(other),
-        }
-    }
-    out
-}
+/// path is its scene's folder joined with what the scene wrote): the
+/// source seam's own rule, so that a document and an include compare equal.
+pub use crate::source::lexically_normal as normal;

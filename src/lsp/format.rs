@@ -20,31 +20,26 @@ fn refused(server: &Server, e: FormatError) -> Answer {
 
 /// `textDocument/formatting`.
 pub fn whole(server: &Server, p: lsp::DocumentFormattingParams) -> Answer {
-    let Some(doc) = server.documents.get(p.text_document.uri.as_str()) else {
-        return Ok(Value::Null);
-    };
-    let lines = Lines {
-        text: &doc.text,
-        index: &doc.index,
-        encoding: server.encoding,
-    };
-    let formatted = match format_text(&doc.text) {
-        Ok(f) => f,
-        Err(e) => return refused(server, e),
-    };
-    if formatted == *doc.text {
-        return Ok(serde_json::json!([]));
-    }
-    let edit = lsp::TextEdit {
-        range: lines.range(0, doc.text.len()),
-        new_text: formatted,
-    };
-    serde_json::to_value(vec![edit]).map_err(|e| (-32603, e.to_string()))
+    edit(server, &p.text_document.uri, |text, _| {
+        format_text(text).map(|f| (0..text.len(), f))
+    })
 }
 
 /// `textDocument/rangeFormatting`: the top-level statements the range touches.
 pub fn range(server: &Server, p: lsp::DocumentRangeFormattingParams) -> Answer {
-    let Some(doc) = server.documents.get(p.text_document.uri.as_str()) else {
+    edit(server, &p.text_document.uri, |text, lines| {
+        format_range(text, lines.offset(p.range.start), lines.offset(p.range.end))
+    })
+}
+
+/// The one edit `format` gives for the open document `uri` (the bytes it
+/// replaces and their new text): none when it changes nothing.
+fn edit(
+    server: &Server,
+    uri: &lsp::Uri,
+    format: impl FnOnce(&str, &Lines) -> Result<(std::ops::Range<usize>, String), FormatError>,
+) -> Answer {
+    let Some(doc) = server.documents.get(uri.as_str()) else {
         return Ok(Value::Null);
     };
     let lines = Lines {
@@ -52,12 +47,13 @@ pub fn range(server: &Server, p: lsp::DocumentRangeFormattingParams) -> Answer {
         index: &doc.index,
         encoding: server.encoding,
     };
-    let (start, end) = (lines.offset(p.range.start), lines.offset(p.range.end));
-    let (replaced, text) = match format_range(&doc.text, start, end) {
+    let (replaced, text) = match format(&doc.text, &lines) {
         Ok(r) => r,
         Err(e) => return refused(server, e),
     };
-    if replaced.is_empty() || doc.text.get(replaced.clone()) == Some(text.as_str()) {
+    if replaced.is_empty() && text.is_empty()
+        || doc.text.get(replaced.clone()) == Some(text.as_str())
+    {
         return Ok(serde_json::json!([]));
     }
     let edit = lsp::TextEdit {

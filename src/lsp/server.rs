@@ -357,6 +357,9 @@ impl Server {
             by_file.entry(file).or_default().push(d);
         }
         let mut uris = Vec::new();
+        let indexes: Vec<LineIndex> = (compiled.sources.files().iter())
+            .map(|f| LineIndex::new(&f.text))
+            .collect();
         for (i, source) in compiled.sources.files().iter().enumerate() {
             if i == 0 && included_elsewhere {
                 continue;
@@ -364,13 +367,12 @@ impl Server {
             let Some(uri) = self.uri_of(&source.path) else {
                 continue;
             };
-            let index = LineIndex::new(&source.text);
             let lines = Lines {
                 text: &source.text,
-                index: &index,
+                index: &indexes[i],
                 encoding: self.encoding,
             };
-            let mut related = |span: crate::span::Span| self.location(compiled, span);
+            let mut related = |span: crate::span::Span| self.location(compiled, &indexes, span);
             let items: Vec<lsp::Diagnostic> = (by_file.get(&(i as u32)).into_iter().flatten())
                 .map(|d| diagnostic(d, &lines, &mut related))
                 .collect();

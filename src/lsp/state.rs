@@ -68,18 +68,20 @@ impl Server {
         }
     }
 
-    /// The protocol location of a span of a check.
+    /// The protocol location of a span of a check; `indexes` are the
+    /// line indexes of the check's files, in their order (built once per
+    /// publication, not once per span).
     pub(super) fn location(
         &self,
         compiled: &Compiled,
+        indexes: &[LineIndex],
         span: crate::span::Span,
     ) -> Option<lsp::Location> {
         let source = compiled.sources.files().get(span.file.0 as usize)?;
         let uri = self.uri_of(&source.path)?;
-        let index = LineIndex::new(&source.text);
         let lines = Lines {
             text: &source.text,
-            index: &index,
+            index: indexes.get(span.file.0 as usize)?,
             encoding: self.encoding,
         };
         Some(lsp::Location {

@@ -174,7 +174,7 @@ impl MemoryFiles {
 
 /// `path` with its `.` parts dropped and each `..` taking the part before
 /// it: the canonical name of a file held in memory, where no links exist.
-fn lexically_normal(path: &Path) -> PathBuf {
+pub fn lexically_normal(path: &Path) -> PathBuf {
     use std::path::Component;
     let mut out = PathBuf::new();
     for part in path.components() {

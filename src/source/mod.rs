@@ -5,7 +5,7 @@
 
 pub mod files;
 
-pub use files::{Asked, Disk, Files, MemoryFiles};
+pub use files::{lexically_normal, Asked, Disk, Files, MemoryFiles};
 use std::fmt;
 use std::io::Read;
 use std::path::{Path, PathBuf};

@@ -7,11 +7,9 @@ pub mod hybrid;
 pub mod path;
 pub mod whitted;
 
-use crate::geometry::shape::Shape;
 use crate::geometry::{offset_origin, Ray};
 use crate::ir::settings::IntegratorKind;
 use crate::ir::{Hit, Scene};
-use crate::light::sphere;
 use crate::material::Material;
 use crate::sampling::sampler::Sampler;
 use crate::sampling::warp::power_heuristic;
@@ -127,6 +125,7 @@ pub fn crosses_surface(hit: &Hit, wo: Vec3, wi: Vec3) -> bool {
 /// Pdf with which [`direct_light_mis`] would have produced a ray from the
 /// point `from` with shading normal `from_n` that hits emitter `light` at
 /// `hit` (solid angle, including the light choice).
+#[inline]
 pub fn light_pdf(
     scene: &Scene,
     light: u32,
@@ -135,28 +134,5 @@ pub fn light_pdf(
     dir: Vec3,
 ) -> f32 {
     let pick = scene.light_sampler.pmf(from, from_n, light);
-    match &scene.lights[light as usize] {
-        crate::light::Light::Area { shape, .. } => {
-            if let Shape::Sphere { radius, .. } = shape {
-                // Sampled by its cone from outside; the centre where the
-                // sphere was hit (it may be moving).
-                let center = hit.p - *radius * hit.n_geo;
-                if let Some(pdf) = sphere::cone_pdf(center, *radius, from) {
-                    return pick * pdf;
-                }
-            }
-            let area = shape.area();
-            let d2 = (hit.p - from).length_squared();
-            let cos = hit.n_geo.dot(-dir).abs();
-            if cos <= 0.0 {
-                0.0
-            } else {
-                pick * d2 / (cos * area)
-            }
-        }
-        env @ (crate::light::Light::Environment { .. } | crate::light::Light::Sky { .. }) => {
-            pick * env.direction_pdf(dir)
-        }
-        _ => 0.0,
-    }
+    pick * scene.lights[light as usize].pdf_towards(from, dir, hit.p, hit.n_geo)
 }

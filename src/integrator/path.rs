@@ -53,12 +53,11 @@ pub fn path_li(scene: &Scene, mut ray: Ray, sampler: &mut Sampler, nee: bool) ->
         let wo = -ray.d;
         let mut textured = None;
         let material = scene.material_at(&mut hit, wo, ray.time, &mut textured);
-        // Beer's law: leaving a dielectric means we travelled inside it.
-        if material.transmission > 0.0
-            && ray.d.dot(hit.n_geo) > 0.0
-            && material.absorption != Vec3::ZERO
-        {
-            beta *= (-material.absorption * hit.t).exp();
+        // Leaving a surface with a medium inside means we travelled in it.
+        if let Some(medium) = material.interior() {
+            if ray.d.dot(hit.n_geo) > 0.0 {
+                beta *= medium.transmittance(hit.t);
+            }
         }
         // Emission seen along the path.
         let le = material.emitted(wo, hit.n_geo);
@@ -81,14 +80,10 @@ pub fn path_li(scene: &Scene, mut ray: Ray, sampler: &mut Sampler, nee: bool) ->
             let c = beta * direct_light_mis(scene, &hit, material, wo, ray.time, sampler);
             add(&mut radiance, c, segments, s.clamp);
         }
-        if s.ambient != Vec3::ZERO && material.lobe_pdf[0] > 0.0 {
-            let a = s.ambient;
-            add(
-                &mut radiance,
-                beta * material.diffuse * a,
-                segments,
-                s.clamp,
-            );
+        if s.ambient != Vec3::ZERO {
+            if let Some(albedo) = material.ambient_albedo() {
+                add(&mut radiance, beta * albedo * s.ambient, segments, s.clamp);
+            }
         }
         // Continue the path by sampling the BSDF.
         let Some(bs) = material.sample(wo, hit.n_shading, sampler.next_f32(), sampler.next_2d())

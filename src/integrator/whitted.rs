@@ -12,15 +12,12 @@ use super::{Integrator, T_MIN};
 use crate::geometry::{offset_origin, Ray};
 use crate::ir::{Hit, Scene};
 use crate::light::Light;
-use crate::material::{fresnel, reflect, refract, thin_dielectric, Kind, Material};
+use crate::material::Material;
 use crate::sampling::sampler::Sampler;
 use glam::Vec3;
 
 /// The Whitted integrator.
 pub struct Whitted;
-
-/// Samples taken around the mirror direction of a glossy surface.
-const GLOSSY_SAMPLES: u32 = 4;
 
 /// A reflected or refracted branch whose weight in the pixel (the product of
 /// the reflectances and Fresnel factors along it) falls below this is not
@@ -52,104 +49,25 @@ pub fn trace(scene: &Scene, ray: Ray, sampler: &mut Sampler, segment: u32, weigh
     if m.has_smooth_lobe() {
         l += direct(scene, &hit, m, wo, ray.time, sampler);
     }
-    if m.lobe_pdf[0] > 0.0 {
-        let a = s.ambient;
-        l += m.diffuse * a;
+    if let Some(albedo) = m.ambient_albedo() {
+        l += albedo * s.ambient;
     }
+    // The reflected and refracted branches, unless their weight in the
+    // pixel is below the bailout.
     let outside = wo.dot(hit.n_geo) >= 0.0;
-    let nf = if outside {
-        hit.n_shading
-    } else {
-        -hit.n_shading
-    };
-    // Traces a branch that the pixel sees through the factor `k`, unless its
-    // weight is below the bailout.
-    let branch = |sampler: &mut Sampler, k: f32, dir: Vec3| -> Vec3 {
+    l += m.specular_light(wo, hit.n_shading, outside, sampler, |sampler, k, dir| {
         let w = weight * k;
         if w < BAILOUT {
             return Vec3::ZERO;
         }
         let r = Ray::new(offset_origin(hit.p, hit.n_geo, dir), dir, ray.time);
         trace(scene, r, sampler, segment + 1, w)
-    };
-    match m.kind {
-        Kind::Lobes => l += lobes(m, wo, nf, outside, sampler, branch),
-        Kind::ThinDielectric => {
-            let r = thin_dielectric::reflectance(wo.dot(nf), m.ior);
-            l += r * branch(sampler, r, reflect(wo, nf));
-            l += (1.0 - r) * branch(sampler, 1.0 - r, -wo);
-        }
-        Kind::Conductor(_) | Kind::Plastic(_) | Kind::RoughDielectric => {
-            // A metal, a plastic's coat or frosted glass: one branch when
-            // it is a mirror, else a few importance-sampled ones.
-            let mut acc = Vec3::ZERO;
-            let mut count = 0;
-            while count < GLOSSY_SAMPLES {
-                count += 1;
-                let u = (sampler.next_f32(), sampler.next_2d());
-                if let Some(b) = m.sample_specular(wo, hit.n_shading, u.0, u.1) {
-                    let share = if b.delta { 1.0 } else { GLOSSY_SAMPLES as f32 };
-                    acc += b.weight * branch(sampler, b.weight.max_element() / share, b.wi);
-                    if b.delta {
-                        break;
-                    }
-                }
-            }
-            l += acc / count as f32;
-        }
-    }
+    });
     // Beer's law over the segment just travelled inside this object.
-    if m.transmission > 0.0 && !outside && m.absorption != Vec3::ZERO {
-        l *= (-m.absorption * hit.t).exp();
-    }
-    l
-}
-
-/// The reflected and refracted branches of the paper's mix of lobes: the
-/// mirror, a few directions around it when glossy, and the smooth
-/// dielectric's Fresnel-weighted pair.
-fn lobes(
-    m: &Material,
-    wo: Vec3,
-    nf: Vec3,
-    outside: bool,
-    sampler: &mut Sampler,
-    branch: impl Fn(&mut Sampler, f32, Vec3) -> Vec3,
-) -> Vec3 {
-    let mut l = Vec3::ZERO;
-    if m.reflection != Vec3::ZERO {
-        if m.alpha == 0.0 {
-            let wi = reflect(wo, nf);
-            l += m.reflection * branch(sampler, m.reflection.max_element(), wi);
-        } else {
-            // Glossy: a few importance-sampled directions around the mirror one.
-            let mut acc = Vec3::ZERO;
-            let only_gloss = Material {
-                lobe_pdf: [0.0, 1.0, 0.0],
-                diffuse: Vec3::ZERO,
-                ..m.clone()
-            };
-            for _ in 0..GLOSSY_SAMPLES {
-                if let Some(b) = only_gloss.sample(wo, nf, sampler.next_f32(), sampler.next_2d()) {
-                    let k = b.weight.max_element() / GLOSSY_SAMPLES as f32;
-                    acc += b.weight * branch(sampler, k, b.wi);
-                }
-            }
-            l += acc / GLOSSY_SAMPLES as f32;
+    if let Some(medium) = m.interior() {
+        if !outside {
+            l *= medium.transmittance(hit.t);
         }
-    }
-    if m.transmission > 0.0 {
-        let eta = if outside { m.ior } else { 1.0 / m.ior };
-        let f = fresnel::dielectric(wo.dot(nf), eta);
-        let mut t = Vec3::ZERO;
-        let wr = reflect(wo, nf);
-        t += f * branch(sampler, m.transmission * f, wr);
-        if f < 1.0 {
-            if let Some(wt) = refract(wo, nf, eta) {
-                t += (1.0 - f) * branch(sampler, m.transmission * (1.0 - f), wt);
-            }
-        }
-        l += m.transmission * t;
     }
     l
 }

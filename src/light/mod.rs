@@ -412,6 +412,33 @@ impl Light {
         }
     }
 
+    /// The density in solid angle with which [`Light::sample`] from the
+    /// point `from` picks the direction `dir` that reaches this light at
+    /// the point `p` with geometric normal `n` (a surface hit on an area
+    /// light; ignored for lights at infinity); 0 for delta lights.
+    #[inline]
+    pub fn pdf_towards(&self, from: Vec3, dir: Vec3, p: Vec3, n: Vec3) -> f32 {
+        match self {
+            Light::Area { shape, .. } => {
+                if let Shape::Sphere { radius, .. } = shape {
+                    // Sampled by its cone from outside; the centre where the
+                    // sphere was hit (it may be moving).
+                    if let Some(pdf) = sphere::cone_pdf(p - *radius * n, *radius, from) {
+                        return pdf;
+                    }
+                }
+                let cos = n.dot(-dir).abs();
+                if cos <= 0.0 {
+                    0.0
+                } else {
+                    (p - from).length_squared() / (cos * shape.area())
+                }
+            }
+            Light::Environment { .. } | Light::Sky { .. } => self.direction_pdf(dir),
+            Light::Point { .. } | Light::Spot { .. } | Light::Directional { .. } => 0.0,
+        }
+    }
+
     /// Whether the light is a delta distribution (cannot be hit by rays).
     pub fn is_delta(&self) -> bool {
         matches!(

@@ -8,11 +8,13 @@
 
 pub mod conductor;
 pub mod fresnel;
+pub mod medium;
 pub mod microfacet;
 pub mod multiscatter;
 mod multiscatter_table;
 pub mod plastic;
 pub mod rough_dielectric;
+mod specular;
 pub mod thin_dielectric;
 
 #[cfg(test)]
@@ -313,6 +315,29 @@ impl Material {
     #[inline]
     pub fn has_smooth_lobe(&self) -> bool {
         self.smooth_lobe
+    }
+
+    /// The reflectance the ambient term lights (biased, `render { ambient
+    /// }`): the diffuse lobe's albedo, if the material has one.
+    #[inline]
+    pub fn ambient_albedo(&self) -> Option<Vec3> {
+        (self.lobe_pdf[0] > 0.0).then_some(self.diffuse)
+    }
+
+    /// The medium inside, if light passing through the surface meets one
+    /// (Beer's law inside transmissive materials that absorb).
+    #[inline]
+    pub fn interior(&self) -> Option<medium::Medium> {
+        (self.transmission > 0.0 && self.absorption != Vec3::ZERO).then_some(medium::Medium {
+            absorption: self.absorption,
+        })
+    }
+
+    /// The mixture pdf with which [`Material::sample`] picks `wi` for `wo`
+    /// (solid angle; 0 for delta lobes).
+    #[inline]
+    pub fn pdf(&self, wo: Vec3, wi: Vec3, n: Vec3) -> f32 {
+        self.eval(wo, wi, n).1
     }
 
     /// Emitted radiance towards `wo` from a surface with geometric normal `n`.

@@ -2,8 +2,8 @@
 # Embree as a yardstick (issue 39, item 4): traces the same ray sets through
 # ptsc's BVH and through Embree 3, one thread, closest-hit and any-hit,
 # coherent (camera) and incoherent (diffuse bounces from the camera's hits;
-# random rays in the scene's bounds) rays, on the bench scenes mesh (1M
-# triangles) and spheres (10k spheres). Prints Embree's kernels, then
+# random rays in the bounds of the blob or of the spheres) rays, on the
+# bench scenes mesh (1M triangles) and spheres (10k spheres). Prints Embree's kernels, then
 # Mrays/s, the agreement of the answers, build times and memory as Markdown
 # tables (docs/performance.md, "Embree as a yardstick"). The halves:
 # examples/embree_yardstick.rs (ptsc: writes the geometry and rays, traces

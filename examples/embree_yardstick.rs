@@ -42,7 +42,10 @@
 //! - `NAME.tsv`: the times and sizes, one row each (see `Rows`).
 //!
 //! Environment: `YARDSTICK_RUNS` timed passes over each set (default 5;
-//! the median is reported), after one untimed pass.
+//! the median is reported), after one untimed pass. Times are CPU time
+//! (`CLOCK_THREAD_CPUTIME_ID`; builds `CLOCK_PROCESS_CPUTIME_ID`), on both
+//! sides: the machines here are shared, and wall time counted the waits
+//! for a core (2× spreads between rounds under another's load).
 
 use glam::{Vec2, Vec3};
 use ptsc::accel::bvh::Bvh;
@@ -273,9 +276,11 @@ fn write_rays(path: &Path, rays: &[YRay]) -> std::io::Result<()> {
 }
 
 /// Rows of a `NAME.tsv` (tab-separated, the first field the kind):
-/// `trace SET QUERY RAYS HITS CHECKSUM MEDIAN_S MIN_S MAX_S` (CHECKSUM: the
-/// sum of the hit distances, in ray order, as f64; 0 for any-hit),
-/// `build SECONDS` (median), `bytes WHAT BYTES`, `count WHAT N`, `note TEXT`.
+/// `trace SET QUERY RAYS HITS CHECKSUM MEDIAN MIN MAX WALL` (CHECKSUM: the
+/// sum of the hit distances, in ray order, as f64; 0 for any-hit; the
+/// thread's CPU seconds of a pass over the set: median, minimum, maximum;
+/// the median of wall seconds), `build SECONDS` (median of 3, the process's
+/// CPU time), `bytes WHAT BYTES`, `count WHAT N`, `note TEXT`.
 #[derive(Default)]
 struct Rows(String);
 
@@ -286,19 +291,45 @@ impl Rows {
     }
 }
 
-/// Median, minimum and maximum of the seconds `pass` takes over `runs`
-/// timed calls after one untimed call.
-fn time(runs: usize, mut pass: impl FnMut()) -> (f64, f64, f64) {
+/// A clock in seconds: the CPU time of the calling thread or of the
+/// whole process (where there are none, wall time from the first call).
+/// On a machine shared with other work, CPU time is the time the code ran;
+/// wall time also counts the time it waited for a core.
+fn cpu_seconds(thread: bool) -> f64 {
+    #[cfg(unix)]
+    {
+        use rustix::time::{clock_gettime, ClockId};
+        let clock = if thread {
+            ClockId::ThreadCPUTime
+        } else {
+            ClockId::ProcessCPUTime
+        };
+        let t = clock_gettime(clock);
+        t.tv_sec as f64 + 1e-9 * t.tv_nsec as f64
+    }
+    #[cfg(not(unix))]
+    {
+        let _ = thread;
+        static START: std::sync::OnceLock<Instant> = std::sync::OnceLock::new();
+        START.get_or_init(Instant::now).elapsed().as_secs_f64()
+    }
+}
+
+/// The seconds `pass` takes over `runs` timed calls after one untimed
+/// call: the median, minimum and maximum of `clock`'s, and the median of
+/// wall time.
+fn time(runs: usize, clock: impl Fn() -> f64, mut pass: impl FnMut()) -> [f64; 4] {
     pass();
-    let mut t: Vec<f64> = (0..runs)
+    let (mut t, mut wall): (Vec<f64>, Vec<f64>) = (0..runs)
         .map(|_| {
-            let start = Instant::now();
+            let (start, wall) = (clock(), Instant::now());
             pass();
-            start.elapsed().as_secs_f64()
+            (clock() - start, wall.elapsed().as_secs_f64())
         })
-        .collect();
+        .unzip();
     t.sort_by(f64::total_cmp);
-    (t[t.len() / 2], t[0], t[t.len() - 1])
+    wall.sort_by(f64::total_cmp);
+    [t[t.len() / 2], t[0], t[t.len() - 1], wall[wall.len() / 2]]
 }
 
 fn runs() -> usize {
@@ -339,7 +370,10 @@ fn dump(out: &Path, name: &str) -> Result<(), String> {
         geometry.spheres.len()
     );
     let runs = runs();
-    rows.row(&[&"note", &format!("one thread; medians of {runs}")]);
+    rows.row(&[
+        &"note",
+        &format!("one thread; medians of {runs}; the thread's CPU time"),
+    ]);
 
     // The tree as the renderer holds it (blocks of four triangles and the
     // count of plain lanes before each block, 4 bytes; records of the
@@ -368,9 +402,14 @@ fn dump(out: &Path, name: &str) -> Result<(), String> {
 
     // The build alone, as lowering makes it (binned SAH, collapse to 4
     // wide, packing), over the primitives' shapes on one thread.
-    let (build, _, _) = time(runs.min(3), || {
-        black_box(build_tree(&geometry.shapes));
-    });
+    // The whole process's CPU time: the build runs on the pool's thread.
+    let [build, _, _, _] = time(
+        3,
+        || cpu_seconds(false),
+        || {
+            black_box(build_tree(&geometry.shapes));
+        },
+    );
     rows.row(&[&"build", &build]);
     eprintln!("{name}: ptsc build {build:.3} s (lowering {lower_seconds:.3} s)");
 
@@ -378,14 +417,18 @@ fn dump(out: &Path, name: &str) -> Result<(), String> {
         write_rays(&dir.join(format!("{set}.rays")), &rays).map_err(io)?;
         let n = rays.len();
         let mut closest = vec![(f32::INFINITY, u32::MAX); n];
-        let (closest_median, min, max) = time(runs, || {
-            for (r, out) in rays.iter().zip(closest.iter_mut()) {
-                let ray = Ray::new(r.o, r.d, 0.0);
-                *out = scene
-                    .intersect(&ray, r.tnear, r.tfar)
-                    .map_or((f32::INFINITY, u32::MAX), |h| (h.t, h.prim));
-            }
-        });
+        let [closest_median, min, max, wall] = time(
+            runs,
+            || cpu_seconds(true),
+            || {
+                for (r, out) in rays.iter().zip(closest.iter_mut()) {
+                    let ray = Ray::new(r.o, r.d, 0.0);
+                    *out = scene
+                        .intersect(&ray, r.tnear, r.tfar)
+                        .map_or((f32::INFINITY, u32::MAX), |h| (h.t, h.prim));
+                }
+            },
+        );
         let hits = closest.iter().filter(|c| c.1 != u32::MAX).count();
         let checksum: f64 = (closest.iter())
             .filter(|c| c.1 != u32::MAX)
@@ -401,6 +444,7 @@ fn dump(out: &Path, name: &str) -> Result<(), String> {
             &closest_median,
             &min,
             &max,
+            &wall,
         ]);
         let bytes: Vec<u8> = (closest.iter())
             .flat_map(|&(t, p)| t.to_le_bytes().into_iter().chain(p.to_le_bytes()))
@@ -408,14 +452,20 @@ fn dump(out: &Path, name: &str) -> Result<(), String> {
         std::fs::write(dir.join(format!("{set}.ptsc.closest")), bytes).map_err(io)?;
 
         let mut any = vec![0u8; n];
-        let (median, min, max) = time(runs, || {
-            for (r, out) in rays.iter().zip(any.iter_mut()) {
-                let ray = Ray::new(r.o, r.d, 0.0);
-                *out = scene.occluded(&ray, r.tnear, r.tfar) as u8;
-            }
-        });
+        let [median, min, max, any_wall] = time(
+            runs,
+            || cpu_seconds(true),
+            || {
+                for (r, out) in rays.iter().zip(any.iter_mut()) {
+                    let ray = Ray::new(r.o, r.d, 0.0);
+                    *out = scene.occluded(&ray, r.tnear, r.tfar) as u8;
+                }
+            },
+        );
         let hits = any.iter().filter(|&&a| a != 0).count();
-        rows.row(&[&"trace", set, &"any", &n, &hits, &0, &median, &min, &max]);
+        rows.row(&[
+            &"trace", set, &"any", &n, &hits, &0, &median, &min, &max, &any_wall,
+        ]);
         std::fs::write(dir.join(format!("{set}.ptsc.any")), &any).map_err(io)?;
         eprintln!(
             "{name} {set}: {n} rays, ptsc {:.2} Mrays/s closest, {:.2} any",

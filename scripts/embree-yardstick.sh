@@ -63,8 +63,8 @@ for round in $(seq "$ROUNDS"); do
         # bytes of its tree (its verbose statistics; a build and one pass
         # of the camera rays, overwritten by the timed run below).
         YARDSTICK_EMBREE_CONFIG=verbose=2,threads=1 "$HARNESS" "$dir/$s" "$q" 1 camera 2>&1 \
-          | grep -E '^ *(ISA|Targets) *:|^building|^  total +: sah|^ *intersector1 +=' \
-          | sort -u | sed "s|^|$s $q: |" >>"$OUT/kernels.txt"
+          | grep -E '^building|^  total +: sah|^  intersector1 +=|^    intersector1 +=' \
+          | sed 's/ \.\.\.$//; s/^ *//' | awk '!seen[$0]++' | sed "s|^|$s $q: |" >>"$OUT/kernels.txt"
       fi
       $NICE "$HARNESS" "$dir/$s" "$q" "$RUNS"
     done
@@ -74,6 +74,9 @@ done
 echo
 echo "CPU: $(lscpu | sed -n 's/^Model name: *//p' | head -1); one thread; $RUNS timed passes per cell, $ROUNDS round(s)"
 echo
+echo "Embree's kernels for this CPU: $(YARDSTICK_EMBREE_CONFIG=verbose=1,threads=1 "$HARNESS" \
+  "$OUT/round-1/$1" low 1 camera 2>&1 | sed -n 's/^ *Targets *: *//p' | head -1)"
+rm -f "$OUT/round-1/$1/embree-low.tsv" "$OUT/round-1/$1"/*.embree-low.*
 echo "Embree's choices (verbose=2):"
 sed 's/^/    /' "$OUT/kernels.txt"
 echo

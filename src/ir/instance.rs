@@ -56,7 +56,7 @@ impl Prototype {
     fn closest(&self, ray: &Ray, t_min: f32, t_max: f32) -> Option<TreeHit> {
         self.wide.closest(ray, t_min, t_max, |i, tmax| {
             let p = &self.prims[i as usize];
-            p.shape.intersect(&local_ray(p, ray), t_min, tmax)
+            p.shape.intersect(local_ray(p, ray, &mut None), t_min, tmax)
         })
     }
 
@@ -64,7 +64,9 @@ impl Prototype {
     fn any(&self, ray: &Ray, t_min: f32, t_max: f32) -> bool {
         self.wide.any(ray, t_min, t_max, |i, tmax| {
             let p = &self.prims[i as usize];
-            p.shape.intersect(&local_ray(p, ray), t_min, tmax).is_some()
+            p.shape
+                .intersect(local_ray(p, ray, &mut None), t_min, tmax)
+                .is_some()
         })
     }
 
@@ -163,13 +165,16 @@ pub struct Instances {
     pub tree: Bvh4,
 }
 
-/// A primitive's ray in its frame at the ray's time (it may be moving).
-#[inline]
-pub fn local_ray(prim: &Prim, ray: &Ray) -> Ray {
+/// A primitive's ray in its frame at the ray's time: `ray` itself for a
+/// static primitive, else the ray moved back along the primitive's motion,
+/// kept in `moved`. (Returning a copy put the ray through the stack on
+/// every primitive test: see docs/performance.md, "Issue 39, step 0".)
+#[inline(always)]
+pub fn local_ray<'a>(prim: &Prim, ray: &'a Ray, moved: &'a mut Option<Ray>) -> &'a Ray {
     if prim.velocity == Vec3::ZERO {
-        *ray
+        ray
     } else {
-        Ray::new(ray.o - prim.velocity * ray.time, ray.d, ray.time)
+        moved.insert(Ray::new(ray.o - prim.velocity * ray.time, ray.d, ray.time))
     }
 }
 
@@ -210,8 +215,9 @@ impl Instances {
             }
             None => &prototype.prims[tree_hit.prim as usize],
         };
-        let moved = local_ray(prim, &local);
-        let p_local = prim.shape.surface_point(&moved, &tree_hit.hit);
+        let mut slot = None;
+        let moved = local_ray(prim, &local, &mut slot);
+        let p_local = prim.shape.surface_point(moved, &tree_hit.hit);
         let n_local = prim.shape.normal_at(p_local);
         let uv = prim.shape.own_uv(tree_hit.hit.uv);
         let mut ns_local = n_local;

@@ -233,12 +233,16 @@ impl Scene {
         ray_count::closest();
         let mut best = self.wide.closest(ray, t_min, t_max, |i, tmax| {
             let p = &self.prims[i as usize];
-            p.shape.intersect(&instance::local_ray(p, ray), t_min, tmax)
+            p.shape
+                .intersect(instance::local_ray(p, ray, &mut None), t_min, tmax)
         });
         for &i in self.unbounded.iter() {
             let p = &self.prims[i as usize];
             let tmax = best.map_or(t_max, |b| b.hit.t);
-            if let Some(hit) = p.shape.intersect(&instance::local_ray(p, ray), t_min, tmax) {
+            if let Some(hit) =
+                p.shape
+                    .intersect(instance::local_ray(p, ray, &mut None), t_min, tmax)
+            {
                 best = Some(TreeHit {
                     prim: i,
                     hit,
@@ -269,8 +273,9 @@ impl Scene {
                 (prim, prim.shape.own_uv(hit.uv))
             }
         };
-        let local = instance::local_ray(prim, ray);
-        let p_local = prim.shape.surface_point(&local, &hit);
+        let mut slot = None;
+        let local = instance::local_ray(prim, ray, &mut slot);
+        let p_local = prim.shape.surface_point(local, &hit);
         let n_geo = prim.shape.normal_at(p_local);
         let mut n_shading = n_geo;
         if let Shape::Triangle { attributes, .. } = prim.shape {
@@ -301,12 +306,12 @@ impl Scene {
         self.wide.any(ray, t_min, t_max, |i, tmax| {
             let p = &self.prims[i as usize];
             p.shape
-                .intersect(&instance::local_ray(p, ray), t_min, tmax)
+                .intersect(instance::local_ray(p, ray, &mut None), t_min, tmax)
                 .is_some()
         }) || self.unbounded.iter().any(|&i| {
             let p = &self.prims[i as usize];
             p.shape
-                .intersect(&instance::local_ray(p, ray), t_min, t_max)
+                .intersect(instance::local_ray(p, ray, &mut None), t_min, t_max)
                 .is_some()
         }) || (!self.instances.is_empty() && self.instances.any(ray, t_min, t_max))
     }

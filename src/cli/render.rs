@@ -117,24 +117,13 @@ fn render_frame(
         );
         return EXIT_USAGE;
     }
-    let plan = Plan {
-        output: output.clone(),
-        inputs: compiled.dependencies,
-        memory_limit: args.memory_limit,
-        mode: Mode::Batch(StatePolicy {
-            pass: farm.pass,
-            resume: farm.resume,
-            restart: farm.restart,
-            keep_state: farm.keep_state,
-            force: farm.force,
-            checkpoint: (farm.checkpoint > 0.0).then(|| Duration::from_secs_f64(farm.checkpoint)),
-            scene: (args.file.file_name()).map_or_else(
-                || args.file.display().to_string(),
-                |n| n.to_string_lossy().into(),
-            ),
-            fingerprint: compiled.fingerprint.unwrap_or_default(),
-        }),
-    };
+    let plan = batch_plan(
+        args,
+        farm,
+        &output,
+        compiled.dependencies,
+        compiled.fingerprint,
+    );
     let session = match plan.check().and_then(|checked| Session::new(ir, checked)) {
         Ok(session) => session,
         Err(why) => {
@@ -162,30 +151,46 @@ fn render_frame(
             return EXIT_USAGE;
         }
     };
-    let interrupted = report.outcome == crate::render::Outcome::Cancelled;
-    if verbosity == Verbosity::Verbose {
-        let what = if report.state.is_some() && farm.pass.is_none() {
-            "image and state"
-        } else {
-            "image"
-        };
-        let write_s = report.write_time.as_secs_f64();
-        eprintln!("wrote the {what} in {write_s:.3} s");
+    let summary = Summary {
+        file: &args.file,
+        output: &output,
+        settings: &settings,
+        pass: farm.pass,
+        load_s,
+    };
+    summary.print(&report, verbosity);
+    match report.outcome {
+        crate::render::Outcome::Cancelled => signals.exit_code(),
+        crate::render::Outcome::Complete => EXIT_OK,
     }
-    if verbosity != Verbosity::Quiet {
-        let summary = Summary {
-            file: &args.file,
-            output: &output,
-            settings: &settings,
+}
+
+/// The batch session a frame asks for: its image, what the scene read,
+/// and the command line's state options.
+fn batch_plan(
+    args: &RenderArgs,
+    farm: &FarmArgs,
+    output: &Path,
+    inputs: Vec<PathBuf>,
+    fingerprint: Option<u64>,
+) -> Plan {
+    Plan {
+        output: output.to_path_buf(),
+        inputs,
+        memory_limit: args.memory_limit,
+        mode: Mode::Batch(StatePolicy {
             pass: farm.pass,
-            load_s,
-        };
-        summary.print(&report);
-    }
-    if interrupted {
-        signals.exit_code()
-    } else {
-        EXIT_OK
+            resume: farm.resume,
+            restart: farm.restart,
+            keep_state: farm.keep_state,
+            force: farm.force,
+            checkpoint: (farm.checkpoint > 0.0).then(|| Duration::from_secs_f64(farm.checkpoint)),
+            scene: (args.file.file_name()).map_or_else(
+                || args.file.display().to_string(),
+                |n| n.to_string_lossy().into(),
+            ),
+            fingerprint: fingerprint.unwrap_or_default(),
+        }),
     }
 }
 
@@ -259,8 +264,26 @@ struct Summary<'a> {
 }
 
 impl Summary<'_> {
+    /// What `verbosity` asks to be said of the frame at the end: the time
+    /// of the writes (`--verbose`), the summary line and, after an
+    /// interruption, how to go on.
+    fn print(&self, report: &Report, verbosity: Verbosity) {
+        if verbosity == Verbosity::Verbose {
+            let what = if report.state.is_some() && self.pass.is_none() {
+                "image and state"
+            } else {
+                "image"
+            };
+            let write_s = report.write_time.as_secs_f64();
+            eprintln!("wrote the {what} in {write_s:.3} s");
+        }
+        if verbosity != Verbosity::Quiet {
+            self.print_line(report);
+        }
+    }
+
     /// The summary line (and, after an interruption, how to go on).
-    fn print(&self, report: &Report) {
+    fn print_line(&self, report: &Report) {
         let s = self.settings;
         let secs = report.render_time.as_secs_f64();
         let (least, most, mean) = report.film.sample_counts();

@@ -4,9 +4,10 @@
 //! and, where it is kept, the state: after a stop too, so that a resumed
 //! render ends with the image of an uninterrupted one.
 
+use super::cancel::Cancel;
+use super::error::Error;
 use super::observer::{Observer, PassDone, Report};
 use super::start::{self, state_path, StatePolicy};
-use super::{samples_in, Cancel, Error, PREVIEW_INTERVAL};
 use crate::accel::ray_count::RayCounts;
 use crate::ir::Scene;
 use crate::render::film::Film;
@@ -15,6 +16,9 @@ use crate::render::state::{self, Pass, StateInfo};
 use crate::render::Outcome;
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
+
+/// Least time between two writes of a batch render's image between passes.
+pub const PREVIEW_INTERVAL: Duration = Duration::from_secs(5);
 
 /// A batch render ready to run: its state's path and description (the
 /// film it starts from is held beside it).
@@ -115,7 +119,7 @@ pub(super) fn run(
     observer: &dyn Observer,
     cancel: &Cancel,
 ) -> Result<Report, Error> {
-    let samples_before = samples_in(&film);
+    let samples_before = film.total_samples();
     let t1 = Instant::now();
     let passes = render_passes(scene, output, &batch, film, observer, cancel);
     observer.rendered();
@@ -163,7 +167,7 @@ pub(super) fn run(
             true => Outcome::Cancelled,
             false => Outcome::Complete,
         },
-        samples: samples_in(&film) - samples_before,
+        samples: film.total_samples() - samples_before,
         image_written: most > 0 || pass.is_some(),
         film,
         rays: passes.rays,
@@ -224,7 +228,7 @@ fn render_passes(
     let mut rays = RayCounts::default();
     let interrupted = loop {
         let deadline = every.map(|d: Duration| Instant::now() + d);
-        let offset = samples_in(&film);
+        let offset = film.total_samples();
         let rendered = crate::render::render_from(
             scene,
             integrator.as_ref(),
@@ -233,7 +237,10 @@ fn render_passes(
             cancel.polled(),
             &|done| {
                 observer.progress(offset + done);
-                if deadline.is_some_and(|d| Instant::now() >= d) {
+                // Only once this run has drawn a sample: a run that paused
+                // while it skipped the tiles done already would save the
+                // same state again and again.
+                if done > 0 && deadline.is_some_and(|d| Instant::now() >= d) {
                     cancel.pause();
                 }
             },

@@ -4,14 +4,18 @@
 //! kept: a stopped live render is replaced by the next one, and writes
 //! nothing more.
 
+use super::cancel::Cancel;
+use super::error::Error;
 use super::observer::{Observer, PassDone, PreviewDone, Report};
-use super::{Cancel, Error, PREVIEW_DIVISOR};
 use crate::ir::Scene;
 use crate::render::film::Film;
 use crate::render::memory::{self, Need};
 use crate::render::Outcome;
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
+
+/// A live render's preview is this many times smaller on each side.
+pub const PREVIEW_DIVISOR: u32 = 4;
 
 /// Where a live render writes the quick preview of the image `output`:
 /// beside it, `.preview` before the extension (`shot.png` →
@@ -100,7 +104,7 @@ pub(super) fn run(
     observer.rendered();
     Report {
         outcome: rendered.outcome,
-        samples: super::samples_in(&rendered.film),
+        samples: rendered.film.total_samples(),
         film: rendered.film,
         rays: rendered.rays,
         render_time: t0.elapsed(),

@@ -18,24 +18,21 @@
 
 mod batch;
 mod cancel;
+mod error;
 mod live;
 mod observer;
 mod start;
 
+pub use batch::PREVIEW_INTERVAL;
 pub use cancel::Cancel;
-pub use live::preview_path;
+pub use error::Error;
+pub use live::{preview_path, PREVIEW_DIVISOR};
 pub use observer::{Observer, PassDone, PreviewDone, Report};
 pub use start::{state_path, StatePolicy};
 
 use crate::ir::Scene;
 use crate::render::film::Film;
 use std::path::{Path, PathBuf};
-use std::time::Duration;
-
-/// Least time between two writes of a batch render's image between passes.
-pub const PREVIEW_INTERVAL: Duration = Duration::from_secs(5);
-/// A live render's preview is this many times smaller on each side.
-pub const PREVIEW_DIVISOR: u32 = 4;
 
 /// What a session renders to, and by which rules.
 #[derive(Debug, Clone)]
@@ -75,53 +72,6 @@ pub struct Checked {
     /// is left out, the passes are not.
     pub no_preview: Option<(PathBuf, String)>,
 }
-
-/// Why a session does not start, or did not finish its writes.
-#[derive(Debug)]
-pub enum Error {
-    /// The image cannot be written at `path` (a missing folder, an
-    /// unknown format, a file of the scene).
-    Output {
-        /// The image.
-        path: PathBuf,
-        /// Why not.
-        why: String,
-    },
-    /// The render is refused before it starts: a state the image would
-    /// replace or that cannot be continued, memory, a pass's output.
-    Refused(String),
-    /// Writing the image or the state failed.
-    Write {
-        /// The file.
-        path: PathBuf,
-        /// What failed.
-        error: std::io::Error,
-    },
-    /// A checkpoint could not save the state; the render stopped there.
-    SaveState {
-        /// The state file.
-        path: PathBuf,
-        /// What failed.
-        error: std::io::Error,
-    },
-}
-
-impl std::fmt::Display for Error {
-    fn fmt(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
-        match self {
-            Error::Output { path, why } => {
-                write!(f, "cannot write {}: {why}", crate::output::shown(path))
-            }
-            Error::Refused(why) => f.write_str(why),
-            Error::Write { path, error } => write!(f, "cannot write {}: {error}", path.display()),
-            Error::SaveState { path, error } => {
-                write!(f, "cannot save the state at {}: {error}", path.display())
-            }
-        }
-    }
-}
-
-impl std::error::Error for Error {}
 
 impl Plan {
     /// The first step: whether the image can be written (not a file of the
@@ -220,7 +170,7 @@ impl Session {
     /// Pixel samples the film starts with (a resumed state's).
     pub fn samples_done(&self) -> u64 {
         match &self.kind {
-            Kind::Batch(_, film) => samples_in(film),
+            Kind::Batch(_, film) => film.total_samples(),
             Kind::Live { .. } => 0,
         }
     }
@@ -251,9 +201,4 @@ impl Session {
             )),
         }
     }
-}
-
-/// Pixel samples a film holds.
-fn samples_in(film: &Film) -> u64 {
-    film.count.iter().map(|&n| n as u64).sum()
 }

@@ -8,7 +8,7 @@ use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
 
 /// Folders whose modules must form a DAG: the front end's, the editor's,
-/// and the renderer's pixel loop, its state files and its session.
+/// and the renderer's pixel loop and its session.
 const CHECKED: &[&str] = &[
     "src/syntax",
     "src/check",
@@ -18,7 +18,6 @@ const CHECKED: &[&str] = &[
     "src/ide",
     "src/lsp",
     "src/render",
-    "src/render/state",
     "src/render/session",
 ];
 

@@ -3,20 +3,17 @@
 
 use super::args::apply_overrides;
 pub use super::args::{output_path, RenderArgs};
-use super::farm::{self, FarmArgs};
+use super::farm::FarmArgs;
 use super::signals::Signals;
 use super::{check::report, Format, Verbosity, EXIT_OK, EXIT_SCENE_ERROR, EXIT_USAGE};
 use crate::check::Animation;
 use crate::compile::{compile_file, Compiled, Options};
+use crate::ir::Scene;
 use crate::lower::cache::LowerCache;
-use crate::render::film::Film;
-use crate::render::state::{self, Pass, StateInfo};
+use crate::render::session::{Mode, Observer, PassDone, Plan, Report, Session, StatePolicy};
+use crate::render::state::Pass;
 use std::path::{Path, PathBuf};
-use std::sync::atomic::Ordering;
 use std::time::{Duration, Instant};
-
-/// Least time between two preview writes of a render's image.
-const PREVIEW_INTERVAL: Duration = Duration::from_secs(5);
 
 /// Compiles the scene at a frame with the command line's overrides (and
 /// its fingerprint, for a render's state, when `fingerprint`).
@@ -82,9 +79,10 @@ fn render_frames(args: &RenderArgs, farm: &FarmArgs) -> u8 {
     EXIT_OK
 }
 
-/// Renders one frame: compile, start from nothing or from the saved state,
-/// render with checkpoints, write the image (and the state where kept).
-/// `written` lists the frames rendered so far and their images.
+/// Renders one frame: compile, then drive a batch session (from nothing
+/// or from the saved state, with checkpoints; the image and the state
+/// where kept). `written` lists the frames rendered so far and their
+/// images.
 fn render_frame(
     args: &RenderArgs,
     farm: &FarmArgs,
@@ -119,246 +117,195 @@ fn render_frame(
         );
         return EXIT_USAGE;
     }
-    let s = &ir.settings;
-    let state_path = farm::state_path(&output, farm.pass);
-    if let Err(why) = check_before_rendering(
+    let plan = batch_plan(
         args,
         farm,
-        (&output, &state_path),
-        &compiled.dependencies,
-        s,
-    ) {
-        eprintln!("error: {why}");
-        return EXIT_USAGE;
-    }
-    if let Some(pass) = farm.pass {
-        if crate::output::ImageFormat::of(&output) != Some(crate::output::ImageFormat::Exr) {
-            eprintln!(
-                "error: --pass {pass} writes a part file for `ptsc merge`: name an .exr output (-o part_{}.exr)",
-                pass.k
-            );
-            return EXIT_USAGE;
-        }
-        if pass.n > s.samples {
-            eprintln!(
-                "error: --pass {pass}: {} parts of {} samples per pixel would leave some empty; split into at most {} (or raise --spp)",
-                pass.n, s.samples, s.samples
-            );
-            return EXIT_USAGE;
-        }
-    }
-    let now = StateInfo {
-        ptsc: env!("CARGO_PKG_VERSION").to_string(),
-        scene: (args.file.file_name()).map_or_else(
-            || args.file.display().to_string(),
-            |n| n.to_string_lossy().into(),
-        ),
-        fingerprint: compiled.fingerprint.unwrap_or_default(),
-        settings: state::sample_settings(s),
-        samples: s.samples,
-        pass: farm.pass.unwrap_or(Pass::WHOLE),
-        exposure: s.exposure,
-    };
-    let start = match farm::start(&state_path, &now, (s.width, s.height), farm) {
-        Ok(start) => start,
+        &output,
+        compiled.dependencies,
+        compiled.fingerprint,
+    );
+    let session = match plan.check().and_then(|checked| Session::new(ir, checked)) {
+        Ok(session) => session,
         Err(why) => {
             eprintln!("error: {why}");
             return EXIT_USAGE;
         }
     };
-    if let (Some(note), true) = (&start.note, verbosity != Verbosity::Quiet) {
+    if let (Some(note), true) = (session.note(), verbosity != Verbosity::Quiet) {
         eprintln!("{note}");
     }
     written.push((animation.frame, output.clone()));
     let load_s = t0.elapsed().as_secs_f64();
     if verbosity == Verbosity::Verbose {
-        eprintln!(
-            "loaded in {load_s:.2} s (read and check {:.2} s, lower {:.2} s): {} primitives, {} lights",
-            compiled.check_seconds,
-            compiled.lower_seconds,
-            ir.prim_object.len(),
-            ir.lights.len()
-        );
-        let need = crate::render::memory::Need {
-            textures: ir.texture_bytes(),
-            ..memory_need(s)
-        };
-        let free = crate::render::memory::available(args.memory_limit)
-            .map(|(bytes, which)| {
-                format!(
-                    "; {} free ({which})",
-                    crate::render::memory::gigabytes(bytes)
-                )
-            })
-            .unwrap_or_default();
-        eprintln!(
-            "memory: {} ({}){free}",
-            crate::render::memory::gigabytes(need.to_allocate()),
-            need.describe()
-        );
+        let times = (compiled.check_seconds, compiled.lower_seconds);
+        print_loaded(session.scene(), load_s, times, args.memory_limit);
     }
-    let target = now.pass.range(s.samples).len() as u32;
-    let samples_in = |film: &Film| film.count.iter().map(|&n| n as u64).sum::<u64>();
-    let samples_before = samples_in(&start.film);
-    let total = s.width as u64 * s.height as u64 * target as u64;
-    let bar = progress_bar(total, verbosity);
-    bar.set_position(samples_before);
-    let integrator = crate::integrator::make(s.integrator);
-    let t1 = Instant::now();
-    let exposure = s.exposure;
-    let mut write_error = None;
-    let mut last_write = Instant::now();
-    let mut last_pass = Instant::now();
-    // A part file is written whole (image and state) at every write.
-    let write_image = |film: &Film| match farm.pass {
-        Some(_) => state::write_state(&output, film, &now),
-        None => film.write(&output, exposure),
-    };
-    let mut on_pass = |film: &Film, spp: u32| {
-        bar.set_message(format!("{spp} spp"));
-        if verbosity == Verbosity::Verbose {
-            bar.suspend(|| {
-                eprintln!(
-                    "pass to {spp} spp in {:.2} s",
-                    last_pass.elapsed().as_secs_f64()
-                )
-            });
-            last_pass = Instant::now();
-        }
-        // A long render replaces its image with the passes so far,
-        // a preview that refines. The final image is written once,
-        // below; writes in between are spaced (a ZIP-compressed EXR
-        // of a 512×512 render takes about 60 ms, time the render loses).
-        if spp < target && last_write.elapsed() >= PREVIEW_INTERVAL {
-            if let Err(e) = write_image(film) {
-                write_error = Some(e);
-            }
-            last_write = Instant::now();
-        }
-    };
-    // Checkpoints: every `--checkpoint` seconds the render pauses, its
-    // state and image are saved, and it goes on from them (the same
-    // samples in the same order: the image is the uninterrupted one's).
-    let every = (farm.checkpoint > 0.0).then(|| Duration::from_secs_f64(farm.checkpoint));
-    let mut keep_state = farm.keep_state || start.had_state;
-    let mut film = start.film;
-    let mut rays = crate::accel::ray_count::RayCounts::default();
-    let mut interrupted = false;
-    loop {
-        let deadline = every.map(|d| Instant::now() + d);
-        let offset = samples_in(&film);
-        let rendered = crate::render::render_from(
-            &ir,
-            integrator.as_ref(),
-            film,
-            target,
-            &signals.interrupt,
-            &|done| {
-                bar.set_position(offset + done);
-                if deadline.is_some_and(|d| Instant::now() >= d) {
-                    signals.interrupt.store(true, Ordering::Relaxed);
-                }
-            },
-            &mut on_pass,
-        );
-        film = rendered.film;
-        rays = rays + rendered.rays;
-        if rendered.outcome == crate::render::Outcome::Complete {
-            break;
-        }
-        if signals.stopped() {
-            interrupted = true;
-            break;
-        }
-        signals.interrupt.store(false, Ordering::Relaxed);
-        let saved = write_image(&film).and_then(|()| match farm.pass {
-            Some(_) => Ok(()),
-            None => state::write_state(&state_path, &film, &now),
-        });
-        if let Err(e) = saved {
-            bar.finish_and_clear();
-            eprintln!(
-                "error: cannot save the state at {}: {e}",
-                state_path.display()
-            );
+    let bar = progress_bar(session.samples_total(), verbosity);
+    bar.set_position(session.samples_done());
+    let observer = Bar { bar, verbosity };
+    let settings = session.scene().settings.clone();
+    let report = match session.run(&observer, &signals.cancel) {
+        Ok(report) => report,
+        Err(why) => {
+            eprintln!("error: {why}");
             return EXIT_USAGE;
         }
-        keep_state = true;
+    };
+    let summary = Summary {
+        file: &args.file,
+        output: &output,
+        settings: &settings,
+        pass: farm.pass,
+        load_s,
+    };
+    summary.print(&report, verbosity);
+    match report.outcome {
+        crate::render::Outcome::Cancelled => signals.exit_code(),
+        crate::render::Outcome::Complete => EXIT_OK,
+    }
+}
+
+/// The batch session a frame asks for: its image, what the scene read,
+/// and the command line's state options.
+fn batch_plan(
+    args: &RenderArgs,
+    farm: &FarmArgs,
+    output: &Path,
+    inputs: Vec<PathBuf>,
+    fingerprint: Option<u64>,
+) -> Plan {
+    Plan {
+        output: output.to_path_buf(),
+        inputs,
+        memory_limit: args.memory_limit,
+        mode: Mode::Batch(StatePolicy {
+            pass: farm.pass,
+            resume: farm.resume,
+            restart: farm.restart,
+            keep_state: farm.keep_state,
+            force: farm.force,
+            checkpoint: (farm.checkpoint > 0.0).then(|| Duration::from_secs_f64(farm.checkpoint)),
+            scene: (args.file.file_name()).map_or_else(
+                || args.file.display().to_string(),
+                |n| n.to_string_lossy().into(),
+            ),
+            fingerprint: fingerprint.unwrap_or_default(),
+        }),
+    }
+}
+
+/// `--verbose`'s account of the loaded scene: load times, primitives,
+/// lights, and the memory the render takes.
+fn print_loaded(ir: &Scene, load_s: f64, (check_s, lower_s): (f64, f64), limit: Option<u64>) {
+    use crate::render::memory;
+    eprintln!(
+        "loaded in {load_s:.2} s (read and check {check_s:.2} s, lower {lower_s:.2} s): {} primitives, {} lights",
+        ir.prim_object.len(),
+        ir.lights.len()
+    );
+    let need = memory::Need {
+        textures: ir.texture_bytes(),
+        ..memory::Need::film((ir.settings.width, ir.settings.height))
+    };
+    let free = memory::available(limit)
+        .map(|(bytes, which)| format!("; {} free ({which})", memory::gigabytes(bytes)))
+        .unwrap_or_default();
+    eprintln!(
+        "memory: {} ({}){free}",
+        memory::gigabytes(need.to_allocate()),
+        need.describe()
+    );
+}
+
+/// The progress bar, and the lines `--verbose` adds, drawn from a
+/// session's events.
+struct Bar {
+    bar: indicatif::ProgressBar,
+    verbosity: Verbosity,
+}
+
+impl Observer for Bar {
+    fn progress(&self, done: u64) {
+        self.bar.set_position(done);
+    }
+
+    fn pass(&self, pass: &PassDone) {
+        self.bar.set_message(format!("{} spp", pass.spp));
+        if self.verbosity == Verbosity::Verbose {
+            self.bar.suspend(|| {
+                eprintln!(
+                    "pass to {} spp in {:.2} s",
+                    pass.spp,
+                    pass.elapsed.as_secs_f64()
+                )
+            });
+        }
+    }
+
+    fn checkpoint(&self, state: &Path) {
+        if self.verbosity == Verbosity::Verbose {
+            self.bar
+                .suspend(|| eprintln!("checkpoint: state saved to {}", state.display()));
+        }
+    }
+
+    fn rendered(&self) {
+        self.bar.finish_and_clear();
+    }
+}
+
+/// What the summary line of a frame names beside the session's report.
+struct Summary<'a> {
+    file: &'a Path,
+    output: &'a Path,
+    settings: &'a crate::ir::settings::Settings,
+    pass: Option<Pass>,
+    load_s: f64,
+}
+
+impl Summary<'_> {
+    /// What `verbosity` asks to be said of the frame at the end: the time
+    /// of the writes (`--verbose`), the summary line and, after an
+    /// interruption, how to go on.
+    fn print(&self, report: &Report, verbosity: Verbosity) {
         if verbosity == Verbosity::Verbose {
-            bar.suspend(|| eprintln!("checkpoint: state saved to {}", state_path.display()));
+            let what = if report.state.is_some() && self.pass.is_none() {
+                "image and state"
+            } else {
+                "image"
+            };
+            let write_s = report.write_time.as_secs_f64();
+            eprintln!("wrote the {what} in {write_s:.3} s");
         }
-        // A signal during the save: stop here.
-        if signals.stopped() {
-            interrupted = true;
-            break;
+        if verbosity != Verbosity::Quiet {
+            self.print_line(report);
         }
     }
-    bar.finish_and_clear();
-    if let Some(e) = write_error {
-        eprintln!("error: cannot write {}: {e}", output.display());
-        return EXIT_USAGE;
-    }
-    let secs = t1.elapsed().as_secs_f64();
-    let (least, most, mean) = film.sample_counts();
-    // The image, and the state where it is kept: always for a pass (its
-    // part file is both) and after an interruption.
-    let state_written = match farm.pass {
-        Some(_) => Some(&output),
-        None if keep_state || (interrupted && most > 0) => Some(&state_path),
-        None => None,
-    };
-    let naming = |path: &Path| {
-        let path = path.to_path_buf();
-        move |e: std::io::Error| format!("cannot write {}: {e}", path.display())
-    };
-    let result = match farm.pass {
-        Some(_) => state::write_state(&output, &film, &now).map_err(naming(&output)),
-        // Both at once: each waits for its disk sync.
-        None if most > 0 => {
-            let (image, state) = rayon::join(
-                || film.write(&output, exposure).map_err(naming(&output)),
-                || {
-                    state_written.map_or(Ok(()), |path| {
-                        state::write_state(path, &film, &now).map_err(naming(path))
-                    })
-                },
-            );
-            image.and(state)
-        }
-        None => Ok(()),
-    };
-    if let Err(e) = result {
-        eprintln!("error: {e}");
-        return EXIT_USAGE;
-    }
-    if verbosity == Verbosity::Verbose {
-        let what = if state_written.is_some() && farm.pass.is_none() {
-            "image and state"
-        } else {
-            "image"
-        };
-        let write_s = t1.elapsed().as_secs_f64() - secs;
-        eprintln!("wrote the {what} in {write_s:.3} s");
-    }
-    if verbosity != Verbosity::Quiet {
-        let done = samples_in(&film) - samples_before;
-        let paths = done as f64;
+
+    /// The summary line (and, after an interruption, how to go on).
+    fn print_line(&self, report: &Report) {
+        let s = self.settings;
+        let secs = report.render_time.as_secs_f64();
+        let (least, most, mean) = report.film.sample_counts();
+        let interrupted = report.outcome == crate::render::Outcome::Cancelled;
+        let paths = report.samples as f64;
+        let rays = report.rays;
         let samples = if interrupted {
             format!("interrupted: {least} spp in every pixel, up to {most}, {mean:.1} on average")
         } else {
             format!("{least} spp")
         };
-        let of = match farm.pass {
+        let of = match self.pass {
             Some(p) => format!(" (pass {p} of {} spp)", s.samples),
             None => String::new(),
         };
-        let state_note = match (state_written, farm.pass) {
+        let state_note = match (&report.state, self.pass) {
             (Some(path), None) if most > 0 => format!(" (state {})", path.display()),
             _ => String::new(),
         };
         eprintln!(
             "{}: {}×{}, {samples}{of} in {:.2} s ({:.2} M paths/s, {:.2} M rays/s: {:.2} closest-hit and {:.2} shadow rays per path; load {:.2} s{}) → {}{state_note}",
-            args.file.display(),
+            self.file.display(),
             s.width,
             s.height,
             secs,
@@ -366,12 +313,12 @@ fn render_frame(
             rays.total() as f64 / secs / 1e6,
             rays.closest as f64 / paths.max(1.0),
             rays.shadow as f64 / paths.max(1.0),
-            load_s,
+            self.load_s,
             peak_memory()
                 .map(|mb| format!("; peak memory {mb:.0} MB"))
                 .unwrap_or_default(),
-            if most > 0 || farm.pass.is_some() {
-                output.display().to_string()
+            if report.image_written {
+                self.output.display().to_string()
             } else {
                 "no sample, nothing written".to_string()
             }
@@ -380,41 +327,6 @@ fn render_frame(
             eprintln!("add --resume to the same command to continue");
         }
     }
-    if interrupted {
-        signals.exit_code()
-    } else {
-        EXIT_OK
-    }
-}
-
-/// Why the render must not start: a path it will write that cannot be
-/// written (the image, and the state that checkpoints, interruptions and
-/// --keep-state write), an output holding a render's state that the image
-/// would replace, or more memory than is free for its film.
-fn check_before_rendering(
-    args: &RenderArgs,
-    farm: &FarmArgs,
-    (output, state_path): (&Path, &Path),
-    inputs: &[PathBuf],
-    settings: &crate::ir::settings::Settings,
-) -> Result<(), String> {
-    crate::output::check_output(output, inputs)
-        .map_err(|why| format!("cannot write {}: {why}", crate::output::shown(output)))?;
-    if farm.pass.is_none() {
-        farm::refuse_to_replace_state(output, farm.force)?;
-        crate::output::check_writable(state_path).map_err(|why| {
-            format!(
-                "cannot write the render's state at {} (where checkpoints, Ctrl-C and --keep-state save it): {why}",
-                crate::output::shown(state_path)
-            )
-        })?;
-    }
-    crate::render::memory::check(&memory_need(settings), args.memory_limit)
-}
-
-/// What a render of `settings` needs beyond what its scene holds.
-fn memory_need(settings: &crate::ir::settings::Settings) -> crate::render::memory::Need {
-    crate::render::memory::Need::film((settings.width, settings.height))
 }
 
 /// The process's peak resident memory so far in MB (10^6 bytes), where the

@@ -3,6 +3,7 @@
 //! code tells which signal it was (128 + its number: 130, 143), so that a
 //! script can tell an interrupted render from a finished one.
 
+use crate::render::session::Cancel;
 use signal_hook::consts::{SIGINT, SIGTERM};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
@@ -15,14 +16,11 @@ pub const EXIT_SIGTERM: u8 = 143;
 /// The flags the signals set.
 #[derive(Debug, Clone)]
 pub struct Signals {
-    /// Set by either signal: what the render polls.
-    pub stop: Arc<AtomicBool>,
+    /// Cancelled by either signal: what a render session stops on (it
+    /// tells a stop from its own checkpoints' pauses).
+    pub cancel: Cancel,
     /// Set by SIGTERM.
     term: Arc<AtomicBool>,
-    /// Set by either signal, and by a render's checkpoint when one is due:
-    /// what a render that saves its state polls (it clears it after a
-    /// checkpoint and goes on; [`Signals::stopped`] tells the two apart).
-    pub interrupt: Arc<AtomicBool>,
 }
 
 impl Signals {
@@ -30,20 +28,21 @@ impl Signals {
     /// keeps its default action (the process ends).
     pub fn install() -> Signals {
         let signals = Signals {
-            stop: Arc::new(AtomicBool::new(false)),
+            cancel: Cancel::new(),
             term: Arc::new(AtomicBool::new(false)),
-            interrupt: Arc::new(AtomicBool::new(false)),
         };
+        let [requested, polled] = signals.cancel.flags();
         for (signal, code) in [(SIGINT, EXIT_SIGINT), (SIGTERM, EXIT_SIGTERM)] {
             // A second signal while the first is being answered: quit now.
-            // (The condition is checked before the flag below is set.)
+            // (The condition is checked before the flags below are set.)
             let _ = signal_hook::flag::register_conditional_shutdown(
                 signal,
                 code as i32,
-                signals.stop.clone(),
+                requested.clone(),
             );
-            let _ = signal_hook::flag::register(signal, signals.stop.clone());
-            let _ = signal_hook::flag::register(signal, signals.interrupt.clone());
+            // In the token's order, which is cancelling it.
+            let _ = signal_hook::flag::register(signal, requested.clone());
+            let _ = signal_hook::flag::register(signal, polled.clone());
         }
         let _ = signal_hook::flag::register(SIGTERM, signals.term.clone());
         signals
@@ -51,7 +50,7 @@ impl Signals {
 
     /// Whether a signal asked to stop.
     pub fn stopped(&self) -> bool {
-        self.stop.load(Ordering::Relaxed)
+        self.cancel.is_cancelled()
     }
 
     /// The exit code for the signal that stopped the process.

@@ -7,7 +7,7 @@
 //! start a new one in the background: a quarter-resolution 1-spp preview, then
 //! full-resolution passes of 1, 2, 4, … spp, the image replaced atomically after
 //! each. The preview goes to its own file beside the image, at its own
-//! resolution ([`preview_path`]: `NAME.preview.png` for `NAME.png`), so the image only
+//! resolution (`render::session::preview_path`: `NAME.preview.png` for `NAME.png`), so the image only
 //! ever holds full-resolution results: a viewer showing it never drops to
 //! the thumbnail, and one showing the preview file sees each save at once. File events come from `notify` on the folders of the scene, its
 //! includes and its meshes, batched (100 ms of quiet, at most 500 ms), so an
@@ -15,13 +15,13 @@
 //! change and the output file's own writes are ignored.
 
 use super::render::{compile, output_path, RenderArgs};
-use crate::ir::Scene;
 use crate::lower::cache::LowerCache;
-use crate::render::memory::Need;
+use crate::render::session::{
+    Cancel, Error, Mode, Observer, PassDone, Plan, PreviewDone, Report, Session,
+};
 use notify::{RecursiveMode, Watcher};
 use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{mpsc, Arc};
 use std::thread::JoinHandle;
 use std::time::{Duration, Instant, SystemTime};
@@ -30,8 +30,6 @@ use std::time::{Duration, Instant, SystemTime};
 const QUIET: Duration = Duration::from_millis(100);
 /// Longest a batch may wait after its first event.
 const MAX_BATCH: Duration = Duration::from_millis(500);
-/// The preview renders at 1 / PREVIEW_DIVISOR of the resolution on each side.
-const PREVIEW_DIVISOR: u32 = 4;
 
 /// Runs `watch`; returns the exit code (after Ctrl-C).
 pub fn run(args: &RenderArgs) -> u8 {
@@ -148,7 +146,7 @@ struct State {
     /// Absolute paths of the scene, its includes and its meshes.
     files: BTreeSet<PathBuf>,
     watched_dirs: BTreeSet<PathBuf>,
-    render: Option<(Arc<AtomicBool>, JoinHandle<()>)>,
+    render: Option<(Cancel, JoinHandle<()>)>,
     /// Renders started so far: each one's status lines carry its number.
     renders: u32,
     pool: Arc<rayon::ThreadPool>,
@@ -191,37 +189,43 @@ impl State {
             return;
         };
         let output = output_path(&self.args, compiled.output.as_deref(), self.animation.frame);
-        if let Err(why) = crate::output::check_output(&output, &compiled.dependencies) {
-            status(&format!(
-                "cannot write {}: {why}; keeping the last image",
-                output.display()
-            ));
-            return;
-        }
-        // A preview that cannot be written is left out: the passes still are.
-        let preview = preview_path(&output);
-        let preview = match crate::output::check_output(&preview, &compiled.dependencies)
-            .and_then(|()| crate::cli::farm::refuse_to_replace_state(&preview, false))
-        {
-            Ok(()) => Some(preview),
-            Err(why) => {
+        let plan = Plan {
+            output,
+            inputs: compiled.dependencies,
+            memory_limit: self.args.memory_limit,
+            mode: Mode::Live,
+        };
+        let checked = match plan.check() {
+            Ok(checked) => checked,
+            Err(Error::Output { path, why }) => {
                 status(&format!(
-                    "no preview: cannot write {}: {why}",
-                    preview.display()
+                    "cannot write {}: {why}; keeping the last image",
+                    path.display()
                 ));
-                None
+                return;
+            }
+            Err(why) => {
+                status(&format!("{why}; keeping the last image"));
+                return;
             }
         };
+        // A preview that cannot be written is left out: the passes still are.
+        if let Some((preview, why)) = &checked.no_preview {
+            status(&format!(
+                "no preview: cannot write {}: {why}",
+                preview.display()
+            ));
+        }
         // The image watch replaces must not be a render's state, and the
         // film must fit (the last render's is released first).
         self.stop_render();
-        let need = Need::film((ir.settings.width, ir.settings.height));
-        let fits = crate::cli::farm::refuse_to_replace_state(&output, false)
-            .and_then(|()| crate::render::memory::check(&need, self.args.memory_limit));
-        if let Err(why) = fits {
-            status(&format!("{why}; keeping the last image"));
-            return;
-        }
+        let session = match Session::new(ir, checked) {
+            Ok(session) => session,
+            Err(why) => {
+                status(&format!("{why}; keeping the last image"));
+                return;
+            }
+        };
         status(&format!(
             "compiled in {} ms: {} mesh file(s) loaded, geometry {}",
             t0.elapsed().as_millis(),
@@ -233,14 +237,21 @@ impl State {
             }
         ));
         self.stop_render();
-        let cancel = Arc::new(AtomicBool::new(false));
+        let cancel = Cancel::new();
         let c = cancel.clone();
         let pool = self.pool.clone();
         self.renders += 1;
         let number = self.renders;
         let handle = std::thread::spawn(move || {
-            let files = (output.as_path(), preview.as_deref());
-            pool.install(|| render_progressively(&ir, files, &c, changed_at, number));
+            let lines = Lines {
+                number,
+                changed_at,
+                output: session.output().to_path_buf(),
+            };
+            let samples = session.scene().settings.samples;
+            if let Ok(report) = pool.install(|| session.run(&lines, &c)) {
+                lines.finished(&report, samples);
+            }
         });
         self.render = Some((cancel, handle));
     }
@@ -257,10 +268,11 @@ impl State {
         }
     }
 
-    /// Cancels the render in flight and waits for it (it stops between tiles).
+    /// Cancels the render in flight and waits for it (it stops within a
+    /// few samples).
     fn stop_render(&mut self) {
         if let Some((cancel, handle)) = self.render.take() {
-            cancel.store(true, Ordering::Relaxed);
+            cancel.cancel();
             let _ = handle.join();
         }
     }
@@ -289,98 +301,72 @@ impl State {
     }
 }
 
-/// Where `watch` writes the quick preview of the image `output`: beside it,
-/// `.preview` before the extension (`shot.png` → `shot.preview.png`).
-pub fn preview_path(output: &Path) -> PathBuf {
-    let stem = output.file_stem().unwrap_or_default().to_string_lossy();
-    let name = match output.extension() {
-        Some(ext) => format!("{stem}.preview.{}", ext.to_string_lossy()),
-        None => format!("{stem}.preview"),
-    };
-    output.with_file_name(name)
+/// The status lines of one render, from its session's events; each starts
+/// with `render N:`.
+struct Lines {
+    /// The render's number.
+    number: u32,
+    /// When the change it renders happened, and what it was.
+    changed_at: (Instant, &'static str),
+    /// The image it writes.
+    output: PathBuf,
 }
 
-/// A quick low-resolution preview (to `preview`, when there is one), then
-/// the progressive passes (to `output`); its status lines start with
-/// `render N:`.
-fn render_progressively(
-    ir: &Scene,
-    (output, preview): (&Path, Option<&Path>),
-    cancel: &AtomicBool,
-    (changed_at, change): (Instant, &str),
-    number: u32,
-) {
-    let status = |msg: &str| status(&format!("render {number}: {msg}"));
-    let integrator = crate::integrator::make(ir.settings.integrator);
-    let exposure = ir.settings.exposure;
-    let (w, h) = (ir.settings.width, ir.settings.height);
-    let t0 = Instant::now();
-    let wants_preview = w >= 4 * PREVIEW_DIVISOR && h >= 4 * PREVIEW_DIVISOR;
-    if let Some(preview) = preview.filter(|_| wants_preview && ir.settings.samples > 1) {
-        let Some(film) =
-            crate::render::render_preview(ir, integrator.as_ref(), cancel, PREVIEW_DIVISOR)
-        else {
-            return;
-        };
-        // At its own size: encoding it enlarged to the image's took as long
-        // as rendering it (cornell: 171 M instructions of 348 M, mostly
-        // sRGB conversion and deflate), and its own file needs no match.
-        match film.write(preview, exposure) {
-            Ok(()) => status(&format!(
-                "preview {}×{} at 1 spp in {} ms ({} ms after {change}) → {}",
-                film.width,
-                film.height,
-                t0.elapsed().as_millis(),
-                changed_at.elapsed().as_millis(),
-                preview.display()
-            )),
-            Err(e) => status(&format!("cannot write {}: {e}", preview.display())),
-        }
+impl Lines {
+    /// A status line of this render.
+    fn status(&self, msg: &str) {
+        status(&format!("render {}: {msg}", self.number));
     }
-    let mut pass = 0;
-    let mut last = Instant::now();
-    // Whether the last pass's image reached the disk.
-    let mut written = false;
-    let outcome = crate::render::render(
-        ir,
-        integrator.as_ref(),
-        cancel,
-        &|_| {},
-        &mut |film, spp| {
-            pass += 1;
-            written = match film.write(output, exposure) {
-                Ok(()) => {
-                    status(&format!(
-                        "pass {pass}: {spp} spp in {:.2} s (total {:.2} s)",
-                        last.elapsed().as_secs_f64(),
-                        t0.elapsed().as_secs_f64()
-                    ));
-                    true
-                }
-                Err(e) => {
-                    status(&format!("cannot write {}: {e}", output.display()));
-                    false
-                }
-            };
-            last = Instant::now();
-        },
-    )
-    .outcome;
-    if outcome == crate::render::Outcome::Complete {
-        if written {
-            status(&format!(
-                "done: {} spp in {:.2} s → {}",
-                ir.settings.samples,
-                t0.elapsed().as_secs_f64(),
+
+    /// The last line of a render that finished (one that was stopped says
+    /// nothing: a newer render follows).
+    fn finished(&self, report: &Report, samples: u32) {
+        let output = &self.output;
+        if report.outcome != crate::render::Outcome::Complete {
+            return;
+        }
+        let total = report.render_time.as_secs_f64();
+        if report.image_written {
+            self.status(&format!(
+                "done: {samples} spp in {total:.2} s → {}",
                 output.display()
             ));
         } else {
-            status(&format!(
-                "finished {} spp in {:.2} s, but {} could not be written (see above); save the scene to try again",
-                ir.settings.samples,
-                t0.elapsed().as_secs_f64(),
+            self.status(&format!(
+                "finished {samples} spp in {total:.2} s, but {} could not be written (see above); save the scene to try again",
                 output.display()
             ));
+        }
+    }
+}
+
+impl Observer for Lines {
+    fn preview(&self, preview: &PreviewDone) {
+        let (changed_at, change) = self.changed_at;
+        match preview.written {
+            Ok(()) => self.status(&format!(
+                "preview {}×{} at 1 spp in {} ms ({} ms after {change}) → {}",
+                preview.size.0,
+                preview.size.1,
+                preview.elapsed.as_millis(),
+                changed_at.elapsed().as_millis(),
+                preview.path.display()
+            )),
+            Err(e) => self.status(&format!("cannot write {}: {e}", preview.path.display())),
+        }
+    }
+
+    fn pass(&self, pass: &PassDone) {
+        match pass.image {
+            Some(Ok(())) => self.status(&format!(
+                "pass {}: {} spp in {:.2} s (total {:.2} s)",
+                pass.number,
+                pass.spp,
+                pass.elapsed.as_secs_f64(),
+                pass.total.as_secs_f64()
+            )),
+            Some(Err(e)) => self.status(&format!("cannot write {}: {e}", self.output.display())),
+            None => {}
         }
     }
 }
@@ -402,17 +388,4 @@ fn status(msg: &str) {
         .map_or(0, |d| d.as_secs());
     let (h, m, s) = ((secs / 3600) % 24, (secs / 60) % 60, secs % 60);
     eprintln!("[{h:02}:{m:02}:{s:02}] {msg}");
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn the_preview_goes_beside_the_image_in_its_format() {
-        let p = |s: &str| preview_path(Path::new(s));
-        assert_eq!(p("out/shot.png"), Path::new("out/shot.preview.png"));
-        assert_eq!(p("frame_0012.exr"), Path::new("frame_0012.preview.exr"));
-        assert_eq!(p("a.b.pfm"), Path::new("a.b.preview.pfm"));
-    }
 }

@@ -74,6 +74,11 @@ impl Film {
         (min, max, total as f64 / self.count.len().max(1) as f64)
     }
 
+    /// Pixel samples the film holds, all pixels together.
+    pub fn total_samples(&self) -> u64 {
+        self.count.iter().map(|&n| n as u64).sum()
+    }
+
     /// Adds another film's samples, pixel by pixel (the parts of a split
     /// render; the caller checks that their sample runs are disjoint).
     pub fn add(&mut self, other: &Film) {

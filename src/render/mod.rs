@@ -5,6 +5,8 @@
 
 pub mod film;
 pub mod memory;
+pub mod merge;
+pub mod session;
 pub mod state;
 
 use crate::accel::ray_count::{self, RayCounts};

@@ -26,6 +26,7 @@ mod nasty;
 mod noise_params;
 mod outputs;
 mod render;
+mod session;
 mod shapes;
 #[cfg(unix)]
 mod special_files;

@@ -92,6 +92,29 @@ pub fn is_state_file(path: &Path) -> bool {
     meta.is_ok_and(|m| m.headers.iter().any(|h| is_state_part(&h.own_attributes)))
 }
 
+/// Why an image must not be written at `output`: it holds a render's
+/// state (a part file, a saved state), whose samples the image would
+/// replace, and `force` (the command line's `--force`) was not given.
+pub fn refuse_to_replace(output: &Path, force: bool) -> Result<(), String> {
+    if force || !is_state_file(output) {
+        return Ok(());
+    }
+    let what = read_state_info(output).map_or_else(
+        |_| "a render state".to_string(),
+        |info| {
+            format!(
+                "the samples of a render of {} ({})",
+                info.scene,
+                info.describe()
+            )
+        },
+    );
+    Err(format!(
+        "{} holds {what}; writing an image there would lose them: name another output, or add --force to replace it",
+        output.display()
+    ))
+}
+
 /// Whether a part of an EXR file is a render state's.
 fn is_state_part(attributes: &exr::meta::header::LayerAttributes) -> bool {
     (attributes.layer_name.as_ref()).is_some_and(|n| n.eq(STATE_PART))

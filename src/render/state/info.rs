@@ -146,6 +146,15 @@ impl StateInfo {
         None
     }
 
+    /// What the state holds, for messages: "64 spp", "pass 2/4 of 64 spp"
+    /// (from the description alone).
+    pub fn describe(&self) -> String {
+        match self.pass {
+            Pass::WHOLE => format!("{} spp", self.samples),
+            p => format!("pass {p} of {} spp", self.samples),
+        }
+    }
+
     /// The JSON text of the state part's attribute.
     pub(super) fn to_json(&self) -> String {
         let settings: serde_json::Map<String, serde_json::Value> = (self.settings.iter())

@@ -20,6 +20,6 @@ mod info;
 
 pub use file::{
     add_state, is_state_file, read_state, read_state_bytes, read_state_header, read_state_info,
-    write_state, STATE_PART,
+    refuse_to_replace, write_state, STATE_PART,
 };
 pub use info::{sample_settings, Pass, StateInfo};

@@ -1,0 +1,142 @@
+//! A live render (`ptsc watch`): a quick preview at a fraction of the
+//! resolution, to its own file beside the image, then full-resolution
+//! passes of 1, 2, 4, … spp, the image replaced after each. Nothing is
+//! kept: a stopped live render is replaced by the next one, and writes
+//! nothing more.
+
+use super::cancel::Cancel;
+use super::error::Error;
+use super::observer::{Observer, PassDone, PreviewDone, Report};
+use crate::ir::Scene;
+use crate::render::film::Film;
+use crate::render::memory::{self, Need};
+use crate::render::Outcome;
+use std::path::{Path, PathBuf};
+use std::time::{Duration, Instant};
+
+/// A live render's preview is this many times smaller on each side.
+pub const PREVIEW_DIVISOR: u32 = 4;
+
+/// Where a live render writes the quick preview of the image `output`:
+/// beside it, `.preview` before the extension (`shot.png` →
+/// `shot.preview.png`).
+pub fn preview_path(output: &Path) -> PathBuf {
+    let stem = output.file_stem().unwrap_or_default().to_string_lossy();
+    let name = match output.extension() {
+        Some(ext) => format!("{stem}.preview.{}", ext.to_string_lossy()),
+        None => format!("{stem}.preview"),
+    };
+    output.with_file_name(name)
+}
+
+/// Why the live render must not start: the image it replaces holds a
+/// render's state, or its film does not fit in the memory left.
+pub(super) fn prepare(
+    scene: &Scene,
+    output: &Path,
+    memory_limit: Option<u64>,
+) -> Result<(), Error> {
+    let need = Need::film((scene.settings.width, scene.settings.height));
+    crate::render::state::refuse_to_replace(output, false)
+        .and_then(|()| memory::check(&need, memory_limit))
+        .map_err(Error::Refused)
+}
+
+/// The preview (to `preview`, when there is one and the image is large
+/// enough to shrink), then the passes, each written to `output`.
+pub(super) fn run(
+    scene: &Scene,
+    (output, preview): (&Path, Option<&Path>),
+    observer: &dyn Observer,
+    cancel: &Cancel,
+) -> Report {
+    let s = &scene.settings;
+    let integrator = crate::integrator::make(s.integrator);
+    let (w, h) = (s.width, s.height);
+    let t0 = Instant::now();
+    let wants_preview = w >= 4 * PREVIEW_DIVISOR && h >= 4 * PREVIEW_DIVISOR;
+    if let Some(preview) = preview.filter(|_| wants_preview && s.samples > 1) {
+        let rendered = crate::render::render_preview(
+            scene,
+            integrator.as_ref(),
+            cancel.polled(),
+            PREVIEW_DIVISOR,
+        );
+        let Some(film) = rendered else {
+            return stopped_early(t0.elapsed());
+        };
+        // At its own size: encoding it enlarged to the image's took as long
+        // as rendering it (cornell: 171 M instructions of 348 M, mostly
+        // sRGB conversion and deflate), and its own file needs no match.
+        let written = film.write(preview, s.exposure);
+        observer.preview(&PreviewDone {
+            size: (film.width, film.height),
+            elapsed: t0.elapsed(),
+            path: preview,
+            written: &written,
+        });
+    }
+    let mut number = 0;
+    let mut last = Instant::now();
+    // Whether the last pass's image reached the disk.
+    let mut written = false;
+    let rendered = crate::render::render_from(
+        scene,
+        integrator.as_ref(),
+        Film::new(w, h, 0),
+        s.samples,
+        cancel.polled(),
+        &|done| observer.progress(done),
+        &mut |film, spp| {
+            number += 1;
+            let result = film.write(output, s.exposure);
+            written = result.is_ok();
+            observer.pass(&PassDone {
+                number,
+                spp,
+                elapsed: last.elapsed(),
+                total: t0.elapsed(),
+                image: Some(&result),
+            });
+            last = Instant::now();
+        },
+    );
+    observer.rendered();
+    Report {
+        outcome: rendered.outcome,
+        samples: rendered.film.total_samples(),
+        film: rendered.film,
+        rays: rendered.rays,
+        render_time: t0.elapsed(),
+        write_time: Duration::ZERO,
+        image_written: written,
+        state: None,
+    }
+}
+
+/// The report of a live render stopped during its preview.
+fn stopped_early(render_time: Duration) -> Report {
+    Report {
+        outcome: Outcome::Cancelled,
+        film: Film::new(0, 0, 0),
+        samples: 0,
+        rays: Default::default(),
+        render_time,
+        write_time: Duration::ZERO,
+        image_written: false,
+        state: None,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_preview_goes_beside_the_image_in_its_format() {
+        let p = |s: &str| preview_path(Path::new(s));
+        assert_eq!(p("out/shot.png"), Path::new("out/shot.preview.png"));
+        assert_eq!(p("frame_0012.exr"), Path::new("frame_0012.preview.exr"));
+        assert_eq!(p("a.b.pfm"), Path::new("a.b.preview.pfm"));
+    }
+}

@@ -6,7 +6,7 @@
 # bench scenes mesh (1M triangles) and spheres (10k spheres). Prints Embree's kernels, then
 # Mrays/s, the agreement of the answers, build times and memory as Markdown
 # tables (docs/performance.md, "Embree as a yardstick"). The halves:
-# examples/embree_yardstick.rs (ptsc: writes the geometry and rays, traces
+# examples/embree_yardstick/ (ptsc: writes the geometry and rays, traces
 # them, reports) and benches/embree/yardstick.c (Embree).
 #
 #   bash scripts/embree-yardstick.sh [SCENE...]      (default: mesh spheres)

@@ -597,28 +597,6 @@ impl Material {
             Kind::Lobes => None,
         }
     }
-
-    /// Samples only the specular part of a metal, a plastic's coat or
-    /// rough glass (for Whitted's reflected and refracted branches; diffuse
-    /// light there comes from shadow rays alone).
-    pub fn sample_specular(&self, wo: Vec3, n: Vec3, u_lobe: f32, u: Vec2) -> Option<BsdfSample> {
-        match self.kind {
-            Kind::Plastic(coat) => {
-                let nf = if wo.dot(n) < 0.0 { -n } else { n };
-                let (t, b) = orthonormal_basis(nf);
-                let lo = Vec3::new(wo.dot(t), wo.dot(b), wo.dot(nf));
-                let (li, weight) = coat.sample_coat(self.reflection, lo, u)?;
-                Some(BsdfSample {
-                    wi: li.x * t + li.y * b + li.z * nf,
-                    weight,
-                    pdf: 0.0,
-                    delta: coat.alpha == 0.0,
-                    transmitted: false,
-                })
-            }
-            _ => self.sample(wo, n, u_lobe, u),
-        }
-    }
 }
 
 #[cfg(test)]

@@ -3,9 +3,10 @@
 //! tracer with the factor it counts with in the pixel. Diffuse light there
 //! comes from shadow rays alone (`integrator::whitted`).
 
-use super::{fresnel, reflect, refract, thin_dielectric, Kind, Material};
+use super::{fresnel, reflect, refract, thin_dielectric, BsdfSample, Kind, Material};
+use crate::geometry::orthonormal_basis;
 use crate::sampling::sampler::Sampler;
-use glam::Vec3;
+use glam::{Vec2, Vec3};
 
 /// Samples taken around the mirror direction of a glossy surface.
 pub const GLOSSY_SAMPLES: u32 = 4;
@@ -123,6 +124,28 @@ impl Material {
             two_sided: self.two_sided,
             lobe_pdf: [0.0, 1.0, 0.0],
             textured: None,
+        }
+    }
+
+    /// Samples only the specular part of a metal, a plastic's coat or
+    /// rough glass (for Whitted's reflected and refracted branches; diffuse
+    /// light there comes from shadow rays alone).
+    pub fn sample_specular(&self, wo: Vec3, n: Vec3, u_lobe: f32, u: Vec2) -> Option<BsdfSample> {
+        match self.kind {
+            Kind::Plastic(coat) => {
+                let nf = if wo.dot(n) < 0.0 { -n } else { n };
+                let (t, b) = orthonormal_basis(nf);
+                let lo = Vec3::new(wo.dot(t), wo.dot(b), wo.dot(nf));
+                let (li, weight) = coat.sample_coat(self.reflection, lo, u)?;
+                Some(BsdfSample {
+                    wi: li.x * t + li.y * b + li.z * nf,
+                    weight,
+                    pdf: 0.0,
+                    delta: coat.alpha == 0.0,
+                    transmitted: false,
+                })
+            }
+            _ => self.sample(wo, n, u_lobe, u),
         }
     }
 }

@@ -210,6 +210,16 @@ static void sphere_occluded(const struct RTCOccludedFunctionNArguments *args) {
     r->tfar = -INFINITY;
 }
 
+/* Gives the geometry its build quality, commits it and attaches it to the
+ * scene under `id`; the scene keeps the only reference. */
+static void attach(RTCScene scene, RTCGeometry geometry, enum RTCBuildQuality quality,
+                   unsigned id) {
+  rtcSetGeometryBuildQuality(geometry, quality);
+  rtcCommitGeometry(geometry);
+  rtcAttachGeometryByID(scene, geometry, id);
+  rtcReleaseGeometry(geometry);
+}
+
 static RTCScene build(RTCDevice device, const Geometry *g, enum RTCBuildQuality quality) {
   RTCScene scene = rtcNewScene(device);
   rtcSetSceneBuildQuality(scene, quality);
@@ -219,10 +229,7 @@ static RTCScene build(RTCDevice device, const Geometry *g, enum RTCBuildQuality 
                                g->vertices);
     rtcSetSharedGeometryBuffer(m, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, g->index, 0, 12,
                                g->triangles);
-    rtcSetGeometryBuildQuality(m, quality);
-    rtcCommitGeometry(m);
-    rtcAttachGeometryByID(scene, m, MESH);
-    rtcReleaseGeometry(m);
+    attach(scene, m, quality, MESH);
   }
   if (g->spheres && user_spheres) {
     RTCGeometry s = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
@@ -231,18 +238,12 @@ static RTCScene build(RTCDevice device, const Geometry *g, enum RTCBuildQuality 
     rtcSetGeometryBoundsFunction(s, sphere_bounds, NULL);
     rtcSetGeometryIntersectFunction(s, sphere_intersect);
     rtcSetGeometryOccludedFunction(s, sphere_occluded);
-    rtcSetGeometryBuildQuality(s, quality);
-    rtcCommitGeometry(s);
-    rtcAttachGeometryByID(scene, s, SPHERES);
-    rtcReleaseGeometry(s);
+    attach(scene, s, quality, SPHERES);
   } else if (g->spheres) {
     RTCGeometry s = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_SPHERE_POINT);
     rtcSetSharedGeometryBuffer(s, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4, g->sphere, 0, 16,
                                g->spheres);
-    rtcSetGeometryBuildQuality(s, quality);
-    rtcCommitGeometry(s);
-    rtcAttachGeometryByID(scene, s, SPHERES);
-    rtcReleaseGeometry(s);
+    attach(scene, s, quality, SPHERES);
   }
   rtcCommitScene(scene);
   return scene;

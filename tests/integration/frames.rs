@@ -309,6 +309,15 @@ impl Case {
     }
 }
 
+/// The condition number of `m` in the Frobenius norm, ‖m‖·‖m⁻¹‖: how much
+/// it can magnify a relative error.
+fn condition(m: DMat3) -> f64 {
+    let frobenius = |m: DMat3| {
+        (m.x_axis.length_squared() + m.y_axis.length_squared() + m.z_axis.length_squared()).sqrt()
+    };
+    frobenius(m) * frobenius(m.inverse())
+}
+
 fn close(got: Vec3, want: DVec3, scale: f64) -> bool {
     (got.as_dvec3() - want).length() <= 2e-3 * scale.max(1.0)
 }
@@ -337,8 +346,17 @@ fn check_frame(c: &Case, context: Context, ir: &Scene) -> Result<bool, TestCaseE
         hit.n_geo
     );
     let ns = c.shading_normal(context);
+    // A placed group is intersected in its own frame, where an uneven
+    // placement can make the ray graze the triangle: the barycentrics then
+    // carry f32 errors growing with the placement's condition number, and
+    // the inverse transpose moving the shading normal out magnifies them by
+    // up to it again (a condition number of 124 turned one 3.6e-3 off).
+    let placed = match context {
+        Context::Placed => (condition(c.m) / 50.0).powi(2).max(1.0),
+        _ => 1.0,
+    };
     prop_assert!(
-        close(hit.n_shading, ns, 1.0),
+        close(hit.n_shading, ns, placed),
         "{context:?}: ns {} vs {ns}",
         hit.n_shading
     );

@@ -333,13 +333,6 @@ impl Material {
         })
     }
 
-    /// The mixture pdf with which [`Material::sample`] picks `wi` for `wo`
-    /// (solid angle; 0 for delta lobes).
-    #[inline]
-    pub fn pdf(&self, wo: Vec3, wi: Vec3, n: Vec3) -> f32 {
-        self.eval(wo, wi, n).1
-    }
-
     /// Emitted radiance towards `wo` from a surface with geometric normal `n`.
     pub fn emitted(&self, wo: Vec3, n: Vec3) -> Vec3 {
         if self.two_sided || wo.dot(n) > 0.0 {

@@ -70,8 +70,11 @@ impl Film {
     pub fn sample_counts(&self) -> (u32, u32, f64) {
         let min = self.count.iter().copied().min().unwrap_or(0);
         let max = self.count.iter().copied().max().unwrap_or(0);
-        let total: u64 = self.count.iter().map(|&n| n as u64).sum();
-        (min, max, total as f64 / self.count.len().max(1) as f64)
+        (
+            min,
+            max,
+            self.total_samples() as f64 / self.count.len().max(1) as f64,
+        )
     }
 
     /// Pixel samples the film holds, all pixels together.

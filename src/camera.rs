@@ -53,6 +53,16 @@ impl Camera {
         self.shutter
     }
 
+    /// Whether rays depend on the lens draw (a lens, not a pinhole).
+    pub fn uses_lens(&self) -> bool {
+        self.lens_radius > 0.0
+    }
+
+    /// Whether rays depend on the time draw (an open shutter).
+    pub fn uses_time(&self) -> bool {
+        self.shutter.0 != self.shutter.1
+    }
+
     /// The ray through image position `film` (pixels, y down), lens sample
     /// `lens` and time sample `u_time`.
     pub fn ray(&self, film: Vec2, lens: Vec2, u_time: f32) -> Ray {

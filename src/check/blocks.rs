@@ -67,6 +67,10 @@ pub fn render_settings(p: &Params, base_dir: &Path, diags: &mut Diagnostics) -> 
         Some((Val::Word(w), _)) => LightSelection::from_name(w).unwrap_or(d.light_selection),
         _ => d.light_selection,
     };
+    let sampler = match p.get("sampler") {
+        Some((Val::Word(w), _)) => SamplerKind::from_name(w).unwrap_or(d.sampler),
+        _ => d.sampler,
+    };
     let clamp = r
         .num("clamp")
         .map(|_| r.num_in("clamp", 0.0, f64::INFINITY, true, f64::INFINITY));
@@ -78,6 +82,7 @@ pub fn render_settings(p: &Params, base_dir: &Path, diags: &mut Diagnostics) -> 
         max_depth: r.num_in("max_depth", 1.0, 1024.0, false, d.max_depth as f64) as u32,
         integrator,
         seed: r.whole(SEED, 0),
+        sampler,
         ambient: glam::DVec3::from_array(r.color("ambient", [0.0; 3])).as_vec3(),
         rr_depth: r.num_in("rr_depth", 1.0, 1024.0, false, d.rr_depth as f64) as u32,
         hybrid_weight: r.num_in("hybrid_weight", 0.0, 1.0, false, d.hybrid_weight as f64) as f32,

@@ -176,6 +176,9 @@ pub const INTEGRATORS: &[&str] = &crate::ir::settings::IntegratorKind::WORDS;
 /// Light selection rules accepted by `render { light_selection … }`.
 pub const LIGHT_SELECTIONS: &[&str] = &crate::ir::settings::LightSelection::WORDS;
 
+/// Samplers accepted by `render { sampler … }`.
+pub const SAMPLERS: &[&str] = &crate::ir::settings::SamplerKind::WORDS;
+
 /// `render { }`
 pub const RENDER: &[ParamSpec] = &[
     p("resolution", Ty::Vec2, "<512, 512>")
@@ -188,6 +191,8 @@ pub const RENDER: &[ParamSpec] = &[
         .doc("light transport: `path` (unbiased), `whitted`, `hybrid`, or a debug view (`normals`, `albedo`, `depth`, `uv`). Default `path`"),
     p("seed", Ty::Int, "1")
         .doc("seed of every random stream, 0..4294967295: same seed, same image. Default 0"),
+    p("sampler", Ty::Word(SAMPLERS), "independent")
+        .doc("the numbers samples draw: `sobol` (Owen-scrambled Sobol points, stratified in every decision of a pixel's samples) or `independent`. Default `sobol`"),
     p("ambient", Ty::Color, "rgb 0.1").of(Radiance)
         .doc("a constant ambient term added at diffuse hits (the paper's); biased. Default black"),
     p("rr_depth", Ty::Int, "5")

@@ -4,7 +4,7 @@
 
 use super::Verbosity;
 use crate::check::Animation;
-use crate::ir::settings::{IntegratorKind, LightSelection, Settings};
+use crate::ir::settings::{IntegratorKind, LightSelection, SamplerKind, Settings};
 use std::path::{Path, PathBuf};
 
 /// Command-line overrides of the scene's `render` block.
@@ -27,6 +27,9 @@ pub struct RenderArgs {
     /// Image size as WxH, e.g. 640x480.
     #[arg(long, value_parser = parse_resolution)]
     pub resolution: Option<(u32, u32)>,
+    /// Sampler: sobol (the default) or independent.
+    #[arg(long, value_parser = parse_sampler)]
+    pub sampler: Option<SamplerKind>,
     /// Integrator: path, whitted, hybrid, normals, albedo, depth or uv.
     #[arg(long, value_parser = parse_integrator)]
     pub integrator: Option<IntegratorKind>,
@@ -169,6 +172,10 @@ fn parse_integrator(s: &str) -> Result<IntegratorKind, String> {
     IntegratorKind::from_name(s).ok_or_else(|| expected_one_of(&IntegratorKind::WORDS))
 }
 
+fn parse_sampler(s: &str) -> Result<SamplerKind, String> {
+    SamplerKind::from_name(s).ok_or_else(|| expected_one_of(&SamplerKind::WORDS))
+}
+
 fn parse_light_selection(s: &str) -> Result<LightSelection, String> {
     LightSelection::from_name(s).ok_or_else(|| expected_one_of(&LightSelection::WORDS))
 }
@@ -192,6 +199,9 @@ pub fn apply_overrides(settings: &mut Settings, args: &RenderArgs) {
     if let Some((w, h)) = args.resolution {
         settings.width = w;
         settings.height = h;
+    }
+    if let Some(k) = args.sampler {
+        settings.sampler = k;
     }
     if let Some(k) = args.integrator {
         settings.integrator = k;

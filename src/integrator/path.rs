@@ -10,7 +10,7 @@
 use super::{direct_light_mis, light_pdf, scaled_within, Integrator, T_MIN};
 use crate::geometry::{offset_origin, Ray};
 use crate::ir::Scene;
-use crate::sampling::sampler::Sampler;
+use crate::sampling::sampler::{Draws, Sampler};
 use crate::sampling::warp::power_heuristic;
 use glam::Vec3;
 
@@ -76,7 +76,9 @@ pub fn path_li(scene: &Scene, mut ray: Ray, sampler: &mut Sampler, nee: bool) ->
             break;
         }
         // Direct light (the paper's ambient term is added here when asked for: biased).
+        let bounce = segments - 1;
         if nee && material.has_smooth_lobe() {
+            sampler.start(bounce, Draws::Light);
             let c = beta * direct_light_mis(scene, &hit, material, wo, ray.time, sampler);
             add(&mut radiance, c, segments, s.clamp);
         }
@@ -86,6 +88,7 @@ pub fn path_li(scene: &Scene, mut ray: Ray, sampler: &mut Sampler, nee: bool) ->
             }
         }
         // Continue the path by sampling the BSDF.
+        sampler.start(bounce, Draws::Bsdf);
         let Some(bs) = material.sample(wo, hit.n_shading, sampler.next_f32(), sampler.next_2d())
         else {
             break;
@@ -110,6 +113,7 @@ pub fn path_li(scene: &Scene, mut ray: Ray, sampler: &mut Sampler, nee: bool) ->
         // those channels noisy.
         if segments >= s.rr_depth {
             let q = beta.max_element().clamp(0.05, 0.95);
+            sampler.start(bounce, Draws::Roulette);
             if sampler.next_f32() >= q {
                 break;
             }

@@ -13,7 +13,7 @@ use crate::geometry::{offset_origin, Ray};
 use crate::ir::{Hit, Scene};
 use crate::light::Light;
 use crate::material::Material;
-use crate::sampling::sampler::Sampler;
+use crate::sampling::sampler::{Draws, Sampler};
 use glam::Vec3;
 
 /// The Whitted integrator.
@@ -47,6 +47,7 @@ pub fn trace(scene: &Scene, ray: Ray, sampler: &mut Sampler, segment: u32, weigh
         return l;
     }
     if m.has_smooth_lobe() {
+        sampler.start(segment - 1, Draws::Light);
         l += direct(scene, &hit, m, wo, ray.time, sampler);
     }
     if let Some(albedo) = m.ambient_albedo() {
@@ -54,14 +55,19 @@ pub fn trace(scene: &Scene, ray: Ray, sampler: &mut Sampler, segment: u32, weigh
     }
     // The reflected and refracted branches, unless their weight in the
     // pixel is below the bailout.
+    // The branches after the first draw from the PCG stream: the first
+    // one's subtree has used the later bounces' slots.
     let outside = wo.dot(hit.n_geo) >= 0.0;
+    sampler.start(segment - 1, Draws::Bsdf);
     l += m.specular_light(wo, hit.n_shading, outside, sampler, |sampler, k, dir| {
         let w = weight * k;
         if w < BAILOUT {
             return Vec3::ZERO;
         }
         let r = Ray::new(offset_origin(hit.p, hit.n_geo, dir), dir, ray.time);
-        trace(scene, r, sampler, segment + 1, w)
+        let l = trace(scene, r, sampler, segment + 1, w);
+        sampler.pad();
+        l
     });
     // Beer's law over the segment just travelled inside this object.
     if let Some(medium) = m.interior() {

@@ -6,6 +6,7 @@
 use glam::Vec3;
 
 pub use crate::light::selection::LightSelection;
+pub use crate::sampling::sampler::SamplerKind;
 
 /// Which light-transport algorithm renders the scene.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -79,6 +80,8 @@ pub struct Settings {
     pub integrator: IntegratorKind,
     /// Seed of every random stream.
     pub seed: u64,
+    /// Which numbers the samples draw.
+    pub sampler: SamplerKind,
     /// The paper's constant ambient term (biased), added at diffuse hits.
     pub ambient: Vec3,
     /// Path depth (in segments) from which Russian roulette may end a path.
@@ -107,6 +110,7 @@ impl Default for Settings {
             max_depth: 8,
             integrator: IntegratorKind::Path,
             seed: 0,
+            sampler: SamplerKind::Sobol,
             ambient: Vec3::ZERO,
             rr_depth: 5,
             hybrid_weight: 0.5,

@@ -12,7 +12,7 @@ pub mod state;
 use crate::accel::ray_count::{self, RayCounts};
 use crate::integrator::Integrator;
 use crate::ir::Scene;
-use crate::sampling::sampler::Sampler;
+use crate::sampling::sampler::PixelSampler;
 use film::Film;
 use glam::{DVec3, Vec2, Vec3};
 use rayon::prelude::*;
@@ -218,6 +218,7 @@ fn render_view(
                         (x0..).zip(sums.iter_mut().zip(counts.iter_mut()))
                     {
                         let (mut sum, from) = (*sum_held, *count_held);
+                        let pixel = pixel_sampler(scene, x, y);
                         for s in from..end {
                             if (s - from).is_multiple_of(CANCEL_POLL)
                                 && cancel.load(Ordering::Relaxed)
@@ -227,7 +228,7 @@ fn render_view(
                                 stopped = true;
                                 break 'pixels;
                             }
-                            let l = sample(scene, integrator, x, y, first + s, scale);
+                            let l = sample(scene, integrator, &pixel, x, y, first + s, scale);
                             sum += l.as_dvec3();
                         }
                         (*sum_held, *count_held) = (sum, from.max(end));
@@ -260,13 +261,33 @@ fn render_view(
     }
 }
 
+/// The sampling of pixel (x, y) of the scene's render.
+fn pixel_sampler(scene: &Scene, x: u32, y: u32) -> PixelSampler {
+    let (s, camera) = (&scene.settings, &scene.camera);
+    PixelSampler::new(
+        s.sampler,
+        s.seed,
+        (x, y),
+        camera.uses_lens(),
+        camera.uses_time(),
+    )
+}
+
 /// One sample of pixel (x, y): a jittered position (box filter), lens and
 /// time; `scale` > 1 for the pixels of a smaller preview image.
 #[inline]
-fn sample(scene: &Scene, integrator: &dyn Integrator, x: u32, y: u32, s: u32, scale: f32) -> Vec3 {
+fn sample(
+    scene: &Scene,
+    integrator: &dyn Integrator,
+    pixel: &PixelSampler,
+    x: u32,
+    y: u32,
+    s: u32,
+    scale: f32,
+) -> Vec3 {
     // Sample `s` of a pixel is the same wherever and whenever it is drawn:
     // what lets a render stop, continue, and split across machines.
-    let mut sampler = Sampler::new(scene.settings.seed, x, y, s);
+    let mut sampler = pixel.sample(s);
     let film = (Vec2::new(x as f32, y as f32) + sampler.next_2d()) * scale;
     let lens = sampler.next_2d();
     let t = sampler.next_f32();

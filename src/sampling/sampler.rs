@@ -1,14 +1,157 @@
-//! Deterministic random streams: one per (seed, pixel, sample), so an image
+//! Deterministic sample streams: one per (seed, pixel, sample), so an image
 //! does not depend on the thread count or the tile order (pbrt's
 //! `StartPixelSample`).
+//!
+//! Two kinds (`render { sampler … }`): `independent` draws every number
+//! from a PCG32 stream; `sobol` draws each of a sample's decisions from its
+//! own slot of an Owen-scrambled Sobol sequence ([`super::sobol`]), so that
+//! a pixel's samples are stratified in every decision. Slots are assigned
+//! by purpose, the same in every sample: the film position, the lens and
+//! the time, then for each bounce the light choice and point, the BSDF's
+//! lobe and direction, and Russian roulette ([`Draws`]). Draws beyond a
+//! purpose's slots (a Whitted hit's many shadow rays, the branches of its
+//! tree) come from the PCG stream, never from a slot already used: a slot
+//! used twice in one path would correlate two decisions and bias the image.
 
+use super::sobol::SlotSeeds;
 use glam::Vec2;
 
-/// A PCG32 generator (O'Neill 2014) seeded per sample.
+/// Which numbers a sample draws (`render { sampler … }`, `--sampler`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum SamplerKind {
+    /// Owen-scrambled Sobol points, one slot per decision (the default).
+    Sobol,
+    /// Independent uniform numbers (PCG32).
+    Independent,
+}
+
+named_values!(SamplerKind {
+    "sobol" => Sobol,
+    "independent" => Independent,
+});
+
+impl SamplerKind {
+    /// The sampler's `.pts` name.
+    pub fn name(self) -> &'static str {
+        match self {
+            SamplerKind::Sobol => "sobol",
+            SamplerKind::Independent => "independent",
+        }
+    }
+}
+
+/// What a bounce draws, in this order, each purpose from slots of its own.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Draws {
+    /// Next-event estimation: the light (1D) and the point on it (2D).
+    Light,
+    /// Sampling the BSDF: the lobe (1D) and the direction (2D).
+    Bsdf,
+    /// Russian roulette (1D).
+    Roulette,
+}
+
+impl Draws {
+    /// The purpose's slots within a bounce's.
+    fn slots(self) -> (u32, u32) {
+        match self {
+            Draws::Light => (0, 2),
+            Draws::Bsdf => (2, 4),
+            Draws::Roulette => (4, 5),
+        }
+    }
+}
+
+/// The camera's slots: the film position, the lens, the time.
+const CAMERA_SLOTS: u32 = 3;
+
+/// Slots per bounce (see [`Draws`]).
+const BOUNCE_SLOTS: u32 = 5;
+
+/// Bounces whose light and BSDF draws are Sobol points; later bounces and
+/// Russian roulette draw from the PCG stream. Measured (docs/performance.md,
+/// "Sobol sampler"): the first two bounces hold all of the gain, and a
+/// Sobol draw costs about five times a PCG one.
+const SOBOL_BOUNCES: u32 = 2;
+
+/// Slots with seeds of their own: the camera's and the first bounces'.
+const SOBOL_SLOTS: usize = (CAMERA_SLOTS + SOBOL_BOUNCES * BOUNCE_SLOTS) as usize;
+
+/// The slot of the lens draw, and of the time draw.
+const LENS_SLOT: u32 = 1;
+const TIME_SLOT: u32 = 2;
+
+/// One pixel's sampling: for `sobol`, each slot's seeds (the same for all
+/// the pixel's samples, so computed once) and which slots draw Sobol points.
 #[derive(Debug, Clone)]
-pub struct Sampler {
+pub struct PixelSampler {
+    seed: u64,
+    x: u32,
+    y: u32,
+    seeds: [SlotSeeds; SOBOL_SLOTS],
+    /// Bit `s` set: slot `s` draws Sobol points (none for `independent`).
+    sobol: u32,
+}
+
+impl PixelSampler {
+    /// Pixel (`x`, `y`) under `seed`, of the given kind; `lens` and `time`
+    /// say whether the camera uses its lens and time draws (a pinhole, a
+    /// closed shutter: those draws are then not worth a Sobol point).
+    pub fn new(kind: SamplerKind, seed: u64, (x, y): (u32, u32), lens: bool, time: bool) -> Self {
+        let mut seeds = [SlotSeeds::default(); SOBOL_SLOTS];
+        let mut sobol = 0;
+        if kind == SamplerKind::Sobol {
+            let pixel = ((y as u64) << 32) | x as u64;
+            let key = mix(mix(seed ^ 0x5b0b_0150_b01a_5eed) ^ pixel);
+            for (slot, s) in seeds.iter_mut().enumerate() {
+                *s = SlotSeeds::new(key, slot as u32);
+            }
+            sobol = (1 << SOBOL_SLOTS) - 1;
+            for bounce in 0..SOBOL_BOUNCES {
+                let (roulette, _) = Draws::Roulette.slots();
+                sobol &= !(1 << (CAMERA_SLOTS + bounce * BOUNCE_SLOTS + roulette));
+            }
+            if !lens {
+                sobol &= !(1 << LENS_SLOT);
+            }
+            if !time {
+                sobol &= !(1 << TIME_SLOT);
+            }
+        }
+        PixelSampler {
+            seed,
+            x,
+            y,
+            seeds,
+            sobol,
+        }
+    }
+
+    /// The numbers of the pixel's sample `index`; the first draws are the
+    /// camera's: the film position, the lens, the time.
+    #[inline]
+    pub fn sample(&self, index: u32) -> Sampler<'_> {
+        let mut s = Sampler::new(self.seed, self.x, self.y, index);
+        if self.sobol != 0 {
+            s.pixel = Some(self);
+            s.index_reversed = index.reverse_bits();
+            s.end = CAMERA_SLOTS;
+        }
+        s
+    }
+}
+
+/// A sample's numbers: a PCG32 generator (O'Neill 2014) seeded per sample,
+/// and for `sobol` the pixel's slots with the range the next draws take.
+#[derive(Debug, Clone)]
+pub struct Sampler<'a> {
     state: u64,
     inc: u64,
+    pixel: Option<&'a PixelSampler>,
+    index_reversed: u32,
+    /// The next slot to draw from, while below `end`; then the PCG stream.
+    slot: u32,
+    end: u32,
 }
 
 /// SplitMix64 finaliser, to spread structured seeds.
@@ -18,20 +161,65 @@ fn mix(mut z: u64) -> u64 {
     z ^ (z >> 31)
 }
 
-impl Sampler {
-    /// The stream of sample `sample` of pixel (`x`, `y`) under `seed`.
-    pub fn new(seed: u64, x: u32, y: u32, sample: u32) -> Sampler {
+/// The top 24 bits of `x` as a number in [0, 1).
+#[inline(always)]
+fn unit_f32(x: u32) -> f32 {
+    (x >> 8) as f32 * (1.0 / 16_777_216.0)
+}
+
+impl Sampler<'_> {
+    /// The independent stream of sample `sample` of pixel (`x`, `y`) under
+    /// `seed`.
+    pub fn new(seed: u64, x: u32, y: u32, sample: u32) -> Sampler<'static> {
         let pixel = ((y as u64) << 32) | x as u64;
         let state = mix(seed ^ mix(pixel ^ mix(sample as u64 + 0x9e37_79b9)));
         let inc = (mix(pixel.wrapping_add(seed.rotate_left(17))) << 1) | 1;
-        let mut s = Sampler { state: 0, inc };
+        let mut s = Sampler {
+            state: 0,
+            inc,
+            pixel: None,
+            index_reversed: 0,
+            slot: 0,
+            end: 0,
+        };
         s.next_u32();
         s.state = s.state.wrapping_add(state);
         s.next_u32();
         s
     }
 
-    /// The next 32 random bits.
+    /// Points the next draws at `draws` of bounce `bounce` (0: at the
+    /// first hit). Draws beyond that purpose's slots, and every draw of
+    /// the independent kind, come from the PCG stream.
+    #[inline(always)]
+    pub fn start(&mut self, bounce: u32, draws: Draws) {
+        let (from, to) = draws.slots();
+        let base = CAMERA_SLOTS.saturating_add(bounce.saturating_mul(BOUNCE_SLOTS));
+        self.slot = base.saturating_add(from);
+        self.end = base.saturating_add(to);
+    }
+
+    /// Sends the next draws to the PCG stream until the next
+    /// [`Sampler::start`]: after a branch of a tree of rays has drawn from
+    /// later bounces' slots, its sibling must not draw from them again.
+    #[inline(always)]
+    pub fn pad(&mut self) {
+        self.end = 0;
+    }
+
+    /// The seeds of the next slot, if the draw is a Sobol point.
+    #[inline(always)]
+    fn next_slot(&mut self) -> Option<SlotSeeds> {
+        let pixel = self.pixel?;
+        let slot = self.slot;
+        if slot >= self.end || slot >= SOBOL_SLOTS as u32 {
+            return None;
+        }
+        self.slot += 1;
+        (pixel.sobol & (1 << slot) != 0).then(|| pixel.seeds[slot as usize])
+    }
+
+    /// The next 32 random bits of the PCG stream.
     #[inline]
     pub fn next_u32(&mut self) -> u32 {
         let old = self.state;
@@ -46,20 +234,32 @@ impl Sampler {
     /// A uniform number in [0, 1).
     #[inline]
     pub fn next_f32(&mut self) -> f32 {
-        (self.next_u32() >> 8) as f32 * (1.0 / 16_777_216.0)
+        if let Some(seeds) = self.next_slot() {
+            return unit_f32(seeds.get1(self.index_reversed));
+        }
+        unit_f32(self.next_u32())
     }
 
     /// A uniform number in [0, 1) with 32 bits (from one draw, as
     /// [`Sampler::next_f32`]): for choices among many (a light of a tree).
     #[inline]
     pub fn next_f64(&mut self) -> f64 {
-        self.next_u32() as f64 * (1.0 / 4_294_967_296.0)
+        let x = match self.next_slot() {
+            Some(seeds) => seeds.get1(self.index_reversed),
+            None => self.next_u32(),
+        };
+        x as f64 * (1.0 / 4_294_967_296.0)
     }
 
     /// A uniform point in [0, 1)².
     #[inline]
     pub fn next_2d(&mut self) -> Vec2 {
-        Vec2::new(self.next_f32(), self.next_f32())
+        if let Some(seeds) = self.next_slot() {
+            let (x, y) = seeds.get2(self.index_reversed);
+            return Vec2::new(unit_f32(x), unit_f32(y));
+        }
+        let x = unit_f32(self.next_u32());
+        Vec2::new(x, unit_f32(self.next_u32()))
     }
 }
 
@@ -89,6 +289,63 @@ mod tests {
             .collect();
         assert_eq!(a, b);
         assert_ne!(a, c);
+    }
+
+    #[test]
+    fn independent_pixels_draw_the_pcg_stream_and_sobol_ones_are_stratified() {
+        let draws = |s: &mut Sampler| -> Vec<f32> {
+            let mut v = vec![s.next_2d().x, s.next_f32()];
+            s.start(0, Draws::Bsdf);
+            v.extend([s.next_f32(), s.next_2d().y]);
+            v
+        };
+        let independent = PixelSampler::new(SamplerKind::Independent, 3, (5, 6), true, true);
+        let mut a = independent.sample(9);
+        let mut b = Sampler::new(3, 5, 6, 9);
+        let mut plain = vec![b.next_2d().x, b.next_f32()];
+        plain.extend([b.next_f32(), b.next_2d().y]);
+        assert_eq!(draws(&mut a), plain);
+        // 16 samples of a Sobol pixel: one in each sixteenth of [0, 1) in
+        // the film's x, the BSDF's lobe and its direction's y alike.
+        let pixel = PixelSampler::new(SamplerKind::Sobol, 3, (5, 6), true, true);
+        let mut strata = [[false; 16]; 3];
+        for i in 0..16 {
+            let d = draws(&mut pixel.sample(i));
+            for (k, v) in [d[0], d[2], d[3]].into_iter().enumerate() {
+                let cell = (v * 16.0) as usize;
+                assert!(
+                    !strata[k][cell],
+                    "draw {k} of sample {i}: stratum {cell} twice"
+                );
+                strata[k][cell] = true;
+            }
+        }
+    }
+
+    #[test]
+    fn draws_past_a_purpose_or_after_pad_are_independent() {
+        let pixel = PixelSampler::new(SamplerKind::Sobol, 1, (0, 0), false, false);
+        let mut s = pixel.sample(4);
+        s.start(0, Draws::Roulette);
+        let mut pcg = Sampler::new(1, 0, 0, 4);
+        assert_eq!(s.next_f32(), pcg.next_f32(), "roulette draws from PCG");
+        s.start(0, Draws::Light);
+        let (choice, point) = (s.next_f64(), s.next_2d());
+        let past = s.next_f32();
+        assert_eq!(past, pcg.next_f32(), "a third draw of the light's slots");
+        s.start(0, Draws::Light);
+        assert_eq!(
+            (s.next_f64(), s.next_2d()),
+            (choice, point),
+            "slots are repeatable"
+        );
+        s.pad();
+        assert_eq!(s.next_2d(), pcg.next_2d());
+        // A pinhole camera's lens draw comes from PCG too.
+        let mut camera = pixel.sample(4);
+        let mut pcg = Sampler::new(1, 0, 0, 4);
+        let _film = camera.next_2d();
+        assert_eq!(camera.next_2d(), pcg.next_2d());
     }
 
     #[test]

@@ -34,25 +34,44 @@ const NOISE_SLACK: f64 = 1.02;
 /// Renders scene `name` with the seeds of its baseline and checks its mean
 /// and noise against Mitsuba's; returns ptsc's image averaged over the
 /// seeds and the reference.
-fn check_scene(name: &str) -> (Vec<Vec3>, Vec<Vec3>) {
-    let (average, reference, ratio, mae, mitsuba_mae) = measure(name, None);
+fn check_scene(name: &str) -> Measured {
+    check_scene_within(name, 0.01)
+}
+
+/// [`check_scene`] with the means within `tolerance` instead of 1 % (for a
+/// scene where Mitsuba's reference is known to differ: said where used).
+fn check_scene_within(name: &str, tolerance: f32) -> Measured {
+    let m = measure(name, None);
+    let (ratio, mae, mitsuba_mae) = (m.ratio, m.mae, m.mitsuba_mae);
     for k in 0..3 {
         assert!(
-            (ratio[k] - 1.0).abs() < 0.01,
-            "{name}: per-channel mean / Mitsuba's = {ratio}, not within 1 %"
+            (ratio[k] - 1.0).abs() < tolerance,
+            "{name}: per-channel mean / Mitsuba's = {ratio}, not within {tolerance}"
         );
     }
     assert!(
         mae <= mitsuba_mae * NOISE_SLACK,
         "{name}: MAE/mean {mae:.5} is noisier than Mitsuba's {mitsuba_mae:.5}"
     );
-    (average, reference)
+    m
 }
 
-/// What [`measure`] finds: ptsc's image averaged over the seeds, the
-/// reference, the per-channel ratio of the means, ptsc's median MAE/mean
-/// and Mitsuba's.
-type Measured = (Vec<Vec3>, Vec<Vec3>, Vec3, f64, f64);
+/// What [`measure`] finds.
+#[derive(Clone)]
+struct Measured {
+    /// ptsc's image of each seed.
+    images: Vec<Vec<Vec3>>,
+    /// ptsc's image averaged over the seeds.
+    average: Vec<Vec3>,
+    /// Mitsuba's reference.
+    reference: Vec<Vec3>,
+    /// The per-channel ratio of the means, ptsc's over Mitsuba's.
+    ratio: Vec3,
+    /// ptsc's median MAE/mean over the seeds.
+    mae: f64,
+    /// Mitsuba's own, from the baseline.
+    mitsuba_mae: f64,
+}
 
 /// The scene file of `name`: the benchmark scenes are examples; the
 /// others live beside their references.
@@ -126,6 +145,7 @@ fn measure_once(name: &str, rule: Option<LightSelection>) -> Measured {
     let mut total = Vec3::ZERO;
     let mut average = vec![Vec3::ZERO; reference.len()];
     let mut maes = Vec::new();
+    let mut images = Vec::new();
     for seed in 0..seeds {
         ir.settings.seed = 1000 + seed;
         let px = render(&ir, integ.as_ref(), &cancel, &|_| {}, &mut |_, _| {})
@@ -144,6 +164,7 @@ fn measure_once(name: &str, rule: Option<LightSelection>) -> Measured {
             })
             .sum();
         maes.push(abs / (3 * px.len()) as f64 / ref_mean);
+        images.push(px);
     }
     let ratio = total / (ref_sum * seeds as f32);
     maes.sort_by(f64::total_cmp);
@@ -151,7 +172,14 @@ fn measure_once(name: &str, rule: Option<LightSelection>) -> Measured {
     eprintln!(
         "{name}: mean ratio {ratio:.4} ({seeds} x {spp} spp), MAE/mean {mae:.5} vs Mitsuba {mitsuba_mae:.5}"
     );
-    (average, reference, ratio, mae, mitsuba_mae)
+    Measured {
+        images,
+        average,
+        reference,
+        ratio,
+        mae,
+        mitsuba_mae,
+    }
 }
 
 fn sum(px: &[Vec3]) -> Vec3 {
@@ -165,10 +193,8 @@ fn mitsuba_reference_materials() {
     // Mitsuba's. Each ball gets 1,024 spp in about 80 to 130 pixels here;
     // Mitsuba's own 4,096-spp image is within 2 % of its reference on
     // every ball (the gold mirror, which shows the sun, the furthest).
-    let (ours, reference) = check_scene("materials");
     check_balls(
-        &ours,
-        &reference,
+        &check_scene("materials"),
         [
             "gold (conductor)",
             "rough copper (roughconductor α 0.1)",
@@ -190,10 +216,8 @@ fn mitsuba_reference_materials() {
 /// Mitsuba's own samples are within 5 % of it on every ball.
 #[test]
 fn mitsuba_reference_material_options() {
-    let (ours, reference) = check_scene("material_options");
     check_balls(
-        &ours,
-        &reference,
+        &check_scene("material_options"),
         [
             "gold rough by a checker (roughconductor, alpha a checkerboard)",
             "copper rough unevenly (roughconductor, alpha_u 0.05, alpha_v 0.4)",
@@ -207,8 +231,12 @@ fn mitsuba_reference_material_options() {
 }
 
 /// The mean of each ball of the materials' layout (`materials.pts`, six
-/// balls in two rows) within `tolerance` of the reference's.
-fn check_balls(ours: &[Vec3], reference: &[Vec3], names: [&str; 6], tolerance: f32) {
+/// balls in two rows) within `tolerance` of the reference's, plus three
+/// standard errors of ptsc's mean (from the spread of the seeds' own
+/// means): a ball that shows the sun in a rough metal has a few bright
+/// samples, and the mean of 16 seeds of 64 spp varies by 5 % or more
+/// from one set of seeds to the next with either sampler.
+fn check_balls(m: &Measured, names: [&str; 6], tolerance: f32) {
     let balls = [
         (14.53, 28.25, 4.99),
         (32.0, 28.25, 5.09),
@@ -218,21 +246,28 @@ fn check_balls(ours: &[Vec3], reference: &[Vec3], names: [&str; 6], tolerance: f
         (54.39, 35.6, 6.32),
     ];
     for (name, (cx, cy, r)) in names.into_iter().zip(balls) {
-        let (mut a, mut b) = (Vec3::ZERO, Vec3::ZERO);
-        for y in 0..64 {
-            for x in 0..64 {
-                let (dx, dy) = (x as f32 + 0.5 - cx, y as f32 + 0.5 - cy);
-                if dx * dx + dy * dy < r * r {
-                    a += ours[y * 64 + x];
-                    b += reference[y * 64 + x];
-                }
-            }
-        }
-        let ratio = a / b;
-        eprintln!("{name}: mean ratio {ratio:.4}");
+        let inside = |i: usize| {
+            let (dx, dy) = ((i % 64) as f32 + 0.5 - cx, (i / 64) as f32 + 0.5 - cy);
+            dx * dx + dy * dy < r * r
+        };
+        let ball = |image: &[Vec3]| -> Vec3 {
+            let pixels = image.iter().enumerate().filter(|(i, _)| inside(*i));
+            pixels.fold(Vec3::ZERO, |a, (_, p)| a + *p)
+        };
+        let b = ball(&m.reference);
+        let ratio = ball(&m.average) / b;
+        let seeds: Vec<Vec3> = m.images.iter().map(|image| ball(image) / b).collect();
+        let n = seeds.len() as f32;
+        let variance = seeds
+            .iter()
+            .fold(Vec3::ZERO, |a, s| a + (*s - ratio) * (*s - ratio))
+            / (n - 1.0);
+        let error = (variance / n).powf(0.5);
+        eprintln!("{name}: mean ratio {ratio:.4} ± {error:.4}");
+        let allowed = Vec3::splat(tolerance) + 3.0 * error;
         assert!(
-            (ratio - Vec3::ONE).abs().max_element() < tolerance,
-            "{name}: mean / Mitsuba's = {ratio}"
+            (ratio - Vec3::ONE).abs().cmplt(allowed).all(),
+            "{name}: mean / Mitsuba's = {ratio}, more than {allowed} from 1"
         );
     }
 }
@@ -409,9 +444,53 @@ fn mitsuba_reference_capsule() {
 
 /// Light selection with a textured lamp whose image has a hot spot, a dim
 /// environment map, a sun and two small lamps (issue 34).
+/// Its mean is 1.2 % below Mitsuba's (over 256 seeds, with either
+/// sampler): Mitsuba's environment map gives more direct light by emitter
+/// sampling than by BSDF sampling (see the next test), and ptsc agrees with
+/// the latter; 2 % allowed.
 #[test]
 fn mitsuba_reference_lights_textured() {
-    check_scene("lights_textured");
+    check_scene_within("lights_textured", 0.02);
+}
+
+/// The difference kept on purpose: direct light from lights_textured's
+/// environment map alone (`env_direct.pts`). Mitsuba 3's two estimates of
+/// the same integral differ by 7 % (emitter sampling 0.1297, BSDF sampling
+/// 0.1208, mean radiance); ptsc's, which samples the map and evaluates it
+/// with the same lookup (checked direction by direction against Mitsuba's
+/// `eval`), is within 1 % of the BSDF-sampled one, which needs nothing of
+/// the map but its lookup.
+#[test]
+fn mitsuba_envmap_emitter_sampling_is_brighter_than_its_own_bsdf_sampling() {
+    let dir = crate::root().join("tests/mitsuba");
+    let mean = |name: &str| {
+        let (_, _, px) = read_exr(&dir.join(name)).unwrap();
+        let s = sum(&px);
+        (s.x + s.y + s.z) as f64 / (3 * px.len()) as f64
+    };
+    let by_emitter = mean("env_direct_emitter_64_4096spp.exr");
+    let by_bsdf = mean("env_direct_bsdf_64_16384spp.exr");
+    let c = compile_file(&dir.join("env_direct.pts"), Options::default()).unwrap();
+    let mut ir = c.ir.unwrap();
+    ir.settings.samples = 1024;
+    let integ = integrator::make(ir.settings.integrator);
+    let cancel = AtomicBool::new(false);
+    let px = render(&ir, integ.as_ref(), &cancel, &|_| {}, &mut |_, _| {})
+        .film
+        .pixels();
+    let s = sum(&px);
+    let ours = (s.x + s.y + s.z) as f64 / (3 * px.len()) as f64;
+    eprintln!(
+        "env_direct: ptsc {ours:.5}, Mitsuba by BSDF {by_bsdf:.5}, by emitter {by_emitter:.5}"
+    );
+    assert!(
+        (ours / by_bsdf - 1.0).abs() < 0.01,
+        "ptsc {ours} vs {by_bsdf}"
+    );
+    assert!(
+        by_emitter / by_bsdf > 1.05,
+        "Mitsuba's two estimates agree now: {by_emitter} vs {by_bsdf}"
+    );
 }
 
 /// `auto` is at least as good as `uniform` (Mitsuba's rule) and `power` on
@@ -426,9 +505,9 @@ fn auto_light_selection_is_never_worse_than_uniform_or_power() {
         "area_sizes",
         "lights_textured",
     ] {
-        let (.., auto, _) = measure(name, Some(LightSelection::Auto));
+        let auto = measure(name, Some(LightSelection::Auto)).mae;
         for rule in [LightSelection::Uniform, LightSelection::Power] {
-            let (.., other, _) = measure(name, Some(rule));
+            let other = measure(name, Some(rule)).mae;
             assert!(
                 auto <= other * NOISE_SLACK,
                 "{name}: auto's MAE/mean {auto:.5} against {rule:?}'s {other:.5}"
@@ -455,7 +534,8 @@ fn light_selection_rules_against_mitsuba() {
             LightSelection::Exhaustive,
             LightSelection::Bvh,
         ] {
-            let (_, _, ratio, mae, mitsuba) = measure(name, Some(rule));
+            let m = measure(name, Some(rule));
+            let (ratio, mae, mitsuba) = (m.ratio, m.mae, m.mitsuba_mae);
             eprintln!(
                 "RULES {name} {rule:?}: mean ratio {ratio:.4}, MAE/mean {mae:.5} = {:.3} × Mitsuba's",
                 mae / mitsuba

@@ -86,6 +86,7 @@ pub fn sample_settings(s: &Settings) -> Vec<(String, String)> {
         max_depth,
         integrator,
         seed,
+        sampler,
         ambient,
         rr_depth,
         hybrid_weight,
@@ -95,10 +96,11 @@ pub fn sample_settings(s: &Settings) -> Vec<(String, String)> {
         light_samples,
         exposure: _,
     } = s;
-    let pairs: [(&str, String); 12] = [
+    let pairs: [(&str, String); 13] = [
         ("width", width.to_string()),
         ("height", height.to_string()),
         ("seed", seed.to_string()),
+        ("sampler", sampler.name().to_string()),
         ("integrator", integrator.name().to_string()),
         ("max_depth", max_depth.to_string()),
         ("rr_depth", rr_depth.to_string()),

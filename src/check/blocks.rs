@@ -10,7 +10,7 @@ use crate::span::Span;
 use glam::DVec3;
 use std::path::Path;
 
-pub use crate::ir::settings::{MAX_PIXELS, MAX_SIDE};
+pub use crate::ir::settings::{MAX_PIXELS, MAX_SIDE, MAX_TIME};
 
 /// Samples per pixel (`samples`, `--spp`).
 pub const SAMPLES: WholeSetting = WholeSetting {
@@ -71,6 +71,14 @@ pub fn render_settings(p: &Params, base_dir: &Path, diags: &mut Diagnostics) -> 
         Some((Val::Word(w), _)) => SamplerKind::from_name(w).unwrap_or(d.sampler),
         _ => d.sampler,
     };
+    // A time budget without a sample count renders until the time is spent.
+    let time = r
+        .num("time")
+        .map(|_| r.num_in("time", 0.0, MAX_TIME, true, 60.0));
+    let samples = match (time, p.get("samples")) {
+        (Some(_), None) => SAMPLES.max,
+        _ => r.whole(SAMPLES, d.samples as u64),
+    };
     let clamp = r
         .num("clamp")
         .map(|_| r.num_in("clamp", 0.0, f64::INFINITY, true, f64::INFINITY));
@@ -78,7 +86,7 @@ pub fn render_settings(p: &Params, base_dir: &Path, diags: &mut Diagnostics) -> 
     let settings = Settings {
         width,
         height,
-        samples: r.whole(SAMPLES, d.samples as u64) as u32,
+        samples: samples as u32,
         max_depth: r.num_in("max_depth", 1.0, 1024.0, false, d.max_depth as f64) as u32,
         integrator,
         seed: r.whole(SEED, 0),
@@ -91,6 +99,7 @@ pub fn render_settings(p: &Params, base_dir: &Path, diags: &mut Diagnostics) -> 
         light_selection,
         light_samples: r.num_in("light_samples", 0.0, 1024.0, false, d.light_samples as f64) as u32,
         exposure: r.num_in("exposure", -32.0, 32.0, false, 0.0) as f32,
+        time,
     };
     let (output, output_span) = match p.get("output") {
         Some((Val::Str(s), span)) => (Some(base_dir.join(s)), Some(*span)),

@@ -209,6 +209,8 @@ pub const RENDER: &[ParamSpec] = &[
         .doc("how a shadow ray chooses its light: `auto`, `bvh`, `exhaustive`, `power` or `uniform`. Default `auto`"),
     p("light_samples", Ty::Int, "4")
         .doc("shadow rays per area light at each Whitted hit (soft shadows). Default 4"),
+    p("time", Ty::Num, "90")
+        .doc("a time budget in seconds: `ptsc render` stops when it is spent (or at `samples`, if given) and saves its state for `--resume`. Default none"),
     p("exposure", Ty::Num, "0")
         .doc("scales the image by 2^exposure before PNG encoding (stops). Default 0"),
 ];

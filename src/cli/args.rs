@@ -18,6 +18,10 @@ pub struct RenderArgs {
     /// Samples per pixel (1 to 1000000, as the scene's `samples`).
     #[arg(long, value_parser = parse_spp)]
     pub spp: Option<u32>,
+    /// A time budget, e.g. 90s, 5m or 1.5h: the render stops when it is
+    /// spent (or at --spp, if given) and saves its state for --resume.
+    #[arg(long, value_name = "T", value_parser = parse_time)]
+    pub time: Option<f64>,
     /// Worker threads (default: all cores).
     #[arg(long, value_parser = parse_threads)]
     pub threads: Option<usize>,
@@ -172,6 +176,29 @@ fn parse_integrator(s: &str) -> Result<IntegratorKind, String> {
     IntegratorKind::from_name(s).ok_or_else(|| expected_one_of(&IntegratorKind::WORDS))
 }
 
+/// A duration: a number of seconds, or with a unit `s`, `m` or `h`.
+fn parse_time(s: &str) -> Result<f64, String> {
+    let t = s.trim();
+    let (number, unit) = match t.find(|c: char| c.is_ascii_alphabetic()) {
+        Some(i) => t.split_at(i),
+        None => (t, "s"),
+    };
+    let scale = match unit {
+        "s" | "sec" => 1.0,
+        "m" | "min" => 60.0,
+        "h" => 3600.0,
+        _ => {
+            return Err(format!(
+                "unknown unit `{unit}`: use s, m or h, e.g. 90s, 5m, 1.5h"
+            ))
+        }
+    };
+    match number.trim().parse::<f64>() {
+        Ok(x) if x > 0.0 && x * scale <= crate::ir::settings::MAX_TIME => Ok(x * scale),
+        _ => Err("expected a time greater than 0 and at most a year, e.g. 90s, 5m or 1.5h".into()),
+    }
+}
+
 fn parse_sampler(s: &str) -> Result<SamplerKind, String> {
     SamplerKind::from_name(s).ok_or_else(|| expected_one_of(&SamplerKind::WORDS))
 }
@@ -199,6 +226,12 @@ pub fn apply_overrides(settings: &mut Settings, args: &RenderArgs) {
     if let Some((w, h)) = args.resolution {
         settings.width = w;
         settings.height = h;
+    }
+    if let Some(t) = args.time {
+        settings.time = Some(t);
+        if args.spp.is_none() {
+            settings.samples = crate::check::SAMPLES.max as u32;
+        }
     }
     if let Some(k) = args.sampler {
         settings.sampler = k;

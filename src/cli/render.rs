@@ -140,9 +140,19 @@ fn render_frame(
         let times = (compiled.check_seconds, compiled.lower_seconds);
         print_loaded(session.scene(), load_s, times, args.memory_limit);
     }
-    let bar = progress_bar(session.samples_total(), verbosity);
-    bar.set_position(session.samples_done());
-    let observer = Bar { bar, verbosity };
+    // A time budget's bar runs with the time; else with the samples.
+    let budget = session.scene().settings.time;
+    let total = budget.map_or(session.samples_total(), |t| (t * 1000.0) as u64);
+    let bar = progress_bar(total, verbosity);
+    if budget.is_none() {
+        bar.set_position(session.samples_done());
+    }
+    let started = std::time::Instant::now();
+    let observer = Bar {
+        bar,
+        verbosity,
+        budget: budget.map(|_| started),
+    };
     let settings = session.scene().settings.clone();
     let report = match session.run(&observer, &signals.cancel) {
         Ok(report) => report,
@@ -222,11 +232,16 @@ fn print_loaded(ir: &Scene, load_s: f64, (check_s, lower_s): (f64, f64), limit: 
 struct Bar {
     bar: indicatif::ProgressBar,
     verbosity: Verbosity,
+    /// When the render started, for a time budget's bar (in milliseconds).
+    budget: Option<std::time::Instant>,
 }
 
 impl Observer for Bar {
     fn progress(&self, done: u64) {
-        self.bar.set_position(done);
+        match self.budget {
+            Some(start) => self.bar.set_position(start.elapsed().as_millis() as u64),
+            None => self.bar.set_position(done),
+        }
     }
 
     fn pass(&self, pass: &PassDone) {
@@ -325,6 +340,10 @@ impl Summary<'_> {
         );
         if interrupted && most > 0 {
             eprintln!("add --resume to the same command to continue");
+        } else if let (Some(t), Some(_), None) = (s.time, &report.state, self.pass) {
+            eprintln!(
+                "time budget of {t} s spent: add --resume to the same command to add samples"
+            );
         }
     }
 }

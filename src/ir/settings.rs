@@ -98,7 +98,13 @@ pub struct Settings {
     pub light_samples: u32,
     /// Exposure in stops applied when writing PNG.
     pub exposure: f32,
+    /// A time budget in seconds: a batch render stops when it is spent or
+    /// at `samples`, whichever comes first (`None`: samples alone).
+    pub time: Option<f64>,
 }
+
+/// The longest time budget accepted, in seconds (a year).
+pub const MAX_TIME: f64 = 365.0 * 24.0 * 3600.0;
 
 impl Default for Settings {
     /// The defaults of a `render { }` block.
@@ -119,6 +125,7 @@ impl Default for Settings {
             light_selection: LightSelection::Auto,
             light_samples: 4,
             exposure: 0.0,
+            time: None,
         }
     }
 }

@@ -278,3 +278,56 @@ fn check_of_several_scenes_prints_one_json_array() {
         serde_json::json!([])
     );
 }
+
+/// A time budget (`--time`, `render { time … }`): the render stops when it
+/// is spent, every pixel with the same count, and keeps its state for
+/// `--resume --time` to add more; with `--spp` the samples bound it too.
+#[test]
+fn a_time_budget_stops_the_render_with_even_counts_and_resumes() {
+    use ptsc::render::state::read_state;
+    let dir = tempfile::tempdir().unwrap();
+    let scene = dir.path().join("budget.pts");
+    std::fs::write(
+        &scene,
+        "render { resolution <32, 24> time 0.5 }\n\
+         camera { position <0, 1, 4> look_at <0, 0, 0> }\n\
+         point_light { position <2, 4, 3> intensity rgb 20 }\n\
+         sphere { center <0, 0, 0> radius 1 }\n",
+    )
+    .unwrap();
+    let out = dir.path().join("budget.exr");
+    let run = |extra: &[&str]| {
+        let o = Command::new(env!("CARGO_BIN_EXE_ptsc"))
+            .arg("render")
+            .arg(&scene)
+            .arg("-o")
+            .arg(&out)
+            .args(extra)
+            .output()
+            .unwrap();
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        String::from_utf8_lossy(&o.stderr).to_string()
+    };
+    let said = run(&[]);
+    assert!(said.contains("time budget of 0.5 s spent"), "{said}");
+    let state = dir.path().join("budget.exr.state.exr");
+    let (film, _) = read_state(&state).unwrap();
+    let (least, most, _) = film.sample_counts();
+    assert_eq!(least, most, "a budget's passes end together");
+    assert!(least > 1, "{least} spp in half a second of a tiny image");
+    // Resumed with another budget: more samples, counts even again.
+    run(&["--resume", "--time", "0.3s"]);
+    let (again, _) = read_state(&state).unwrap();
+    let (l2, m2, _) = again.sample_counts();
+    assert!(l2 > least && l2 == m2, "{least} then {l2}..{m2}");
+    // The samples asked bound a budget too: 4 spp end well within 60 s.
+    let bounded = dir.path().join("bounded.exr");
+    let o = Command::new(env!("CARGO_BIN_EXE_ptsc"))
+        .args(["render", "--time", "1m", "--spp", "4", "-o"])
+        .arg(&bounded)
+        .arg(&scene)
+        .output()
+        .unwrap();
+    assert!(o.status.success());
+    assert!(!dir.path().join("bounded.exr.state.exr").exists());
+}

@@ -4,6 +4,7 @@
 //! and, where it is kept, the state: after a stop too, so that a resumed
 //! render ends with the image of an uninterrupted one.
 
+use super::budget::Budget;
 use super::cancel::Cancel;
 use super::error::Error;
 use super::observer::{Observer, PassDone, Report};
@@ -63,6 +64,11 @@ pub(super) fn prepare(
             return Err(Error::Refused(format!(
                 "--pass {pass} writes a part file for `ptsc merge`: name an .exr output (-o part_{}.exr)",
                 pass.k
+            )));
+        }
+        if s.time.is_some() {
+            return Err(Error::Refused(format!(
+                "--pass {pass} renders a fixed share of the samples for `ptsc merge`: drop the time budget (--time, or `time` in the scene's render block)"
             )));
         }
         if pass.n > s.samples {
@@ -226,14 +232,24 @@ fn render_passes(
     let every = batch.policy.checkpoint;
     let mut keep_state = batch.policy.keep_state || batch.had_state;
     let mut rays = RayCounts::default();
+    // With a time budget, one pass per run, each as long as fits.
+    let budget = s.time.map(|seconds| Budget::new(seconds, &film));
+    let cut = std::sync::atomic::AtomicBool::new(false);
     let interrupted = loop {
+        let run_target = match &budget {
+            Some(budget) => match budget.next_target(&film, target) {
+                Some(end) => end,
+                None => break false,
+            },
+            None => target,
+        };
         let deadline = every.map(|d: Duration| Instant::now() + d);
         let offset = film.total_samples();
         let rendered = crate::render::render_from(
             scene,
             integrator.as_ref(),
             film,
-            target,
+            run_target,
             cancel.polled(),
             &|done| {
                 observer.progress(offset + done);
@@ -243,18 +259,28 @@ fn render_passes(
                 if done > 0 && deadline.is_some_and(|d| Instant::now() >= d) {
                     cancel.pause();
                 }
+                if budget.as_ref().is_some_and(Budget::overrun) {
+                    cut.store(true, std::sync::atomic::Ordering::Relaxed);
+                    cancel.pause();
+                }
             },
             &mut on_pass,
         );
         film = rendered.film;
         rays = rays + rendered.rays;
         if rendered.outcome == Outcome::Complete {
+            if budget.is_some() {
+                continue;
+            }
             break false;
         }
         if cancel.is_cancelled() {
             break true;
         }
         cancel.resume();
+        if cut.load(std::sync::atomic::Ordering::Relaxed) {
+            break false;
+        }
         let saved = write_image(&film).and_then(|()| match batch.policy.pass {
             Some(_) => Ok(()),
             None => state::write_state(&batch.state, &film, &batch.now),
@@ -272,6 +298,10 @@ fn render_passes(
             break true;
         }
     };
+    // A budget spent before the samples asked: the state is kept, for
+    // --resume to add more.
+    let short = film.count.iter().any(|&c| c < target);
+    keep_state |= budget.is_some() && short && !interrupted;
     Ok(Passes {
         film,
         rays,

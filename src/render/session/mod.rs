@@ -17,6 +17,7 @@
 //! freed.)
 
 mod batch;
+mod budget;
 mod cancel;
 mod error;
 mod live;

@@ -95,6 +95,7 @@ pub fn sample_settings(s: &Settings) -> Vec<(String, String)> {
         light_selection,
         light_samples,
         exposure: _,
+        time: _,
     } = s;
     let pairs: [(&str, String); 13] = [
         ("width", width.to_string()),

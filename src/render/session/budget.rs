@@ -1,0 +1,100 @@
+//! A batch render's time budget (`--time`, `render { time … }`): the
+//! passes go on doubling as usual while the next one fits in the time
+//! left, measured by the passes so far; the last one renders as many
+//! samples per pixel as fit, so that every pixel ends with the same count.
+//! A pass that runs later than foreseen is cut at a tenth of the budget
+//! past its end (its pixels then end with counts one pass apart).
+
+use crate::render::film::Film;
+use crate::render::pass_ends;
+use std::time::{Duration, Instant};
+
+/// The time budget of a render and what it has spent.
+#[derive(Debug, Clone)]
+pub(super) struct Budget {
+    start: Instant,
+    end: Instant,
+    /// When a pass in flight is cut.
+    cut: Instant,
+    /// The film's samples when the budget started (a resumed render's).
+    samples_before: u64,
+    /// Pixels of the film.
+    pixels: u64,
+}
+
+impl Budget {
+    /// A budget of `seconds` from now for rendering on from `film`.
+    pub(super) fn new(seconds: f64, film: &Film) -> Budget {
+        let start = Instant::now();
+        let length = Duration::from_secs_f64(seconds);
+        Budget {
+            start,
+            end: start + length,
+            cut: start + length + length / 10,
+            samples_before: film.total_samples(),
+            pixels: film.count.len().max(1) as u64,
+        }
+    }
+
+    /// The samples per pixel the next pass should end at, on the way to
+    /// `target`: the usual doubling while it fits in the time left, else as
+    /// many as fit; `None` when the film has `target` or not one more
+    /// sample per pixel fits.
+    pub(super) fn next_target(&self, film: &Film, target: u32) -> Option<u32> {
+        let least = film.count.iter().copied().min().unwrap_or(0);
+        let now = Instant::now();
+        if least >= target || now >= self.end {
+            return None;
+        }
+        let next = pass_ends(target).into_iter().find(|&e| e > least)?;
+        let done = film.total_samples().saturating_sub(self.samples_before);
+        if done == 0 {
+            return Some(next);
+        }
+        // Seconds for one sample in every pixel, from the passes so far.
+        let per_spp = (now - self.start).as_secs_f64() * self.pixels as f64 / done as f64;
+        let left = (self.end - now).as_secs_f64();
+        let affordable = (left / per_spp.max(1e-12)).floor().min(u32::MAX as f64) as u32;
+        let end = next.min(least.saturating_add(affordable));
+        (end > least).then_some(end)
+    }
+
+    /// Whether the pass in flight has run past the budget by more than a
+    /// tenth of it: it is then cut.
+    pub(super) fn overrun(&self) -> bool {
+        Instant::now() >= self.cut
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn passes_double_while_they_fit_and_the_last_takes_what_fits() {
+        let mut film = Film::new(2, 2, 0);
+        let mut budget = Budget::new(10.0, &film);
+        // The first pass has nothing to go by: one sample per pixel.
+        assert_eq!(budget.next_target(&film, 1000), Some(1));
+        // Pretend 8 spp took 2 s: 0.25 s per spp, 8 s left → 32 more fit.
+        film.count.fill(8);
+        budget.start = Instant::now() - Duration::from_secs(2);
+        budget.end = budget.start + Duration::from_secs(10);
+        assert_eq!(budget.next_target(&film, 1000), Some(16));
+        film.count.fill(32);
+        // 32 spp in 2 s: 1/16 s per spp, 8 s left → 128 fit, the doubling
+        // asks for 64.
+        assert_eq!(budget.next_target(&film, 1000), Some(64));
+        // The target caps it; a film at the target is done.
+        assert_eq!(budget.next_target(&film, 40), Some(40));
+        assert_eq!(budget.next_target(&film, 32), None);
+        // 32 spp took 7.9 s of 10: 2.1 s left fits 8 more, not the 32 of
+        // the doubling.
+        budget.start = Instant::now() - Duration::from_millis(7900);
+        budget.end = budget.start + Duration::from_secs(10);
+        assert_eq!(budget.next_target(&film, 1000), Some(40));
+        // Spent: nothing more.
+        budget.end = Instant::now();
+        assert_eq!(budget.next_target(&film, 1000), None);
+    }
+}

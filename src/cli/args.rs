@@ -22,6 +22,10 @@ pub struct RenderArgs {
     /// spent (or at --spp, if given) and saves its state for --resume.
     #[arg(long, value_name = "T", value_parser = parse_time)]
     pub time: Option<f64>,
+    /// Output variables written as channels of the EXR output, comma
+    /// separated: albedo, normal, depth, position, object, samples, or all.
+    #[arg(long, value_name = "LIST", value_parser = parse_aovs)]
+    pub aov: Option<AovList>,
     /// Worker threads (default: all cores).
     #[arg(long, value_parser = parse_threads)]
     pub threads: Option<usize>,
@@ -174,6 +178,32 @@ fn parse_clamp(s: &str) -> Result<f32, String> {
 
 fn parse_integrator(s: &str) -> Result<IntegratorKind, String> {
     IntegratorKind::from_name(s).ok_or_else(|| expected_one_of(&IntegratorKind::WORDS))
+}
+
+/// The AOVs `--aov` names (one argument: clap would take a `Vec` for
+/// several).
+#[derive(Debug, Clone, Default)]
+pub struct AovList(pub Vec<crate::render::aov::Aov>);
+
+/// A list of AOVs, or `all`.
+fn parse_aovs(s: &str) -> Result<AovList, String> {
+    use crate::render::aov::Aov;
+    if s.trim() == "all" {
+        return Ok(AovList(Aov::NAMES.iter().map(|(_, a)| *a).collect()));
+    }
+    let mut list = Vec::new();
+    for word in s.split(',').map(str::trim) {
+        let aov = Aov::from_name(word).ok_or_else(|| {
+            format!(
+                "unknown AOV `{word}`: use {}, or all",
+                Aov::WORDS.join(", ")
+            )
+        })?;
+        if !list.contains(&aov) {
+            list.push(aov);
+        }
+    }
+    Ok(AovList(list))
 }
 
 /// A duration: a number of seconds, or with a unit `s`, `m` or `h`.

@@ -188,6 +188,7 @@ fn batch_plan(
         output: output.to_path_buf(),
         inputs,
         memory_limit: args.memory_limit,
+        aovs: args.aov.clone().unwrap_or_default().0,
         mode: Mode::Batch(StatePolicy {
             pass: farm.pass,
             resume: farm.resume,

@@ -193,6 +193,7 @@ impl State {
             output,
             inputs: compiled.dependencies,
             memory_limit: self.args.memory_limit,
+            aovs: Vec::new(),
             mode: Mode::Live,
         };
         let checked = match plan.check() {

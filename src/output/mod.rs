@@ -4,12 +4,14 @@
 //! never leaves a broken image), and the readers the tests compare with.
 
 mod files;
+mod layers;
 
 pub use files::{
     check_writable, frame_path, same_file, shown, write_atomically, write_atomically_with,
     MAX_FILE_NAME,
 };
 use glam::Vec3;
+pub use layers::write_exr_channels;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 

@@ -20,6 +20,9 @@ pub struct Need {
     pub film: u64,
     /// Bytes of the textures and environment maps, already loaded.
     pub textures: u64,
+    /// Bytes of the AOVs written with the image (their per-pixel
+    /// surfaces, planes, and the copies the EXR writer takes).
+    pub aovs: u64,
 }
 
 impl Need {
@@ -29,12 +32,25 @@ impl Need {
             size,
             film: size.0 as u64 * size.1 as u64 * FILM_BYTES_PER_PIXEL,
             textures: 0,
+            aovs: 0,
         }
+    }
+
+    /// With AOVs of `channels` channels in all: per pixel the surface
+    /// found (48 bytes), the colour copied for the writer (12) and each
+    /// channel's plane twice (ours and the writer's, 4 bytes each).
+    pub fn with_aovs(self, channels: u32) -> Need {
+        let pixels = self.size.0 as u64 * self.size.1 as u64;
+        let aovs = match channels {
+            0 => 0,
+            c => pixels * (48 + 12 + 8 * c as u64),
+        };
+        Need { aovs, ..self }
     }
 
     /// Bytes still to be allocated: the film and the working memory.
     pub fn to_allocate(&self) -> u64 {
-        self.film + WORKING_BYTES
+        self.film + self.aovs + WORKING_BYTES
     }
 
     /// "film 8192×8192 1.88 GB, writing 0.07 GB, textures 0.01 GB (loaded)".
@@ -45,6 +61,9 @@ impl Need {
             gigabytes(self.film),
             gigabytes(WORKING_BYTES)
         );
+        if self.aovs > 0 {
+            text.push_str(&format!(", AOVs {}", gigabytes(self.aovs)));
+        }
         if self.textures > 0 {
             text.push_str(&format!(", textures {} (loaded)", gigabytes(self.textures)));
         }

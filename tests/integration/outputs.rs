@@ -256,3 +256,93 @@ fn temporary_files_of_killed_runs_are_removed_by_the_next_run() {
         .collect();
     assert!(left.is_empty(), "{left:?}");
 }
+
+/// `--aov`: the output variables as channels of the EXR's one part,
+/// readable by the `exr` crate (Mitsuba's `Bitmap` reads the same file:
+/// checked by hand, docs/performance.md "AOVs"), with the values they
+/// promise; an output that cannot hold them is refused before the render.
+#[test]
+fn aovs_are_channels_of_the_exr_with_the_values_they_promise() {
+    use exr::prelude::*;
+    let dir = temp_dir_with(&[(
+        "s.pts",
+        "render { resolution <24, 16> samples 4 }\n\
+         camera { position <0, 0, -5> look_at <0, 0, 0> }\n\
+         point_light { position <0, 3, -3> intensity rgb 10 }\n\
+         sphere { center <0, 0, 0> radius 1 material { diffuse rgb <0.2, 0.4, 0.8> } }\n",
+    )]);
+    let scene = dir.path().join("s.pts");
+    let out = dir.path().join("s.exr");
+    let (code, err) = ptsc_stderr(&[
+        "render",
+        path_str(&scene),
+        "--aov",
+        "all",
+        "-o",
+        path_str(&out),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let image = read_all_flat_layers_from_file(&out).unwrap();
+    assert_eq!(image.layer_data.len(), 1, "one part");
+    let layer = &image.layer_data[0];
+    let names: Vec<String> = layer
+        .channel_data
+        .list
+        .iter()
+        .map(|c| c.name.to_string())
+        .collect();
+    for want in [
+        "R",
+        "albedo.R",
+        "albedo.B",
+        "normal.X",
+        "normal.Z",
+        "depth.Z",
+        "position.Y",
+        "object.id",
+        "samples.count",
+    ] {
+        assert!(
+            names.iter().any(|n| n == want),
+            "{want} missing from {names:?}"
+        );
+    }
+    let channel = |name: &str| -> Vec<f32> {
+        let c = layer
+            .channel_data
+            .list
+            .iter()
+            .find(|c| c.name.to_string() == name)
+            .unwrap();
+        c.sample_data.values_as_f32().collect()
+    };
+    // The centre pixel sees the ball head on: its albedo, a normal towards
+    // the camera, 4 units away, object 0; a corner sees nothing.
+    let centre = 8 * 24 + 12;
+    let (ar, ab) = (channel("albedo.R")[centre], channel("albedo.B")[centre]);
+    assert!(
+        (ar - 0.2).abs() < 1e-4 && (ab - 0.8).abs() < 1e-4,
+        "{ar} {ab}"
+    );
+    assert!(channel("normal.Z")[centre] < -0.9, "raw normal in [-1, 1]");
+    assert!((channel("depth.Z")[centre] - 4.0).abs() < 0.05);
+    assert_eq!(channel("object.id")[centre], 0.0);
+    assert_eq!(
+        (channel("object.id")[0], channel("depth.Z")[0]),
+        (-1.0, 0.0)
+    );
+    assert!(channel("samples.count").iter().all(|&n| n == 4.0));
+    // A PNG cannot hold them: refused before the first sample.
+    let png = dir.path().join("s.png");
+    let (code, err) = ptsc_stderr(&[
+        "render",
+        path_str(&scene),
+        "--aov",
+        "albedo",
+        "-o",
+        path_str(&png),
+    ]);
+    assert_ne!(code, 0);
+    assert!(err.contains("--aov") && err.contains(".exr"), "{err}");
+    assert!(!png.exists());
+}

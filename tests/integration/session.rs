@@ -38,6 +38,7 @@ fn batch(output: &Path, policy: StatePolicy) -> Plan {
         output: output.to_path_buf(),
         inputs: Vec::new(),
         memory_limit: None,
+        aovs: Vec::new(),
         mode: Mode::Batch(policy),
     }
 }

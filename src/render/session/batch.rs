@@ -11,6 +11,7 @@ use super::observer::{Observer, PassDone, Report};
 use super::start::{self, state_path, StatePolicy};
 use crate::accel::ray_count::RayCounts;
 use crate::ir::Scene;
+use crate::render::aov::{render_aovs, Aov};
 use crate::render::film::Film;
 use crate::render::memory::{self, Need};
 use crate::render::state::{self, Pass, StateInfo};
@@ -34,6 +35,8 @@ pub(super) struct Batch {
     pub(super) had_state: bool,
     /// What the start says (resumed from how many samples).
     pub(super) note: Option<String>,
+    /// The AOVs written with the final image.
+    pub(super) aovs: Vec<Aov>,
 }
 
 /// Why the render must not start (a state the image would replace, a
@@ -46,6 +49,7 @@ pub(super) fn prepare(
     output: &Path,
     policy: StatePolicy,
     memory_limit: Option<u64>,
+    aovs: Vec<Aov>,
 ) -> Result<(Batch, Film), Error> {
     let s = &scene.settings;
     let state = state_path(output, policy.pass);
@@ -58,7 +62,9 @@ pub(super) fn prepare(
             ))
         })?;
     }
-    memory::check(&Need::film((s.width, s.height)), memory_limit).map_err(Error::Refused)?;
+    let channels = aovs.iter().map(|a| a.channels().len() as u32).sum();
+    let need = Need::film((s.width, s.height)).with_aovs(channels);
+    memory::check(&need, memory_limit).map_err(Error::Refused)?;
     if let Some(pass) = policy.pass {
         if crate::output::ImageFormat::of(output) != Some(crate::output::ImageFormat::Exr) {
             return Err(Error::Refused(format!(
@@ -94,6 +100,7 @@ pub(super) fn prepare(
         now,
         had_state: start.had_state,
         note: start.note,
+        aovs,
     };
     Ok((batch, start.film))
 }
@@ -156,8 +163,21 @@ pub(super) fn run(
         // Both at once: each waits for its disk sync.
         None if most > 0 => {
             let exposure = scene.settings.exposure;
+            // The AOVs of a render that finished (a stopped one's image
+            // goes without them, its resumed end gets them).
+            let aovs = (!batch.aovs.is_empty() && !passes.interrupted)
+                .then(|| render_aovs(scene, &batch.aovs, &film, cancel.polled()))
+                .flatten();
+            let write_image = || match &aovs {
+                Some(aovs) => {
+                    let extra = aov_channels(aovs);
+                    let size = (film.width, film.height);
+                    crate::output::write_exr_channels(output, size, |i| film.pixel(i), &extra)
+                }
+                None => film.write(output, exposure),
+            };
             let (image, state) = rayon::join(
-                || film.write(output, exposure).map_err(naming(output)),
+                || write_image().map_err(naming(output)),
                 || {
                     (state_written.as_deref()).map_or(Ok(()), |path| {
                         state::write_state(path, &film, &batch.now).map_err(naming(path))
@@ -181,6 +201,17 @@ pub(super) fn run(
         render_time,
         state: state_written,
     })
+}
+
+/// The AOVs' channels, each named, as the EXR writer takes them.
+fn aov_channels(aovs: &[(Aov, Vec<Vec<f32>>)]) -> Vec<(&'static str, &[f32])> {
+    let mut extra = Vec::new();
+    for (aov, planes) in aovs {
+        for (name, plane) in aov.channels().iter().zip(planes) {
+            extra.push((*name, plane.as_slice()));
+        }
+    }
+    extra
 }
 
 /// The passes up to the target, paused for a checkpoint every

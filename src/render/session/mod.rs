@@ -47,6 +47,9 @@ pub struct Plan {
     pub memory_limit: Option<u64>,
     /// Batch or live.
     pub mode: Mode,
+    /// The AOVs a batch render writes with its final image, as channels of
+    /// its EXR (a live render writes none).
+    pub aovs: Vec<crate::render::aov::Aov>,
 }
 
 /// The two kinds of session.
@@ -84,6 +87,14 @@ impl Plan {
             path: self.output.clone(),
             why,
         })?;
+        let exr =
+            crate::output::ImageFormat::of(&self.output) == Some(crate::output::ImageFormat::Exr);
+        if !self.aovs.is_empty() && !exr {
+            return Err(Error::Output {
+                path: self.output.clone(),
+                why: "--aov writes its layers as channels of an EXR: name an .exr output".into(),
+            });
+        }
         let (mut preview, mut no_preview) = (None, None);
         if let Mode::Live = self.mode {
             let path = preview_path(&self.output);
@@ -126,7 +137,7 @@ impl Session {
         let kind = match plan.mode {
             Mode::Batch(policy) => {
                 let (batch, film) =
-                    batch::prepare(&scene, &plan.output, policy, plan.memory_limit)?;
+                    batch::prepare(&scene, &plan.output, policy, plan.memory_limit, plan.aovs)?;
                 Kind::Batch(Box::new(batch), film)
             }
             Mode::Live => {

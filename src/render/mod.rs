@@ -214,12 +214,13 @@ fn render_view(
                 let mut stopped = false;
                 let mut samples = 0u64;
                 let rows = tile.sums.iter_mut().zip(tile.counts.iter_mut());
+                let mut pixel = pixel_sampler(scene, x0, y0);
                 'pixels: for (y, (sums, counts)) in (y0..).zip(rows) {
                     for (x, (sum_held, count_held)) in
                         (x0..).zip(sums.iter_mut().zip(counts.iter_mut()))
                     {
                         let (mut sum, from) = (*sum_held, *count_held);
-                        let pixel = pixel_sampler(scene, x, y);
+                        pixel.move_to((x, y));
                         for s in from..end {
                             if (s - from).is_multiple_of(CANCEL_POLL)
                                 && cancel.load(Ordering::Relaxed)

@@ -98,15 +98,15 @@ impl PixelSampler {
     /// say whether the camera uses its lens and time draws (a pinhole, a
     /// closed shutter: those draws are then not worth a Sobol point).
     pub fn new(kind: SamplerKind, seed: u64, (x, y): (u32, u32), lens: bool, time: bool) -> Self {
-        let mut seeds = [SlotSeeds::default(); SOBOL_SLOTS];
-        let mut sobol = 0;
+        let mut pixel = PixelSampler {
+            seed,
+            x,
+            y,
+            seeds: [SlotSeeds::default(); SOBOL_SLOTS],
+            sobol: 0,
+        };
         if kind == SamplerKind::Sobol {
-            let pixel = ((y as u64) << 32) | x as u64;
-            let key = mix(mix(seed ^ 0x5b0b_0150_b01a_5eed) ^ pixel);
-            for (slot, s) in seeds.iter_mut().enumerate() {
-                *s = SlotSeeds::new(key, slot as u32);
-            }
-            sobol = (1 << SOBOL_SLOTS) - 1;
+            let mut sobol: u32 = (1 << SOBOL_SLOTS) - 1;
             for bounce in 0..SOBOL_BOUNCES {
                 let (roulette, _) = Draws::Roulette.slots();
                 sobol &= !(1 << (CAMERA_SLOTS + bounce * BOUNCE_SLOTS + roulette));
@@ -117,13 +117,24 @@ impl PixelSampler {
             if !time {
                 sobol &= !(1 << TIME_SLOT);
             }
+            pixel.sobol = sobol;
         }
-        PixelSampler {
-            seed,
-            x,
-            y,
-            seeds,
-            sobol,
+        pixel.move_to((x, y));
+        pixel
+    }
+
+    /// Makes this the sampling of pixel (`x`, `y`), same seed and kind: a
+    /// render's tile keeps one and moves it from pixel to pixel (a new
+    /// one per pixel copied its slots' seeds every time).
+    #[inline]
+    pub fn move_to(&mut self, (x, y): (u32, u32)) {
+        (self.x, self.y) = (x, y);
+        if self.sobol != 0 {
+            let pixel = ((y as u64) << 32) | x as u64;
+            let key = mix(mix(self.seed ^ 0x5b0b_0150_b01a_5eed) ^ pixel);
+            for (slot, s) in self.seeds.iter_mut().enumerate() {
+                *s = SlotSeeds::new(key, slot as u32);
+            }
         }
     }
 

@@ -3,6 +3,7 @@
 //! tiles, a progress callback. Every sample draws from its own random stream
 //! (seed, pixel, sample index), so the image is the same for any thread count.
 
+pub mod denoise;
 pub mod film;
 pub mod memory;
 pub mod merge;

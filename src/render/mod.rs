@@ -4,6 +4,7 @@
 //! (seed, pixel, sample index), so the image is the same for any thread count.
 
 pub mod aov;
+pub mod denoise;
 pub mod film;
 pub mod memory;
 pub mod merge;

@@ -26,6 +26,11 @@ pub struct RenderArgs {
     /// separated: albedo, normal, depth, position, object, samples, or all.
     #[arg(long, value_name = "LIST", value_parser = parse_aovs)]
     pub aov: Option<AovList>,
+    /// Denoise the final image with Intel Open Image Denoise, using the
+    /// albedo and normal of the first surfaces (a build with the `denoise`
+    /// feature: scripts/setup-oidn.sh).
+    #[arg(long)]
+    pub denoise: bool,
     /// Worker threads (default: all cores).
     #[arg(long, value_parser = parse_threads)]
     pub threads: Option<usize>,

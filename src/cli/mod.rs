@@ -3,6 +3,7 @@
 
 mod args;
 mod check;
+mod denoise;
 mod farm;
 mod fmt;
 mod render;
@@ -91,6 +92,10 @@ pub enum Command {
     },
     /// Add up the passes of a render made with `ptsc render --pass K/N`.
     Merge(farm::MergeArgs),
+    /// Denoise a saved EXR render with Intel Open Image Denoise (its albedo
+    /// and normal channels from `--aov albedo,normal` used when present; a
+    /// build with the `denoise` feature).
+    Denoise(denoise::DenoiseArgs),
     /// Re-render a scene every time it (or an included file or mesh) is saved.
     ///
     /// Each save first writes a 1-spp preview at a quarter of the resolution
@@ -146,6 +151,7 @@ pub fn run() -> ExitCode {
         } => check::run(&files, format, Verbosity::from_flags(quiet, false)),
         Command::Render { args, farm } => render::run(&args, &farm),
         Command::Merge(args) => farm::merge(&args),
+        Command::Denoise(args) => denoise::run(&args),
         Command::Watch(args) => watch::run(&args),
         Command::Fmt { files, check } => fmt::run(&files, check),
         Command::Explain { code, all } => explain(code.as_deref(), all),

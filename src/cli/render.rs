@@ -189,6 +189,7 @@ fn batch_plan(
         inputs,
         memory_limit: args.memory_limit,
         aovs: args.aov.clone().unwrap_or_default().0,
+        denoise: args.denoise,
         mode: Mode::Batch(StatePolicy {
             pass: farm.pass,
             resume: farm.resume,

@@ -194,6 +194,7 @@ impl State {
             inputs: compiled.dependencies,
             memory_limit: self.args.memory_limit,
             aovs: Vec::new(),
+            denoise: false,
             mode: Mode::Live,
         };
         let checked = match plan.check() {

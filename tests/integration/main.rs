@@ -2,6 +2,7 @@
 
 mod catalogue;
 mod cli;
+mod denoise;
 mod diagnostics;
 mod editors;
 mod environment;

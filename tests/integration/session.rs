@@ -39,6 +39,7 @@ fn batch(output: &Path, policy: StatePolicy) -> Plan {
         inputs: Vec::new(),
         memory_limit: None,
         aovs: Vec::new(),
+        denoise: false,
         mode: Mode::Batch(policy),
     }
 }

@@ -7,11 +7,12 @@
 use super::budget::Budget;
 use super::cancel::Cancel;
 use super::error::Error;
+use super::final_image::{self, final_image, FinalImage};
 use super::observer::{Observer, PassDone, Report};
 use super::start::{self, state_path, StatePolicy};
 use crate::accel::ray_count::RayCounts;
 use crate::ir::Scene;
-use crate::render::aov::{render_aovs, Aov};
+use crate::render::aov::Aov;
 use crate::render::film::Film;
 use crate::render::memory::{self, Need};
 use crate::render::state::{self, Pass, StateInfo};
@@ -37,6 +38,8 @@ pub(super) struct Batch {
     pub(super) note: Option<String>,
     /// The AOVs written with the final image.
     pub(super) aovs: Vec<Aov>,
+    /// Whether the final image is denoised.
+    pub(super) denoise: bool,
 }
 
 /// Why the render must not start (a state the image would replace, a
@@ -49,7 +52,7 @@ pub(super) fn prepare(
     output: &Path,
     policy: StatePolicy,
     memory_limit: Option<u64>,
-    aovs: Vec<Aov>,
+    (aovs, denoise): (Vec<Aov>, bool),
 ) -> Result<(Batch, Film), Error> {
     let s = &scene.settings;
     let state = state_path(output, policy.pass);
@@ -62,7 +65,9 @@ pub(super) fn prepare(
             ))
         })?;
     }
-    let channels = aovs.iter().map(|a| a.channels().len() as u32).sum();
+    // Denoising takes the albedo and normal, and copies of the colour.
+    let channels =
+        aovs.iter().map(|a| a.channels().len() as u32).sum::<u32>() + if denoise { 12 } else { 0 };
     let need = Need::film((s.width, s.height)).with_aovs(channels);
     memory::check(&need, memory_limit).map_err(Error::Refused)?;
     if let Some(pass) = policy.pass {
@@ -101,6 +106,7 @@ pub(super) fn prepare(
         had_state: start.had_state,
         note: start.note,
         aovs,
+        denoise,
     };
     Ok((batch, start.film))
 }
@@ -154,6 +160,7 @@ pub(super) fn run(
         None if passes.keep_state || (passes.interrupted && most > 0) => Some(batch.state.clone()),
         None => None,
     };
+    let mut denoise_error = None;
     let naming = |path: &Path| {
         let path = path.to_path_buf();
         move |error| Error::Write { path, error }
@@ -163,21 +170,15 @@ pub(super) fn run(
         // Both at once: each waits for its disk sync.
         None if most > 0 => {
             let exposure = scene.settings.exposure;
-            // The AOVs of a render that finished (a stopped one's image
-            // goes without them, its resumed end gets them).
-            let aovs = (!batch.aovs.is_empty() && !passes.interrupted)
-                .then(|| render_aovs(scene, &batch.aovs, &film, cancel.polled()))
-                .flatten();
-            let write_image = || match &aovs {
-                Some(aovs) => {
-                    let extra = aov_channels(aovs);
-                    let size = (film.width, film.height);
-                    crate::output::write_exr_channels(output, size, |i| film.pixel(i), &extra)
-                }
-                None => film.write(output, exposure),
+            // The AOVs and denoising of a render that finished (a stopped
+            // one's image goes without them, its resumed end gets them).
+            let finished = match passes.interrupted {
+                false => final_image(scene, &film, &batch.aovs, batch.denoise, cancel.polled()),
+                true => FinalImage::default(),
             };
+            denoise_error = finished.denoise_error.clone();
             let (image, state) = rayon::join(
-                || write_image().map_err(naming(output)),
+                || final_image::write(output, &film, exposure, &finished).map_err(naming(output)),
                 || {
                     (state_written.as_deref()).map_or(Ok(()), |path| {
                         state::write_state(path, &film, &batch.now).map_err(naming(path))
@@ -187,6 +188,12 @@ pub(super) fn run(
             image.and(state)?
         }
         None => {}
+    }
+    if let Some(why) = denoise_error {
+        return Err(Error::Denoise {
+            path: output.to_path_buf(),
+            why,
+        });
     }
     Ok(Report {
         outcome: match passes.interrupted {
@@ -201,17 +208,6 @@ pub(super) fn run(
         render_time,
         state: state_written,
     })
-}
-
-/// The AOVs' channels, each named, as the EXR writer takes them.
-fn aov_channels(aovs: &[(Aov, Vec<Vec<f32>>)]) -> Vec<(&'static str, &[f32])> {
-    let mut extra = Vec::new();
-    for (aov, planes) in aovs {
-        for (name, plane) in aov.channels().iter().zip(planes) {
-            extra.push((*name, plane.as_slice()));
-        }
-    }
-    extra
 }
 
 /// The passes up to the target, paused for a checkpoint every

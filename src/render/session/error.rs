@@ -24,6 +24,13 @@ pub enum Error {
         /// What failed.
         error: std::io::Error,
     },
+    /// Denoising failed after the render; the noisy image was written.
+    Denoise {
+        /// The image.
+        path: PathBuf,
+        /// Why.
+        why: String,
+    },
     /// A checkpoint could not save the state; the render stopped there.
     SaveState {
         /// The state file.
@@ -41,6 +48,11 @@ impl std::fmt::Display for Error {
             }
             Error::Refused(why) => f.write_str(why),
             Error::Write { path, error } => write!(f, "cannot write {}: {error}", path.display()),
+            Error::Denoise { path, why } => write!(
+                f,
+                "cannot denoise ({why}): {} holds the image without denoising",
+                path.display()
+            ),
             Error::SaveState { path, error } => {
                 write!(f, "cannot save the state at {}: {error}", path.display())
             }

@@ -20,6 +20,7 @@ mod batch;
 mod budget;
 mod cancel;
 mod error;
+mod final_image;
 mod live;
 mod observer;
 mod start;
@@ -50,6 +51,8 @@ pub struct Plan {
     /// The AOVs a batch render writes with its final image, as channels of
     /// its EXR (a live render writes none).
     pub aovs: Vec<crate::render::aov::Aov>,
+    /// Whether a batch render's final image is denoised (`--denoise`).
+    pub denoise: bool,
 }
 
 /// The two kinds of session.
@@ -89,6 +92,11 @@ impl Plan {
         })?;
         let exr =
             crate::output::ImageFormat::of(&self.output) == Some(crate::output::ImageFormat::Exr);
+        if self.denoise && !crate::render::denoise::AVAILABLE {
+            return Err(Error::Refused(
+                crate::render::denoise::NOT_BUILT.to_string(),
+            ));
+        }
         if !self.aovs.is_empty() && !exr {
             return Err(Error::Output {
                 path: self.output.clone(),
@@ -136,8 +144,9 @@ impl Session {
         let Checked { plan, preview, .. } = checked;
         let kind = match plan.mode {
             Mode::Batch(policy) => {
+                let extras = (plan.aovs, plan.denoise);
                 let (batch, film) =
-                    batch::prepare(&scene, &plan.output, policy, plan.memory_limit, plan.aovs)?;
+                    batch::prepare(&scene, &plan.output, policy, plan.memory_limit, extras)?;
                 Kind::Batch(Box::new(batch), film)
             }
             Mode::Live => {

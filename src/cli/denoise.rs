@@ -1,0 +1,43 @@
+//! `ptsc denoise IN.exr -o OUT`: denoises a saved render (its colour, with
+//! the albedo and normal channels of `--aov` when it has them).
+
+use super::{EXIT_OK, EXIT_USAGE};
+use std::path::PathBuf;
+
+/// `ptsc denoise`'s arguments.
+#[derive(Debug, Clone, clap::Args)]
+pub struct DenoiseArgs {
+    /// The EXR to denoise (R, G, B; albedo.R/G/B and normal.X/Y/Z used when present).
+    pub input: PathBuf,
+    /// The denoised image (.png, .exr or .pfm).
+    #[arg(short, long)]
+    pub output: PathBuf,
+}
+
+/// Runs `ptsc denoise`; returns the exit status.
+pub fn run(args: &DenoiseArgs) -> u8 {
+    let inputs = [args.input.clone()];
+    if let Err(why) = crate::output::check_output(&args.output, &inputs) {
+        eprintln!("error: cannot write {}: {why}", args.output.display());
+        return EXIT_USAGE;
+    }
+    let started = std::time::Instant::now();
+    let (w, h, pixels) = match crate::render::denoise::denoise_exr(&args.input) {
+        Ok(done) => done,
+        Err(why) => {
+            eprintln!("error: {why}");
+            return EXIT_USAGE;
+        }
+    };
+    if let Err(e) = crate::output::write_image(&args.output, (w, h), |i| pixels[i], 0.0) {
+        eprintln!("error: cannot write {}: {e}", args.output.display());
+        return EXIT_USAGE;
+    }
+    let secs = started.elapsed().as_secs_f64();
+    eprintln!(
+        "{}: {w}×{h} denoised in {secs:.2} s → {}",
+        args.input.display(),
+        args.output.display()
+    );
+    EXIT_OK
+}

@@ -38,6 +38,17 @@ pub fn run(args: &RenderArgs) -> u8 {
         eprintln!("error: cannot watch {}: {e}", args.file.display());
         return super::EXIT_USAGE;
     }
+    // Flags of a batch render's end that a live render does not honour
+    // (yet): said, not silently ignored.
+    let batch_only = [
+        ("--denoise", args.denoise),
+        ("--aov", args.aov.is_some()),
+        ("--time", args.time.is_some()),
+    ];
+    if let Some((flag, _)) = batch_only.iter().find(|(_, given)| *given) {
+        eprintln!("error: {flag} is for `ptsc render`: `ptsc watch` renders passes until the samples asked and does not take it");
+        return super::EXIT_USAGE;
+    }
     // One frame: --frame's, else the first of --frames.
     let animation = match args.animations() {
         Ok(a) => a[0],

@@ -424,3 +424,25 @@ fn an_output_that_cannot_be_written_is_refused_before_watching() {
     assert_eq!(code, 2, "{err}");
     assert!(err.contains("does not exist"), "{err}");
 }
+
+/// The flags of a batch render's end (`--denoise`, `--aov`, `--time`) are
+/// refused by `watch` with a word, not silently ignored.
+#[test]
+fn watch_refuses_the_flags_of_a_batch_renders_end() {
+    let (_dir, pts, _png) = setup();
+    std::fs::write(&pts, scene(40, "")).unwrap();
+    for flags in [&["--denoise"][..], &["--aov", "albedo"], &["--time", "10s"]] {
+        let out = Command::new(env!("CARGO_BIN_EXE_ptsc"))
+            .arg("watch")
+            .arg(&pts)
+            .args(flags)
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{err}");
+        assert!(
+            err.contains(flags[0]) && err.contains("ptsc render"),
+            "{err}"
+        );
+    }
+}

@@ -22,10 +22,10 @@ pub fn run(args: &DenoiseArgs) -> u8 {
         return EXIT_USAGE;
     }
     let started = std::time::Instant::now();
-    let (w, h, pixels) = match crate::render::denoise::denoise_exr(&args.input) {
+    let (w, h, pixels) = match denoise_file(&args.input) {
         Ok(done) => done,
         Err(why) => {
-            eprintln!("error: {why}");
+            eprintln!("error: cannot denoise {}: {why}", args.input.display());
             return EXIT_USAGE;
         }
     };
@@ -40,4 +40,21 @@ pub fn run(args: &DenoiseArgs) -> u8 {
         args.output.display()
     );
     EXIT_OK
+}
+
+/// The file read and decoded as textures are (size caps from its header
+/// before a sample is allocated, at most a scene's texture memory), then
+/// denoised.
+fn denoise_file(path: &std::path::Path) -> Result<(u32, u32, Vec<glam::Vec3>), String> {
+    use crate::lower::decode::{decode_exr_channels, Limits};
+    use crate::lower::image::{MAX_IMAGE_SIDE, MAX_IMAGE_TEXELS, MAX_TEXTURE_BYTES};
+    use crate::render::denoise::{denoise_planes, CHANNELS};
+    let bytes = crate::source::read_file(path, MAX_TEXTURE_BYTES).map_err(|e| e.to_string())?;
+    let limits = Limits {
+        side: MAX_IMAGE_SIDE,
+        texels: MAX_IMAGE_TEXELS,
+        bytes: MAX_TEXTURE_BYTES,
+    };
+    let (w, h, planes) = decode_exr_channels(&bytes, &limits, &CHANNELS)?;
+    Ok((w, h, denoise_planes(w, h, &planes)?))
 }

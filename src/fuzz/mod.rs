@@ -168,7 +168,23 @@ pub fn image(bytes: &[u8]) -> bool {
             }
         }
     }
-    any
+    any | exr_channels(bytes)
+}
+
+/// The named-channel reading of `ptsc denoise` on the same bytes: within
+/// the limits, one finite sample per pixel in every channel found.
+fn exr_channels(bytes: &[u8]) -> bool {
+    use crate::lower::decode::decode_exr_channels;
+    let names = crate::render::denoise::CHANNELS;
+    let Ok((w, h, planes)) = decode_exr_channels(bytes, &IMAGE_LIMITS, &names) else {
+        return false;
+    };
+    assert!(w > 0 && h > 0 && (w as u64 * h as u64) <= IMAGE_LIMITS.texels);
+    for plane in planes.iter().flatten() {
+        assert_eq!(plane.len(), (w * h) as usize, "a channel of another size");
+        assert!(plane.iter().all(|s| s.is_finite()));
+    }
+    true
 }
 
 fn mesh_invariants(parsed: Result<mesh::MeshData, String>) -> bool {

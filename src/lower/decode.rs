@@ -360,6 +360,80 @@ fn decode_exr(
     ))
 }
 
+/// Named channels of an OpenEXR image's first valid part: its size, and
+/// for each name asked the channel's samples (row-major) or `None`.
+pub type ExrChannels = (u32, u32, Vec<Option<Vec<f32>>>);
+
+/// Decodes the channels `names` of an OpenEXR file (a render with its AOVs,
+/// for `ptsc denoise`) under the discipline of [`decode`]: every part's
+/// size is checked against `limits` from its header, with all of its
+/// channels (the reader allocates each), the file's length against its
+/// chunks, and only then are samples read; a sample that is not finite is
+/// refused.
+pub fn decode_exr_channels(
+    bytes: &[u8],
+    limits: &Limits,
+    names: &[&str],
+) -> Result<ExrChannels, String> {
+    use exr::prelude::*;
+    let mut cursor = Cursor::new(bytes);
+    let meta =
+        exr::meta::MetaData::read_from_buffered(&mut cursor, false).map_err(cannot_decode)?;
+    let mut chunks = 0u64;
+    let mut largest = None::<Header>;
+    for h in meta.headers.iter() {
+        let side = |n: usize| u32::try_from(n).unwrap_or(u32::MAX);
+        let header = Header {
+            width: side(h.layer_size.width()),
+            height: side(h.layer_size.height()),
+            layout: Layout::RgbF32,
+        };
+        check(&header, limits)?;
+        let all = 4 * header.texels() * h.channels.list.len() as u64;
+        if all > limits.bytes {
+            return Err(format!(
+                "its {} channels of {} × {} take {}, more than ptsc reads ({})",
+                h.channels.list.len(),
+                header.width,
+                header.height,
+                human_bytes(all),
+                human_bytes(limits.bytes)
+            ));
+        }
+        chunks += h.chunk_count as u64;
+        if largest.is_none_or(|l| header.texels() > l.texels()) {
+            largest = Some(header);
+        }
+    }
+    let header = largest.ok_or_else(|| cannot_decode("the file has no image"))?;
+    check_length(bytes.len(), cursor.position() + 16 * chunks, &header)?;
+    let image = read()
+        .no_deep_data()
+        .largest_resolution_level()
+        .all_channels()
+        .first_valid_layer()
+        .all_attributes()
+        .from_buffered(Cursor::new(bytes))
+        .map_err(cannot_decode)?;
+    let size = image.layer_data.size;
+    let list = &image.layer_data.channel_data.list;
+    let mut planes = Vec::with_capacity(names.len());
+    for name in names {
+        let found = list.iter().find(|c| c.name.to_string() == *name);
+        let plane = found.map(|c| c.sample_data.values_as_f32().collect::<Vec<f32>>());
+        if plane
+            .as_ref()
+            .is_some_and(|p| p.iter().any(|s| !s.is_finite()))
+        {
+            return Err(format!(
+                "its channel {name} has samples that are not finite"
+            ));
+        }
+        planes.push(plane);
+    }
+    Ok((size.width() as u32, size.height() as u32, planes))
+}
+
 #[cfg(test)]
 #[path = "decode_tests.rs"]
 mod tests;

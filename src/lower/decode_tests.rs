@@ -234,3 +234,43 @@ fn broken_images_and_refused_admissions_are_errors_not_panics() {
     let e = decode(&bytes, Format::Png, &LIMITS, |_| Err("no room".into()));
     assert_eq!(e.unwrap_err(), "no room");
 }
+
+#[test]
+fn exr_channels_are_read_by_name_and_absurd_headers_refused_before_allocation() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("t.exr");
+    let albedo = [0.25f32; 6];
+    let px = |i: usize| Vec3::new(i as f32, 0.5, 2.0);
+    crate::output::write_exr_channels(&path, (3, 2), px, &[("albedo.R", &albedo)]).unwrap();
+    let mut bytes = std::fs::read(&path).unwrap();
+    let names = ["R", "albedo.R", "normal.X"];
+    let (w, h, planes) = decode_exr_channels(&bytes, &LIMITS, &names).unwrap();
+    assert_eq!((w, h), (3, 2));
+    assert_eq!(
+        planes[0].as_deref(),
+        Some(&[0.0, 1.0, 2.0, 3.0, 4.0, 5.0][..])
+    );
+    assert_eq!(planes[1].as_deref(), Some(&albedo[..]));
+    assert_eq!(planes[2], None);
+    // Four channels of 16,384² floats are 4 GiB, more than the 1 MiB
+    // allowed here; at the largest size allowed (16,384²) the chunks of a
+    // few hundred bytes are too few: both refused from the header.
+    let small = Limits {
+        bytes: 1 << 20,
+        ..LIMITS
+    };
+    let name = b"dataWindow\0box2i\0";
+    let at = bytes.windows(name.len()).position(|w| w == name).unwrap() + name.len() + 4;
+    bytes[at + 8..at + 12].copy_from_slice(&279i32.to_le_bytes());
+    bytes[at + 12..at + 16].copy_from_slice(&279i32.to_le_bytes());
+    let e = decode_exr_channels(&bytes, &small, &names).unwrap_err();
+    assert!(
+        e.contains("4 channels") && e.contains("more than ptsc reads"),
+        "{e}"
+    );
+    bytes[at + 8..at + 12].copy_from_slice(&16_383i32.to_le_bytes());
+    bytes[at + 12..at + 16].copy_from_slice(&16_383i32.to_le_bytes());
+    let e = decode_exr_channels(&bytes, &LIMITS, &names).unwrap_err();
+    assert!(e.contains("too few") || e.contains("cannot decode"), "{e}");
+    assert!(decode_exr_channels(b"v/1\x01 not an exr", &LIMITS, &names).is_err());
+}

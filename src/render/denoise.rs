@@ -158,64 +158,29 @@ fn with_oidn(
     Ok(output.chunks_exact(3).map(Vec3::from_slice).collect())
 }
 
-/// Channels by name, one value per pixel each.
-type Channels = std::collections::HashMap<String, Vec<f32>>;
+/// The channels of a saved render that [`denoise_planes`] takes, in its
+/// order: the colour, then the albedo and normal of `--aov`.
+pub const CHANNELS: [&str; 9] = [
+    "R", "G", "B", "albedo.R", "albedo.G", "albedo.B", "normal.X", "normal.Y", "normal.Z",
+];
 
-/// The channels of an EXR's first part by name (each one value per pixel,
-/// row-major), and its size: the size is checked from the header against
-/// the largest image ptsc makes before a pixel is read.
-fn read_exr_channels(path: &std::path::Path) -> Result<(u32, u32, Channels), String> {
-    use exr::prelude::*;
-    let shown = path.display();
-    let (file, _) = crate::source::open_regular(path).map_err(|e| format!("{shown}: {e}"))?;
-    let meta = exr::meta::MetaData::read_from_buffered(std::io::BufReader::new(file), false)
-        .map_err(|e| format!("{shown} is not an OpenEXR image ({e})"))?;
-    let header = meta
-        .headers
-        .first()
-        .ok_or(format!("{shown} has no image"))?;
-    let (w, h) = (header.layer_size.width(), header.layer_size.height());
-    let max = crate::ir::settings::MAX_PIXELS;
-    if w == 0 || h == 0 || (w as f64) * (h as f64) > max {
-        return Err(format!(
-            "{shown} is {w}×{h}: not an image size ptsc reads (at most 8192 × 8192 pixels)"
-        ));
-    }
-    let image = read()
-        .no_deep_data()
-        .largest_resolution_level()
-        .all_channels()
-        .first_valid_layer()
-        .all_attributes()
-        .from_file(path)
-        .map_err(|e| format!("{shown}: {e}"))?;
-    let channels = (image.layer_data.channel_data.list.iter())
-        .map(|c| (c.name.to_string(), c.sample_data.values_as_f32().collect()))
-        .collect();
-    Ok((w as u32, h as u32, channels))
-}
-
-/// Denoises a saved EXR (a render written with `--aov albedo,normal` for
-/// the best result; its colour alone otherwise): its `R`, `G`, `B` and,
-/// when present, `albedo.R/G/B` and `normal.X/Y/Z` channels. Returns the
-/// size and the denoised pixels.
-pub fn denoise_exr(path: &std::path::Path) -> Result<(u32, u32, Vec<Vec3>), String> {
-    let (w, h, channels) = read_exr_channels(path)?;
-    let vectors = |names: [&str; 3]| -> Option<Vec<Vec3>> {
-        let [a, b, c] = names.map(|n| channels.get(n));
+/// Denoises a saved render given as the planes of [`CHANNELS`] (each
+/// row-major, `None` where the file lacks it): the colour is needed, the
+/// albedo and then the normal are used when all three of theirs are there.
+pub fn denoise_planes(
+    width: u32,
+    height: u32,
+    planes: &[Option<Vec<f32>>],
+) -> Result<Vec<Vec3>, String> {
+    let vectors = |first: usize| -> Option<Vec<Vec3>> {
+        let [a, b, c] = [0, 1, 2].map(|k| planes.get(first + k).and_then(Option::as_ref));
         let (a, b, c) = (a?, b?, c?);
         Some((0..a.len()).map(|i| Vec3::new(a[i], b[i], c[i])).collect())
     };
-    let colour = vectors(["R", "G", "B"]).ok_or(format!(
-        "{} has no R, G, B channels to denoise",
-        path.display()
-    ))?;
-    let albedo = vectors(["albedo.R", "albedo.G", "albedo.B"]);
-    let normal = albedo
-        .as_ref()
-        .and(vectors(["normal.X", "normal.Y", "normal.Z"]));
-    let pixels = denoise(w, h, &colour, albedo.as_deref(), normal.as_deref())?;
-    Ok((w, h, pixels))
+    let colour = vectors(0).ok_or("it has no R, G, B channels to denoise")?;
+    let albedo = vectors(3);
+    let normal = albedo.as_ref().and(vectors(6));
+    denoise(width, height, &colour, albedo.as_deref(), normal.as_deref())
 }
 
 #[cfg(test)]

@@ -14,8 +14,8 @@ use crate::geometry::Ray;
 use crate::integrator::T_MIN;
 use crate::ir::Scene;
 use crate::render::film::Film;
-use crate::sampling::sampler::{Draws, PixelSampler};
-use glam::{Vec2, Vec3};
+use crate::sampling::sampler::Draws;
+use glam::Vec3;
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicBool, Ordering};
 
@@ -165,20 +165,12 @@ pub fn render_aovs(
 /// One pixel's AOVs: the mean over `spp` camera rays (the normal
 /// renormalised), the object of the first ray that hits.
 fn pixel(scene: &Scene, (x, y): (u32, u32), spp: u32) -> FirstSurface {
-    let (s, camera) = (&scene.settings, &scene.camera);
-    let pixels = PixelSampler::new(
-        s.sampler,
-        s.seed,
-        (x, y),
-        camera.uses_lens(),
-        camera.uses_time(),
-    );
+    let pixels = super::pixel_sampler(scene, x, y);
     let mut mean = FirstSurface::default();
     for i in 0..spp {
         let mut sampler = pixels.sample(i);
-        let film = Vec2::new(x as f32, y as f32) + sampler.next_2d();
-        let (lens, t) = (sampler.next_2d(), sampler.next_f32());
-        let f = first_surface(scene, camera.ray(film, lens, t), &mut sampler);
+        let ray = super::camera_ray(scene, &mut sampler, (x, y), 1.0);
+        let f = first_surface(scene, ray, &mut sampler);
         mean.albedo += f.albedo;
         mean.normal += f.normal;
         mean.position += f.position;

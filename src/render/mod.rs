@@ -12,9 +12,10 @@ pub mod session;
 pub mod state;
 
 use crate::accel::ray_count::{self, RayCounts};
+use crate::geometry::Ray;
 use crate::integrator::Integrator;
 use crate::ir::Scene;
-use crate::sampling::sampler::PixelSampler;
+use crate::sampling::sampler::{PixelSampler, Sampler};
 use film::Film;
 use glam::{DVec3, Vec2, Vec3};
 use rayon::prelude::*;
@@ -265,7 +266,7 @@ fn render_view(
 }
 
 /// The sampling of pixel (x, y) of the scene's render.
-fn pixel_sampler(scene: &Scene, x: u32, y: u32) -> PixelSampler {
+pub(crate) fn pixel_sampler(scene: &Scene, x: u32, y: u32) -> PixelSampler {
     let (s, camera) = (&scene.settings, &scene.camera);
     PixelSampler::new(
         s.sampler,
@@ -291,12 +292,25 @@ fn sample(
     // Sample `s` of a pixel is the same wherever and whenever it is drawn:
     // what lets a render stop, continue, and split across machines.
     let mut sampler = pixel.sample(s);
+    let ray = camera_ray(scene, &mut sampler, (x, y), scale);
+    let l = integrator.li(scene, ray, &mut sampler);
+    limit_sample(l)
+}
+
+/// A sample's camera ray through pixel (x, y): the first draws of its
+/// sampler are the position in the pixel (box filter), the lens and the
+/// time; `scale` > 1 for the pixels of a smaller preview image.
+#[inline]
+pub(crate) fn camera_ray(
+    scene: &Scene,
+    sampler: &mut Sampler,
+    (x, y): (u32, u32),
+    scale: f32,
+) -> Ray {
     let film = (Vec2::new(x as f32, y as f32) + sampler.next_2d()) * scale;
     let lens = sampler.next_2d();
     let t = sampler.next_f32();
-    let ray = scene.camera.ray(film, lens, t);
-    let l = integrator.li(scene, ray, &mut sampler);
-    limit_sample(l)
+    scene.camera.ray(film, lens, t)
 }
 
 /// A sample as it enters a pixel's sum: a NaN or infinite one would poison

@@ -13,7 +13,7 @@
 //! tree) come from the PCG stream, never from a slot already used: a slot
 //! used twice in one path would correlate two decisions and bias the image.
 
-use super::sobol::SlotSeeds;
+use super::sobol::{mix, SlotSeeds};
 use glam::Vec2;
 
 /// Which numbers a sample draws (`render { sampler … }`, `--sampler`).
@@ -163,13 +163,6 @@ pub struct Sampler<'a> {
     /// The next slot to draw from, while below `end`; then the PCG stream.
     slot: u32,
     end: u32,
-}
-
-/// SplitMix64 finaliser, to spread structured seeds.
-fn mix(mut z: u64) -> u64 {
-    z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-    z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-    z ^ (z >> 31)
 }
 
 /// The top 24 bits of `x` as a number in [0, 1).

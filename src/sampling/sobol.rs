@@ -77,9 +77,10 @@ fn owen_reversed(x_reversed: u32, seed: u32) -> u32 {
     laine_karras(x_reversed, seed).reverse_bits()
 }
 
-/// SplitMix64's finaliser, to spread structured keys.
+/// SplitMix64's finaliser (Steele et al. 2014), to spread structured keys:
+/// the samplers' seeds hash pixels, samples and slots with it.
 #[inline(always)]
-fn mix(mut z: u64) -> u64 {
+pub(crate) fn mix(mut z: u64) -> u64 {
     z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
     z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
     z ^ (z >> 31)

@@ -26,6 +26,11 @@ macro_rules! named_values {
             pub fn from_name(name: &str) -> Option<Self> {
                 Self::NAMES.iter().find(|(n, _)| *n == name).map(|(_, k)| *k)
             }
+
+            /// The value's `.pts` name.
+            pub fn name(self) -> &'static str {
+                Self::NAMES.iter().find(|(_, k)| *k == self).map_or("", |(n, _)| n)
+            }
         }
     };
 }

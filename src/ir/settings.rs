@@ -40,14 +40,6 @@ named_values!(IntegratorKind {
 });
 
 impl IntegratorKind {
-    /// The integrator's `.pts` name.
-    pub fn name(self) -> &'static str {
-        Self::NAMES
-            .iter()
-            .find(|(_, k)| *k == self)
-            .map_or("path", |(n, _)| n)
-    }
-
     /// Whether it is a debug view (no light transport).
     pub fn is_debug_view(self) -> bool {
         matches!(

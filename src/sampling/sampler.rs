@@ -30,16 +30,6 @@ named_values!(SamplerKind {
     "independent" => Independent,
 });
 
-impl SamplerKind {
-    /// The sampler's `.pts` name.
-    pub fn name(self) -> &'static str {
-        match self {
-            SamplerKind::Sobol => "sobol",
-            SamplerKind::Independent => "independent",
-        }
-    }
-}
-
 /// What a bounce draws, in this order, each purpose from slots of its own.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Draws {

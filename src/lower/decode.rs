@@ -296,6 +296,38 @@ fn finite(samples: &mut [f32]) -> Result<(), String> {
     Ok(())
 }
 
+/// An OpenEXR file's headers, read and checked before any sample: every
+/// part's size against `limits` (and against `part_check`), the file's
+/// length against its chunks (16 bytes each at least). Returns the largest
+/// part's size, as an RGB float image.
+fn exr_header(
+    bytes: &[u8],
+    limits: &Limits,
+    part_check: impl Fn(&exr::meta::header::Header, &Header) -> Result<(), String>,
+) -> Result<Header, String> {
+    let mut cursor = Cursor::new(bytes);
+    let meta =
+        exr::meta::MetaData::read_from_buffered(&mut cursor, false).map_err(cannot_decode)?;
+    let (mut largest, mut chunks) = (None::<Header>, 0u64);
+    for part in meta.headers.iter() {
+        let side = |n: usize| u32::try_from(n).unwrap_or(u32::MAX);
+        let header = Header {
+            width: side(part.layer_size.width()),
+            height: side(part.layer_size.height()),
+            layout: Layout::RgbF32,
+        };
+        check(&header, limits)?;
+        part_check(part, &header)?;
+        chunks += part.chunk_count as u64;
+        if largest.is_none_or(|l| header.texels() > l.texels()) {
+            largest = Some(header);
+        }
+    }
+    let header = largest.ok_or_else(|| cannot_decode("the file has no image"))?;
+    check_length(bytes.len(), cursor.position() + 16 * chunks, &header)?;
+    Ok(header)
+}
+
 /// An OpenEXR image (linear): its headers and their chunk counts are read
 /// first; every layer's size is checked, the file's length against its
 /// chunks, and the largest layer admitted, before the first valid layer's
@@ -306,25 +338,7 @@ fn decode_exr(
     admit: impl FnOnce(&Header) -> Result<(), String>,
 ) -> Result<Texels, String> {
     use exr::prelude::*;
-    let mut cursor = Cursor::new(bytes);
-    let meta =
-        exr::meta::MetaData::read_from_buffered(&mut cursor, false).map_err(cannot_decode)?;
-    let (mut largest, mut chunks) = (None::<Header>, 0u64);
-    for h in meta.headers.iter() {
-        let side = |n: usize| u32::try_from(n).unwrap_or(u32::MAX);
-        let header = Header {
-            width: side(h.layer_size.width()),
-            height: side(h.layer_size.height()),
-            layout: Layout::RgbF32,
-        };
-        check(&header, limits)?;
-        chunks += h.chunk_count as u64;
-        if largest.is_none_or(|l| header.texels() > l.texels()) {
-            largest = Some(header);
-        }
-    }
-    let header = largest.ok_or_else(|| cannot_decode("the file has no image"))?;
-    check_length(bytes.len(), cursor.position() + 16 * chunks, &header)?;
+    let header = exr_header(bytes, limits, |_, _| Ok(()))?;
     admit(&header)?;
     let prepared = std::cell::Cell::new(Some(zeroed::<f32>(3 * header.texels() as usize)?));
     let image = read()
@@ -376,37 +390,21 @@ pub fn decode_exr_channels(
     names: &[&str],
 ) -> Result<ExrChannels, String> {
     use exr::prelude::*;
-    let mut cursor = Cursor::new(bytes);
-    let meta =
-        exr::meta::MetaData::read_from_buffered(&mut cursor, false).map_err(cannot_decode)?;
-    let mut chunks = 0u64;
-    let mut largest = None::<Header>;
-    for h in meta.headers.iter() {
-        let side = |n: usize| u32::try_from(n).unwrap_or(u32::MAX);
-        let header = Header {
-            width: side(h.layer_size.width()),
-            height: side(h.layer_size.height()),
-            layout: Layout::RgbF32,
-        };
-        check(&header, limits)?;
-        let all = 4 * header.texels() * h.channels.list.len() as u64;
-        if all > limits.bytes {
-            return Err(format!(
-                "its {} channels of {} × {} take {}, more than ptsc reads ({})",
-                h.channels.list.len(),
-                header.width,
-                header.height,
-                human_bytes(all),
-                human_bytes(limits.bytes)
-            ));
+    // The reader allocates every channel of the part it reads.
+    exr_header(bytes, limits, |part, header| {
+        let channels = part.channels.list.len();
+        let all = 4 * header.texels() * channels as u64;
+        if all <= limits.bytes {
+            return Ok(());
         }
-        chunks += h.chunk_count as u64;
-        if largest.is_none_or(|l| header.texels() > l.texels()) {
-            largest = Some(header);
-        }
-    }
-    let header = largest.ok_or_else(|| cannot_decode("the file has no image"))?;
-    check_length(bytes.len(), cursor.position() + 16 * chunks, &header)?;
+        Err(format!(
+            "its {channels} channels of {} × {} take {}, more than ptsc reads ({})",
+            header.width,
+            header.height,
+            human_bytes(all),
+            human_bytes(limits.bytes)
+        ))
+    })?;
     let image = read()
         .no_deep_data()
         .largest_resolution_level()

@@ -18,6 +18,16 @@ pub const SAMPLES: WholeSetting = WholeSetting {
     min: 1,
     max: 1_000_000,
 };
+/// Samples before adaptive sampling may stop a pixel (`min_samples`,
+/// `--min-samples`): at least two, to compare its two halves.
+pub const MIN_SAMPLES: WholeSetting = WholeSetting {
+    name: "min_samples",
+    min: 2,
+    max: 1_000_000,
+};
+/// The largest `noise_threshold` (`--noise`): past it every pixel stops
+/// at its first chance.
+pub const MAX_NOISE: f64 = 1.0;
 /// The random seed (`seed`, `--seed`).
 pub const SEED: WholeSetting = WholeSetting {
     name: "seed",
@@ -79,6 +89,22 @@ pub fn render_settings(p: &Params, base_dir: &Path, diags: &mut Diagnostics) -> 
         (Some(_), None) => SAMPLES.max,
         _ => r.whole(SAMPLES, d.samples as u64),
     };
+    let adaptive = r.num("noise_threshold").map(|_| Adaptive {
+        threshold: r.num_in("noise_threshold", 0.0, MAX_NOISE, true, 0.01) as f32,
+        min_samples: r.whole(MIN_SAMPLES, DEFAULT_MIN_SAMPLES as u64) as u32,
+    });
+    if let (None, Some((_, span))) = (adaptive, r.num("min_samples")) {
+        r.diags.push(
+            Diagnostic::warning(
+                codes::NO_EFFECT,
+                "`min_samples` does nothing without `noise_threshold`".to_string(),
+                span,
+            )
+            .with_help(
+                "add `noise_threshold 0.01` to stop converged pixels early, or drop `min_samples`",
+            ),
+        );
+    }
     let clamp = r
         .num("clamp")
         .map(|_| r.num_in("clamp", 0.0, f64::INFINITY, true, f64::INFINITY));
@@ -100,6 +126,7 @@ pub fn render_settings(p: &Params, base_dir: &Path, diags: &mut Diagnostics) -> 
         light_samples: r.num_in("light_samples", 0.0, 1024.0, false, d.light_samples as f64) as u32,
         exposure: r.num_in("exposure", -32.0, 32.0, false, 0.0) as f32,
         time,
+        adaptive,
     };
     let (output, output_span) = match p.get("output") {
         Some((Val::Str(s), span)) => (Some(base_dir.join(s)), Some(*span)),

@@ -24,7 +24,7 @@ mod statements;
 pub mod symbols;
 pub mod texture;
 
-pub use blocks::{MAX_PIXELS, MAX_SIDE, SAMPLES, SEED};
+pub use blocks::{MAX_NOISE, MAX_PIXELS, MAX_SIDE, MIN_SAMPLES, SAMPLES, SEED};
 pub use reader::WholeSetting;
 pub use scene::*;
 pub use symbols::{DefId, Definition, ParamUse, SymbolKind, Symbols};

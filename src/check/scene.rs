@@ -9,7 +9,9 @@ use std::path::{Path, PathBuf};
 /// Linear RGB triple.
 pub type Rgb = [f64; 3];
 
-pub use crate::ir::settings::{IntegratorKind, LightSelection, SamplerKind, Settings};
+pub use crate::ir::settings::{
+    Adaptive, IntegratorKind, LightSelection, SamplerKind, Settings, DEFAULT_MIN_SAMPLES,
+};
 
 /// The `render { }` block, defaults filled in: the settings as the
 /// renderer reads them (the checker has kept each value in its range, so

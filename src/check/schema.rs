@@ -211,6 +211,10 @@ pub const RENDER: &[ParamSpec] = &[
         .doc("shadow rays per area light at each Whitted hit (soft shadows). Default 4"),
     p("time", Ty::Num, "90")
         .doc("a time budget in seconds: `ptsc render` stops when it is spent (or at `samples`, if given) and saves its state for `--resume`. Default none"),
+    p("noise_threshold", Ty::Num, "0.01")
+        .doc("adaptive sampling: a pixel stops once its noise (the difference of its even and odd samples' means over the square root of its brightness, Cycles's measure) is below this, 0 < t ≤ 1; typical 0.1 (draft) to 0.001 (final). Default off"),
+    p("min_samples", Ty::Int, "16")
+        .doc("with `noise_threshold`: samples every pixel takes before it may stop, 2..1000000. Default 16"),
     p("exposure", Ty::Num, "0")
         .doc("scales the image by 2^exposure before PNG encoding (stops). Default 0"),
 ];

@@ -22,6 +22,14 @@ pub struct RenderArgs {
     /// spent (or at --spp, if given) and saves its state for --resume.
     #[arg(long, value_name = "T", value_parser = parse_time)]
     pub time: Option<f64>,
+    /// Adaptive sampling: a pixel stops once its noise is below T, e.g.
+    /// 0.01 (as the scene's `noise_threshold`; 0 < T ≤ 1).
+    #[arg(long, value_name = "T", value_parser = parse_noise)]
+    pub noise: Option<f32>,
+    /// With --noise: samples every pixel takes before it may stop (2 to
+    /// 1000000, as the scene's `min_samples`; default 16).
+    #[arg(long, value_name = "N", value_parser = parse_min_samples, requires = "noise")]
+    pub min_samples: Option<u32>,
     /// Output variables written as channels of the EXR output, comma
     /// separated: albedo, normal, depth, position, object, samples, or all.
     #[arg(long, value_name = "LIST", value_parser = parse_aovs)]
@@ -135,6 +143,18 @@ pub const MAX_THREADS: usize = 1024;
 
 fn parse_spp(s: &str) -> Result<u32, String> {
     crate::check::SAMPLES.parse(s).map(|n| n as u32)
+}
+
+fn parse_min_samples(s: &str) -> Result<u32, String> {
+    crate::check::MIN_SAMPLES.parse(s).map(|n| n as u32)
+}
+
+fn parse_noise(s: &str) -> Result<f32, String> {
+    match s.trim().parse::<f64>() {
+        // The scene's range: greater than 0, at most 1.
+        Ok(x) if x > 0.0 && x <= crate::check::MAX_NOISE => Ok(x as f32),
+        _ => Err("expected a noise threshold greater than 0 and at most 1, e.g. 0.01".into()),
+    }
 }
 
 fn parse_seed(s: &str) -> Result<u64, String> {
@@ -267,6 +287,15 @@ pub fn apply_overrides(settings: &mut Settings, args: &RenderArgs) {
         if args.spp.is_none() {
             settings.samples = crate::check::SAMPLES.max as u32;
         }
+    }
+    if let Some(threshold) = args.noise {
+        let min_samples = (args.min_samples)
+            .or(settings.adaptive.map(|a| a.min_samples))
+            .unwrap_or(crate::ir::settings::DEFAULT_MIN_SAMPLES);
+        settings.adaptive = Some(crate::ir::settings::Adaptive {
+            threshold,
+            min_samples,
+        });
     }
     if let Some(k) = args.sampler {
         settings.sampler = k;

@@ -218,6 +218,7 @@ fn print_loaded(ir: &Scene, load_s: f64, (check_s, lower_s): (f64, f64), limit: 
     let need = memory::Need {
         textures: ir.texture_bytes(),
         ..memory::Need::film((ir.settings.width, ir.settings.height))
+            .with_adaptive(ir.settings.adaptive.is_some())
     };
     let free = memory::available(limit)
         .map(|(bytes, which)| format!("; {} free ({which})", memory::gigabytes(bytes)))
@@ -247,13 +248,25 @@ impl Observer for Bar {
     }
 
     fn pass(&self, pass: &PassDone) {
-        self.bar.set_message(format!("{} spp", pass.spp));
+        let converged = pass
+            .converged
+            .map(|share| format!(", {:.0} % converged", share * 100.0));
+        self.bar.set_message(format!(
+            "{} spp{}",
+            pass.spp,
+            converged.as_deref().unwrap_or("")
+        ));
+        // Adaptive sampling shortens the road as pixels stop.
+        if pass.converged.is_some() && self.budget.is_none() {
+            self.bar.set_length(self.bar.position() + pass.samples_left);
+        }
         if self.verbosity == Verbosity::Verbose {
             self.bar.suspend(|| {
                 eprintln!(
-                    "pass to {} spp in {:.2} s",
+                    "pass to {} spp in {:.2} s{}",
                     pass.spp,
-                    pass.elapsed.as_secs_f64()
+                    pass.elapsed.as_secs_f64(),
+                    converged.as_deref().unwrap_or("")
                 )
             });
         }
@@ -307,10 +320,15 @@ impl Summary<'_> {
         let interrupted = report.outcome == crate::render::Outcome::Cancelled;
         let paths = report.samples as f64;
         let rays = report.rays;
-        let samples = if interrupted {
-            format!("interrupted: {least} spp in every pixel, up to {most}, {mean:.1} on average")
-        } else {
-            format!("{least} spp")
+        let samples = match (interrupted, report.film.stopped_share()) {
+            (true, _) => format!(
+                "interrupted: {least} spp in every pixel, up to {most}, {mean:.1} on average"
+            ),
+            (false, Some(share)) => format!(
+                "adaptive: {least} to {most} spp, {mean:.1} on average, {:.1} % of pixels converged",
+                share * 100.0
+            ),
+            (false, None) => format!("{least} spp"),
         };
         let of = match self.pass {
             Some(p) => format!(" (pass {p} of {} spp)", s.samples),

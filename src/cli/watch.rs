@@ -372,11 +372,14 @@ impl Observer for Lines {
     fn pass(&self, pass: &PassDone) {
         match pass.image {
             Some(Ok(())) => self.status(&format!(
-                "pass {}: {} spp in {:.2} s (total {:.2} s)",
+                "pass {}: {} spp in {:.2} s (total {:.2} s){}",
                 pass.number,
                 pass.spp,
                 pass.elapsed.as_secs_f64(),
-                pass.total.as_secs_f64()
+                pass.total.as_secs_f64(),
+                (pass.converged)
+                    .map(|share| format!(", {:.0} % of pixels converged", share * 100.0))
+                    .unwrap_or_default()
             )),
             Some(Err(e)) => self.status(&format!("cannot write {}: {e}", self.output.display())),
             None => {}

@@ -93,7 +93,23 @@ pub struct Settings {
     /// A time budget in seconds: a batch render stops when it is spent or
     /// at `samples`, whichever comes first (`None`: samples alone).
     pub time: Option<f64>,
+    /// Adaptive sampling: a pixel stops once its noise falls below a
+    /// threshold (`None`: every pixel takes `samples`).
+    pub adaptive: Option<Adaptive>,
 }
+
+/// Adaptive sampling's settings (`noise_threshold`, `min_samples`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Adaptive {
+    /// The noise below which a pixel stops: Cycles's measure (the half
+    /// films' difference over the square root of the brightness).
+    pub threshold: f32,
+    /// Samples every pixel takes before any may stop.
+    pub min_samples: u32,
+}
+
+/// `min_samples` when a scene names only `noise_threshold`.
+pub const DEFAULT_MIN_SAMPLES: u32 = 16;
 
 /// The longest time budget accepted, in seconds (a year).
 pub const MAX_TIME: f64 = 365.0 * 24.0 * 3600.0;
@@ -118,6 +134,7 @@ impl Default for Settings {
             light_samples: 4,
             exposure: 0.0,
             time: None,
+            adaptive: None,
         }
     }
 }

@@ -4,7 +4,8 @@
 //! render stopped and continued from its film ([`crate::render::render_from`])
 //! sums exactly what an uninterrupted one sums, and films of disjoint runs
 //! add up to the film of their union (up to f64 rounding, far below what an
-//! f32 pixel shows). [`crate::output`] encodes the mean.
+//! f32 pixel shows). [`crate::output`] encodes the mean. An adaptive render's
+//! film also holds its [`Halves`].
 
 use crate::output;
 use glam::{DVec3, Vec3};
@@ -25,6 +26,20 @@ pub struct Film {
     /// Samples per pixel, row-major: pixel `i` holds samples
     /// `first .. first + count[i]`.
     pub count: Vec<u32>,
+    /// Adaptive sampling's half films and stopped pixels (`None`: every
+    /// pixel samples to the end).
+    pub halves: Option<Halves>,
+}
+
+/// What adaptive sampling keeps beside the sums, per pixel: the sum of its
+/// odd-indexed samples (the even ones' is the rest of the sum) and whether
+/// it has stopped ([`crate::render::adaptive`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Halves {
+    /// Sum of the samples of odd index, row-major.
+    pub odd: Vec<DVec3>,
+    /// Whether the pixel has stopped, row-major.
+    pub stopped: Vec<bool>,
 }
 
 impl Film {
@@ -37,7 +52,61 @@ impl Film {
             first,
             sum: vec![DVec3::ZERO; n],
             count: vec![0; n],
+            halves: None,
         }
+    }
+
+    /// A black film of the render `settings` describe, with half films if
+    /// it samples adaptively, whose samples start at index `first`.
+    pub fn for_settings(settings: &crate::ir::settings::Settings, first: u32) -> Film {
+        let film = Film::new(settings.width, settings.height, first);
+        match settings.adaptive {
+            Some(_) => film.with_halves(),
+            None => film,
+        }
+    }
+
+    /// The film with (empty) half films, for adaptive sampling.
+    pub fn with_halves(self) -> Film {
+        let n = self.sum.len();
+        Film {
+            halves: Some(Halves {
+                odd: vec![DVec3::ZERO; n],
+                stopped: vec![false; n],
+            }),
+            ..self
+        }
+    }
+
+    /// Whether pixel `i` has stopped (only adaptive sampling stops one).
+    #[inline]
+    pub fn stopped(&self, i: usize) -> bool {
+        self.halves.as_ref().is_some_and(|h| h.stopped[i])
+    }
+
+    /// The fewest samples of a pixel that has not stopped; `None` when all
+    /// have.
+    pub fn least_active(&self) -> Option<u32> {
+        (0..self.count.len())
+            .filter(|&i| !self.stopped(i))
+            .map(|i| self.count[i])
+            .min()
+    }
+
+    /// Pixels that have not stopped.
+    pub fn active_pixels(&self) -> u64 {
+        match &self.halves {
+            Some(h) => h.stopped.iter().filter(|&&s| !s).count() as u64,
+            None => self.count.len() as u64,
+        }
+    }
+
+    /// The share of pixels adaptive sampling has stopped (`None` for a
+    /// film without halves).
+    pub fn stopped_share(&self) -> Option<f64> {
+        let h = self.halves.as_ref()?;
+        let stopped = h.stopped.iter().filter(|&&s| s).count();
+        Some(stopped as f64 / h.stopped.len().max(1) as f64)
     }
 
     /// A film holding finished pixels (one sample each), e.g. to write an
@@ -50,6 +119,7 @@ impl Film {
             first: 0,
             count: vec![1; pixels.len()],
             sum: pixels.iter().map(Vec3::as_dvec3).collect(),
+            halves: None,
         }
     }
 
@@ -83,7 +153,8 @@ impl Film {
     }
 
     /// Adds another film's samples, pixel by pixel (the parts of a split
-    /// render; the caller checks that their sample runs are disjoint).
+    /// render, never adaptive; the caller checks that their sample runs
+    /// are disjoint).
     pub fn add(&mut self, other: &Film) {
         debug_assert_eq!((self.width, self.height), (other.width, other.height));
         for (s, o) in self.sum.iter_mut().zip(&other.sum) {

@@ -112,6 +112,15 @@ fn read_descriptions(paths: &[PathBuf]) -> Result<(Parts, (u32, u32)), String> {
     for path in paths {
         let (info, part_size) =
             read_state_header(path).map_err(|why| format!("{}: {why}", path.display()))?;
+        // Its pixels stopped at counts that hang on the whole film: no
+        // share of the samples is a part of it, and its own image is the
+        // render's (`--resume` finishes it).
+        if info.adaptive() {
+            return Err(format!(
+                "{} is the state of an adaptive render (noise_threshold), which is not split into parts: resume it with --resume to finish it, or render without the noise threshold to split the work with --pass",
+                path.display()
+            ));
+        }
         if let Some((first, reference)) = parts.first() {
             let foreign = |why: String| {
                 Err(format!(

@@ -3,6 +3,7 @@
 //! tiles, a progress callback. Every sample draws from its own random stream
 //! (seed, pixel, sample index), so the image is the same for any thread count.
 
+pub mod adaptive;
 pub mod aov;
 pub mod denoise;
 pub mod film;
@@ -16,7 +17,7 @@ use crate::geometry::Ray;
 use crate::integrator::Integrator;
 use crate::ir::Scene;
 use crate::sampling::sampler::{PixelSampler, Sampler};
-use film::Film;
+use film::{Film, Halves};
 use glam::{DVec3, Vec2, Vec3};
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
@@ -34,31 +35,50 @@ struct TileRows<'a> {
     sums: Vec<&'a mut [DVec3]>,
     /// Its rows of sample counts.
     counts: Vec<&'a mut [u32]>,
+    /// Its rows of odd samples' sums (adaptive sampling).
+    odd: Option<Vec<&'a mut [DVec3]>>,
 }
 
-/// The film's pixels cut into tiles of TILE × TILE (fewer at the right and
-/// bottom edges), in row-major order of tiles.
-fn tile_rows<'a>(sums: &'a mut [DVec3], counts: &'a mut [u32], width: u32) -> Vec<TileRows<'a>> {
+/// A film's per-pixel values (row-major, `width` a row) cut into the tiles
+/// of TILE × TILE (fewer at the right and bottom edges), in row-major
+/// order of tiles, each a list of its rows.
+fn tiles_of<T>(values: &mut [T], width: u32) -> Vec<Vec<&mut [T]>> {
     let (w, tile) = (width as usize, TILE as usize);
     let across = w.div_ceil(tile);
-    let mut tiles: Vec<TileRows> = Vec::new();
-    let bands = sums.chunks_mut(w * tile).zip(counts.chunks_mut(w * tile));
-    for (band, (band_sums, band_counts)) in bands.enumerate() {
+    let mut tiles: Vec<Vec<&mut [T]>> = Vec::new();
+    for band in values.chunks_mut(w * tile) {
         let first = tiles.len();
-        tiles.extend((0..across).map(|tx| TileRows {
-            corner: ((tx * tile) as u32, (band * tile) as u32),
-            sums: Vec::with_capacity(tile),
-            counts: Vec::with_capacity(tile),
-        }));
-        for (row_sums, row_counts) in band_sums.chunks_mut(w).zip(band_counts.chunks_mut(w)) {
-            let cells = row_sums.chunks_mut(tile).zip(row_counts.chunks_mut(tile));
-            for (tx, (s, c)) in cells.enumerate() {
-                tiles[first + tx].sums.push(s);
-                tiles[first + tx].counts.push(c);
+        tiles.extend((0..across).map(|_| Vec::with_capacity(tile)));
+        for row in band.chunks_mut(w) {
+            for (tx, cell) in row.chunks_mut(tile).enumerate() {
+                tiles[first + tx].push(cell);
             }
         }
     }
     tiles
+}
+
+/// The film's pixels as tiles, with what the pass reads of it whole: which
+/// pixels adaptive sampling stopped.
+fn tile_rows(film: &mut Film) -> (Vec<TileRows<'_>>, Option<&[bool]>) {
+    let (w, tile) = (film.width, TILE);
+    let across = w.div_ceil(tile);
+    let (odd, stopped) = match film.halves.as_mut() {
+        Some(Halves { odd, stopped }) => (Some(tiles_of(odd, w)), Some(&stopped[..])),
+        None => (None, None),
+    };
+    let mut odd = odd.map(Vec::into_iter);
+    let sums = tiles_of(&mut film.sum, w);
+    let counts = tiles_of(&mut film.count, w);
+    let tiles = (sums.into_iter().zip(counts).enumerate())
+        .map(|(t, (sums, counts))| TileRows {
+            corner: ((t as u32 % across) * tile, (t as u32 / across) * tile),
+            sums,
+            counts,
+            odd: odd.as_mut().and_then(Iterator::next),
+        })
+        .collect();
+    (tiles, stopped)
 }
 
 /// How a render went.
@@ -81,19 +101,6 @@ pub struct Rendered {
     pub outcome: Outcome,
     /// The rays traced (all passes that ran).
     pub rays: RayCounts,
-}
-
-/// Sample counts at the end of each progressive pass: 1, 2, 4, … up to `spp`
-/// (at most 33 passes, whatever `spp`).
-pub fn pass_ends(spp: u32) -> Vec<u32> {
-    let mut ends = Vec::new();
-    let mut n = 1u32;
-    while n < spp {
-        ends.push(n);
-        n = n.saturating_mul(2);
-    }
-    ends.push(spp.max(1));
-    ends
 }
 
 /// How often a tile polls the cancellation flag: every this many samples
@@ -119,7 +126,7 @@ pub fn render(
     on_pass: &mut dyn FnMut(&Film, u32),
 ) -> Rendered {
     let s = &scene.settings;
-    let film = Film::new(s.width, s.height, 0);
+    let film = Film::for_settings(s, 0);
     render_from(
         scene, integrator, film, s.samples, cancel, progress, on_pass,
     )
@@ -188,7 +195,8 @@ struct View {
 /// The pixel loop: tiles over rayon, progressive passes. Each pixel's
 /// samples are added to its sum one by one in sample-index order, from the
 /// sum `film` holds: however a render is stopped and continued, the same
-/// additions happen in the same order.
+/// additions happen in the same order. An adaptive render's film decides
+/// which pixels stop after the passes that end at a decision.
 fn render_view(
     scene: &Scene,
     integrator: &dyn Integrator,
@@ -198,47 +206,32 @@ fn render_view(
     progress: &(dyn Fn(u64) + Sync),
     on_pass: &mut dyn FnMut(&Film, u32),
 ) -> Rendered {
-    let (w, h) = (view.width, view.height);
-    debug_assert_eq!((film.width, film.height), (w, h));
-    let scale = view.scale as f32;
-    let first = film.first;
+    debug_assert_eq!((film.width, film.height), (view.width, view.height));
     let done = AtomicU64::new(0);
     let mut rays = RayCounts::default();
-    // A resumed film skips the passes its every pixel has done.
-    let least = film.count.iter().copied().min().unwrap_or(0);
-    for end in pass_ends(view.samples).into_iter().filter(|&e| e > least) {
-        let mut tiles = tile_rows(&mut film.sum, &mut film.count, w);
+    let adaptive_sampling = (scene.settings.adaptive).filter(|_| film.halves.is_some());
+    // A resumed film skips the passes its every sampling pixel has done
+    // (all of them when every pixel has stopped).
+    let least = film.least_active().unwrap_or(u32::MAX);
+    let ends = adaptive::pass_ends(view.samples, adaptive_sampling.as_ref());
+    for end in ends.into_iter().filter(|&e| e > least) {
+        let first = film.first;
+        let (mut tiles, stopped) = tile_rows(&mut film);
+        let pass = TilePass {
+            scene,
+            integrator,
+            first,
+            end,
+            scale: view.scale as f32,
+            width: view.width,
+            stopped,
+            cancel,
+        };
         let results: Vec<(bool, RayCounts)> = tiles
             .par_iter_mut()
             .map(|tile| {
-                let (x0, y0) = tile.corner;
                 let rays_before = ray_count::this_thread();
-                let mut stopped = false;
-                let mut samples = 0u64;
-                let rows = tile.sums.iter_mut().zip(tile.counts.iter_mut());
-                let mut pixel = pixel_sampler(scene, x0, y0);
-                'pixels: for (y, (sums, counts)) in (y0..).zip(rows) {
-                    for (x, (sum_held, count_held)) in
-                        (x0..).zip(sums.iter_mut().zip(counts.iter_mut()))
-                    {
-                        let (mut sum, from) = (*sum_held, *count_held);
-                        pixel.move_to((x, y));
-                        for s in from..end {
-                            if (s - from).is_multiple_of(CANCEL_POLL)
-                                && cancel.load(Ordering::Relaxed)
-                            {
-                                (*sum_held, *count_held) = (sum, s);
-                                samples += (s - from) as u64;
-                                stopped = true;
-                                break 'pixels;
-                            }
-                            let l = sample(scene, integrator, &pixel, x, y, first + s, scale);
-                            sum += l.as_dvec3();
-                        }
-                        (*sum_held, *count_held) = (sum, from.max(end));
-                        samples += end.saturating_sub(from) as u64;
-                    }
-                }
+                let (samples, stopped) = render_tile(&pass, tile);
                 progress(done.fetch_add(samples, Ordering::Relaxed) + samples);
                 (stopped, ray_count::this_thread() - rays_before)
             })
@@ -256,13 +249,89 @@ fn render_view(
                 rays,
             };
         }
+        let mut all_stopped = false;
+        if let Some(a) = adaptive_sampling.filter(|a| adaptive::is_decision(end, a)) {
+            adaptive::decide(&mut film, end, a.threshold);
+            all_stopped = film.active_pixels() == 0;
+        }
         on_pass(&film, end);
+        if all_stopped {
+            break;
+        }
     }
     Rendered {
         film,
         outcome: Outcome::Complete,
         rays,
     }
+}
+
+/// What the tiles of a pass share.
+struct TilePass<'a> {
+    scene: &'a Scene,
+    integrator: &'a dyn Integrator,
+    /// The film's first sample index.
+    first: u32,
+    /// The samples per pixel the pass ends at.
+    end: u32,
+    /// Pixels of the scene's image one pixel of the view covers on a side.
+    scale: f32,
+    /// The view's width.
+    width: u32,
+    /// Which pixels adaptive sampling stopped.
+    stopped: Option<&'a [bool]>,
+    cancel: &'a AtomicBool,
+}
+
+/// Brings a tile's pixels to the pass's end, or stops when the pass is
+/// cancelled: the samples drawn, and whether it was cancelled.
+fn render_tile(pass: &TilePass, tile: &mut TileRows) -> (u64, bool) {
+    let (x0, y0) = tile.corner;
+    let (first, end) = (pass.first, pass.end);
+    let mut samples = 0u64;
+    let mut pixel = pixel_sampler(pass.scene, x0, y0);
+    for (row, y) in (0..tile.sums.len()).zip(y0..) {
+        for (col, x) in (0..tile.sums[row].len()).zip(x0..) {
+            let from = tile.counts[row][col];
+            let i = (y * pass.width + x) as usize;
+            if from >= end || pass.stopped.is_some_and(|s| s[i]) {
+                continue;
+            }
+            let mut sum = tile.sums[row][col];
+            let mut odd = tile.odd.as_ref().map(|o| o[row][col]);
+            pixel.move_to((x, y));
+            let mut reached = end;
+            for s in from..end {
+                if (s - from).is_multiple_of(CANCEL_POLL) && pass.cancel.load(Ordering::Relaxed) {
+                    reached = s;
+                    break;
+                }
+                let l = sample(
+                    pass.scene,
+                    pass.integrator,
+                    &pixel,
+                    x,
+                    y,
+                    first + s,
+                    pass.scale,
+                );
+                sum += l.as_dvec3();
+                // The odd half film, for adaptive sampling's noise.
+                if let Some(odd) = odd.as_mut().filter(|_| (first + s) % 2 == 1) {
+                    *odd += l.as_dvec3();
+                }
+            }
+            (tile.sums[row][col], tile.counts[row][col]) = (sum, reached);
+            if let (Some(rows), Some(odd)) = (tile.odd.as_mut(), odd) {
+                rows[row][col] = odd;
+            }
+            samples += (reached - from) as u64;
+            if reached < end {
+                return (samples, true);
+            }
+        }
+    }
+    (samples, false)
 }
 
 /// The sampling of pixel (x, y) of the scene's render.
@@ -327,18 +396,6 @@ fn limit_sample(l: Vec3) -> Vec3 {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn passes_double_up_to_the_target() {
-        assert_eq!(pass_ends(1), vec![1]);
-        assert_eq!(pass_ends(6), vec![1, 2, 4, 6]);
-        assert_eq!(pass_ends(8), vec![1, 2, 4, 8]);
-        // The doubling saturates instead of wrapping to 0 and looping.
-        let ends = pass_ends(u32::MAX);
-        assert_eq!(ends.len(), 33);
-        assert_eq!(*ends.last().unwrap(), u32::MAX);
-        assert_eq!(pass_ends(3_000_000_000).len(), 33);
-    }
 
     #[test]
     fn samples_enter_a_pixel_finite_and_bounded() {

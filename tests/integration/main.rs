@@ -1,5 +1,6 @@
 //! The single integration-test binary (one link step for all of them).
 
+mod adaptive;
 mod catalogue;
 mod cli;
 mod denoise;

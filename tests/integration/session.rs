@@ -33,7 +33,7 @@ fn scene(spp: u32) -> Scene {
 }
 
 /// A batch plan writing `output` by `policy`.
-fn batch(output: &Path, policy: StatePolicy) -> Plan {
+pub(crate) fn batch(output: &Path, policy: StatePolicy) -> Plan {
     Plan {
         output: output.to_path_buf(),
         inputs: Vec::new(),
@@ -45,7 +45,7 @@ fn batch(output: &Path, policy: StatePolicy) -> Plan {
 }
 
 /// The state policy of a plain `ptsc render` of the test scene.
-fn policy() -> StatePolicy {
+pub(crate) fn policy() -> StatePolicy {
     StatePolicy {
         scene: "s.pts".into(),
         fingerprint: 7,
@@ -54,18 +54,18 @@ fn policy() -> StatePolicy {
 }
 
 /// Starts a session of `plan` over `scene`.
-fn session(scene: Scene, plan: Plan) -> Result<Session, Error> {
+pub(crate) fn session(scene: Scene, plan: Plan) -> Result<Session, Error> {
     plan.check()
         .and_then(|checked| Session::new(scene, checked))
 }
 
 /// Runs `plan` over `scene` on one thread (tiles in order), to the end.
-fn run(scene: Scene, plan: Plan, observer: &dyn Observer, cancel: &Cancel) -> Report {
+pub(crate) fn run(scene: Scene, plan: Plan, observer: &dyn Observer, cancel: &Cancel) -> Report {
     let session = session(scene, plan).unwrap();
     one_thread().install(|| session.run(observer, cancel).unwrap())
 }
 
-fn one_thread() -> rayon::ThreadPool {
+pub(crate) fn one_thread() -> rayon::ThreadPool {
     rayon::ThreadPoolBuilder::new()
         .num_threads(1)
         .build()
@@ -73,13 +73,13 @@ fn one_thread() -> rayon::ThreadPool {
 }
 
 /// An observer that hears nothing.
-struct Quiet;
+pub(crate) struct Quiet;
 impl Observer for Quiet {}
 
 /// An observer that writes down what it hears, and cancels its token once
 /// `stop_after` pixel samples are done.
 #[derive(Default)]
-struct Log {
+pub(crate) struct Log {
     events: Mutex<Vec<String>>,
     last_progress: AtomicU64,
     stop_after: Option<(u64, Cancel)>,
@@ -113,15 +113,31 @@ impl Observer for Log {
 }
 
 impl Log {
-    fn events(&self) -> Vec<String> {
+    /// A log that cancels `cancel` once `samples` pixel samples are done.
+    pub(crate) fn stopping_after(samples: u64, cancel: &Cancel) -> Log {
+        Log {
+            stop_after: Some((samples, cancel.clone())),
+            ..Log::default()
+        }
+    }
+
+    pub(crate) fn events(&self) -> Vec<String> {
         self.events.lock().unwrap().clone()
     }
 }
 
-/// Whether two films hold the same samples, bit for bit.
-fn same_film(a: &Film, b: &Film) -> bool {
+/// Whether two films hold the same samples, bit for bit (and the same
+/// half films and stopped pixels, if adaptive).
+pub(crate) fn same_film(a: &Film, b: &Film) -> bool {
+    let bits = |v: &[glam::DVec3]| {
+        v.iter()
+            .map(|x| x.to_array().map(f64::to_bits))
+            .collect::<Vec<_>>()
+    };
+    let halves = |f: &Film| f.halves.as_ref().map(|h| (bits(&h.odd), h.stopped.clone()));
     (a.width, a.height, a.first) == (b.width, b.height, b.first)
         && a.count == b.count
+        && halves(a) == halves(b)
         && a.sum
             .iter()
             .zip(&b.sum)

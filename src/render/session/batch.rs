@@ -68,13 +68,19 @@ pub(super) fn prepare(
     // Denoising takes the albedo and normal, and copies of the colour.
     let channels =
         aovs.iter().map(|a| a.channels().len() as u32).sum::<u32>() + if denoise { 12 } else { 0 };
-    let need = Need::film((s.width, s.height)).with_aovs(channels);
+    let need =
+        (Need::film((s.width, s.height)).with_adaptive(s.adaptive.is_some())).with_aovs(channels);
     memory::check(&need, memory_limit).map_err(Error::Refused)?;
     if let Some(pass) = policy.pass {
         if crate::output::ImageFormat::of(output) != Some(crate::output::ImageFormat::Exr) {
             return Err(Error::Refused(format!(
                 "--pass {pass} writes a part file for `ptsc merge`: name an .exr output (-o part_{}.exr)",
                 pass.k
+            )));
+        }
+        if s.adaptive.is_some() {
+            return Err(Error::Refused(format!(
+                "--pass {pass} renders a fixed share of every pixel's samples for `ptsc merge`; adaptive sampling stops each pixel at its own count, which no share of the samples can know: drop the noise threshold (--noise, or `noise_threshold` in the scene's render block)"
             )));
         }
         if s.time.is_some() {
@@ -238,11 +244,9 @@ fn render_passes(
     let mut on_pass = |film: &Film, spp: u32| {
         number += 1;
         observer.pass(&PassDone {
-            number,
-            spp,
             elapsed: last_pass.elapsed(),
             total: t1.elapsed(),
-            image: None,
+            ..PassDone::of(film, (spp, target), number)
         });
         last_pass = Instant::now();
         // A long render replaces its image with the passes so far, a
@@ -260,7 +264,9 @@ fn render_passes(
     let mut keep_state = batch.policy.keep_state || batch.had_state;
     let mut rays = RayCounts::default();
     // With a time budget, one pass per run, each as long as fits.
-    let budget = s.time.map(|seconds| Budget::new(seconds, &film));
+    let budget = s
+        .time
+        .map(|seconds| Budget::new(seconds, &film, s.adaptive));
     let cut = std::sync::atomic::AtomicBool::new(false);
     let interrupted = loop {
         let run_target = match &budget {
@@ -327,7 +333,7 @@ fn render_passes(
     };
     // A budget spent before the samples asked: the state is kept, for
     // --resume to add more.
-    let short = film.count.iter().any(|&c| c < target);
+    let short = film.least_active().is_some_and(|c| c < target);
     keep_state |= budget.is_some() && short && !interrupted;
     Ok(Passes {
         film,

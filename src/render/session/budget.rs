@@ -5,8 +5,9 @@
 //! A pass that runs later than foreseen is cut at a tenth of the budget
 //! past its end (its pixels then end with counts one pass apart).
 
+use crate::ir::settings::Adaptive;
+use crate::render::adaptive::pass_ends;
 use crate::render::film::Film;
-use crate::render::pass_ends;
 use std::time::{Duration, Instant};
 
 /// The time budget of a render and what it has spent.
@@ -18,13 +19,14 @@ pub(super) struct Budget {
     cut: Instant,
     /// The film's samples when the budget started (a resumed render's).
     samples_before: u64,
-    /// Pixels of the film.
-    pixels: u64,
+    /// Adaptive sampling's settings: its passes end at its decisions.
+    adaptive: Option<Adaptive>,
 }
 
 impl Budget {
-    /// A budget of `seconds` from now for rendering on from `film`.
-    pub(super) fn new(seconds: f64, film: &Film) -> Budget {
+    /// A budget of `seconds` from now for rendering on from `film`, with
+    /// `adaptive` sampling or not.
+    pub(super) fn new(seconds: f64, film: &Film, adaptive: Option<Adaptive>) -> Budget {
         let start = Instant::now();
         let length = Duration::from_secs_f64(seconds);
         Budget {
@@ -32,27 +34,29 @@ impl Budget {
             end: start + length,
             cut: start + length + length / 10,
             samples_before: film.total_samples(),
-            pixels: film.count.len().max(1) as u64,
+            adaptive,
         }
     }
 
     /// The samples per pixel the next pass should end at, on the way to
     /// `target`: the usual doubling while it fits in the time left, else as
-    /// many as fit; `None` when the film has `target` or not one more
-    /// sample per pixel fits.
+    /// many as fit; `None` when the film has `target` (in every pixel
+    /// still sampling) or not one more sample per pixel fits.
     pub(super) fn next_target(&self, film: &Film, target: u32) -> Option<u32> {
-        let least = film.count.iter().copied().min().unwrap_or(0);
+        let least = film.least_active()?;
         let now = Instant::now();
         if least >= target || now >= self.end {
             return None;
         }
-        let next = pass_ends(target).into_iter().find(|&e| e > least)?;
+        let next = (pass_ends(target, self.adaptive.as_ref()).into_iter()).find(|&e| e > least)?;
         let done = film.total_samples().saturating_sub(self.samples_before);
         if done == 0 {
             return Some(next);
         }
-        // Seconds for one sample in every pixel, from the passes so far.
-        let per_spp = (now - self.start).as_secs_f64() * self.pixels as f64 / done as f64;
+        // Seconds for one sample in every pixel still sampling, from the
+        // passes so far.
+        let per_sample = (now - self.start).as_secs_f64() / done as f64;
+        let per_spp = per_sample * film.active_pixels() as f64;
         let left = (self.end - now).as_secs_f64();
         let affordable = (left / per_spp.max(1e-12)).floor().min(u32::MAX as f64) as u32;
         let end = next.min(least.saturating_add(affordable));
@@ -73,7 +77,7 @@ mod tests {
     #[test]
     fn passes_double_while_they_fit_and_the_last_takes_what_fits() {
         let mut film = Film::new(2, 2, 0);
-        let mut budget = Budget::new(10.0, &film);
+        let mut budget = Budget::new(10.0, &film, None);
         // The first pass has nothing to go by: one sample per pixel.
         assert_eq!(budget.next_target(&film, 1000), Some(1));
         // Pretend 8 spp took 2 s: 0.25 s per spp, 8 s left → 32 more fit.

@@ -36,7 +36,8 @@ pub(super) fn prepare(
     output: &Path,
     memory_limit: Option<u64>,
 ) -> Result<(), Error> {
-    let need = Need::film((scene.settings.width, scene.settings.height));
+    let s = &scene.settings;
+    let need = Need::film((s.width, s.height)).with_adaptive(s.adaptive.is_some());
     crate::render::state::refuse_to_replace(output, false)
         .and_then(|()| memory::check(&need, memory_limit))
         .map_err(Error::Refused)
@@ -83,7 +84,7 @@ pub(super) fn run(
     let rendered = crate::render::render_from(
         scene,
         integrator.as_ref(),
-        Film::new(w, h, 0),
+        Film::for_settings(s, 0),
         s.samples,
         cancel.polled(),
         &|done| observer.progress(done),
@@ -92,11 +93,10 @@ pub(super) fn run(
             let result = film.write(output, s.exposure);
             written = result.is_ok();
             observer.pass(&PassDone {
-                number,
-                spp,
                 elapsed: last.elapsed(),
                 total: t0.elapsed(),
                 image: Some(&result),
+                ..PassDone::of(film, (spp, s.samples), number)
             });
             last = Instant::now();
         },

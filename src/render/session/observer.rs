@@ -44,6 +44,27 @@ pub struct PassDone<'a> {
     /// Where the session writes the image after every pass (`watch`):
     /// how writing it went.
     pub image: Option<&'a std::io::Result<()>>,
+    /// The share of pixels adaptive sampling has stopped (`None`: the
+    /// render is not adaptive).
+    pub converged: Option<f64>,
+    /// Pixel samples still to draw to reach the samples asked, as the
+    /// pixels that sample on now tell.
+    pub samples_left: u64,
+}
+
+impl PassDone<'_> {
+    /// A pass that brought `film` to `spp` on the way to `target`.
+    pub(super) fn of(film: &Film, (spp, target): (u32, u32), number: u32) -> PassDone<'static> {
+        PassDone {
+            number,
+            spp,
+            elapsed: Duration::ZERO,
+            total: Duration::ZERO,
+            image: None,
+            converged: film.stopped_share(),
+            samples_left: film.active_pixels() * target.saturating_sub(spp) as u64,
+        }
+    }
 }
 
 /// The preview that was rendered.

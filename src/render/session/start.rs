@@ -68,8 +68,15 @@ pub(super) fn start(
     (width, height): (u32, u32),
     policy: &StatePolicy,
 ) -> Result<Start, String> {
+    let new_film = || {
+        let film = Film::new(width, height, now.pass.range(now.samples).start);
+        match now.adaptive() {
+            true => film.with_halves(),
+            false => film,
+        }
+    };
     let fresh = |had_state, note| Start {
-        film: Film::new(width, height, now.pass.range(now.samples).start),
+        film: new_film(),
         had_state,
         note,
     };

@@ -16,9 +16,42 @@ pub const STATE_PART: &str = "ptsc.state";
 const CHANNELS: [&str; 7] = [
     "count", "sum.B.hi", "sum.B.lo", "sum.G.hi", "sum.G.lo", "sum.R.hi", "sum.R.lo",
 ];
+/// The channels an adaptive render's state adds (its [`Halves`]): the sum
+/// of the odd samples as f64 bits, and whether the pixel stopped (0 or 1).
+const HALVES_CHANNELS: [&str; 7] = [
+    "odd.B.hi", "odd.B.lo", "odd.G.hi", "odd.G.lo", "odd.R.hi", "odd.R.lo", "stopped",
+];
+
+/// The state part's channels of a state, by name: an adaptive render's
+/// hold its halves too.
+fn channels_of(info: &StateInfo) -> Vec<&'static str> {
+    let mut names = CHANNELS.to_vec();
+    if info.adaptive() {
+        names.extend(HALVES_CHANNELS);
+        names.sort_unstable();
+    }
+    names
+}
+
 /// Bytes a pixel takes in a state file: the image part's three float32,
-/// the state part's seven uint32.
-const BYTES_PER_PIXEL: u64 = 12 + 28;
+/// the state part's uint32 channels.
+fn bytes_per_pixel(info: &StateInfo) -> u64 {
+    12 + 4 * channels_of(info).len() as u64
+}
+
+/// What takes the pixels a reader checked: (index, pixel).
+type PixelVisitor<'a> = dyn FnMut(usize, &StatePixel) + 'a;
+
+/// A pixel of the state part.
+#[derive(Debug, Clone, Copy, Default)]
+struct StatePixel {
+    sum: DVec3,
+    count: u32,
+    /// The odd samples' sum (adaptive renders; else 0).
+    odd: DVec3,
+    /// Whether adaptive sampling stopped it.
+    stopped: bool,
+}
 
 /// Writes `film` and its description as a state file, atomically,
 /// streaming the pixels block by block.
@@ -35,6 +68,7 @@ fn write_state_encoded(
     encoding: exr::prelude::Encoding,
 ) -> std::io::Result<()> {
     use exr::prelude::*;
+    debug_assert_eq!(film.halves.is_some(), info.adaptive());
     let (w, h) = (film.width as usize, film.height as usize);
     let size = Vec2(w, h);
     // Uncompressed, as the state: a state is written at checkpoints and
@@ -48,36 +82,71 @@ fn write_state_encoded(
             (v.x, v.y, v.z)
         }),
     );
+    let mut attributes = LayerAttributes::named(STATE_PART);
+    attributes.other.insert(
+        Text::from(STATE_PART),
+        AttributeValue::Text(Text::from(info.to_json().as_str())),
+    );
+    let attrs = ImageAttributes::new(IntegerBounds::from_dimensions(size));
+    let bits = |v: f64| ((v.to_bits() >> 32) as u32, v.to_bits() as u32);
     let [c0, c1, c2, c3, c4, c5, c6] = CHANNELS;
-    let halves = |v: f64| ((v.to_bits() >> 32) as u32, v.to_bits() as u32);
-    let channels = SpecificChannels::build()
+    let sums = SpecificChannels::build()
         .with_channel(c0)
         .with_channel(c1)
         .with_channel(c2)
         .with_channel(c3)
         .with_channel(c4)
         .with_channel(c5)
-        .with_channel(c6)
-        .with_pixel_fn(|p: Vec2<usize>| {
+        .with_channel(c6);
+    // Uncompressed: 28 bytes a pixel written in a blink, where ZIP would
+    // spend longer on f64 bits than the render saves. The image part
+    // first: readers that take the first RGB part show it.
+    let Some(halves) = &film.halves else {
+        let channels = sums.with_pixel_fn(|p: Vec2<usize>| {
             let i = p.y() * w + p.x();
             let s = film.sum[i];
-            let ((bh, bl), (gh, gl), (rh, rl)) = (halves(s.z), halves(s.y), halves(s.x));
+            let ((bh, bl), (gh, gl), (rh, rl)) = (bits(s.z), bits(s.y), bits(s.x));
             (film.count[i], bh, bl, gh, gl, rh, rl)
         });
-    let mut attributes = LayerAttributes::named(STATE_PART);
-    attributes.other.insert(
-        Text::from(STATE_PART),
-        AttributeValue::Text(Text::from(info.to_json().as_str())),
-    );
-    // Uncompressed: 28 bytes a pixel written in a blink, where ZIP would
-    // spend longer on f64 bits than the render saves.
+        let state = Layer::new(size, attributes, encoding, channels);
+        return write_parts(
+            path,
+            &Image::empty(attrs).with_layer(image).with_layer(state),
+        );
+    };
+    let [d0, d1, d2, d3, d4, d5, d6] = HALVES_CHANNELS;
+    let channels = (sums.with_channel(d0).with_channel(d1).with_channel(d2))
+        .with_channel(d3)
+        .with_channel(d4)
+        .with_channel(d5)
+        .with_channel(d6)
+        .with_pixel_fn(|p: Vec2<usize>| {
+            let i = p.y() * w + p.x();
+            let (s, o) = (film.sum[i], halves.odd[i]);
+            let ((bh, bl), (gh, gl), (rh, rl)) = (bits(s.z), bits(s.y), bits(s.x));
+            let ((obh, obl), (ogh, ogl), (orh, orl)) = (bits(o.z), bits(o.y), bits(o.x));
+            let stopped = halves.stopped[i] as u32;
+            let n = film.count[i];
+            (
+                n, bh, bl, gh, gl, rh, rl, obh, obl, ogh, ogl, orh, orl, stopped,
+            )
+        });
     let state = Layer::new(size, attributes, encoding, channels);
-    let attrs = ImageAttributes::new(IntegerBounds::from_dimensions(size));
-    // The image part first: readers that take the first RGB part show it.
-    let file = Image::empty(attrs).with_layer(image).with_layer(state);
+    write_parts(
+        path,
+        &Image::empty(attrs).with_layer(image).with_layer(state),
+    )
+}
+
+/// Writes the image and state parts of a state file, atomically, one
+/// block at a time: nothing to compress, so nothing to gain from blocks in
+/// flight.
+fn write_parts<'i, L>(path: &Path, file: &'i exr::image::Image<L>) -> std::io::Result<()>
+where
+    L: exr::image::write::layers::WritableLayers<'i>,
+{
+    use exr::prelude::WritableImage;
     crate::output::write_atomically_with(path, |out| {
-        // One block at a time: nothing to compress, so nothing to gain
-        // from blocks in flight.
         (file.write().non_parallel().to_buffered(out)).map_err(std::io::Error::other)
     })
 }
@@ -178,10 +247,11 @@ fn read_header(source: impl Read, len: u64) -> Result<(StateInfo, (usize, usize)
         .map(|c| c.name.to_string())
         .collect();
     // Two parts of the same size (the image and the state), nothing else.
-    if names != CHANNELS
+    let expected = channels_of(&info);
+    if names != expected
         || meta.headers.len() != 2
         || (meta.headers.iter())
-            .any(|h| h.layer_size != size || h.deep || h.channels.list.len() > CHANNELS.len())
+            .any(|h| h.layer_size != size || h.deep || h.channels.list.len() > expected.len())
         || (state_header.channels.list.iter()).any(|c| c.sample_type != SampleType::U32)
     {
         return Err("its ptsc.state part does not have the channels of a render state".into());
@@ -191,7 +261,7 @@ fn read_header(source: impl Read, len: u64) -> Result<(StateInfo, (usize, usize)
     if (meta.headers.iter()).any(|h| h.compression != Compression::Uncompressed) {
         return Err("it is compressed; ptsc writes states uncompressed".into());
     }
-    let needed = BYTES_PER_PIXEL * w as u64 * h as u64;
+    let needed = bytes_per_pixel(&info) * w as u64 * h as u64;
     if len < needed {
         return Err(format!(
             "it is {len} bytes long, too short for the {w}×{h} pixels its header declares ({needed} bytes): a truncated file"
@@ -218,11 +288,14 @@ pub fn add_state(path: &Path, total: &mut Film) -> Result<(StateInfo, u32), Stri
     if (w as u32, h as u32) != (total.width, total.height) {
         return Err("its image size differs".into());
     }
+    if info.adaptive() {
+        return Err("it is an adaptive render's state, which is not a part".into());
+    }
     let mut least = u32::MAX;
-    read_pixels(open(path)?.0, &info, (w, h), &mut |i, sum, count| {
-        total.sum[i] += sum;
-        total.count[i] = total.count[i].saturating_add(count);
-        least = least.min(count);
+    read_pixels(open(path)?.0, &info, (w, h), &mut |i, p| {
+        total.sum[i] += p.sum;
+        total.count[i] = total.count[i].saturating_add(p.count);
+        least = least.min(p.count);
     })?;
     Ok((info, least))
 }
@@ -235,9 +308,16 @@ fn read_film(
 ) -> Result<(Film, StateInfo), String> {
     let range = info.pass.range(info.samples);
     let mut film = Film::new(w as u32, h as u32, range.start);
-    read_pixels(source, &info, (w, h), &mut |i, sum, count| {
-        film.sum[i] = sum;
-        film.count[i] = count;
+    if info.adaptive() {
+        film = film.with_halves();
+    }
+    read_pixels(source, &info, (w, h), &mut |i, p| {
+        film.sum[i] = p.sum;
+        film.count[i] = p.count;
+        if let Some(halves) = film.halves.as_mut() {
+            halves.odd[i] = p.odd;
+            halves.stopped[i] = p.stopped;
+        }
     })?;
     Ok((film, info))
 }
@@ -247,24 +327,29 @@ fn read_film(
 struct PixelSink<'a> {
     width: usize,
     most: u32,
-    visit: Option<&'a mut dyn FnMut(usize, DVec3, u32)>,
+    visit: Option<&'a mut PixelVisitor<'a>>,
     row_pixels: Vec<u32>,
     error: Option<String>,
 }
 
 impl PixelSink<'_> {
-    /// Takes the pixel at `(x, y)` if it is one a render makes.
-    fn take(&mut self, (x, y): (usize, usize), sum: DVec3, count: u32) {
+    /// Takes the pixel at `(x, y)` if it is one a render makes (`stopped`
+    /// as read: 0 or 1).
+    fn take(&mut self, (x, y): (usize, usize), pixel: &StatePixel, stopped: u32) {
         if self.error.is_some() {
             return;
         }
+        let (sum, count) = (pixel.sum, pixel.count);
+        let most = crate::render::MAX_SAMPLE as f64 * count as f64;
         let row = &mut self.row_pixels[y];
         *row += 1;
         self.error = if *row as usize > self.width {
             Some("it holds a row of pixels twice".into())
-        } else if !sum.is_finite() {
+        } else if !sum.is_finite() || !pixel.odd.is_finite() {
             Some("its state has a sum that is not finite".into())
-        } else if sum.abs().max_element() > crate::render::MAX_SAMPLE as f64 * count as f64 {
+        } else if stopped > 1 {
+            Some("its state has a pixel neither stopped nor going on".into())
+        } else if sum.abs().max_element() > most || pixel.odd.abs().max_element() > most {
             // At most its largest sample per sample (so every pixel's mean
             // is a finite f32), nothing without samples.
             Some("its state has a sum no render makes (beyond its samples' largest value)".into())
@@ -274,23 +359,24 @@ impl PixelSink<'_> {
             None
         };
         if let (None, Some(visit)) = (&self.error, &mut self.visit) {
-            visit(y * self.width + x, sum, count);
+            visit(y * self.width + x, pixel);
         }
     }
 }
 
 /// Reads the state part's pixels of a file whose headers were checked,
 /// handing each to `visit` (index, sum, count) after checking it.
-fn read_pixels(
+fn read_pixels<'v>(
     source: impl Read + Seek,
     info: &StateInfo,
     (w, h): (usize, usize),
-    visit: &mut dyn FnMut(usize, DVec3, u32),
+    visit: &'v mut PixelVisitor<'v>,
 ) -> Result<(), String> {
     use exr::prelude::*;
     let most = info.pass.range(info.samples).len() as u32;
     let slot = std::cell::Cell::new(Some(visit));
     let [c0, c1, c2, c3, c4, c5, c6] = CHANNELS;
+    let [d0, d1, d2, d3, d4, d5, d6] = HALVES_CHANNELS;
     let image = read()
         .no_deep_data()
         .largest_resolution_level()
@@ -302,6 +388,13 @@ fn read_pixels(
         .required::<u32>(c4)
         .required::<u32>(c5)
         .required::<u32>(c6)
+        .optional::<u32>(d0, 0)
+        .optional::<u32>(d1, 0)
+        .optional::<u32>(d2, 0)
+        .optional::<u32>(d3, 0)
+        .optional::<u32>(d4, 0)
+        .optional::<u32>(d5, 0)
+        .optional::<u32>(d6, 0)
         .collect_pixels(
             |_, _| PixelSink {
                 width: w,
@@ -310,10 +403,16 @@ fn read_pixels(
                 row_pixels: vec![0; h],
                 error: None,
             },
-            |sink: &mut PixelSink, p: Vec2<usize>, (n, bh, bl, gh, gl, rh, rl)| {
+            |sink: &mut PixelSink, p: Vec2<usize>, channels| {
+                let (n, bh, bl, gh, gl, rh, rl, obh, obl, ogh, ogl, orh, orl, stopped) = channels;
                 let f64_of = |hi: u32, lo: u32| f64::from_bits((hi as u64) << 32 | lo as u64);
-                let sum = DVec3::new(f64_of(rh, rl), f64_of(gh, gl), f64_of(bh, bl));
-                sink.take((p.x(), p.y()), sum, n)
+                let pixel = StatePixel {
+                    sum: DVec3::new(f64_of(rh, rl), f64_of(gh, gl), f64_of(bh, bl)),
+                    count: n,
+                    odd: DVec3::new(f64_of(orh, orl), f64_of(ogh, ogl), f64_of(obh, obl)),
+                    stopped: stopped == 1,
+                };
+                sink.take((p.x(), p.y()), &pixel, stopped)
             },
         )
         .first_valid_layer()

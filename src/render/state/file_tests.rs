@@ -20,6 +20,61 @@ fn a_state_round_trips_bit_for_bit() {
     assert_eq!((w, h, px[1]), (3, 2, film.pixel(1)));
 }
 
+/// The description of an adaptive render's state.
+fn adaptive_info() -> StateInfo {
+    let mut settings = crate::ir::settings::Settings::default();
+    settings.adaptive = Some(crate::ir::settings::Adaptive {
+        threshold: 0.01,
+        min_samples: 16,
+    });
+    StateInfo {
+        settings: crate::render::state::sample_settings(&settings),
+        samples: 64,
+        pass: crate::render::state::Pass::WHOLE,
+        ..info()
+    }
+}
+
+#[test]
+fn an_adaptive_state_keeps_its_halves_bit_for_bit() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("s.exr");
+    let mut film = Film::new(3, 2, 0).with_halves();
+    let halves = film.halves.as_mut().unwrap();
+    for i in 0..6 {
+        film.count[i] = 16 + i as u32;
+        film.sum[i] = DVec3::new(0.1 * i as f64, 1.0 / 3.0, 7.0);
+        halves.odd[i] = DVec3::new(1.0 / 7.0, i as f64, 2.5);
+        halves.stopped[i] = i % 2 == 1;
+    }
+    let adaptive = adaptive_info();
+    assert!(adaptive.adaptive() && !info().adaptive());
+    write_state(&path, &film, &adaptive).unwrap();
+    let (back, back_info) = read_state(&path).unwrap();
+    assert_eq!(back, film);
+    assert_eq!(back_info, adaptive);
+    assert_eq!(bytes_per_pixel(&adaptive), bytes_per_pixel(&info()) + 28);
+    // Not a part: merging it is refused before its pixels are read.
+    let mut total = Film::new(3, 2, 0);
+    assert!(add_state(&path, &mut total)
+        .unwrap_err()
+        .contains("adaptive"));
+}
+
+#[test]
+fn halves_no_render_makes_are_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("s.exr");
+    let mut film = Film::new(1, 1, 0).with_halves();
+    film.count[0] = 2;
+    film.halves.as_mut().unwrap().odd[0] = DVec3::new(f64::INFINITY, 0.0, 0.0);
+    write_state(&path, &film, &adaptive_info()).unwrap();
+    assert!(read_state(&path).unwrap_err().contains("not finite"));
+    film.halves.as_mut().unwrap().odd[0] = DVec3::splat(1e31);
+    write_state(&path, &film, &adaptive_info()).unwrap();
+    assert!(read_state(&path).unwrap_err().contains("no render makes"));
+}
+
 #[test]
 fn sums_no_render_makes_are_refused() {
     let dir = tempfile::tempdir().unwrap();
@@ -60,7 +115,7 @@ fn compressed_or_truncated_states_are_refused_from_their_headers() {
     write_state_encoded(&path, &film, &info(), zip).unwrap();
     let small = std::fs::metadata(&path).unwrap().len();
     assert!(
-        small < BYTES_PER_PIXEL * 256 * 128,
+        small < bytes_per_pixel(&info()) * 256 * 128,
         "{small} bytes: shorter than declared"
     );
     for why in [

@@ -31,6 +31,9 @@ pub struct StateInfo {
     pub exposure: f32,
 }
 
+/// The setting a state of an adaptive render names (with `min_samples`).
+const ADAPTIVE_KEY: &str = "noise_threshold";
+
 /// The K-th of N disjoint parts of a render's samples.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Pass {
@@ -96,6 +99,7 @@ pub fn sample_settings(s: &Settings) -> Vec<(String, String)> {
         light_samples,
         exposure: _,
         time: _,
+        adaptive,
     } = s;
     let pairs: [(&str, String); 13] = [
         ("width", width.to_string()),
@@ -114,6 +118,12 @@ pub fn sample_settings(s: &Settings) -> Vec<(String, String)> {
     ];
     let mut named: Vec<(String, String)> =
         pairs.into_iter().map(|(k, v)| (k.to_string(), v)).collect();
+    // Only an adaptive render names them: a uniform render's state reads
+    // as it did before adaptive sampling came.
+    if let Some(a) = adaptive {
+        named.push((ADAPTIVE_KEY.into(), format!("{:?}", a.threshold)));
+        named.push(("min_samples".into(), a.min_samples.to_string()));
+    }
     // In name order, as a state file's JSON object keeps them.
     named.sort();
     named
@@ -143,10 +153,19 @@ impl StateInfo {
                 Some((_, v)) => {
                     return Some(format!("its {name} is {v}, this render's is {value}"));
                 }
-                None => return Some(format!("it has no {name}")),
+                None => return Some(format!("it has no {name}, this render's is {value}")),
             }
         }
-        None
+        // A setting only some renders name (adaptive sampling's).
+        let only_saved =
+            (self.settings.iter()).find(|(n, _)| now.settings.iter().all(|m| m.0 != *n));
+        only_saved.map(|(name, v)| format!("its {name} is {v}, this render has none"))
+    }
+
+    /// Whether its render samples adaptively: its film then holds the
+    /// half films and the stopped pixels.
+    pub fn adaptive(&self) -> bool {
+        self.settings.iter().any(|(k, _)| k == ADAPTIVE_KEY)
     }
 
     /// What the state holds, for messages: "64 spp", "pass 2/4 of 64 spp"

@@ -287,51 +287,64 @@ struct TilePass<'a> {
 /// cancelled: the samples drawn, and whether it was cancelled.
 fn render_tile(pass: &TilePass, tile: &mut TileRows) -> (u64, bool) {
     let (x0, y0) = tile.corner;
-    let (first, end) = (pass.first, pass.end);
     let mut samples = 0u64;
     let mut pixel = pixel_sampler(pass.scene, x0, y0);
-    for (row, y) in (0..tile.sums.len()).zip(y0..) {
-        for (col, x) in (0..tile.sums[row].len()).zip(x0..) {
-            let from = tile.counts[row][col];
-            let i = (y * pass.width + x) as usize;
-            if from >= end || pass.stopped.is_some_and(|s| s[i]) {
+    let rows = tile.sums.iter_mut().zip(tile.counts.iter_mut());
+    for (row, (y, (sums, counts))) in (y0..).zip(rows).enumerate() {
+        let mut odd_row = tile.odd.as_mut().map(|rows| &mut *rows[row]);
+        for (col, (sum, count)) in sums.iter_mut().zip(counts.iter_mut()).enumerate() {
+            let x = x0 + col as u32;
+            let from = *count;
+            let stopped = || {
+                pass.stopped
+                    .is_some_and(|s| s[(y * pass.width + x) as usize])
+            };
+            if from >= pass.end || stopped() {
                 continue;
             }
-            let mut sum = tile.sums[row][col];
-            let mut odd = tile.odd.as_ref().map(|o| o[row][col]);
             pixel.move_to((x, y));
-            let mut reached = end;
-            for s in from..end {
-                if (s - from).is_multiple_of(CANCEL_POLL) && pass.cancel.load(Ordering::Relaxed) {
-                    reached = s;
-                    break;
-                }
-                let l = sample(
-                    pass.scene,
-                    pass.integrator,
-                    &pixel,
-                    x,
-                    y,
-                    first + s,
-                    pass.scale,
-                );
-                sum += l.as_dvec3();
-                // The odd half film, for adaptive sampling's noise.
-                if let Some(odd) = odd.as_mut().filter(|_| (first + s) % 2 == 1) {
-                    *odd += l.as_dvec3();
-                }
-            }
-            (tile.sums[row][col], tile.counts[row][col]) = (sum, reached);
-            if let (Some(rows), Some(odd)) = (tile.odd.as_mut(), odd) {
-                rows[row][col] = odd;
-            }
-            samples += (reached - from) as u64;
-            if reached < end {
+            let odd = odd_row.as_mut().map(|r| &mut r[col]);
+            *count = render_pixel(pass, &pixel, (x, y), from, (sum, odd));
+            samples += (*count - from) as u64;
+            if *count < pass.end {
                 return (samples, true);
             }
         }
     }
     (samples, false)
+}
+
+/// Adds pixel (x, y)'s samples from index `from` to the pass's end into
+/// its sum (and those of odd index into `odd`, for adaptive sampling);
+/// returns the count reached: the end, or less when the pass is cancelled.
+#[inline]
+fn render_pixel(
+    pass: &TilePass,
+    pixel: &PixelSampler,
+    (x, y): (u32, u32),
+    from: u32,
+    (sum, mut odd): (&mut DVec3, Option<&mut DVec3>),
+) -> u32 {
+    let first = pass.first;
+    for s in from..pass.end {
+        if (s - from).is_multiple_of(CANCEL_POLL) && pass.cancel.load(Ordering::Relaxed) {
+            return s;
+        }
+        let l = sample(
+            pass.scene,
+            pass.integrator,
+            pixel,
+            x,
+            y,
+            first + s,
+            pass.scale,
+        );
+        *sum += l.as_dvec3();
+        if let Some(odd) = odd.as_deref_mut().filter(|_| (first + s) % 2 == 1) {
+            *odd += l.as_dvec3();
+        }
+    }
+    pass.end
 }
 
 /// The sampling of pixel (x, y) of the scene's render.

@@ -23,9 +23,10 @@ pub struct RenderArgs {
     #[arg(long, value_name = "T", value_parser = parse_time)]
     pub time: Option<f64>,
     /// Adaptive sampling: a pixel stops once its noise is below T, e.g.
-    /// 0.01 (as the scene's `noise_threshold`; 0 < T ≤ 1).
+    /// 0.01 (as the scene's `noise_threshold`; 0 < T ≤ 1); `off`: every
+    /// pixel takes the samples asked.
     #[arg(long, value_name = "T", value_parser = parse_noise)]
-    pub noise: Option<f32>,
+    pub noise: Option<Noise>,
     /// With --noise: samples every pixel takes before it may stop (2 to
     /// 1000000, as the scene's `min_samples`; default 16).
     #[arg(long, value_name = "N", value_parser = parse_min_samples, requires = "noise")]
@@ -149,11 +150,26 @@ fn parse_min_samples(s: &str) -> Result<u32, String> {
     crate::check::MIN_SAMPLES.parse(s).map(|n| n as u32)
 }
 
-fn parse_noise(s: &str) -> Result<f32, String> {
-    match s.trim().parse::<f64>() {
-        // The scene's range: greater than 0, at most 1.
-        Ok(x) if x > 0.0 && x <= crate::check::MAX_NOISE => Ok(x as f32),
-        _ => Err("expected a noise threshold greater than 0 and at most 1, e.g. 0.01".into()),
+/// `--noise`: a threshold, or adaptive sampling off.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Noise {
+    /// Adaptive sampling with this threshold.
+    Threshold(f32),
+    /// Uniform sampling, whatever the scene says.
+    Off,
+}
+
+fn parse_noise(s: &str) -> Result<Noise, String> {
+    match s.trim() {
+        "off" => Ok(Noise::Off),
+        t => match t.parse::<f64>() {
+            // The scene's range: greater than 0, at most 1.
+            Ok(x) if x > 0.0 && x <= crate::check::MAX_NOISE => Ok(Noise::Threshold(x as f32)),
+            _ => Err(
+                "expected a noise threshold greater than 0 and at most 1, e.g. 0.01, or `off`"
+                    .into(),
+            ),
+        },
     }
 }
 
@@ -288,14 +304,18 @@ pub fn apply_overrides(settings: &mut Settings, args: &RenderArgs) {
             settings.samples = crate::check::SAMPLES.max as u32;
         }
     }
-    if let Some(threshold) = args.noise {
-        let min_samples = (args.min_samples)
-            .or(settings.adaptive.map(|a| a.min_samples))
-            .unwrap_or(crate::ir::settings::DEFAULT_MIN_SAMPLES);
-        settings.adaptive = Some(crate::ir::settings::Adaptive {
-            threshold,
-            min_samples,
-        });
+    match args.noise {
+        Some(Noise::Threshold(threshold)) => {
+            let min_samples = (args.min_samples)
+                .or(settings.adaptive.map(|a| a.min_samples))
+                .unwrap_or(crate::ir::settings::DEFAULT_MIN_SAMPLES);
+            settings.adaptive = Some(crate::ir::settings::Adaptive {
+                threshold,
+                min_samples,
+            });
+        }
+        Some(Noise::Off) => settings.adaptive = None,
+        None => {}
     }
     if let Some(k) = args.sampler {
         settings.sampler = k;

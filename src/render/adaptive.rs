@@ -15,9 +15,13 @@
 //! ```
 //!
 //! (the numerator is Cycles's |I − A| per sample, where A is twice the odd
-//! samples' sum). One pixel's estimate is itself noisy, so a pixel stops
-//! only when it and its eight neighbours that still sample are all below
-//! the threshold (Cycles's dilation of the unconverged pixels).
+//! samples' sum). One pixel's estimate is itself noisy (two halves, a few
+//! degrees of freedom), and a decision is final: a pixel is judged by the
+//! mean estimate of its 3×3 window, and stops only when that and its
+//! still-sampling neighbours' are below the threshold (Cycles's dilation of
+//! the unconverged pixels). Judged alone, one pixel in a noisy region read
+//! low by chance often enough that adaptive renders needed more samples
+//! than uniform ones for the same error (docs/performance.md).
 //!
 //! Decisions are taken at fixed sample counts ([`is_decision`]: the first
 //! at `min_samples`, then every eighth more, at least 4), after the pass
@@ -93,24 +97,55 @@ pub fn error(sum: DVec3, odd: DVec3, count: u32) -> f64 {
 
 /// Decides after the pass that brought every sampling pixel to `count`
 /// samples: stops each pixel at `count` whose noise, and that of each
-/// neighbour that still samples, is below `threshold`. Returns how many
+/// neighbour that still samples, is below `threshold`, where a pixel's
+/// noise is the mean of its 3×3 window's [`error`]s. Returns how many
 /// stopped. (A pixel still sampling at another count, as in a film resumed
-/// mid-pass, keeps its neighbours going: the decision then repeats the one
-/// the film was saved after.)
+/// mid-pass, keeps its neighbours going.)
 pub fn decide(film: &mut Film, count: u32, threshold: f32) -> u64 {
     let (w, h) = (film.width as usize, film.height as usize);
     let Some(halves) = film.halves.as_mut() else {
         return 0;
     };
     let (sum, counts) = (&film.sum, &film.count);
-    // Whether a pixel keeps its neighbours sampling: it samples on, and is
-    // not below the threshold at `count`.
-    let busy_row = |halves: &Halves, y: usize| -> Vec<bool> {
+    let threshold = threshold as f64;
+    // A pixel's own estimate: at its count if it stopped or is at
+    // `count`; unknown (infinite) if it samples on elsewhere.
+    let raw_row = |halves: &Halves, y: usize| -> Vec<f64> {
         (y * w..(y + 1) * w)
-            .map(|i| {
-                !halves.stopped[i]
-                    && (counts[i] != count
-                        || error(sum[i], halves.odd[i], count) >= threshold as f64)
+            .map(|i| match halves.stopped[i] || counts[i] == count {
+                true => error(sum[i], halves.odd[i], counts[i]),
+                false => f64::INFINITY,
+            })
+            .collect()
+    };
+    // Whether each pixel of row `y` keeps its neighbours sampling: it
+    // samples on and its window's noise is not below the threshold. One
+    // pixel's estimate compares two halves of its samples, a handful of
+    // degrees of freedom: alone it often reads low by chance and would
+    // stop a noisy pixel for good; the window's mean reads nine.
+    let raw = std::cell::RefCell::new(std::collections::VecDeque::<(usize, Vec<f64>)>::new());
+    let busy_row = |halves: &Halves, y: usize| -> Vec<bool> {
+        let rows: Vec<Vec<f64>> = (y.saturating_sub(1)..(y + 2).min(h))
+            .map(|r| {
+                let mut cache = raw.borrow_mut();
+                if let Some((_, row)) = cache.iter().find(|(k, _)| *k == r) {
+                    return row.clone();
+                }
+                let row = raw_row(halves, r);
+                cache.push_back((r, row.clone()));
+                if cache.len() > 3 {
+                    cache.pop_front();
+                }
+                row
+            })
+            .collect();
+        (0..w)
+            .map(|x| {
+                let i = y * w + x;
+                let (x0, x1) = (x.saturating_sub(1), (x + 1).min(w - 1));
+                let window = rows.iter().flat_map(|row| &row[x0..=x1]);
+                let noise = window.clone().sum::<f64>() / window.count() as f64;
+                !halves.stopped[i] && (counts[i] != count || noise >= threshold)
             })
             .collect()
     };
@@ -119,10 +154,9 @@ pub fn decide(film: &mut Film, count: u32, threshold: f32) -> u64 {
     let mut above = vec![false; w];
     let mut here = busy_row(halves, 0);
     for y in 0..h {
-        let below = if y + 1 < h {
-            busy_row(halves, y + 1)
-        } else {
-            vec![false; w]
+        let below = match y + 1 < h {
+            true => busy_row(halves, y + 1),
+            false => vec![false; w],
         };
         for x in 0..w {
             let i = y * w + x;

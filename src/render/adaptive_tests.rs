@@ -106,15 +106,22 @@ fn stopped_map(f: &Film) -> String {
 }
 
 #[test]
-fn a_noisy_pixel_keeps_its_neighbours_sampling() {
-    let mut f = film(5, 4, 16, &[(1, 1), (4, 3)]);
+fn a_noisy_pixel_keeps_its_window_and_their_neighbours_sampling() {
+    // A noisy pixel raises the noise of the 3×3 windows around it; those
+    // pixels keep their neighbours going: a 5×5 block samples on.
+    let mut f = film(9, 7, 16, &[(2, 2), (8, 6)]);
     let stopped = decide(&mut f, 16, 0.01);
     assert_eq!(
         stopped_map(&f),
-        "###..\n###..\n#####\n...##",
-        "the 3×3 around each noisy pixel samples on"
+        "#####....
+#####....
+#####....
+#####....
+#####.###
+......###
+......###",
     );
-    assert_eq!(stopped, 20 - 13);
+    assert_eq!(stopped, 63 - 34);
     // Deciding again changes nothing; the counts are untouched.
     assert_eq!(decide(&mut f, 16, 0.01), 0);
     assert!(f.count.iter().all(|&c| c == 16));
@@ -130,15 +137,31 @@ fn a_noisy_pixel_keeps_its_neighbours_sampling() {
 }
 
 #[test]
+fn one_low_reading_does_not_stop_a_noisy_region() {
+    // Every pixel noisy (error 0.1), but one whose halves happen to agree:
+    // its window's mean is still 8/9 of the noise, and it samples on.
+    let mut f = Film::new(5, 5, 0).with_halves();
+    f.count.fill(16);
+    f.sum.fill(DVec3::splat(16.0));
+    let halves = f.halves.as_mut().unwrap();
+    // Even mean 1.1, odd mean 0.9 per channel: Σ|0.2|/2 / √3 ≈ 0.17.
+    halves.odd.fill(DVec3::splat(0.9 * 8.0));
+    halves.odd[12] = DVec3::splat(8.0);
+    assert!(error(f.sum[0], f.halves.as_ref().unwrap().odd[0], 16) > 0.15);
+    assert_eq!(decide(&mut f, 16, 0.1), 0);
+}
+
+#[test]
 fn only_pixels_at_the_decision_count_are_decided_on() {
     // A film resumed mid-pass: pixel (2, 0) went on to 20 samples, the
-    // others wait at 16. It keeps its neighbours; the rest stop.
-    let mut f = film(4, 1, 16, &[]);
+    // others wait at 16. Its noise at 16 is unknown: its window and their
+    // neighbours sample on.
+    let mut f = film(6, 1, 16, &[]);
     f.count[2] = 20;
     decide(&mut f, 16, 0.01);
-    assert_eq!(stopped_map(&f), ".###");
+    assert_eq!(stopped_map(&f), "#####.");
     assert_eq!(f.least_active(), Some(16));
-    assert_eq!(f.active_pixels(), 3);
+    assert_eq!(f.active_pixels(), 5);
 }
 
 #[test]

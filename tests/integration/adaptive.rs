@@ -30,7 +30,7 @@ fn scene(render: &str) -> Scene {
 
 /// The adaptive scene at `spp`.
 fn adaptive(spp: u32) -> Scene {
-    scene(&format!("samples {spp} noise_threshold 0.05 min_samples 8"))
+    scene(&format!("samples {spp} noise_threshold 0.02 min_samples 8"))
 }
 
 fn two_threads() -> rayon::ThreadPool {
@@ -199,7 +199,7 @@ fn what_adaptive_sampling_cannot_make_exact_is_refused() {
         .err()
         .unwrap()
         .to_string();
-    assert!(why.contains("noise_threshold is 0.05"), "{why}");
+    assert!(why.contains("noise_threshold is 0.02"), "{why}");
     let why = session(scene("samples 32"), batch(&out, resume))
         .err()
         .unwrap()

@@ -358,9 +358,10 @@ impl Observer for Lines {
         let (changed_at, change) = self.changed_at;
         match preview.written {
             Ok(()) => self.status(&format!(
-                "preview {}×{} at 1 spp in {} ms ({} ms after {change}) → {}",
+                "preview {}×{} at 1 spp{} in {} ms ({} ms after {change}) → {}",
                 preview.size.0,
                 preview.size.1,
+                if preview.denoised { ", denoised" } else { "" },
                 preview.elapsed.as_millis(),
                 changed_at.elapsed().as_millis(),
                 preview.path.display()

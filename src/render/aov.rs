@@ -162,14 +162,47 @@ pub fn render_aovs(
     Some(values)
 }
 
+/// The albedo and normal a denoiser is guided by, for an image `size`
+/// whose pixels each cover `scale` × `scale` of the scene's (a live
+/// render's preview), from `spp` camera rays per pixel; `None` when
+/// cancelled.
+pub fn denoiser_guides(
+    scene: &Scene,
+    size: (u32, u32),
+    scale: u32,
+    spp: u32,
+    cancel: &AtomicBool,
+) -> Option<(Vec<Vec3>, Vec<Vec3>)> {
+    let rows: Vec<Vec<FirstSurface>> = (0..size.1)
+        .into_par_iter()
+        .map(|y| match cancel.load(Ordering::Relaxed) {
+            true => Vec::new(),
+            false => (0..size.0)
+                .map(|x| pixel_of(scene, (x, y), scale, spp))
+                .collect(),
+        })
+        .collect();
+    if cancel.load(Ordering::Relaxed) {
+        return None;
+    }
+    let surfaces = rows.into_iter().flatten();
+    Some(surfaces.map(|s| (s.albedo, s.normal)).unzip())
+}
+
 /// One pixel's AOVs: the mean over `spp` camera rays (the normal
 /// renormalised), the object of the first ray that hits.
 fn pixel(scene: &Scene, (x, y): (u32, u32), spp: u32) -> FirstSurface {
+    pixel_of(scene, (x, y), 1, spp)
+}
+
+/// [`pixel`] of an image whose pixels each cover `scale` × `scale` of the
+/// scene's.
+fn pixel_of(scene: &Scene, (x, y): (u32, u32), scale: u32, spp: u32) -> FirstSurface {
     let pixels = super::pixel_sampler(scene, x, y);
     let mut mean = FirstSurface::default();
     for i in 0..spp {
         let mut sampler = pixels.sample(i);
-        let ray = super::camera_ray(scene, &mut sampler, (x, y), 1.0);
+        let ray = super::camera_ray(scene, &mut sampler, (x, y), scale as f32);
         let f = first_surface(scene, ray, &mut sampler);
         mean.albedo += f.albedo;
         mean.normal += f.normal;

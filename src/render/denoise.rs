@@ -64,14 +64,34 @@ pub fn denoise(
     albedo: Option<&[Vec3]>,
     normal: Option<&[Vec3]>,
 ) -> Result<Vec<Vec3>, String> {
+    denoise_as(Speed::Final, width, height, color, (albedo, normal))
+}
+
+/// How OIDN weighs quality against time.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Speed {
+    /// Its best (`--denoise`, `ptsc denoise`).
+    Final,
+    /// Its fast network, for interactive previews (`watch`).
+    Preview,
+}
+
+/// [`denoise`] at the given [`Speed`].
+pub fn denoise_as(
+    speed: Speed,
+    width: u32,
+    height: u32,
+    color: &[Vec3],
+    (albedo, normal): (Option<&[Vec3]>, Option<&[Vec3]>),
+) -> Result<Vec<Vec3>, String> {
     #[cfg(feature = "denoise")]
     {
         check_sizes(width, height, color, albedo, normal)?;
-        with_oidn(width, height, color, albedo, normal)
+        with_oidn(speed, (width, height), color, albedo, normal)
     }
     #[cfg(not(feature = "denoise"))]
     {
-        let _ = (width, height, color, albedo, normal);
+        let _ = (speed, width, height, color, albedo, normal);
         Err(NOT_BUILT.to_string())
     }
 }
@@ -111,25 +131,42 @@ fn check_sizes(
     Ok(())
 }
 
+/// The OIDN device, started at the first denoising.
+#[cfg(feature = "denoise")]
+static DEVICE: std::sync::Mutex<Option<oidn::Device>> = std::sync::Mutex::new(None);
+
 /// Runs OIDN's RT filter on buffers already checked by [`check_sizes`].
 #[cfg(feature = "denoise")]
 fn with_oidn(
-    width: u32,
-    height: u32,
+    speed: Speed,
+    (width, height): (u32, u32),
     color: &[Vec3],
     albedo: Option<&[Vec3]>,
     normal: Option<&[Vec3]>,
 ) -> Result<Vec<Vec3>, String> {
     let fail = |what: &str, e: oidn::Error| format!("Open Image Denoise could not {what}: {e}");
     let floats = |image: &[Vec3]| -> Vec<f32> { image.iter().flat_map(|v| v.to_array()).collect() };
-    let device = oidn::Device::new().map_err(|e| fail("start a device", e))?;
+    // One device for the process: starting one costs tens of milliseconds,
+    // which a live preview's denoising would pay at every save.
+    let mut held = DEVICE
+        .lock()
+        .unwrap_or_else(std::sync::PoisonError::into_inner);
+    if held.is_none() {
+        *held = Some(oidn::Device::new().map_err(|e| fail("start a device", e))?);
+    }
+    let device = held.as_ref().expect("just started");
     let mut filter =
-        oidn::RayTracing::try_new(&device).map_err(|e| fail("create its RT filter", e))?;
+        oidn::RayTracing::try_new(device).map_err(|e| fail("create its RT filter", e))?;
     // `cleanAux` stays off, OIDN's default: the crate's `clean_aux` would not
     // change it anyway (see the module's doc).
+    let quality = match speed {
+        Speed::Final => oidn::Quality::High,
+        Speed::Preview => oidn::Quality::Fast,
+    };
     filter
         .hdr(true)
         .srgb(false)
+        .filter_quality(quality)
         .image_dimensions(width as usize, height as usize);
     // Buffers made here rather than by the filter's `albedo`/`albedo_normal`,
     // which panic when OIDN cannot allocate them.

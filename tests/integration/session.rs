@@ -97,6 +97,8 @@ impl Observer for Log {
     }
     fn preview(&self, preview: &PreviewDone) {
         let line = format!("preview {:?} {}", preview.size, preview.written.is_ok());
+        // A build that denoises denoises the preview; one that does not, not.
+        assert_eq!(preview.denoised, ptsc::render::denoise::AVAILABLE);
         self.events.lock().unwrap().push(line);
     }
     fn pass(&self, pass: &PassDone) {

@@ -78,6 +78,8 @@ pub struct PreviewDone<'a> {
     pub path: &'a Path,
     /// How writing it went.
     pub written: &'a std::io::Result<()>,
+    /// Whether it was denoised (a build with the `denoise` feature).
+    pub denoised: bool,
 }
 
 /// How a session ended.

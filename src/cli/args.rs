@@ -32,7 +32,8 @@ pub struct RenderArgs {
     #[arg(long, value_name = "N", value_parser = parse_min_samples, requires = "noise")]
     pub min_samples: Option<u32>,
     /// Output variables written as channels of the EXR output, comma
-    /// separated: albedo, normal, depth, position, object, samples, or all.
+    /// separated: albedo, normal, depth, position, object, samples,
+    /// variance, or all.
     #[arg(long, value_name = "LIST", value_parser = parse_aovs)]
     pub aov: Option<AovList>,
     /// Denoise the final image with Intel Open Image Denoise, using the

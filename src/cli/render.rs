@@ -218,7 +218,7 @@ fn print_loaded(ir: &Scene, load_s: f64, (check_s, lower_s): (f64, f64), limit: 
     let need = memory::Need {
         textures: ir.texture_bytes(),
         ..memory::Need::film((ir.settings.width, ir.settings.height))
-            .with_adaptive(ir.settings.adaptive.is_some())
+            .with_halves(ir.settings.adaptive.is_some())
     };
     let free = memory::available(limit)
         .map(|(bytes, which)| format!("; {} free ({which})", memory::gigabytes(bytes)))

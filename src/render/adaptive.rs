@@ -123,27 +123,23 @@ pub fn decide(film: &mut Film, count: u32, threshold: f32) -> u64 {
     // pixel's estimate compares two halves of its samples, a handful of
     // degrees of freedom: alone it often reads low by chance and would
     // stop a noisy pixel for good; the window's mean reads nine.
-    let raw = std::cell::RefCell::new(std::collections::VecDeque::<(usize, Vec<f64>)>::new());
-    let busy_row = |halves: &Halves, y: usize| -> Vec<bool> {
-        let rows: Vec<Vec<f64>> = (y.saturating_sub(1)..(y + 2).min(h))
-            .map(|r| {
-                let mut cache = raw.borrow_mut();
-                if let Some((_, row)) = cache.iter().find(|(k, _)| *k == r) {
-                    return row.clone();
-                }
-                let row = raw_row(halves, r);
-                cache.push_back((r, row.clone()));
-                if cache.len() > 3 {
-                    cache.pop_front();
-                }
-                row
-            })
-            .collect();
+    // The raw rows around the busy row asked (it is asked row by row):
+    // rows `raw_first ..` of them, at most three.
+    let mut raw: std::collections::VecDeque<Vec<f64>> = Default::default();
+    let mut raw_first = 0;
+    let mut busy_row = |halves: &Halves, y: usize| -> Vec<bool> {
+        while raw_first + raw.len() < (y + 2).min(h) {
+            raw.push_back(raw_row(halves, raw_first + raw.len()));
+        }
+        while raw_first + 1 < y {
+            raw.pop_front();
+            raw_first += 1;
+        }
         (0..w)
             .map(|x| {
                 let i = y * w + x;
                 let (x0, x1) = (x.saturating_sub(1), (x + 1).min(w - 1));
-                let window = rows.iter().flat_map(|row| &row[x0..=x1]);
+                let window = raw.iter().flat_map(|row| &row[x0..=x1]);
                 let noise = window.clone().sum::<f64>() / window.count() as f64;
                 !halves.stopped[i] && (counts[i] != count || noise >= threshold)
             })

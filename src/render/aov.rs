@@ -36,6 +36,12 @@ pub enum Aov {
     Object,
     /// The samples the pixel's colour has.
     Samples,
+    /// The variance of the pixel's colour (of its mean, per channel),
+    /// estimated from the half images of its even and odd samples:
+    /// ((even mean − odd mean) / 2)², unbiased but of few degrees of
+    /// freedom (average it over a window for a smooth map). The render
+    /// keeps the half images for it.
+    Variance,
 }
 
 named_values!(Aov {
@@ -45,6 +51,7 @@ named_values!(Aov {
     "position" => Position,
     "object" => Object,
     "samples" => Samples,
+    "variance" => Variance,
 });
 
 impl Aov {
@@ -58,6 +65,7 @@ impl Aov {
             Aov::Position => &["position.X", "position.Y", "position.Z"],
             Aov::Object => &["object.id"],
             Aov::Samples => &["samples.count"],
+            Aov::Variance => &["variance.R", "variance.G", "variance.B"],
         }
     }
 }
@@ -155,11 +163,34 @@ pub fn render_aovs(
                 Aov::Depth => planes(&|s| Vec3::splat(s.depth), 1),
                 Aov::Object => planes(&|s| Vec3::splat(s.object.map_or(-1.0, |o| o as f32)), 1),
                 Aov::Samples => vec![film.count.iter().map(|&n| n as f32).collect()],
+                Aov::Variance => variance_planes(film),
             };
             (aov, v)
         })
         .collect();
     Some(values)
+}
+
+/// The variance of each pixel's mean from its half images, as three
+/// planes (0 where the film keeps no half images or a pixel has fewer than
+/// two samples).
+fn variance_planes(film: &Film) -> Vec<Vec<f32>> {
+    let variance = |i: usize| -> Vec3 {
+        let (Some(halves), n) = (&film.halves, film.count[i]) else {
+            return Vec3::ZERO;
+        };
+        if n < 2 {
+            return Vec3::ZERO;
+        }
+        let (n_odd, n_even) = ((n / 2) as f64, (n - n / 2) as f64);
+        let odd = halves.odd[i];
+        let half_difference = ((film.sum[i] - odd) / n_even - odd / n_odd) / 2.0;
+        (half_difference * half_difference).as_vec3()
+    };
+    let pixels: Vec<Vec3> = (0..film.count.len()).map(variance).collect();
+    (0..3)
+        .map(|c| pixels.iter().map(|v| v[c]).collect())
+        .collect()
 }
 
 /// The albedo and normal a denoiser is guided by, for an image `size`

@@ -5,9 +5,9 @@
 
 /// Bytes a pixel of a film takes: an f64 sum of each channel and a count.
 pub const FILM_BYTES_PER_PIXEL: u64 = 3 * 8 + 4;
-/// Bytes adaptive sampling adds to a pixel of the film: the f64 sum of
-/// its odd samples' channels and whether it stopped.
-pub const ADAPTIVE_BYTES_PER_PIXEL: u64 = 3 * 8 + 1;
+/// Bytes the half images add to a pixel of the film: the f64 sum of its
+/// odd samples' channels and whether adaptive sampling stopped it.
+pub const HALVES_BYTES_PER_PIXEL: u64 = 3 * 8 + 1;
 /// Memory the writers of images and states use at most beyond the film
 /// (rows, blocks and buffers in flight), and the render's per-thread work.
 pub const WORKING_BYTES: u64 = 64 << 20;
@@ -39,11 +39,12 @@ impl Need {
         }
     }
 
-    /// With the half films of adaptive sampling, if `adaptive`.
-    pub fn with_adaptive(self, adaptive: bool) -> Need {
+    /// With the half images (of adaptive sampling, or for the variance
+    /// AOV), if `halves`.
+    pub fn with_halves(self, halves: bool) -> Need {
         let pixels = self.size.0 as u64 * self.size.1 as u64;
-        let extra = if adaptive {
-            pixels * ADAPTIVE_BYTES_PER_PIXEL
+        let extra = if halves {
+            pixels * HALVES_BYTES_PER_PIXEL
         } else {
             0
         };

@@ -301,6 +301,7 @@ fn aovs_are_channels_of_the_exr_with_the_values_they_promise() {
         "position.Y",
         "object.id",
         "samples.count",
+        "variance.G",
     ] {
         assert!(
             names.iter().any(|n| n == want),
@@ -345,4 +346,57 @@ fn aovs_are_channels_of_the_exr_with_the_values_they_promise() {
     assert_ne!(code, 0);
     assert!(err.contains("--aov") && err.contains(".exr"), "{err}");
     assert!(!png.exists());
+}
+
+/// `--aov variance`: the variance of each pixel's mean from its half
+/// images. Two renders with other seeds differ by twice that variance on
+/// average: over the image the estimate must agree (independent samples,
+/// so that the variance is the textbook one; a sky for light, whose
+/// samples have no fireflies to make either side's mean wander).
+#[test]
+fn the_variance_aov_is_the_variance_of_each_pixels_mean() {
+    use exr::prelude::*;
+    let dir = temp_dir_with(&[(
+        "s.pts",
+        "render { resolution <48, 40> samples 16 sampler independent }\n\
+         camera { position <0, 1, 4> look_at <0, 0.5, 0> }\n\
+         background rgb 1\n\
+         plane { normal <0, 1, 0> material { diffuse rgb 0.5 } }\n\
+         sphere { center <0, 0.5, 0> radius 0.5 material { diffuse rgb 0.8 } }\n",
+    )]);
+    let scene = dir.path().join("s.pts");
+    let read = |path: &Path, name: &str| -> Vec<f32> {
+        let image = read_all_flat_layers_from_file(path).unwrap();
+        let list = &image.layer_data[0].channel_data.list;
+        let c = list.iter().find(|c| c.name.to_string() == name).unwrap();
+        c.sample_data.values_as_f32().collect()
+    };
+    let mut images = Vec::new();
+    for (seed, aov) in [("1", "variance"), ("2", "samples")] {
+        let out = dir.path().join(format!("s{seed}.exr"));
+        let args = ["render", path_str(&scene), "--seed", seed, "--aov", aov];
+        let (code, err) = ptsc_stderr(&[&args[..], &["-o", path_str(&out)]].concat());
+        assert_eq!(code, 0, "{err}");
+        images.push(out);
+    }
+    let (mut difference, mut estimate) = (0.0, 0.0);
+    for (colour, variance) in [
+        ("R", "variance.R"),
+        ("G", "variance.G"),
+        ("B", "variance.B"),
+    ] {
+        let (a, b) = (read(&images[0], colour), read(&images[1], colour));
+        difference += a
+            .iter()
+            .zip(&b)
+            .map(|(x, y)| ((x - y) as f64).powi(2))
+            .sum::<f64>()
+            / 2.0;
+        estimate += read(&images[0], variance)
+            .iter()
+            .map(|&v| v as f64)
+            .sum::<f64>();
+    }
+    let ratio = estimate / difference;
+    assert!((0.8..1.25).contains(&ratio), "estimate / measured {ratio}");
 }

@@ -68,8 +68,10 @@ pub(super) fn prepare(
     // Denoising takes the albedo and normal, and copies of the colour.
     let channels =
         aovs.iter().map(|a| a.channels().len() as u32).sum::<u32>() + if denoise { 12 } else { 0 };
-    let need =
-        (Need::film((s.width, s.height)).with_adaptive(s.adaptive.is_some())).with_aovs(channels);
+    // The variance AOV is read from the half images: a whole render that
+    // writes it keeps them (a pass writes no AOV).
+    let halves = s.adaptive.is_some() || (aovs.contains(&Aov::Variance) && policy.pass.is_none());
+    let need = (Need::film((s.width, s.height)).with_halves(halves)).with_aovs(channels);
     memory::check(&need, memory_limit).map_err(Error::Refused)?;
     if let Some(pass) = policy.pass {
         if crate::output::ImageFormat::of(output) != Some(crate::output::ImageFormat::Exr) {
@@ -95,7 +97,7 @@ pub(super) fn prepare(
             )));
         }
     }
-    let now = StateInfo {
+    let mut now = StateInfo {
         ptsc: env!("CARGO_PKG_VERSION").to_string(),
         scene: policy.scene.clone(),
         fingerprint: policy.fingerprint,
@@ -104,6 +106,9 @@ pub(super) fn prepare(
         pass: policy.pass.unwrap_or(Pass::WHOLE),
         exposure: s.exposure,
     };
+    if halves {
+        now = now.with_halves();
+    }
     let start = start::start(&state, &now, (s.width, s.height), &policy).map_err(Error::Refused)?;
     let batch = Batch {
         policy,

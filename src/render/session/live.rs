@@ -38,7 +38,7 @@ pub(super) fn prepare(
     memory_limit: Option<u64>,
 ) -> Result<(), Error> {
     let s = &scene.settings;
-    let need = Need::film((s.width, s.height)).with_adaptive(s.adaptive.is_some());
+    let need = Need::film((s.width, s.height)).with_halves(s.adaptive.is_some());
     crate::render::state::refuse_to_replace(output, false)
         .and_then(|()| memory::check(&need, memory_limit))
         .map_err(Error::Refused)

@@ -70,7 +70,7 @@ pub(super) fn start(
 ) -> Result<Start, String> {
     let new_film = || {
         let film = Film::new(width, height, now.pass.range(now.samples).start);
-        match now.adaptive() {
+        match now.keeps_halves() {
             true => film.with_halves(),
             false => film,
         }

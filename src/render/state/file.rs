@@ -26,7 +26,7 @@ const HALVES_CHANNELS: [&str; 7] = [
 /// hold its halves too.
 fn channels_of(info: &StateInfo) -> Vec<&'static str> {
     let mut names = CHANNELS.to_vec();
-    if info.adaptive() {
+    if info.keeps_halves() {
         names.extend(HALVES_CHANNELS);
         names.sort_unstable();
     }
@@ -68,7 +68,7 @@ fn write_state_encoded(
     encoding: exr::prelude::Encoding,
 ) -> std::io::Result<()> {
     use exr::prelude::*;
-    debug_assert_eq!(film.halves.is_some(), info.adaptive());
+    debug_assert_eq!(film.halves.is_some(), info.keeps_halves());
     let (w, h) = (film.width as usize, film.height as usize);
     let size = Vec2(w, h);
     // Uncompressed, as the state: a state is written at checkpoints and
@@ -308,7 +308,7 @@ fn read_film(
 ) -> Result<(Film, StateInfo), String> {
     let range = info.pass.range(info.samples);
     let mut film = Film::new(w as u32, h as u32, range.start);
-    if info.adaptive() {
+    if info.keeps_halves() {
         film = film.with_halves();
     }
     read_pixels(source, &info, (w, h), &mut |i, p| {

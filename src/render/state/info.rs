@@ -33,6 +33,9 @@ pub struct StateInfo {
 
 /// The setting a state of an adaptive render names (with `min_samples`).
 const ADAPTIVE_KEY: &str = "noise_threshold";
+/// The setting a state names whose uniform render keeps its half images
+/// (for the variance AOV): a resume must keep them too.
+const HALVES_KEY: &str = "half_images";
 
 /// The K-th of N disjoint parts of a render's samples.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -166,6 +169,21 @@ impl StateInfo {
     /// half films and the stopped pixels.
     pub fn adaptive(&self) -> bool {
         self.settings.iter().any(|(k, _)| k == ADAPTIVE_KEY)
+    }
+
+    /// Whether its film keeps the half images (an adaptive render's, or one
+    /// that writes the variance AOV).
+    pub fn keeps_halves(&self) -> bool {
+        self.adaptive() || self.settings.iter().any(|(k, _)| k == HALVES_KEY)
+    }
+
+    /// The description of the same render keeping its half images.
+    pub fn with_halves(mut self) -> StateInfo {
+        if !self.keeps_halves() {
+            self.settings.push((HALVES_KEY.into(), "kept".into()));
+            self.settings.sort();
+        }
+        self
     }
 
     /// What the state holds, for messages: "64 spp", "pass 2/4 of 64 spp"

@@ -107,6 +107,15 @@ pub fn state(bytes: &[u8]) -> bool {
     assert!(film.count.iter().all(|&n| n <= share.end - share.start));
     assert!(film.sum.iter().all(|s| s.is_finite()));
     assert!(film.pixels().iter().all(|p| p.is_finite()));
+    assert_eq!(film.halves.is_some(), info.keeps_halves());
+    let mut film = film;
+    if let Some(halves) = &film.halves {
+        assert!(halves.odd.iter().all(|o| o.is_finite()));
+        // An adaptive decision on it, as a resumed render takes.
+        let most = film.count.iter().copied().max().unwrap_or(0);
+        crate::render::adaptive::decide(&mut film, most, 0.01);
+        assert!(film.stopped_share().is_some_and(|s| (0.0..=1.0).contains(&s)));
+    }
     true
 }
 

@@ -266,5 +266,11 @@ mod tests {
             "{why}"
         );
         assert_eq!(check(&Need::film((64, 64)), Some(1 << 40)), Ok(()));
+        // Adaptive sampling's half images: 25 bytes more a pixel.
+        let halves = Need::film((8192, 8192)).with_halves(true);
+        assert_eq!(halves.film, 8192 * 8192 * (28 + 25));
+        let why = check(&halves, Some(3_000_000_000)).unwrap_err();
+        assert!(why.contains("film 8192×8192 3.56 GB"), "{why}");
+        assert_eq!(Need::film((8, 8)).with_halves(false), Need::film((8, 8)));
     }
 }

@@ -114,7 +114,9 @@ pub fn state(bytes: &[u8]) -> bool {
         // An adaptive decision on it, as a resumed render takes.
         let most = film.count.iter().copied().max().unwrap_or(0);
         crate::render::adaptive::decide(&mut film, most, 0.01);
-        assert!(film.stopped_share().is_some_and(|s| (0.0..=1.0).contains(&s)));
+        assert!(film
+            .stopped_share()
+            .is_some_and(|s| (0.0..=1.0).contains(&s)));
     }
     true
 }

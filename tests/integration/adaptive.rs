@@ -33,6 +33,16 @@ fn adaptive(spp: u32) -> Scene {
     scene(&format!("samples {spp} noise_threshold 0.02 min_samples 8"))
 }
 
+/// A plain batch render of `scene` to `name` in `dir`, on one thread.
+fn render(dir: &tempfile::TempDir, name: &str, scene: Scene) -> ptsc::render::session::Report {
+    run(
+        scene,
+        batch(&dir.path().join(name), policy()),
+        &Quiet,
+        &Cancel::new(),
+    )
+}
+
 fn two_threads() -> rayon::ThreadPool {
     rayon::ThreadPoolBuilder::new()
         .num_threads(2)
@@ -43,12 +53,7 @@ fn two_threads() -> rayon::ThreadPool {
 #[test]
 fn converged_pixels_stop_and_keep_the_mean_of_their_samples() {
     let dir = tempfile::tempdir().unwrap();
-    let report = run(
-        adaptive(64),
-        batch(&dir.path().join("a.exr"), policy()),
-        &Quiet,
-        &Cancel::new(),
-    );
+    let report = render(&dir, "a.exr", adaptive(64));
     assert_eq!(report.outcome, Outcome::Complete);
     let film = &report.film;
     let (least, most, _) = film.sample_counts();
@@ -71,12 +76,7 @@ fn converged_pixels_stop_and_keep_the_mean_of_their_samples() {
     }
     // A pixel that sampled to the end is the uniform render's pixel: the
     // same samples in the same order.
-    let uniform = run(
-        scene("samples 64"),
-        batch(&dir.path().join("u.exr"), policy()),
-        &Quiet,
-        &Cancel::new(),
-    );
+    let uniform = render(&dir, "u.exr", scene("samples 64"));
     let full = (0..film.count.len()).filter(|&i| film.count[i] == 64);
     let mut n = 0;
     for i in full {
@@ -89,12 +89,7 @@ fn converged_pixels_stop_and_keep_the_mean_of_their_samples() {
 #[test]
 fn an_adaptive_film_is_the_same_on_one_and_two_threads() {
     let dir = tempfile::tempdir().unwrap();
-    let one = run(
-        adaptive(48),
-        batch(&dir.path().join("a.exr"), policy()),
-        &Quiet,
-        &Cancel::new(),
-    );
+    let one = render(&dir, "a.exr", adaptive(48));
     let s = session(adaptive(48), batch(&dir.path().join("b.exr"), policy())).unwrap();
     let two = two_threads().install(|| s.run(&Quiet, &Cancel::new()).unwrap());
     assert!(same_film(&one.film, &two.film));
@@ -104,12 +99,7 @@ fn an_adaptive_film_is_the_same_on_one_and_two_threads() {
 #[test]
 fn a_stopped_adaptive_render_resumes_to_the_uninterrupted_film() {
     let dir = tempfile::tempdir().unwrap();
-    let reference = run(
-        adaptive(64),
-        batch(&dir.path().join("b.exr"), policy()),
-        &Quiet,
-        &Cancel::new(),
-    );
+    let reference = render(&dir, "b.exr", adaptive(64));
     // Stopped in a pass after several decisions, mid-way through the tiles.
     let out = dir.path().join("a.exr");
     let cancel = Cancel::new();
@@ -148,12 +138,7 @@ fn a_stopped_adaptive_render_resumes_to_the_uninterrupted_film() {
     // More samples continue it as a render of that many would have.
     let more = session(adaptive(96), batch(&out, resume)).unwrap();
     let more = one_thread().install(|| more.run(&Quiet, &Cancel::new()).unwrap());
-    let direct = run(
-        adaptive(96),
-        batch(&dir.path().join("d.exr"), policy()),
-        &Quiet,
-        &Cancel::new(),
-    );
+    let direct = render(&dir, "d.exr", adaptive(96));
     assert!(same_film(&more.film, &direct.film));
 }
 

@@ -41,6 +41,10 @@ pub struct RenderArgs {
     /// feature: scripts/setup-oidn.sh).
     #[arg(long)]
     pub denoise: bool,
+    /// Show every pass in the tev HDR viewer, listening at HOST:PORT
+    /// (default 127.0.0.1:14158; start tev first).
+    #[arg(long, value_name = "HOST:PORT", num_args = 0..=1, default_missing_value = crate::output::tev::DEFAULT_ADDRESS)]
+    pub tev: Option<String>,
     /// Worker threads (default: all cores).
     #[arg(long, value_parser = parse_threads)]
     pub threads: Option<usize>,

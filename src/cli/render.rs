@@ -190,6 +190,7 @@ fn batch_plan(
         memory_limit: args.memory_limit,
         aovs: args.aov.clone().unwrap_or_default().0,
         denoise: args.denoise,
+        tev: args.tev.clone(),
         mode: Mode::Batch(StatePolicy {
             pass: farm.pass,
             resume: farm.resume,
@@ -281,6 +282,12 @@ impl Observer for Bar {
 
     fn rendered(&self) {
         self.bar.finish_and_clear();
+    }
+
+    fn note(&self, text: &str) {
+        if self.verbosity != Verbosity::Quiet {
+            self.bar.suspend(|| eprintln!("{text}"));
+        }
     }
 }
 

@@ -44,6 +44,7 @@ pub fn run(args: &RenderArgs) -> u8 {
         ("--denoise", args.denoise),
         ("--aov", args.aov.is_some()),
         ("--time", args.time.is_some()),
+        ("--tev", args.tev.is_some()),
     ];
     if let Some((flag, _)) = batch_only.iter().find(|(_, given)| *given) {
         eprintln!("error: {flag} is for `ptsc render`: `ptsc watch` renders passes until the samples asked and does not take it");
@@ -206,6 +207,7 @@ impl State {
             memory_limit: self.args.memory_limit,
             aovs: Vec::new(),
             denoise: false,
+            tev: None,
             mode: Mode::Live,
         };
         let checked = match plan.check() {

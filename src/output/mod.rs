@@ -5,6 +5,7 @@
 
 mod files;
 mod layers;
+pub mod tev;
 
 pub use files::{
     check_writable, frame_path, same_file, shown, write_atomically, write_atomically_with,

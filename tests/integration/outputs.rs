@@ -400,3 +400,129 @@ fn the_variance_aov_is_the_variance_of_each_pixels_mean() {
     let ratio = estimate / difference;
     assert!((0.8..1.25).contains(&ratio), "estimate / measured {ratio}");
 }
+
+/// One packet of tev's protocol as tev's own Python client writes it: a
+/// little-endian u32 length (itself included), a type byte, the fields.
+fn tev_packets(bytes: &[u8]) -> Vec<(u8, Vec<u8>)> {
+    let mut packets = Vec::new();
+    let mut at = 0;
+    while at + 5 <= bytes.len() {
+        let n = u32::from_le_bytes(bytes[at..at + 4].try_into().unwrap()) as usize;
+        assert!(n >= 5 && at + n <= bytes.len(), "a whole packet");
+        packets.push((bytes[at + 4], bytes[at + 5..at + n].to_vec()));
+        at += n;
+    }
+    assert_eq!(at, bytes.len(), "nothing after the last packet");
+    packets
+}
+
+/// Reads tev's fields from the front of a packet.
+struct Fields<'a>(&'a [u8]);
+impl Fields<'_> {
+    fn byte(&mut self) -> u8 {
+        let b = self.0[0];
+        self.0 = &self.0[1..];
+        b
+    }
+    fn text(&mut self) -> String {
+        let end = self.0.iter().position(|&b| b == 0).unwrap();
+        let s = String::from_utf8(self.0[..end].to_vec()).unwrap();
+        self.0 = &self.0[end + 1..];
+        s
+    }
+    fn take<const N: usize>(&mut self) -> [u8; N] {
+        let v = self.0[..N].try_into().unwrap();
+        self.0 = &self.0[N..];
+        v
+    }
+    fn int(&mut self) -> i32 {
+        i32::from_le_bytes(self.take())
+    }
+    fn long(&mut self) -> i64 {
+        i64::from_le_bytes(self.take())
+    }
+    fn float(&mut self) -> f32 {
+        f32::from_le_bytes(self.take())
+    }
+}
+
+/// `--tev`: the image created in a stand-in for tev, then every pass sent
+/// tile by tile; the last pass is the image written. Nothing listening:
+/// refused before the render.
+#[test]
+fn tev_is_sent_every_pass_and_refused_when_absent() {
+    use std::io::Read;
+    let dir = temp_dir_with(&[(
+        "s.pts",
+        "render { resolution <150, 20> samples 4 }\n\
+         camera { position <0, 1, 4> look_at <0, 0.5, 0> }\n\
+         background rgb <0.2, 0.4, 0.8>\n\
+         sphere { center <0, 0.5, 0> radius 0.5 material { diffuse rgb 0.8 } }\n",
+    )]);
+    let scene = dir.path().join("s.pts");
+    let out = dir.path().join("s.pfm");
+    let listener = std::net::TcpListener::bind("127.0.0.1:0").unwrap();
+    let address = listener.local_addr().unwrap().to_string();
+    let server = std::thread::spawn(move || {
+        let (mut stream, _) = listener.accept().unwrap();
+        let mut bytes = Vec::new();
+        stream.read_to_end(&mut bytes).unwrap();
+        bytes
+    });
+    let (code, err) = ptsc_stderr(&[
+        "render",
+        path_str(&scene),
+        "--tev",
+        &address,
+        "-o",
+        path_str(&out),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let packets = tev_packets(&server.join().unwrap());
+    let (kind, create) = &packets[0];
+    let mut f = Fields(create);
+    assert_eq!((*kind, f.byte(), f.text()), (4, 1, "s.pfm".to_string()));
+    assert_eq!((f.int(), f.int(), f.int()), (150, 20, 3));
+    assert_eq!([f.text(), f.text(), f.text()], ["R", "G", "B"]);
+    // Passes to 1, 2 and 4 spp, each in two tiles (128 and 22 wide).
+    let updates = &packets[1..];
+    assert_eq!(updates.len(), 3 * 2);
+    let mut shown = vec![[0f32; 3]; 150 * 20];
+    for (kind, update) in &updates[4..] {
+        let mut f = Fields(update);
+        assert_eq!(
+            (*kind, f.byte(), f.text(), f.int()),
+            (6, 0, "s.pfm".to_string(), 3)
+        );
+        assert_eq!([f.text(), f.text(), f.text()], ["R", "G", "B"]);
+        let (x0, y0, w, h) = (f.int(), f.int(), f.int(), f.int());
+        assert_eq!([f.long(), f.long(), f.long()], [0, 1, 2], "offsets");
+        assert_eq!([f.long(), f.long(), f.long()], [3, 3, 3], "strides");
+        for y in y0..y0 + h {
+            for x in x0..x0 + w {
+                shown[(y * 150 + x) as usize] = [f.float(), f.float(), f.float()];
+            }
+        }
+        assert!(f.0.is_empty());
+    }
+    let (_, _, written) = ptsc::output::read_pfm(&std::fs::read(&out).unwrap()).unwrap();
+    for (s, v) in shown.iter().zip(&written) {
+        assert_eq!(*s, v.to_array(), "the last pass is the image");
+    }
+    // Nothing listening: refused before a sample, nothing written.
+    let closed = std::net::TcpListener::bind("127.0.0.1:0").unwrap();
+    let gone = closed.local_addr().unwrap().to_string();
+    drop(closed);
+    let other = dir.path().join("t.pfm");
+    let (code, err) = ptsc_stderr(&[
+        "render",
+        path_str(&scene),
+        "--tev",
+        &gone,
+        "-o",
+        path_str(&other),
+    ]);
+    assert_ne!(code, 0);
+    assert!(err.contains("cannot reach tev"), "{err}");
+    assert!(!other.exists());
+}

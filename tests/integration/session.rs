@@ -40,6 +40,7 @@ pub(crate) fn batch(output: &Path, policy: StatePolicy) -> Plan {
         memory_limit: None,
         aovs: Vec::new(),
         denoise: false,
+        tev: None,
         mode: Mode::Batch(policy),
     }
 }

@@ -12,6 +12,7 @@ use super::observer::{Observer, PassDone, Report};
 use super::start::{self, state_path, StatePolicy};
 use crate::accel::ray_count::RayCounts;
 use crate::ir::Scene;
+use crate::output::tev::Tev;
 use crate::render::aov::Aov;
 use crate::render::film::Film;
 use crate::render::memory::{self, Need};
@@ -40,6 +41,8 @@ pub(super) struct Batch {
     pub(super) aovs: Vec<Aov>,
     /// Whether the final image is denoised.
     pub(super) denoise: bool,
+    /// The tev viewer the passes are shown in (`--tev`).
+    pub(super) tev: Option<crate::output::tev::Tev>,
 }
 
 /// Why the render must not start (a state the image would replace, a
@@ -52,7 +55,7 @@ pub(super) fn prepare(
     output: &Path,
     policy: StatePolicy,
     memory_limit: Option<u64>,
-    (aovs, denoise): (Vec<Aov>, bool),
+    (aovs, denoise, tev): (Vec<Aov>, bool, Option<String>),
 ) -> Result<(Batch, Film), Error> {
     let s = &scene.settings;
     let state = state_path(output, policy.pass);
@@ -110,6 +113,18 @@ pub(super) fn prepare(
         now = now.with_halves();
     }
     let start = start::start(&state, &now, (s.width, s.height), &policy).map_err(Error::Refused)?;
+    // Last: the viewer shows a new image only for a render that starts.
+    let name = output.file_name().map(|n| n.to_string_lossy().into_owned());
+    let tev = (tev.as_deref())
+        .map(|address| {
+            Tev::open(
+                address,
+                name.as_deref().unwrap_or("ptsc"),
+                (s.width, s.height),
+            )
+        })
+        .transpose()
+        .map_err(Error::Refused)?;
     let batch = Batch {
         policy,
         state,
@@ -118,6 +133,7 @@ pub(super) fn prepare(
         note: start.note,
         aovs,
         denoise,
+        tev,
     };
     Ok((batch, start.film))
 }
@@ -151,7 +167,9 @@ pub(super) fn run(
 ) -> Result<Report, Error> {
     let samples_before = film.total_samples();
     let t1 = Instant::now();
-    let passes = render_passes(scene, output, &batch, film, observer, cancel);
+    let mut batch = batch;
+    let tev = batch.tev.take();
+    let passes = render_passes(scene, output, (&batch, tev), film, observer, cancel);
     observer.rendered();
     let passes = passes?;
     if let Some(error) = passes.write_error {
@@ -228,7 +246,7 @@ pub(super) fn run(
 fn render_passes(
     scene: &Scene,
     output: &Path,
-    batch: &Batch,
+    (batch, mut tev): (&Batch, Option<Tev>),
     mut film: Film,
     observer: &dyn Observer,
     cancel: &Cancel,
@@ -254,6 +272,13 @@ fn render_passes(
             ..PassDone::of(film, (spp, target), number)
         });
         last_pass = Instant::now();
+        // The viewer shows every pass; one that went away is let go.
+        if let Some(Err(e)) = tev.as_mut().map(|t| t.show(|i| film.pixel(i))) {
+            observer.note(&format!(
+                "tev stopped taking the image ({e}); the render goes on"
+            ));
+            tev = None;
+        }
         // A long render replaces its image with the passes so far, a
         // preview that refines. The final image is written once, at the
         // end; writes in between are spaced (a ZIP-compressed EXR of a

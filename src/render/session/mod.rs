@@ -53,6 +53,9 @@ pub struct Plan {
     pub aovs: Vec<crate::render::aov::Aov>,
     /// Whether a batch render's final image is denoised (`--denoise`).
     pub denoise: bool,
+    /// Where the tev viewer listens, for a batch render to show its passes
+    /// there (`--tev`; a live render sends nothing).
+    pub tev: Option<String>,
 }
 
 /// The two kinds of session.
@@ -144,7 +147,7 @@ impl Session {
         let Checked { plan, preview, .. } = checked;
         let kind = match plan.mode {
             Mode::Batch(policy) => {
-                let extras = (plan.aovs, plan.denoise);
+                let extras = (plan.aovs, plan.denoise, plan.tev);
                 let (batch, film) =
                     batch::prepare(&scene, &plan.output, policy, plan.memory_limit, extras)?;
                 Kind::Batch(Box::new(batch), film)

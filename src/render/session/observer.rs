@@ -28,6 +28,10 @@ pub trait Observer: Sync {
     /// The passes are over (finished or stopped): what follows is the
     /// writing of the image and the state.
     fn rendered(&self) {}
+
+    /// Something the user should know that changes nothing of the render
+    /// (the tev viewer went away).
+    fn note(&self, _text: &str) {}
 }
 
 /// A pass that ended.

@@ -246,7 +246,7 @@ pub(super) fn run(
 fn render_passes(
     scene: &Scene,
     output: &Path,
-    (batch, mut tev): (&Batch, Option<Tev>),
+    (batch, tev): (&Batch, Option<Tev>),
     mut film: Film,
     observer: &dyn Observer,
     cancel: &Cancel,
@@ -259,6 +259,7 @@ fn render_passes(
     let mut last_write = Instant::now();
     let mut last_pass = Instant::now();
     let mut number = 0;
+    let mut viewer = super::viewer::Viewer::new(tev);
     // A part file is written whole (image and state) at every write.
     let write_image = |film: &Film| match batch.policy.pass {
         Some(_) => state::write_state(output, film, &batch.now),
@@ -272,13 +273,7 @@ fn render_passes(
             ..PassDone::of(film, (spp, target), number)
         });
         last_pass = Instant::now();
-        // The viewer shows every pass; one that went away is let go.
-        if let Some(Err(e)) = tev.as_mut().map(|t| t.show(|i| film.pixel(i))) {
-            observer.note(&format!(
-                "tev stopped taking the image ({e}); the render goes on"
-            ));
-            tev = None;
-        }
+        viewer.pass(film, spp >= target, observer);
         // A long render replaces its image with the passes so far, a
         // preview that refines. The final image is written once, at the
         // end; writes in between are spaced (a ZIP-compressed EXR of a
@@ -361,6 +356,7 @@ fn render_passes(
             break true;
         }
     };
+    viewer.finish(&film, observer);
     // A budget spent before the samples asked: the state is kept, for
     // --resume to add more.
     let short = film.least_active().is_some_and(|c| c < target);

@@ -24,6 +24,7 @@ mod final_image;
 mod live;
 mod observer;
 mod start;
+mod viewer;
 
 pub use batch::PREVIEW_INTERVAL;
 pub use cancel::Cancel;

@@ -152,6 +152,32 @@ fn one_low_reading_does_not_stop_a_noisy_region() {
 }
 
 #[test]
+fn a_pixel_is_judged_by_its_windows_mean_not_its_own_reading() {
+    // Every pixel at noise ≈ 0.17 but the centre, which reads 0 by chance.
+    // Judged alone the centre would be below 0.16 and kept only by its
+    // neighbours; judged by windows, the nine windows that hold it read
+    // 8/9 · 0.17 ≈ 0.15 < 0.16: the centre and those around it stop.
+    let noisy = |t: f32| {
+        let mut f = Film::new(7, 7, 0).with_halves();
+        f.count.fill(16);
+        f.sum.fill(DVec3::splat(16.0));
+        let halves = f.halves.as_mut().unwrap();
+        halves.odd.fill(DVec3::splat(0.9 * 8.0));
+        halves.odd[24] = DVec3::splat(8.0);
+        decide(&mut f, 16, t);
+        f
+    };
+    let f = noisy(0.16);
+    assert!(
+        f.stopped(24),
+        "the centre's window reads below the threshold"
+    );
+    assert!(!f.stopped(0), "a corner's window holds no low reading");
+    // Below the windows' noise, nothing stops.
+    assert_eq!(noisy(0.1).stopped_share(), Some(0.0));
+}
+
+#[test]
 fn only_pixels_at_the_decision_count_are_decided_on() {
     // A film resumed mid-pass: pixel (2, 0) went on to 20 samples, the
     // others wait at 16. Its noise at 16 is unknown: its window and their

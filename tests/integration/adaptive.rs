@@ -4,28 +4,17 @@
 //! film, and what cannot be exact (passes, merge, another threshold) is
 //! refused.
 
-use super::session::{batch, one_thread, policy, run, same_film, session, Log, Quiet};
-use ptsc::compile::{compile_str, Options};
+use super::session::{batch, one_thread, policy, run, same_film, scene_with, session, Log, Quiet};
 use ptsc::ir::Scene;
 use ptsc::render::session::{Cancel, StatePolicy};
 use ptsc::render::state::Pass;
 use ptsc::render::Outcome;
-use std::path::Path;
 
-/// 48×40 (several tiles): a constant sky above (noiseless: it converges at
-/// once) and a floor and glossy sphere lit by a small light below (noisy);
-/// `render` is the rest of the render block.
+/// The session tests' 48×40 scene (several tiles): a constant sky above
+/// (noiseless: it converges at once) and a floor and glossy sphere lit by a
+/// small light below (noisy); `render` is the rest of the render block.
 fn scene(render: &str) -> Scene {
-    let text = format!(
-        "camera {{ position <0, 1, 4> look_at <0, 0.5, 0> }}\n\
-         background rgb 0.3\n\
-         plane {{ normal <0, 1, 0> material {{ diffuse rgb 0.5 }} }}\n\
-         sphere {{ center <0, 0.5, 0> radius 0.5 material {{ reflection rgb 0.8 gloss 0.2 }} }}\n\
-         sphere {{ center <1, 2, 1> radius 0.3 material {{ emission rgb 8 }} }}\n\
-         render {{ resolution <48, 40> {render} }}\n"
-    );
-    let c = compile_str(Path::new("s.pts"), &text, Options::default());
-    c.ir.unwrap_or_else(|| panic!("{}", c.diagnostics.render_human(&c.sources, false)))
+    scene_with(render)
 }
 
 /// The adaptive scene at `spp`.

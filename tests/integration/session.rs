@@ -20,13 +20,18 @@ use std::time::Duration;
 /// A small scene with glossy reflection and an area light, `spp` samples
 /// per pixel, 48×40 (several tiles of 16×16).
 fn scene(spp: u32) -> Scene {
+    scene_with(&format!("samples {spp}"))
+}
+
+/// The small scene with `render` as the rest of its render block.
+pub(crate) fn scene_with(render: &str) -> Scene {
     let text = format!(
         "camera {{ position <0, 1, 4> look_at <0, 0.5, 0> }}\n\
          background rgb 0.3\n\
          plane {{ normal <0, 1, 0> material {{ diffuse rgb 0.5 }} }}\n\
          sphere {{ center <0, 0.5, 0> radius 0.5 material {{ reflection rgb 0.8 gloss 0.2 }} }}\n\
          sphere {{ center <1, 2, 1> radius 0.3 material {{ emission rgb 8 }} }}\n\
-         render {{ resolution <48, 40> samples {spp} }}\n"
+         render {{ resolution <48, 40> {render} }}\n"
     );
     let c = compile_str(Path::new("s.pts"), &text, Options::default());
     c.ir.unwrap_or_else(|| panic!("{}", c.diagnostics.render_human(&c.sources, false)))

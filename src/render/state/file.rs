@@ -43,7 +43,7 @@ fn bytes_per_pixel(info: &StateInfo) -> u64 {
 type PixelVisitor<'a> = dyn FnMut(usize, &StatePixel) + 'a;
 
 /// A pixel of the state part.
-#[derive(Debug, Clone, Copy, Default)]
+#[derive(Debug, Clone, Copy)]
 struct StatePixel {
     sum: DVec3,
     count: u32,

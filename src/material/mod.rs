@@ -13,6 +13,7 @@ pub mod microfacet;
 pub mod multiscatter;
 mod multiscatter_table;
 pub mod plastic;
+pub mod principled;
 pub mod rough_dielectric;
 mod specular;
 pub mod thin_dielectric;
@@ -25,6 +26,7 @@ use crate::sampling::warp::{cosine_hemisphere, cosine_hemisphere_pdf};
 use conductor::Conductor;
 use glam::{Vec2, Vec3};
 use plastic::Plastic;
+use principled::Principled;
 use std::f32::consts::FRAC_1_PI;
 
 /// How a material scatters light.
@@ -41,6 +43,10 @@ pub enum Kind {
     RoughDielectric,
     /// A thin pane of index `ior`.
     ThinDielectric,
+    /// Burley's principled model as Mitsuba 3 writes it: `diffuse` is its
+    /// base colour, `gloss` its roughness, `transmission` its refracting
+    /// share and `ior` its index (the rest lives here).
+    Principled(Principled),
 }
 
 /// A resolved material.
@@ -241,7 +247,26 @@ impl Material {
             Some(_) => (0.0, 0.0),
             None => (alpha, alpha),
         };
-        let lobe_pdf = match p.kind {
+        let kind = match p.kind {
+            Kind::Principled(mut pr) => {
+                pr.roughness = p.gloss;
+                pr.transmission = p.transmission;
+                pr.eta = p.ior;
+                Kind::Principled(pr)
+            }
+            kind => kind,
+        };
+        let lobe_pdf = match kind {
+            Kind::Principled(pr) => {
+                reflection = Vec3::ZERO;
+                // What refracts meets Beer's law inside.
+                transmission *= 1.0 - pr.metallic;
+                [
+                    (1.0 - pr.metallic) * (1.0 - pr.transmission),
+                    1.0,
+                    transmission,
+                ]
+            }
             Kind::Lobes => {
                 let w = [max3(diffuse), max3(reflection), transmission];
                 let sum: f32 = w.iter().sum();
@@ -284,11 +309,11 @@ impl Material {
             Kind::Lobes | Kind::Conductor(_) => {
                 lobe_pdf[0] > 0.0 || (lobe_pdf[1] > 0.0 && alpha > 0.0)
             }
-            Kind::Plastic(_) | Kind::RoughDielectric => true,
+            Kind::Plastic(_) | Kind::RoughDielectric | Kind::Principled(_) => true,
             Kind::ThinDielectric => false,
         };
         Material {
-            kind: p.kind,
+            kind,
             smooth_lobe,
             multiscatter: p.multiscatter,
             diffuse,
@@ -481,7 +506,7 @@ impl Material {
         match self.kind {
             Kind::Lobes => self.diffuse + self.reflection + Vec3::splat(self.transmission),
             Kind::Conductor(c) => self.reflection * c.fresnel(1.0),
-            Kind::Plastic(_) => self.diffuse,
+            Kind::Plastic(_) | Kind::Principled(_) => self.diffuse,
             Kind::RoughDielectric | Kind::ThinDielectric => Vec3::ONE,
         }
     }
@@ -506,6 +531,7 @@ impl Material {
     fn eval_model(&self, wo: Vec3, wi: Vec3, n: Vec3) -> (Vec3, f32) {
         let nf = match self.kind {
             Kind::RoughDielectric => n,
+            Kind::Principled(pr) if pr.transmission > 0.0 => n,
             _ if wo.dot(n) < 0.0 => -n,
             _ => n,
         };
@@ -523,6 +549,7 @@ impl Material {
                 let (f, pdf) = rough_dielectric::eval(lo, li, self.ior, self.alpha);
                 (Vec3::splat(f), pdf)
             }
+            Kind::Principled(pr) => pr.eval(self.diffuse, lo, li),
             Kind::ThinDielectric | Kind::Lobes => (Vec3::ZERO, 0.0),
         }
     }
@@ -532,6 +559,9 @@ impl Material {
     fn sample_model(&self, wo: Vec3, n: Vec3, u_lobe: f32, u: Vec2) -> Option<BsdfSample> {
         let nf = match self.kind {
             Kind::RoughDielectric | Kind::ThinDielectric => n,
+            // Glass-like when it refracts (its two sides differ), else
+            // two-sided as the other opaque models.
+            Kind::Principled(pr) if pr.transmission > 0.0 => n,
             _ if wo.dot(n) < 0.0 => -n,
             _ => n,
         };
@@ -575,6 +605,10 @@ impl Material {
             Kind::RoughDielectric => {
                 let (li, w, pdf) = rough_dielectric::sample(lo, self.ior, self.alpha, u_lobe, u)?;
                 Some(smooth(world(li), Vec3::splat(w), pdf, li.z * lo.z < 0.0))
+            }
+            Kind::Principled(pr) => {
+                let (li, w, pdf) = pr.sample(self.diffuse, lo, u_lobe, u)?;
+                Some(smooth(world(li), w, pdf, li.z * lo.z < 0.0))
             }
             Kind::ThinDielectric => {
                 if u_lobe < thin_dielectric::reflectance(lo.z, self.ior) {

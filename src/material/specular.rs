@@ -37,7 +37,7 @@ impl Material {
                 l += (1.0 - r) * trace(sampler, 1.0 - r, -wo);
                 l
             }
-            Kind::Conductor(_) | Kind::Plastic(_) | Kind::RoughDielectric => {
+            Kind::Conductor(_) | Kind::Plastic(_) | Kind::RoughDielectric | Kind::Principled(_) => {
                 // A metal, a plastic's coat or frosted glass: one branch when
                 // it is a mirror, else a few importance-sampled ones.
                 let mut acc = Vec3::ZERO;
@@ -143,6 +143,24 @@ impl Material {
                     pdf: 0.0,
                     delta: coat.alpha == 0.0,
                     transmitted: false,
+                })
+            }
+            Kind::Principled(pr) => {
+                // The diffuse, sheen and clearcoat come from shadow rays.
+                let nf = if pr.transmission > 0.0 || wo.dot(n) >= 0.0 {
+                    n
+                } else {
+                    -n
+                };
+                let (t, b) = self.frame(nf);
+                let lo = Vec3::new(wo.dot(t), wo.dot(b), wo.dot(nf));
+                let (li, weight, transmitted) = pr.sample_specular(self.diffuse, lo, u_lobe, u)?;
+                Some(BsdfSample {
+                    wi: li.x * t + li.y * b + li.z * nf,
+                    weight,
+                    pdf: 0.0,
+                    delta: false,
+                    transmitted,
                 })
             }
             _ => self.sample(wo, n, u_lobe, u),

@@ -27,6 +27,7 @@ mod mitsuba;
 mod nasty;
 mod noise_params;
 mod outputs;
+mod principled;
 mod render;
 mod session;
 mod shapes;

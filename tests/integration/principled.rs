@@ -1,0 +1,73 @@
+//! The principled material against Mitsuba 3's `principled`, value for
+//! value: `tests/mitsuba/principled_eval.json` (by
+//! `scripts/mitsuba_principled.py`) holds Mitsuba's f·|cos θ| and pdf at
+//! random direction pairs and pairs near the specular lobes, for a grid of
+//! metallic × roughness and for each other lobe.
+
+use glam::Vec3;
+use ptsc::material::principled::Principled;
+use serde_json::Value;
+
+/// The material of one configuration, in ptsc's parameters.
+fn principled(params: &Value) -> Principled {
+    let get = |name: &str, default: f64| {
+        params.get(name).and_then(Value::as_f64).unwrap_or(default) as f32
+    };
+    Principled {
+        metallic: get("metallic", 0.0),
+        transmission: get("transmission", 0.0),
+        eta: Principled::eta_of_specular(get("specular", 0.5)),
+        roughness: get("roughness", 0.5),
+        anisotropic: get("anisotropic", 0.0),
+        specular_tint: get("specular_tint", 0.0),
+        sheen: get("sheen", 0.0),
+        sheen_tint: get("sheen_tint", 0.0),
+        clearcoat: get("clearcoat", 0.0),
+        clearcoat_alpha: Principled::clearcoat_alpha(get("clearcoat_roughness", 0.0)),
+    }
+}
+
+fn vec3(v: &Value) -> Vec3 {
+    let a: Vec<f32> = v
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|x| x.as_f64().unwrap() as f32)
+        .collect();
+    Vec3::new(a[0], a[1], a[2])
+}
+
+#[test]
+fn principled_matches_mitsuba_value_for_value() {
+    let text = std::fs::read_to_string(crate::root().join("tests/mitsuba/principled_eval.json"))
+        .expect("tests/mitsuba/principled_eval.json");
+    let data: Value = serde_json::from_str(&text).unwrap();
+    let base = vec3(&data["base_color"]);
+    let mut compared = 0;
+    for config in data["configs"].as_array().unwrap() {
+        let m = principled(&config["params"]);
+        let mut nonzero = 0;
+        for pair in config["pairs"].as_array().unwrap() {
+            let (wo, wi) = (vec3(&pair["wo"]), vec3(&pair["wi"]));
+            let (want, want_pdf) = (vec3(&pair["value"]), pair["pdf"].as_f64().unwrap() as f32);
+            let (f, pdf) = m.eval(base, wo, wi);
+            let got = f * wi.z.abs();
+            let close = |a: f32, b: f32| (a - b).abs() <= 2e-3 * a.abs().max(b.abs()) + 1e-6;
+            assert!(
+                (0..3).all(|k| close(got[k], want[k])) && close(pdf, want_pdf),
+                "{}: wo {wo} wi {wi}: f·cos {got} pdf {pdf}, Mitsuba {want} pdf {want_pdf}",
+                config["params"]
+            );
+            nonzero += (want.max_element() > 0.0) as usize;
+            compared += 1;
+        }
+        // Each configuration is compared where it reflects, not only where
+        // both give zero.
+        assert!(
+            nonzero >= 12,
+            "{}: {nonzero} pairs with light",
+            config["params"]
+        );
+    }
+    assert!(compared >= 17 * 48, "{compared} pairs");
+}

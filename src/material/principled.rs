@@ -23,8 +23,11 @@
 //! whose coat takes from its base what it reflects), the diffuse and
 //! specular lobes are added, not layered: a white base reflects up to 4 %
 //! more than it receives seen head-on and up to 40 % at grazing angles
-//! (measured: `tests.rs`, `principled_albedo_is_mitsubas`). The metal and
-//! the glass alone keep energy (white furnace, same tests).
+//! (measured: `chi2.rs`, `principled_albedo_is_mitsubas`). The metal and
+//! the glass alone keep energy (white furnace, same test). Refraction
+//! carries radiance scaled by (η_i/η_t)², as Mitsuba's plugin in radiance
+//! mode (ptsc's `rough_dielectric` leaves that factor out; in a closed
+//! object the factors of entering and leaving cancel either way).
 //!
 //! Sampling (as Mitsuba's): a lobe with probability in proportion to
 //! (1 − metallic)(1 − transmission) for the diffuse, clearcoat/4 for the
@@ -402,19 +405,29 @@ impl Principled {
         let m = anisotropic::sample_visible_normal(up, self.alpha(), u);
         let f_dielectric = dielectric(wo.dot(m), self.eta);
         let [p_diffuse, p_coat, p_reflect, _] = self.probabilities(&l, f_dielectric);
-        let wi = if u_lobe < p_diffuse {
-            cosine_hemisphere(u)
+        // Each lobe's direction must stay on its side of the surface and
+        // of its microfacet (Mitsuba's checks): a reflection below the
+        // horizon is not a refraction.
+        let (wi, normal, reflected) = if u_lobe < p_diffuse {
+            (cosine_hemisphere(u), None, true)
         } else if u_lobe < p_diffuse + p_coat {
-            reflect(wo, self.sample_gtr1(u))
+            let mc = self.sample_gtr1(u);
+            (reflect(wo, mc), Some(mc), true)
         } else if u_lobe < p_diffuse + p_coat + p_reflect {
-            reflect(wo, m)
+            (reflect(wo, m), Some(m), true)
         } else {
-            super::refract(
-                wo,
-                if wo.dot(m) < 0.0 { -m } else { m },
-                self.eta_path(l.front),
-            )?
+            let n = if wo.dot(m) < 0.0 { -m } else { m };
+            (
+                super::refract(wo, n, self.eta_path(l.front))?,
+                Some(m),
+                false,
+            )
         };
+        if (wo.z * wi.z > 0.0) != reflected
+            || normal.is_some_and(|n| !compatible(n, wo, wi, reflected))
+        {
+            return None;
+        }
         let (f, pdf) = self.eval(base, wo, wi);
         // (A NaN pdf fails too.)
         if pdf.is_nan() || pdf <= 0.0 {

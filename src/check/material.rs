@@ -51,6 +51,12 @@ pub fn material(p: &Params, name: Option<String>, span: Span, diags: &mut Diagno
             TextureInput::Emission => m.emission = bright,
             TextureInput::Gloss => m.gloss = number,
             TextureInput::Transmission => m.transmission = number,
+            TextureInput::BaseColor => m.diffuse = bright,
+            TextureInput::Metallic => {
+                if let MaterialKind::Principled(pp) = &mut m.kind {
+                    pp.metallic = number;
+                }
+            }
             TextureInput::NormalMap | TextureInput::Bump => {}
         }
     }
@@ -72,7 +78,90 @@ pub fn material(p: &Params, name: Option<String>, span: Span, diags: &mut Diagno
     } else {
         model_checks(p, &mut m, diags);
     }
+    if matches!(m.kind, MaterialKind::Principled(_)) {
+        principled_checks(&mut Reader { p, diags }, &mut m);
+    } else {
+        for name in PRINCIPLED_ONLY {
+            if let Some((_, s)) = p.get(name) {
+                let model = match m.kind {
+                    MaterialKind::Mix => "the mix of lobes",
+                    MaterialKind::Conductor { .. } => "a conductor",
+                    MaterialKind::Plastic => "a plastic",
+                    MaterialKind::Dielectric => "a dielectric",
+                    MaterialKind::ThinDielectric => "a thin dielectric",
+                    MaterialKind::Principled(_) => "a principled material",
+                };
+                diags.push(no_effect(
+                    name,
+                    model,
+                    *s,
+                    "it is a parameter of `type principled`",
+                ));
+            }
+        }
+        m.textures.retain(|(input, _)| {
+            !matches!(input, TextureInput::BaseColor | TextureInput::Metallic)
+        });
+    }
     m
+}
+
+/// `type principled`: its base colour (held as `diffuse`), its roughness
+/// (`gloss`, or `roughness` as one number, default 0.5 as Mitsuba's) and
+/// its index (`specular` or `ior`, not both).
+fn principled_checks(r: &mut Reader, m: &mut Material) {
+    let p = r.p;
+    let textured_base = m
+        .textures
+        .iter()
+        .any(|(i, _)| *i == TextureInput::BaseColor);
+    if !textured_base {
+        m.diffuse = r.color("base_color", [0.5; 3]);
+    }
+    let textured_gloss = m.textures.iter().any(|(i, _)| *i == TextureInput::Gloss);
+    match p.get("roughness") {
+        Some((Val::Vector(v), s)) if v.len() == 2 => {
+            if p.given("gloss") {
+                r.diags.push(
+                    Diagnostic::error(
+                        codes::CONFLICTING_PARAMS,
+                        "`roughness` and `gloss` both roughen the material",
+                        *s,
+                    )
+                    .with_label("on `type principled` both are its roughness (α = roughness²)")
+                    .with_help("keep one of them"),
+                );
+            } else if v[0] != v[1] {
+                r.diags.push(
+                    Diagnostic::error(
+                        codes::OUT_OF_RANGE,
+                        "`type principled` takes one roughness",
+                        *s,
+                    )
+                    .with_label("two values along u and v")
+                    .with_help(
+                        "give one `roughness` and stretch the highlight with `anisotropic` (0..1)",
+                    ),
+                );
+            } else if (0.0..=1.0).contains(&v[0]) {
+                m.gloss = v[0];
+            }
+        }
+        _ if !p.given("gloss") && !textured_gloss => m.gloss = 0.5,
+        _ => {}
+    }
+    m.roughness = None;
+    if let (Some((_, s)), true) = (p.get("specular"), p.given("ior")) {
+        r.diags.push(
+            Diagnostic::error(
+                codes::CONFLICTING_PARAMS,
+                "`specular` and `ior` both give the principled material's index",
+                *s,
+            )
+            .with_label("specular s is an index of 2 / (1 − √(0.08 s)) − 1")
+            .with_help("keep `specular` (0.5 is glass's 1.5) or `ior`"),
+        );
+    }
 }
 
 /// The checks of the paper's mix of lobes: its default, its energy, and
@@ -247,6 +336,19 @@ fn kind(r: &mut Reader) -> MaterialKind {
         MaterialType::Plastic => MaterialKind::Plastic,
         MaterialType::Dielectric => MaterialKind::Dielectric,
         MaterialType::ThinDielectric => MaterialKind::ThinDielectric,
+        MaterialType::Principled => {
+            let mut unit = |name: &str| r.num_in(name, 0.0, 1.0, false, 0.0);
+            MaterialKind::Principled(PrincipledParams {
+                metallic: unit("metallic"),
+                specular: p.given("specular").then(|| unit("specular")),
+                specular_tint: unit("specular_tint"),
+                anisotropic: unit("anisotropic"),
+                sheen: unit("sheen"),
+                sheen_tint: unit("sheen_tint"),
+                clearcoat: unit("clearcoat"),
+                clearcoat_roughness: unit("clearcoat_roughness"),
+            })
+        }
         MaterialType::Mix => MaterialKind::Mix,
     }
 }
@@ -282,6 +384,11 @@ fn model_checks(p: &Params, m: &mut Material, diags: &mut Diagnostics) {
             "glass is its `ior`, `gloss` (frosting) and `absorption` inside",
         ),
         MaterialKind::Mix => return,
+        MaterialKind::Principled(_) => (
+            "a principled material",
+            &["diffuse", "reflection", "preset", "eta", "k", "multiscatter"],
+            "a principled material is its `base_color`, `metallic`, `gloss` (or `roughness`), `specular` (or `ior`), `transmission`, `sheen` and `clearcoat`",
+        ),
         MaterialKind::ThinDielectric => (
             "a thin dielectric",
             &[
@@ -352,8 +459,9 @@ fn options_checks(p: &Params, m: &mut Material, ignored: &[&str], diags: &mut Di
     if ignored.contains(&"roughness") {
         m.roughness = None;
     }
+    let principled = matches!(m.kind, MaterialKind::Principled(_));
     if let (Some((_, s)), true) = (p.get("roughness"), p.given("gloss")) {
-        if m.roughness.is_some() {
+        if m.roughness.is_some() && !principled {
             diags.push(
                 Diagnostic::error(
                     codes::CONFLICTING_PARAMS,

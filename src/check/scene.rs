@@ -130,11 +130,15 @@ pub enum TextureInput {
     NormalMap,
     /// `bump`: a height field.
     Bump,
+    /// `base_color` (of `type principled`).
+    BaseColor,
+    /// `metallic` (of `type principled`).
+    Metallic,
 }
 
 impl TextureInput {
     /// Every input with its parameter's name.
-    pub const ALL: [(&'static str, TextureInput); 8] = [
+    pub const ALL: [(&'static str, TextureInput); 10] = [
         ("diffuse", TextureInput::Diffuse),
         ("reflection", TextureInput::Reflection),
         ("gloss", TextureInput::Gloss),
@@ -143,6 +147,8 @@ impl TextureInput {
         ("emission", TextureInput::Emission),
         ("normal_map", TextureInput::NormalMap),
         ("bump", TextureInput::Bump),
+        ("base_color", TextureInput::BaseColor),
+        ("metallic", TextureInput::Metallic),
     ];
 
     /// Whether its texture holds data rather than colours: an 8-bit image
@@ -154,6 +160,7 @@ impl TextureInput {
                 | TextureInput::Reflection
                 | TextureInput::Absorption
                 | TextureInput::Emission
+                | TextureInput::BaseColor
         )
     }
 }
@@ -209,6 +216,8 @@ pub enum MaterialType {
     Dielectric,
     /// A thin pane.
     ThinDielectric,
+    /// Burley's principled model.
+    Principled,
 }
 
 named_values!(MaterialType {
@@ -217,6 +226,7 @@ named_values!(MaterialType {
     "plastic" => Plastic,
     "dielectric" => Dielectric,
     "thin_dielectric" => ThinDielectric,
+    "principled" => Principled,
 });
 
 /// A material's scattering model (`type`).
@@ -240,7 +250,45 @@ pub enum MaterialKind {
     Dielectric,
     /// A thin pane of index `ior`.
     ThinDielectric,
+    /// Burley's principled model: its base colour is `diffuse`, its
+    /// roughness `gloss`, its refracting share `transmission`.
+    Principled(PrincipledParams),
 }
+
+/// The parameters of `type principled` beyond those it shares (each in
+/// [0, 1]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PrincipledParams {
+    /// `metallic`.
+    pub metallic: f64,
+    /// `specular`, when given instead of `ior`.
+    pub specular: Option<f64>,
+    /// `specular_tint`.
+    pub specular_tint: f64,
+    /// `anisotropic`.
+    pub anisotropic: f64,
+    /// `sheen`.
+    pub sheen: f64,
+    /// `sheen_tint`.
+    pub sheen_tint: f64,
+    /// `clearcoat`.
+    pub clearcoat: f64,
+    /// `clearcoat_roughness`.
+    pub clearcoat_roughness: f64,
+}
+
+/// The parameters only `type principled` reads.
+pub const PRINCIPLED_ONLY: [&str; 9] = [
+    "base_color",
+    "metallic",
+    "specular",
+    "specular_tint",
+    "anisotropic",
+    "sheen",
+    "sheen_tint",
+    "clearcoat",
+    "clearcoat_roughness",
+];
 
 /// A material, resolved.
 #[derive(Debug, Clone, PartialEq)]

@@ -312,7 +312,7 @@ pub const MATERIAL: &[ParamSpec] = &[
     p("bump_height", Ty::Num, "0.01").of(Magnitude)
         .doc("scene units of height per unit of the `bump` texture (negative: dents). Default 0.01"),
     p("type", Ty::Word(MATERIAL_TYPES), "plastic")
-        .doc("the scattering model: `mix`, `conductor`, `plastic`, `dielectric` or `thin_dielectric`. Default `mix`"),
+        .doc("the scattering model: `mix`, `conductor`, `plastic`, `dielectric`, `thin_dielectric` or `principled`. Default `mix`"),
     p("preset", Ty::Word(METAL_PRESETS), "gold")
         .doc("a named metal of `type conductor`: gold, silver, copper, aluminium, chromium"),
     p("eta", Ty::Color, "rgb <0.2, 0.92, 1.1>").of(Magnitude)
@@ -321,6 +321,24 @@ pub const MATERIAL: &[ParamSpec] = &[
         .doc("a metal's extinction coefficient per channel (with `eta`, instead of `preset`)"),
     p("multiscatter", Ty::Bool, "false")
         .doc("the multiple-scattering compensation of glossy reflection; `false` is plain GGX. Default `true`"),
+    p("base_color", Ty::Color, "rgb <0.8, 0.2, 0.1>").of(Magnitude).textured()
+        .doc("`type principled`: the base colour (diffuse albedo, a metal's reflectance), a colour or a texture. Default 0.5 grey"),
+    p("metallic", Ty::Num, "1").textured()
+        .doc("`type principled`: how much of it is metal, 0..1 or a texture. Default 0"),
+    p("specular", Ty::Num, "0.5")
+        .doc("`type principled`: its dielectric reflectance head-on, 0..1 (0.5 is 4 %, η 1.5; instead of `ior`). Default 0.5"),
+    p("specular_tint", Ty::Num, "0.5")
+        .doc("`type principled`: how much of its dielectric reflection takes the base colour's hue, 0..1. Default 0"),
+    p("anisotropic", Ty::Num, "0.6")
+        .doc("`type principled`: how much the highlight stretches along the surface's ∂p/∂u, 0..1. Default 0"),
+    p("sheen", Ty::Num, "1")
+        .doc("`type principled`: a cloth-like rim at grazing angles, 0..1. Default 0"),
+    p("sheen_tint", Ty::Num, "0.5")
+        .doc("`type principled`: how much of the sheen takes the base colour's hue, 0..1. Default 0"),
+    p("clearcoat", Ty::Num, "1")
+        .doc("`type principled`: a clear varnish on top (a second, white highlight), 0..1. Default 0"),
+    p("clearcoat_roughness", Ty::Num, "0.1")
+        .doc("`type principled`: the varnish's roughness, 0..1 (Mitsuba's `clearcoat_gloss` is 1 minus it). Default 0"),
 ];
 
 /// The scattering models a material's `type` names (`mix`, the paper's

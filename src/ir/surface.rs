@@ -92,6 +92,11 @@ impl Scene {
                 Input::Transmission => {
                     params.transmission = texture.eval_scalar(&at).clamp(0.0, 1.0)
                 }
+                Input::Metallic => {
+                    if let Kind::Principled(p) = &mut params.kind {
+                        p.metallic = texture.eval_scalar(&at).clamp(0.0, 1.0);
+                    }
+                }
             }
         }
         if let Some(coats) = &t.coats {

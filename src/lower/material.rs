@@ -8,6 +8,7 @@ use crate::lower::image::{Encoding, Images};
 use crate::material::conductor::Conductor;
 use crate::material::plastic::CoatFamily;
 use crate::material::plastic::Plastic;
+use crate::material::principled::Principled;
 use crate::material::{self, microfacet, Input, Material, NormalInput, Textured};
 use crate::source::Files;
 use crate::texture::{ColorMap, Pattern, Space, Texture};
@@ -72,8 +73,10 @@ pub fn lower_material(
         roughness: m.roughness.map(|[u, v]| glam::DVec2::new(u, v).as_vec2()),
     };
     params.kind = kind(m, &mut params, coats);
-    // A metal rough unevenly lays its roughness along each hit's tangent.
-    let uneven = params.roughness.is_some_and(|r| r.x != r.y);
+    // A metal rough unevenly, or a principled material's stretched
+    // highlight, lies along each hit's tangent.
+    let uneven = params.roughness.is_some_and(|r| r.x != r.y)
+        || matches!(params.kind, material::Kind::Principled(p) if p.anisotropic > 0.0);
     if m.textures.is_empty() && !uneven {
         return Material::new(&params);
     }
@@ -118,6 +121,11 @@ pub fn lower_material(
             }
             TextureInput::Gloss => Input::Gloss,
             TextureInput::Transmission => Input::Transmission,
+            TextureInput::BaseColor => {
+                params.diffuse = bright;
+                Input::Diffuse
+            }
+            TextureInput::Metallic => Input::Metallic,
             TextureInput::NormalMap => {
                 textured.normal = Some(NormalInput::Map(index));
                 continue;
@@ -173,6 +181,23 @@ fn kind(m: &check::Material, params: &mut material::Params, coats: &mut Coats) -
             }
         }
         check::MaterialKind::ThinDielectric => material::Kind::ThinDielectric,
+        check::MaterialKind::Principled(pp) => {
+            // `specular` gives the index (relative to the outside, as `ior`).
+            if let Some(s) = pp.specular {
+                params.ior = Principled::eta_of_specular(s as f32);
+            }
+            material::Kind::Principled(Principled {
+                metallic: pp.metallic as f32,
+                specular_tint: pp.specular_tint as f32,
+                anisotropic: pp.anisotropic as f32,
+                sheen: pp.sheen as f32,
+                sheen_tint: pp.sheen_tint as f32,
+                clearcoat: pp.clearcoat as f32,
+                clearcoat_alpha: Principled::clearcoat_alpha(pp.clearcoat_roughness as f32),
+                // Taken from the parameters by `Material::new`.
+                ..Principled::default()
+            })
+        }
     }
 }
 

@@ -126,6 +126,9 @@ pub enum Input {
     /// The emitted radiance (a colour; light sampling reads it at the
     /// sampled point).
     Emission,
+    /// A principled material's metallic share (the texture's luminance,
+    /// within [0, 1]).
+    Metallic,
 }
 
 /// A texture that bends the shading normal.
@@ -251,7 +254,13 @@ impl Material {
             Kind::Principled(mut pr) => {
                 pr.roughness = p.gloss;
                 pr.transmission = p.transmission;
-                pr.eta = p.ior;
+                // An index of 1 bends nothing and its rough refraction has
+                // no half vector (Mitsuba likewise moves it to 1.001).
+                pr.eta = if p.ior == 1.0 && p.transmission > 0.0 {
+                    1.001
+                } else {
+                    p.ior
+                };
                 Kind::Principled(pr)
             }
             kind => kind,

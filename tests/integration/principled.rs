@@ -71,3 +71,43 @@ fn principled_matches_mitsuba_value_for_value() {
     }
     assert!(compared >= 17 * 48, "{compared} pairs");
 }
+
+#[test]
+fn the_language_gives_every_parameter_to_the_model() {
+    use ptsc::compile::{compile_str, Options};
+    use ptsc::material::Kind;
+    let scene = "camera { position <0, 0, 5> look_at <0, 0, 0> }
+        background rgb 1
+        sphere { center <0, 0, 0> radius 1 material { type principled
+            base_color rgb <0.8, 0.4, 0.2> metallic 0.3 roughness 0.6 specular 0.9
+            specular_tint 0.25 anisotropic 0.5 sheen 0.75 sheen_tint 0.2
+            clearcoat 0.4 clearcoat_roughness 0.3 transmission 0.1 } }
+        sphere { center <3, 0, 0> radius 1 material { type principled } }";
+    let c = compile_str(std::path::Path::new("p.pts"), scene, Options::default());
+    assert!(!c.diagnostics.has_errors());
+    let ir = c.ir.expect("compiles");
+    let m = &ir.materials[0];
+    let Kind::Principled(p) = m.kind else {
+        panic!("{:?}", m.kind)
+    };
+    assert_eq!(m.diffuse, Vec3::new(0.8, 0.4, 0.2));
+    let want = Principled {
+        metallic: 0.3,
+        transmission: 0.1,
+        eta: Principled::eta_of_specular(0.9),
+        roughness: 0.6,
+        anisotropic: 0.5,
+        specular_tint: 0.25,
+        sheen: 0.75,
+        sheen_tint: 0.2,
+        clearcoat: 0.4,
+        clearcoat_alpha: Principled::clearcoat_alpha(0.3),
+    };
+    assert_eq!(p, want);
+    // The stretched highlight needs each hit's tangent.
+    assert!(m.textured.as_ref().is_some_and(|t| t.tangent));
+    // Mitsuba's defaults: grey, roughness 0.5, specular 0.5 (η 1.5).
+    let d = &ir.materials[1];
+    assert_eq!(d.diffuse, Vec3::splat(0.5));
+    assert_eq!(d.kind, Kind::Principled(Principled::default()));
+}

@@ -68,6 +68,22 @@ fn principled_matches_mitsuba_value_for_value() {
             "{}: {nonzero} pairs with light",
             config["params"]
         );
+        // And the comparison can fail: a roughness 5 % off misses Mitsuba's
+        // values on some pair.
+        let off = Principled {
+            roughness: m.roughness * 1.05,
+            ..m
+        };
+        let misses = config["pairs"].as_array().unwrap().iter().any(|pair| {
+            let (wo, wi) = (vec3(&pair["wo"]), vec3(&pair["wi"]));
+            let got = off.eval(base, wo, wi).0 * wi.z.abs();
+            (got - vec3(&pair["value"])).abs().max_element() > 1e-2 * got.max_element()
+        });
+        assert!(
+            misses,
+            "{}: a wrong roughness goes unnoticed",
+            config["params"]
+        );
     }
     assert!(compared >= 17 * 48, "{compared} pairs");
 }

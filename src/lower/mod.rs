@@ -15,6 +15,7 @@ mod instances;
 mod lights;
 mod material;
 pub mod mesh;
+pub mod mtl;
 mod shapes;
 pub use fingerprint::fingerprint;
 

@@ -1,0 +1,175 @@
+//! Tests of the MTL → principled mapping, key by key.
+
+use super::*;
+
+fn parse(text: &str) -> Vec<tobj::Material> {
+    let (materials, _) = tobj::load_mtl_buf(&mut std::io::Cursor::new(text)).expect("parses");
+    materials
+}
+
+fn mapped(text: &str) -> Mapped {
+    let m = parse(text);
+    material(&m[0], Path::new("models"), Span::default())
+}
+
+fn principled(m: &Material) -> PrincipledParams {
+    match m.kind {
+        MaterialKind::Principled(p) => p,
+        other => panic!("{other:?}"),
+    }
+}
+
+fn textures(m: &Material) -> Vec<(TextureInput, String, Wrap)> {
+    (m.textures.iter())
+        .map(|(input, t)| match &t.kind {
+            TextureKind::Image { path, wrap, .. } => {
+                (*input, path.to_string_lossy().replace('\\', "/"), *wrap)
+            }
+            other => panic!("{other:?}"),
+        })
+        .collect()
+}
+
+#[test]
+fn every_key_maps_to_its_parameter() {
+    let m = mapped(
+        "newmtl Painted
+         Kd 0.8 0.4 0.2
+         Ks 0.6 0.3 0.3
+         Ns 250
+         Ke 0.5 0.25 0
+         Pm 0.7
+         Ps 0.3
+         Pc 0.9
+         Pcr 0.2
+         aniso 0.4
+         illum 2",
+    );
+    let material = &m.material;
+    assert_eq!(material.name.as_deref(), Some("Painted"));
+    assert_eq!(
+        material.diffuse,
+        [0.8f32 as f64, 0.4f32 as f64, 0.2f32 as f64]
+    );
+    assert!((material.gloss - roughness_of_exponent(250.0)).abs() < 1e-12);
+    assert_eq!(material.emission, [0.5, 0.25, 0.0]);
+    let p = principled(material);
+    assert!((p.specular.unwrap() - 0.4).abs() < 1e-6, "{p:?}");
+    assert!((p.metallic - 0.7).abs() < 1e-6);
+    assert!((p.sheen - 0.3).abs() < 1e-6);
+    assert!((p.clearcoat - 0.9).abs() < 1e-6);
+    assert!((p.clearcoat_roughness - 0.2).abs() < 1e-6);
+    assert!((p.anisotropic - 0.4).abs() < 1e-6);
+    assert_eq!((p.specular_tint, p.sheen_tint), (0.0, 0.0));
+    assert!(material.textures.is_empty());
+    assert!(m.left_out.is_empty(), "{:?}", m.left_out);
+}
+
+#[test]
+fn the_index_comes_from_ni_unless_it_is_one() {
+    let glass = mapped("newmtl G\nKs 0.5 0.5 0.5\nNi 1.45\n");
+    assert!((glass.material.ior - 1.45).abs() < 1e-6);
+    assert_eq!(principled(&glass.material).specular, None);
+    let none = mapped("newmtl N\nKs 0.2 0.2 0.2\nNi 1.0\n");
+    assert_eq!(none.material.ior, 1.5);
+    assert!((principled(&none.material).specular.unwrap() - 0.2).abs() < 1e-6);
+    // Nothing said: Mitsuba's defaults (grey, roughness 0.5, specular 0.5).
+    let bare = mapped("newmtl B\n");
+    assert_eq!(bare.material.diffuse, [0.5; 3]);
+    assert_eq!(bare.material.gloss, 0.5);
+    assert_eq!(principled(&bare.material).specular, None);
+}
+
+#[test]
+fn roughness_from_the_phong_exponent_or_pr() {
+    // Ns 0 is the widest lobe (α 1), Ns 1000 a narrow one (α 0.0447).
+    assert_eq!(roughness_of_exponent(0.0), 1.0);
+    assert!((roughness_of_exponent(1000.0) - (2.0f64 / 1002.0).sqrt().sqrt()).abs() < 1e-12);
+    assert!(roughness_of_exponent(10.0) > roughness_of_exponent(100.0));
+    let pr = mapped("newmtl R\nNs 900\nPr 0.35\n");
+    assert!((pr.material.gloss - 0.35).abs() < 1e-6);
+}
+
+#[test]
+fn texture_keys_become_textures_with_their_options() {
+    let m = mapped(
+        "newmtl T
+         map_Kd -s 2 2 1 wood grain.png
+         map_Pr rough.png
+         map_Pm -clamp on metal.png
+         map_Ke glow.png
+         map_Bump -bm 0.5 bumps.png
+         norm normals.png",
+    );
+    let material = &m.material;
+    assert_eq!(
+        textures(material),
+        vec![
+            (
+                TextureInput::BaseColor,
+                "models/wood grain.png".into(),
+                Wrap::Repeat
+            ),
+            (TextureInput::Gloss, "models/rough.png".into(), Wrap::Repeat),
+            (
+                TextureInput::Metallic,
+                "models/metal.png".into(),
+                Wrap::Clamp
+            ),
+            (
+                TextureInput::Emission,
+                "models/glow.png".into(),
+                Wrap::Repeat
+            ),
+            (
+                TextureInput::NormalMap,
+                "models/normals.png".into(),
+                Wrap::Repeat
+            ),
+            (TextureInput::Bump, "models/bumps.png".into(), Wrap::Repeat),
+        ]
+    );
+    assert!(material
+        .textures
+        .iter()
+        .all(|(_, t)| t.space == TextureSpace::Uv));
+    assert!((material.bump_height - 0.005).abs() < 1e-12);
+    // Textured values stand for their brightest (an image's: 1).
+    assert_eq!(
+        (material.diffuse, material.emission, material.gloss),
+        ([1.0; 3], [1.0; 3], 1.0)
+    );
+    assert_eq!(principled(material).metallic, 1.0);
+    assert_eq!(m.left_out.len(), 1, "{:?}", m.left_out);
+    assert!(m.left_out[0].contains("-s"), "{:?}", m.left_out);
+}
+
+#[test]
+fn opacity_and_bad_texture_statements_are_named() {
+    for text in ["d 0.5", "Tr 0.3", "map_d alpha.png"] {
+        let m = mapped(&format!("newmtl O\n{text}\n"));
+        assert!(
+            m.left_out.iter().any(|l| l.contains("opacity")),
+            "{text}: {:?}",
+            m.left_out
+        );
+    }
+    assert!(mapped("newmtl O\nd 1\nTr 0\n").left_out.is_empty());
+    let bad = mapped("newmtl B\nmap_Kd -bm\n");
+    assert!(bad.material.textures.is_empty());
+    assert_eq!(bad.left_out.len(), 1, "{:?}", bad.left_out);
+}
+
+#[test]
+fn texture_statements_parse_their_options() {
+    let r = texture_ref("-bm 0.3 -s 2 2 1 dir/my file.png").unwrap();
+    assert_eq!(r.file, "dir/my file.png");
+    assert_eq!(r.bump_multiplier, Some(0.3));
+    assert_eq!(r.ignored, vec!["-s".to_string()]);
+    let one = texture_ref("-o 0.5 tex.png").unwrap();
+    assert_eq!((one.file.as_str(), one.ignored.len()), ("tex.png", 1));
+    assert!(texture_ref("-clamp on t.png").unwrap().clamp);
+    assert_eq!(texture_ref("-bm"), None);
+    assert_eq!(texture_ref("-unknown 3 t.png"), None);
+    assert_eq!(texture_ref("   "), None);
+}

@@ -43,6 +43,7 @@ impl Checker<'_> {
                 lights: std::mem::take(&mut self.lights),
                 groups: std::mem::take(&mut self.groups),
                 instances: std::mem::take(&mut self.instances),
+                default_material: self.default_material,
             }),
             _ => None,
         };

@@ -423,6 +423,11 @@ pub enum Shape {
         path_span: Span,
         /// Interpolate vertex normals when the file has them.
         smooth: bool,
+        /// Only the faces of this material of the file's own (an OBJ's
+        /// `usemtl` group, by index into its libraries' materials; `u32::MAX`
+        /// for the faces without one): set by lowering, which splits a mesh
+        /// by the materials its file gives (`lower::obj_materials`).
+        group: Option<u32>,
     },
 }
 
@@ -592,6 +597,9 @@ pub struct Scene {
     pub groups: Vec<Group>,
     /// The placements of groups at the top level of the scene.
     pub instances: Vec<Instance>,
+    /// The grey material of the objects that name none, if any does (a
+    /// mesh whose OBJ file gives materials takes those instead).
+    pub default_material: Option<usize>,
 }
 
 /// A named group of objects (`group name { … }`), placed by instances.

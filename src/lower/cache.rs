@@ -36,6 +36,9 @@ struct CachedMesh {
     stamp: Option<Stamp>,
     /// Hash of the file's bytes: a touched but unchanged file is not re-parsed.
     content: u64,
+    /// The stamps of its material libraries when read: a library changed
+    /// alone makes the mesh read again.
+    libraries: Vec<Option<Stamp>>,
     data: Arc<MeshData>,
 }
 
@@ -63,30 +66,38 @@ impl LowerCache {
     /// The mesh at `path`, parsed once per content.
     pub fn mesh(&mut self, files: &dyn Files, path: &Path) -> Result<Arc<MeshData>, String> {
         let now = files.stamp(path);
+        let libraries_unchanged = |c: &CachedMesh| {
+            (c.data.libraries.iter())
+                .zip(&c.libraries)
+                .all(|(p, stamp)| stamp.is_some() && files.stamp(p) == *stamp)
+        };
         if let Some(c) = self.meshes.get(path) {
-            if c.stamp == now && now.is_some() {
+            if c.stamp == now && now.is_some() && libraries_unchanged(c) {
                 return Ok(c.data.clone());
             }
         }
         let bytes = mesh::read(files, path)?;
+        let parse = |bytes: &[u8]| mesh::parse_with(path, bytes, &mut mesh::library_reader(files));
         if self.one_off {
             self.mesh_loads += 1;
-            return mesh::parse(path, &bytes).map(Arc::new);
+            return parse(&bytes).map(Arc::new);
         }
         let content = hash_bytes(&bytes);
         if let Some(c) = self.meshes.get_mut(path) {
-            if c.content == content {
+            if c.content == content && libraries_unchanged(c) {
                 c.stamp = now;
                 return Ok(c.data.clone());
             }
         }
-        let data = Arc::new(mesh::parse(path, &bytes)?);
+        let data = Arc::new(parse(&bytes)?);
+        let libraries = data.libraries.iter().map(|p| files.stamp(p)).collect();
         self.mesh_loads += 1;
         self.meshes.insert(
             path.to_path_buf(),
             CachedMesh {
                 stamp: now,
                 content,
+                libraries,
                 data: data.clone(),
             },
         );
@@ -136,9 +147,15 @@ impl LowerCache {
                 check::Shape::Triangle { v } => points(v, &mut h),
                 check::Shape::Box { min, max } => points(&[*min, *max], &mut h),
                 check::Shape::Round(round) => round.hash_key(&mut h),
-                check::Shape::Mesh { path, smooth, .. } => {
+                check::Shape::Mesh {
+                    path,
+                    smooth,
+                    group,
+                    ..
+                } => {
                     path.hash(&mut h);
                     smooth.hash(&mut h);
+                    group.hash(&mut h);
                     // The content, through the mesh cache (a missing file hashes
                     // as such and fails later, in lowering, with a diagnostic).
                     match self.mesh(files, path) {

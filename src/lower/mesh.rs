@@ -4,7 +4,14 @@
 
 use crate::source::{Files, MAX_MESH_BYTES};
 use glam::{Vec2, Vec3};
-use std::path::Path;
+use std::path::{Path, PathBuf};
+
+/// The most bytes a material library (`.mtl`) may hold.
+pub const MAX_MTL_BYTES: u64 = 64 << 20;
+
+/// Reads a material library an OBJ names (its path resolved against the
+/// OBJ's folder); the error is a sentence.
+pub type LibraryReader<'a> = dyn FnMut(&Path) -> Result<Vec<u8>, String> + 'a;
 
 /// Triangles with optional per-vertex normals and texture coordinates.
 #[derive(Debug, Clone, Default)]
@@ -18,11 +25,26 @@ pub struct MeshData {
     pub uvs: Vec<Vec2>,
     /// Triangles as vertex indices.
     pub triangles: Vec<[u32; 3]>,
+    /// Per triangle, its index in `materials` (`u32::MAX`: none); empty
+    /// when the file names no material.
+    pub face_material: Vec<u32>,
+    /// The materials of the OBJ's libraries (`mtllib`), as `tobj` reads them.
+    pub materials: Vec<tobj::Material>,
+    /// The libraries read (to watch and to revalidate a cached mesh).
+    pub libraries: Vec<PathBuf>,
+    /// Why a library could not be read, one sentence each.
+    pub library_errors: Vec<String>,
 }
 
-/// Reads an OBJ or PLY file; the error is a sentence for a diagnostic.
+/// Reads an OBJ or PLY file and an OBJ's material libraries; the error is
+/// a sentence for a diagnostic.
 pub fn load(files: &dyn Files, path: &Path) -> Result<MeshData, String> {
-    parse(path, &read(files, path)?)
+    parse_with(path, &read(files, path)?, &mut library_reader(files))
+}
+
+/// Reads material libraries through `files`, at most [`MAX_MTL_BYTES`].
+pub fn library_reader(files: &dyn Files) -> impl FnMut(&Path) -> Result<Vec<u8>, String> + '_ {
+    move |path: &Path| files.read(path, MAX_MTL_BYTES).map_err(|e| e.to_string())
 }
 
 /// The bytes of a mesh file, at most [`MAX_MESH_BYTES`].
@@ -31,14 +53,24 @@ pub fn read(files: &dyn Files, path: &Path) -> Result<Vec<u8>, String> {
 }
 
 /// Parses the bytes of an OBJ or PLY file (the format follows `path`'s
-/// extension) and validates the result.
+/// extension) and validates the result, reading no material library.
 pub fn parse(path: &Path, bytes: &[u8]) -> Result<MeshData, String> {
+    parse_with(path, bytes, &mut |_| Err("not read".to_string()))
+}
+
+/// [`parse`], an OBJ's material libraries read by `library`.
+pub fn parse_with(
+    path: &Path,
+    bytes: &[u8],
+    library: &mut LibraryReader,
+) -> Result<MeshData, String> {
     let ext = path
         .extension()
         .and_then(|e| e.to_str())
         .map(str::to_ascii_lowercase);
+    let folder = path.parent().unwrap_or(Path::new(""));
     let mesh = match ext.as_deref() {
-        Some("obj") => parse_obj(bytes)?,
+        Some("obj") => parse_obj(bytes, folder, library)?,
         Some("ply") => parse_ply(bytes)?,
         _ => return Err("unknown mesh format (expected .obj or .ply)".into()),
     };
@@ -76,17 +108,34 @@ pub fn parse(path: &Path, bytes: &[u8]) -> Result<MeshData, String> {
     Ok(mesh)
 }
 
-fn parse_obj(bytes: &[u8]) -> Result<MeshData, String> {
+fn parse_obj(bytes: &[u8], folder: &Path, library: &mut LibraryReader) -> Result<MeshData, String> {
     let opts = tobj::LoadOptions {
         triangulate: true,
         single_index: true,
         ..Default::default()
     };
-    // Material libraries are not read: `.pts` materials replace them.
-    let (models, _) = tobj::load_obj_buf(&mut std::io::Cursor::new(bytes), &opts, |_| {
-        Err(tobj::LoadError::OpenFileFailed)
+    // Material libraries are read through `library` (the scene's files);
+    // one that cannot be read leaves its faces without a material.
+    // (tobj asks through an `Fn`: the reader and the lists are borrowed
+    // mutably inside.)
+    let reader = std::cell::RefCell::new(library);
+    let libraries = std::cell::RefCell::new(Vec::new());
+    let library_errors = std::cell::RefCell::new(Vec::new());
+    let (models, materials) = tobj::load_obj_buf(&mut std::io::Cursor::new(bytes), &opts, |name| {
+        let path = folder.join(name);
+        libraries.borrow_mut().push(path.clone());
+        let failed = |e: String| {
+            (library_errors.borrow_mut()).push(format!("cannot read `{}`: {e}", name.display()));
+        };
+        let text = (reader.borrow_mut())(&path).map_err(|e| {
+            failed(e);
+            tobj::LoadError::OpenFileFailed
+        })?;
+        tobj::load_mtl_buf(&mut std::io::Cursor::new(text)).inspect_err(|e| failed(e.to_string()))
     })
     .map_err(|e| format!("cannot read the OBJ file: {e}"))?;
+    let (libraries, library_errors) = (libraries.into_inner(), library_errors.into_inner());
+    let materials = materials.unwrap_or_default();
     let mut out = MeshData::default();
     for m in models {
         let base = out.positions.len() as u32;
@@ -111,12 +160,24 @@ fn parse_obj(bytes: &[u8]) -> Result<MeshData, String> {
                     .map(|c| Vec2::new(c[0], c[1])),
             );
         }
+        let before = out.triangles.len();
         out.triangles.extend(
             mesh.indices
                 .chunks_exact(3)
                 .map(|c| [base + c[0], base + c[1], base + c[2]]),
         );
+        let id = (mesh.material_id)
+            .filter(|&i| i < materials.len())
+            .map_or(u32::MAX, |i| i as u32);
+        out.face_material.resize(before, u32::MAX);
+        out.face_material.resize(out.triangles.len(), id);
     }
+    if out.face_material.iter().all(|&m| m == u32::MAX) {
+        out.face_material.clear();
+    }
+    out.materials = materials;
+    out.libraries = libraries;
+    out.library_errors = library_errors;
     // Attributes only when every object of the file has them.
     if out.normals.len() != out.positions.len() {
         out.normals.clear();

@@ -16,6 +16,7 @@ mod lights;
 mod material;
 pub mod mesh;
 pub mod mtl;
+mod obj_materials;
 mod shapes;
 pub use fingerprint::fingerprint;
 
@@ -68,6 +69,9 @@ pub fn lower(
     // others share their group's prototype.
     let split = instances::split(scene);
     let flat = split.scene.as_ref().unwrap_or(scene);
+    // Meshes without a material take their OBJ file's.
+    let expanded = obj_materials::expand(flat, (cache, files), warnings);
+    let flat = expanded.as_ref().unwrap_or(flat);
     let coats = material::Coats::default();
     let prepared = prepare(scene, flat, &split, adjust, (cache, files, coats), warnings)?;
     Ok(prepared.build(flat, cache))
@@ -84,6 +88,8 @@ pub fn validate(
 ) -> Diagnostics {
     let split = instances::split(scene);
     let flat = split.scene.as_ref().unwrap_or(scene);
+    let expanded = obj_materials::expand(flat, (cache, files), warnings);
+    let flat = expanded.as_ref().unwrap_or(flat);
     let coats = material::Coats::for_checking();
     match prepare(
         scene,

@@ -68,6 +68,14 @@ impl Gathered {
     }
 }
 
+/// The triangles of `data` in material `group` (all without one).
+fn in_group(data: &MeshData, group: Option<u32>) -> impl Iterator<Item = &[u32; 3]> + '_ {
+    let material = |k: usize| data.face_material.get(k).copied().unwrap_or(u32::MAX);
+    (data.triangles.iter().enumerate())
+        .filter(move |(k, _)| group.is_none_or(|g| material(*k) == g))
+        .map(|(_, t)| t)
+}
+
 /// The most primitives a scene (or a group's prototype) may make, a mesh
 /// triangle counting one: about 4 GB once built (docs/language.md, "Limits").
 pub const MAX_PRIMITIVES: usize = 50_000_000;
@@ -201,8 +209,8 @@ impl Gathering<'_> {
         let mut first_past = None;
         for (o, obj) in objects.iter().enumerate() {
             self.wanted += match &obj.shape {
-                check::Shape::Mesh { path, .. } => {
-                    (self.read_mesh(path)).map_or(0, |d| d.triangles.len() as u64)
+                check::Shape::Mesh { path, group, .. } => {
+                    (self.read_mesh(path)).map_or(0, |d| in_group(&d, *group).count() as u64)
                 }
                 check::Shape::Box { .. } => 6,
                 _ => 1,
@@ -230,7 +238,8 @@ impl Gathering<'_> {
                 path,
                 path_span,
                 smooth,
-            } => return self.mesh(o, obj, (path, *path_span), *smooth),
+                group,
+            } => return self.mesh(o, obj, (path, *path_span), (*smooth, *group)),
             check::Shape::Plane { point, normal } => shapes.push(Shape::Plane {
                 point: pt(*point),
                 normal: unit_f32(m.inverse().transpose().transform_vector3(*normal)),
@@ -283,7 +292,7 @@ impl Gathering<'_> {
         o: usize,
         obj: &check::Object,
         (path, path_span): (&std::path::Path, crate::span::Span),
-        smooth: bool,
+        (smooth, group): (bool, Option<u32>),
     ) {
         let data = match self.read_mesh(path) {
             Ok(d) => d,
@@ -333,7 +342,9 @@ impl Gathering<'_> {
             self.out.prims.records.reserve(data.triangles.len());
         }
         let mut degenerate = 0usize;
-        for t in &data.triangles {
+        let mut total = 0usize;
+        for t in in_group(&data, group) {
+            total += 1;
             // Stored wound as rendered; vertex attributes stay in the
             // file's order (`Shape::own_uv` reads them so).
             let [a, b, c] = if flip { [t[0], t[2], t[1]] } else { *t };
@@ -357,7 +368,7 @@ impl Gathering<'_> {
             };
             self.out.prims.push(Prim { shape, velocity }, o as u32);
         }
-        if degenerate == data.triangles.len() {
+        if degenerate == total {
             self.diags.push(
                 Diagnostic::error(
                     codes::DEGENERATE,

@@ -26,6 +26,7 @@ mod materials;
 mod mitsuba;
 mod nasty;
 mod noise_params;
+mod obj_materials;
 mod outputs;
 mod principled;
 mod render;

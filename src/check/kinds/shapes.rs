@@ -438,5 +438,6 @@ fn mesh(s: &mut ShapeInput) -> Option<Shape> {
         path,
         path_span: at,
         smooth: s.boolean("smooth", false),
+        group: None,
     })
 }

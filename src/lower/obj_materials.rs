@@ -1,0 +1,117 @@
+//! The materials an OBJ file brings: a mesh statement that names no
+//! material takes its file's (`usemtl` groups over `mtllib` libraries,
+//! mapped by `mtl.rs`), one object per material group; a material in the
+//! scene overrides them all. What cannot be followed is a warning at the
+//! mesh statement.
+
+use super::cache::LowerCache;
+use super::mtl;
+use crate::check;
+use crate::diag::{codes, Diagnostic, Diagnostics};
+use crate::source::Files;
+use std::collections::BTreeSet;
+
+/// `scene` with each mesh that names no material split by its file's
+/// materials (`None`: no mesh brings any); the warnings go to `warnings`.
+/// A mesh that cannot be read is left as it is (lowering reports it).
+pub fn expand(
+    scene: &check::Scene,
+    (cache, files): (&mut LowerCache, &dyn Files),
+    warnings: &mut Diagnostics,
+) -> Option<check::Scene> {
+    let default = scene.default_material?;
+    // Made at the first mesh that brings materials (a scene without one
+    // copies nothing): the objects so far, then each kept or split.
+    let mut out: Option<check::Scene> = None;
+    for (o, object) in scene.objects.iter().enumerate() {
+        let parts = match &object.shape {
+            check::Shape::Mesh { group: None, .. } if object.material == default => {
+                split(object, scene, (cache, files), warnings, &mut out, o)
+            }
+            _ => None,
+        };
+        match (parts, out.as_mut()) {
+            (Some(parts), Some(target)) => target.objects.extend(parts),
+            (None, Some(target)) => target.objects.push(object.clone()),
+            _ => {}
+        }
+    }
+    out
+}
+
+/// The material groups of the mesh `object` (the `o`th of `scene`) as
+/// objects, their materials added to `out` (made, with the objects before
+/// `o`, if not yet); `None` when its file brings no material.
+fn split(
+    object: &check::Object,
+    scene: &check::Scene,
+    (cache, files): (&mut LowerCache, &dyn Files),
+    warnings: &mut Diagnostics,
+    out: &mut Option<check::Scene>,
+    o: usize,
+) -> Option<Vec<check::Object>> {
+    let check::Shape::Mesh {
+        path,
+        path_span,
+        smooth,
+        ..
+    } = &object.shape
+    else {
+        return None;
+    };
+    let data = cache.mesh(files, path).ok()?;
+    for error in &data.library_errors {
+        warnings.push(
+            Diagnostic::warning(
+                codes::MESH_FILE,
+                format!("a material library of `{}` is missing", path.display()),
+                *path_span,
+            )
+            .with_label(error.clone())
+            .with_help("its faces are grey; put the `.mtl` file beside the OBJ, or give the mesh a `material`"),
+        );
+    }
+    if data.face_material.is_empty() {
+        return None;
+    }
+    let target = out.get_or_insert_with(|| check::Scene {
+        objects: scene.objects[..o].to_vec(),
+        ..scene.clone()
+    });
+    let folder = path.parent().unwrap_or(std::path::Path::new(""));
+    let used: BTreeSet<u32> = data.face_material.iter().copied().collect();
+    let mut parts = Vec::with_capacity(used.len());
+    for group in used {
+        let material = match data.materials.get(group as usize) {
+            Some(m) => {
+                let mapped = mtl::material(m, folder, *path_span);
+                for note in &mapped.left_out {
+                    warnings.push(
+                        Diagnostic::warning(
+                            codes::NO_EFFECT,
+                            format!("material `{}` of `{}`: {note}", m.name, path.display()),
+                            *path_span,
+                        )
+                        .with_label("left out")
+                        .with_help("give the mesh a `material` to replace the file's"),
+                    );
+                }
+                target.materials.push(mapped.material);
+                target.materials.len() - 1
+            }
+            // Faces without a `usemtl`: the default grey.
+            None => object.material,
+        };
+        parts.push(check::Object {
+            shape: check::Shape::Mesh {
+                path: path.clone(),
+                path_span: *path_span,
+                smooth: *smooth,
+                group: Some(group),
+            },
+            material,
+            ..object.clone()
+        });
+    }
+    Some(parts)
+}

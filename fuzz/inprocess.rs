@@ -6,7 +6,7 @@
 //! runs.
 //!
 //! ```text
-//! cargo run --release --example fuzz -- [--seconds N] [--seed S] scene|ply|obj|image|state|budget|all
+//! cargo run --release --example fuzz -- [--seconds N] [--seed S] scene|ply|obj|mtl|image|state|budget|all
 //! cargo run --release --example fuzz -- --time-seeds scene   # the cost of each seed
 //! ```
 //!
@@ -287,6 +287,7 @@ fn run(target: &str, seconds: f64, seed: u64, out: &Path) -> usize {
         "scene" => |b| ptsc::fuzz::scene(b),
         "ply" => |b| ptsc::fuzz::ply(b),
         "obj" => |b| ptsc::fuzz::obj(b),
+        "mtl" => |b| ptsc::fuzz::mtl(b),
         "image" => |b| ptsc::fuzz::image(b),
         "state" => |b| ptsc::fuzz::state(b),
         "budget" => |b| ptsc::fuzz::budget(b),
@@ -375,6 +376,7 @@ fn time_seeds(target: &str) {
         match target {
             "scene" => ptsc::fuzz::scene(&bytes),
             "ply" => ptsc::fuzz::ply(&bytes),
+            "mtl" => ptsc::fuzz::mtl(&bytes),
             "image" => ptsc::fuzz::image(&bytes),
             "state" => ptsc::fuzz::state(&bytes),
             "budget" => ptsc::fuzz::budget(&bytes),
@@ -402,13 +404,14 @@ fn main() {
                     .expect("--seconds N")
             }
             "--seed" => seed = args.next().and_then(|s| s.parse().ok()).expect("--seed N"),
-            "all" => targets
-                .extend(["scene", "ply", "obj", "image", "state", "budget"].map(String::from)),
+            "all" => targets.extend(
+                ["scene", "ply", "obj", "mtl", "image", "state", "budget"].map(String::from),
+            ),
             t => targets.push(t.to_string()),
         }
     }
     if targets.is_empty() {
-        eprintln!("usage: fuzz [--seconds N] [--seed S] scene|ply|obj|image|state|budget|all");
+        eprintln!("usage: fuzz [--seconds N] [--seed S] scene|ply|obj|mtl|image|state|budget|all");
         std::process::exit(2);
     }
     // Relative paths in the corpus (meshes, includes) start at the root.

@@ -87,9 +87,60 @@ pub fn ply(bytes: &[u8]) -> bool {
     mesh_invariants(mesh::parse(Path::new("fuzz.ply"), bytes))
 }
 
-/// An OBJ file given as bytes, as [`ply`].
+/// An OBJ file given as bytes, as [`ply`]; every material library it names
+/// reads as the same bytes (so that its `usemtl` lines find materials), and
+/// each triangle's material is one of them or none.
 pub fn obj(bytes: &[u8]) -> bool {
-    mesh_invariants(mesh::parse(Path::new("fuzz.obj"), bytes))
+    let parsed = mesh::parse_with(Path::new("fuzz.obj"), bytes, &mut |_| Ok(bytes.to_vec()));
+    if let Ok(m) = &parsed {
+        assert!(m.face_material.is_empty() || m.face_material.len() == m.triangles.len());
+        let n = m.materials.len() as u32;
+        assert!(m.face_material.iter().all(|&i| i < n || i == u32::MAX));
+    }
+    mesh_invariants(parsed)
+}
+
+/// A material library (`.mtl`) given as bytes: when it parses, every
+/// material maps to a principled material whose numbers lie in their
+/// ranges and whose textures are images read at (u, v). Returns whether it
+/// parsed.
+pub fn mtl(bytes: &[u8]) -> bool {
+    use crate::check::scene::{MaterialKind, TextureKind, TextureSpace};
+    let (text, _) = crate::lower::mtl::readable(bytes);
+    let Ok((materials, _)) = tobj::load_mtl_buf(&mut std::io::Cursor::new(text)) else {
+        return false;
+    };
+    for m in &materials {
+        let mapped = crate::lower::mtl::material(m, Path::new("models"), Default::default());
+        let out = &mapped.material;
+        let unit = |x: f64| (0.0..=1.0).contains(&x);
+        let colour = |c: [f64; 3]| c.iter().all(|x| x.is_finite() && *x >= 0.0);
+        assert!(colour(out.diffuse) && colour(out.emission), "{out:?}");
+        assert!(
+            unit(out.gloss) && out.ior >= 1.0 && out.ior <= 10.0,
+            "{out:?}"
+        );
+        assert!(out.bump_height.is_finite(), "{out:?}");
+        let MaterialKind::Principled(p) = out.kind else {
+            panic!("not principled: {out:?}");
+        };
+        let shares = [
+            p.metallic,
+            p.specular_tint,
+            p.anisotropic,
+            p.sheen,
+            p.sheen_tint,
+        ];
+        assert!(shares
+            .into_iter()
+            .chain([p.clearcoat, p.clearcoat_roughness])
+            .all(unit));
+        assert!(p.specular.is_none_or(unit), "{p:?}");
+        for (_, t) in &out.textures {
+            assert!(matches!(t.kind, TextureKind::Image { .. }) && t.space == TextureSpace::Uv);
+        }
+    }
+    true
 }
 
 /// A render state given as bytes (what `--resume` and `ptsc merge` read):

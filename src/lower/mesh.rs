@@ -9,6 +9,10 @@ use std::path::{Path, PathBuf};
 /// The most bytes a material library (`.mtl`) may hold.
 pub const MAX_MTL_BYTES: u64 = 64 << 20;
 
+/// The most material libraries (`mtllib`) an OBJ may name: each is read
+/// once per name, and a hostile file could name one a million times.
+pub const MAX_LIBRARIES: usize = 16;
+
 /// Reads a material library an OBJ names (its path resolved against the
 /// OBJ's folder); the error is a sentence.
 pub type LibraryReader<'a> = dyn FnMut(&Path) -> Result<Vec<u8>, String> + 'a;
@@ -123,18 +127,34 @@ fn parse_obj(bytes: &[u8], folder: &Path, library: &mut LibraryReader) -> Result
     let library_errors = std::cell::RefCell::new(Vec::new());
     let (models, materials) = tobj::load_obj_buf(&mut std::io::Cursor::new(bytes), &opts, |name| {
         let path = folder.join(name);
-        libraries.borrow_mut().push(path.clone());
         let failed = |e: String| {
             (library_errors.borrow_mut()).push(format!("cannot read `{}`: {e}", name.display()));
         };
+        if libraries.borrow().len() >= MAX_LIBRARIES {
+            if libraries.borrow().len() == MAX_LIBRARIES {
+                failed(format!(
+                    "the file names more than {MAX_LIBRARIES} material libraries"
+                ));
+                libraries.borrow_mut().push(PathBuf::new());
+            }
+            return Err(tobj::LoadError::OpenFileFailed);
+        }
+        libraries.borrow_mut().push(path.clone());
         let text = (reader.borrow_mut())(&path).map_err(|e| {
             failed(e);
             tobj::LoadError::OpenFileFailed
         })?;
+        let (text, dropped) = super::mtl::readable(&text);
+        for line in dropped {
+            failed(format!(
+                "its line `{line}` is not a colour ptsc reads (three numbers, or one)"
+            ));
+        }
         tobj::load_mtl_buf(&mut std::io::Cursor::new(text)).inspect_err(|e| failed(e.to_string()))
     })
     .map_err(|e| format!("cannot read the OBJ file: {e}"))?;
-    let (libraries, library_errors) = (libraries.into_inner(), library_errors.into_inner());
+    let (mut libraries, library_errors) = (libraries.into_inner(), library_errors.into_inner());
+    libraries.retain(|p| !p.as_os_str().is_empty());
     let materials = materials.unwrap_or_default();
     let mut out = MeshData::default();
     for m in models {

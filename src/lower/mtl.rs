@@ -94,7 +94,11 @@ fn texture_ref(text: &str) -> Option<TextureRef> {
             after = next.trim_start();
         }
         match option {
-            "-bm" => out.bump_multiplier = values.first().and_then(|v| v.parse().ok()),
+            "-bm" => {
+                out.bump_multiplier = (values.first())
+                    .and_then(|v| v.parse::<f64>().ok())
+                    .filter(|m| m.abs() <= 1e8)
+            }
             "-clamp" => out.clamp = values.first().is_some_and(|v| v == "on"),
             _ => out.ignored.push(option.to_string()),
         }
@@ -128,6 +132,34 @@ fn image(r: &TextureRef, folder: &Path, span: Span) -> Texture {
 pub fn roughness_of_exponent(ns: f64) -> f64 {
     let alpha = (2.0 / (ns.max(0.0) + 2.0)).sqrt();
     alpha.sqrt().clamp(0.0, 1.0)
+}
+
+/// An MTL file's text as `tobj` can read it: a colour line (`Ka`, `Kd`,
+/// `Ks`, `Ke`, `Tf`) with one value is that grey written out (`Kd 0.5`
+/// means `Kd 0.5 0.5 0.5`), one with more than three keeps three, and one
+/// that is not numbers (`Kd spectral …`, `Kd xyz …`) or has two is left out
+/// (tobj 4 panics on fewer than three). Returns the text and the lines left
+/// out.
+pub fn readable(bytes: &[u8]) -> (String, Vec<String>) {
+    let text = String::from_utf8_lossy(bytes);
+    let mut out = String::with_capacity(text.len());
+    let mut dropped = Vec::new();
+    for line in text.lines() {
+        let mut words = line.split_whitespace();
+        let key = words.next().unwrap_or("");
+        if !matches!(key, "Ka" | "Kd" | "Ks" | "Ke" | "Tf") {
+            out.push_str(line);
+            out.push('\n');
+            continue;
+        }
+        let values: Option<Vec<f32>> = words.map(|w| w.parse().ok()).collect();
+        match values.as_deref() {
+            Some([v]) => out.push_str(&format!("{key} {v} {v} {v}\n")),
+            Some([a, b, c, ..]) => out.push_str(&format!("{key} {a} {b} {c}\n")),
+            _ => dropped.push(line.trim().chars().take(80).collect()),
+        }
+    }
+    (out, dropped)
 }
 
 /// A number of an unknown key (`Pm`, `Pr`, …), if given and finite.

@@ -173,3 +173,35 @@ fn texture_statements_parse_their_options() {
     assert_eq!(texture_ref("-unknown 3 t.png"), None);
     assert_eq!(texture_ref("   "), None);
 }
+
+#[test]
+fn colours_of_one_value_are_greys_and_others_are_left_out() {
+    let (text, dropped) =
+        readable(b"newmtl A\nKd 0.5\nKs 1 2 3 4\nKe spectral lamp.spd\nKa 1 2\nNs 10\n");
+    assert_eq!(text, "newmtl A\nKd 0.5 0.5 0.5\nKs 1 2 3\nNs 10\n");
+    assert_eq!(
+        dropped,
+        vec!["Ke spectral lamp.spd".to_string(), "Ka 1 2".to_string()]
+    );
+    let m = parse(&text);
+    assert_eq!(m[0].diffuse, Some([0.5; 3]));
+}
+
+#[test]
+fn an_obj_names_a_bounded_number_of_libraries() {
+    use crate::lower::mesh::{parse_with, MAX_LIBRARIES};
+    let mut obj = String::new();
+    for k in 0..1000 {
+        obj += &format!("mtllib lib{k}.mtl\n");
+    }
+    obj += "v 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl A\nf 1 2 3\n";
+    let mut reads = 0;
+    let m = parse_with(Path::new("m.obj"), obj.as_bytes(), &mut |_| {
+        reads += 1;
+        Ok(b"newmtl A\nKd 1 0 0\n".to_vec())
+    })
+    .unwrap();
+    assert_eq!(reads, MAX_LIBRARIES);
+    assert_eq!(m.libraries.len(), MAX_LIBRARIES);
+    assert_eq!(m.library_errors.len(), 1, "{:?}", m.library_errors);
+}

@@ -64,11 +64,11 @@ fn split(
         warnings.push(
             Diagnostic::warning(
                 codes::MESH_FILE,
-                format!("a material library of `{}` is missing", path.display()),
+                format!("a material library of `{}` could not be read in full", path.display()),
                 *path_span,
             )
             .with_label(error.clone())
-            .with_help("its faces are grey; put the `.mtl` file beside the OBJ, or give the mesh a `material`"),
+            .with_help("faces whose material is not read are grey; put the `.mtl` file beside the OBJ and check it, or give the mesh a `material`"),
         );
     }
     if data.face_material.is_empty() {

@@ -20,8 +20,9 @@ use glam::Vec3;
 /// The triangles of one mesh that need no record.
 #[derive(Debug)]
 pub struct PlainMesh {
-    /// Vertex positions in world space.
-    pub positions: Vec<Vec3>,
+    /// Vertex positions in world space (shared by the material groups of
+    /// one mesh statement: `lower::obj_materials`).
+    pub positions: std::sync::Arc<Vec<Vec3>>,
     /// Triangles as indices into `positions`, wound as rendered (a
     /// mirroring transform already flipped), none degenerate.
     pub triangles: Vec<[u32; 3]>,
@@ -206,12 +207,12 @@ mod tests {
         };
         c.push(plane, 1);
         let square = |object, z| PlainMesh {
-            positions: vec![
+            positions: std::sync::Arc::new(vec![
                 Vec3::new(0.0, 0.0, z),
                 Vec3::new(1.0, 0.0, z),
                 Vec3::new(1.0, 1.0, z),
                 Vec3::new(0.0, 1.0, z),
-            ],
+            ]),
             triangles: vec![[0, 1, 2], [0, 2, 3]],
             object,
             swapped: false,

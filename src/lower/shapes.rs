@@ -91,6 +91,9 @@ struct Gathering<'a> {
     /// The meshes read so far by path: an object copied by many
     /// placements reads its file once.
     meshes: HashMap<PathBuf, Result<Arc<MeshData>, String>>,
+    /// The world vertices of meshes split by their materials, by path and
+    /// transform: one copy for all the groups.
+    positions: HashMap<(PathBuf, [u64; 16]), Arc<Vec<Vec3>>>,
     diags: Diagnostics,
     cache: &'a mut LowerCache,
     files: &'a dyn Files,
@@ -112,6 +115,7 @@ pub fn gather(
         too_small: None,
         wanted: 0,
         meshes: HashMap::new(),
+        positions: HashMap::new(),
         diags: Diagnostics::new(),
         cache,
         files,
@@ -190,6 +194,31 @@ impl Gathering<'_> {
             }
         }
         self.out.prims.push(Prim { shape, velocity }, o as u32);
+    }
+
+    /// The vertices of the mesh at `path` (read as `data`) under `m`:
+    /// computed once for the material groups of one statement (`shared`),
+    /// each a part of the same mesh.
+    fn world_positions(
+        &mut self,
+        path: &std::path::Path,
+        m: &glam::DMat4,
+        data: &MeshData,
+        shared: bool,
+    ) -> Arc<Vec<Vec3>> {
+        let key = (path.to_path_buf(), m.to_cols_array().map(f64::to_bits));
+        if let Some(pos) = self.positions.get(&key).filter(|_| shared) {
+            return pos.clone();
+        }
+        let pos: Arc<Vec<Vec3>> = Arc::new(
+            (data.positions.iter())
+                .map(|p| m.transform_point3(p.as_dvec3()).as_vec3())
+                .collect(),
+        );
+        if shared {
+            self.positions.insert(key, pos.clone());
+        }
+        pos
     }
 
     /// The mesh at `path`, read once per gathering.
@@ -312,9 +341,7 @@ impl Gathering<'_> {
         let m = obj.transform;
         let velocity = obj.velocity.as_vec3();
         let flip = m.determinant() < 0.0;
-        let pos: Vec<Vec3> = (data.positions.iter())
-            .map(|p| m.transform_point3(p.as_dvec3()).as_vec3())
-            .collect();
+        let pos = self.world_positions(path, &m, &data, group.is_some());
         // The vertices' box, where the motion takes it: as the other shapes.
         let reach = pos.iter().fold(Aabb::EMPTY, |b, p| b.grow(*p));
         if !within_domain(reach, velocity, self.out.shutter) {

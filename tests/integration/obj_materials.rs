@@ -139,3 +139,37 @@ fn a_missing_library_or_texture_is_reported_at_the_mesh() {
     assert!(textured.ir.is_none(), "a missing texture is an error");
     assert!(text.contains("nowhere.png"), "{text}");
 }
+
+#[test]
+fn a_library_changed_alone_is_read_again_by_a_kept_cache() {
+    use ptsc::compile::compile_str;
+    use ptsc::lower::cache::LowerCache;
+    let dir = crate::temp_dir_with(&[("two.mtl", MTL)]);
+    std::fs::write(
+        dir.path().join("two.obj"),
+        obj("mtllib two.mtl\n", true, true),
+    )
+    .unwrap();
+    let path = dir.path().join("scene.pts");
+    let text = format!("{STAGE}mesh {{ file \"two.obj\" }}");
+    let mut cache = LowerCache::default();
+    let mut red = || {
+        let options = Options {
+            cache: Some(&mut cache),
+            ..Options::default()
+        };
+        let ir = compile_str(&path, &text, options).ir.expect("compiles");
+        ir.materials[ir.object_material[0] as usize].diffuse.x
+    };
+    assert!((red() - 0.8).abs() < 1e-6);
+    // The library changes size (its stamp with it); the OBJ does not.
+    std::fs::write(
+        dir.path().join("two.mtl"),
+        MTL.replace("Kd 0.8 0.1 0.1", "Kd 0.25 0.1 0.1 "),
+    )
+    .unwrap();
+    assert!(
+        (red() - 0.25).abs() < 1e-6,
+        "the kept mesh still had the old library"
+    );
+}

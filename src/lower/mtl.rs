@@ -17,7 +17,9 @@
 //! - `Ke`/`map_Ke` → `emission`;
 //! - `map_Bump`/`bump` (`-bm` its height) → `bump`, `norm` → `normal_map`;
 //! - `d` < 1, `Tr` > 0 and `map_d` (opacity) have no counterpart yet:
-//!   a note names them.
+//!   a note names them;
+//! - texture options: `-s` and `-o` scale and shift the texture
+//!   coordinates, `-clamp on` clamps, `-bm` as above; the rest are named.
 
 use crate::check::scene::{
     Material, MaterialKind, PrincipledParams, Texture, TextureInput, TextureKind, TextureSpace,
@@ -45,6 +47,10 @@ struct TextureRef {
     bump_multiplier: Option<f64>,
     /// `-clamp on`.
     clamp: bool,
+    /// `-s`: the texture coordinates scaled (the image repeats as often).
+    scale: Option<[f64; 3]>,
+    /// `-o`: the texture coordinates shifted.
+    offset: Option<[f64; 3]>,
     /// Options read but not followed (`-s`, `-o`, …).
     ignored: Vec<String>,
 }
@@ -72,6 +78,8 @@ fn texture_ref(text: &str) -> Option<TextureRef> {
         file: String::new(),
         bump_multiplier: None,
         clamp: false,
+        scale: None,
+        offset: None,
         ignored: Vec::new(),
     };
     let mut rest = text.trim();
@@ -100,6 +108,23 @@ fn texture_ref(text: &str) -> Option<TextureRef> {
                     .filter(|m| m.abs() <= 1e8)
             }
             "-clamp" => out.clamp = values.first().is_some_and(|v| v == "on"),
+            "-s" | "-o" => {
+                // Missing components are the identity's (1 to scale, 0 to shift).
+                let fill = if option == "-s" { 1.0 } else { 0.0 };
+                let mut v = [fill; 3];
+                for (k, text) in values.iter().enumerate() {
+                    v[k] = text.parse::<f64>().ok().filter(|x| x.abs() <= 1e6)?;
+                }
+                if option == "-s" {
+                    // A zero scale squeezes the image to a point: not read.
+                    if v.iter().any(|x| x.abs() < 1e-6) {
+                        return None;
+                    }
+                    out.scale = Some(v);
+                } else {
+                    out.offset = Some(v);
+                }
+            }
             _ => out.ignored.push(option.to_string()),
         }
         rest = after;
@@ -110,8 +135,12 @@ fn texture_ref(text: &str) -> Option<TextureRef> {
     })
 }
 
-/// An image texture of `file` in `folder`, read at the surface's (u, v).
+/// An image texture of `file` in `folder`, read at the surface's (u, v)
+/// scaled by `-s` and shifted by `-o`: the pattern reads s·uv + o, so the
+/// texture's transform (which lowering inverts) is the inverse of that.
 fn image(r: &TextureRef, folder: &Path, span: Span) -> Texture {
+    let to_pattern = DMat4::from_translation(r.offset.unwrap_or([0.0; 3]).into())
+        * DMat4::from_scale(r.scale.unwrap_or([1.0; 3]).into());
     Texture {
         kind: TextureKind::Image {
             path: folder.join(&r.file),
@@ -122,7 +151,7 @@ fn image(r: &TextureRef, folder: &Path, span: Span) -> Texture {
         },
         colors: vec![(0.0, [1.0; 3]), (1.0, [0.0; 3])],
         space: TextureSpace::Uv,
-        transform: DMat4::IDENTITY,
+        transform: to_pattern.inverse(),
         span,
     }
 }
@@ -231,7 +260,9 @@ pub fn material(m: &tobj::Material, folder: &Path, span: Span) -> Mapped {
                 Some(r)
             }
             None => {
-                left_out.push(format!("`{key} {text}` (no file name after its options)"));
+                left_out.push(format!(
+                    "`{key} {text}` (its options or its file name cannot be read)"
+                ));
                 None
             }
         }

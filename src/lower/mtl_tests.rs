@@ -140,8 +140,10 @@ fn texture_keys_become_textures_with_their_options() {
         ([1.0; 3], [1.0; 3], 1.0)
     );
     assert_eq!(principled(material).metallic, 1.0);
-    assert_eq!(m.left_out.len(), 1, "{:?}", m.left_out);
-    assert!(m.left_out[0].contains("-s"), "{:?}", m.left_out);
+    assert!(m.left_out.is_empty(), "{:?}", m.left_out);
+    // `-s 2 2 1` is ptsc's `scale <0.5, 0.5, 1>` (the image repeats twice).
+    let scaled = &material.textures[0].1.transform;
+    assert!(scaled.abs_diff_eq(DMat4::from_scale(glam::DVec3::new(0.5, 0.5, 1.0)), 1e-12));
 }
 
 #[test]
@@ -162,12 +164,29 @@ fn opacity_and_bad_texture_statements_are_named() {
 
 #[test]
 fn texture_statements_parse_their_options() {
-    let r = texture_ref("-bm 0.3 -s 2 2 1 dir/my file.png").unwrap();
+    let r = texture_ref("-bm 0.3 -s 2 2 1 -t 1 dir/my file.png").unwrap();
     assert_eq!(r.file, "dir/my file.png");
     assert_eq!(r.bump_multiplier, Some(0.3));
-    assert_eq!(r.ignored, vec!["-s".to_string()]);
+    assert_eq!(r.scale, Some([2.0, 2.0, 1.0]));
+    assert_eq!(r.ignored, vec!["-t".to_string()]);
     let one = texture_ref("-o 0.5 tex.png").unwrap();
-    assert_eq!((one.file.as_str(), one.ignored.len()), ("tex.png", 1));
+    assert_eq!(
+        (one.file.as_str(), one.offset),
+        ("tex.png", Some([0.5, 0.0, 0.0]))
+    );
+    // Shifted, then scaled: the pattern reads 3·uv + 0.25.
+    let both = image(
+        &texture_ref("-o 0.25 0.25 -s 3 3 t.png").unwrap(),
+        Path::new(""),
+        Span::default(),
+    );
+    let uv = glam::DVec3::new(0.1, 0.2, 0.0);
+    let read = both.transform.inverse().transform_point3(uv);
+    assert!(
+        (read - glam::DVec3::new(0.55, 0.85, 0.0)).length() < 1e-12,
+        "{read}"
+    );
+    assert_eq!(texture_ref("-s 0 1 1 t.png"), None);
     assert!(texture_ref("-clamp on t.png").unwrap().clamp);
     assert_eq!(texture_ref("-bm"), None);
     assert_eq!(texture_ref("-unknown 3 t.png"), None);

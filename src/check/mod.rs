@@ -17,12 +17,14 @@ mod objects;
 mod param_errors;
 pub mod params;
 mod povray;
+pub mod principled;
 mod reader;
 pub mod scene;
 pub mod schema;
 mod statements;
 pub mod symbols;
 pub mod texture;
+pub mod texture_input;
 
 pub use blocks::{MAX_NOISE, MAX_PIXELS, MAX_SIDE, MIN_SAMPLES, SAMPLES, SEED};
 pub use reader::WholeSetting;

@@ -1,6 +1,8 @@
 //! The checked scene: every expression evaluated, every name resolved, every
 //! value in range. Lowering turns it into the render IR.
 
+pub use super::principled::{PrincipledParams, PRINCIPLED_ONLY};
+pub use super::texture_input::TextureInput;
 pub use crate::geometry::round::RoundDesc;
 use crate::span::Span;
 use glam::{DMat4, DVec3};
@@ -111,60 +113,6 @@ impl Texture {
     }
 }
 
-/// A material parameter a texture can give.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum TextureInput {
-    /// `diffuse`
-    Diffuse,
-    /// `reflection`
-    Reflection,
-    /// `gloss`
-    Gloss,
-    /// `transmission`
-    Transmission,
-    /// `absorption`
-    Absorption,
-    /// `emission`
-    Emission,
-    /// `normal_map`: a tangent-space normal map.
-    NormalMap,
-    /// `bump`: a height field.
-    Bump,
-    /// `base_color` (of `type principled`).
-    BaseColor,
-    /// `metallic` (of `type principled`).
-    Metallic,
-}
-
-impl TextureInput {
-    /// Every input with its parameter's name.
-    pub const ALL: [(&'static str, TextureInput); 10] = [
-        ("diffuse", TextureInput::Diffuse),
-        ("reflection", TextureInput::Reflection),
-        ("gloss", TextureInput::Gloss),
-        ("transmission", TextureInput::Transmission),
-        ("absorption", TextureInput::Absorption),
-        ("emission", TextureInput::Emission),
-        ("normal_map", TextureInput::NormalMap),
-        ("bump", TextureInput::Bump),
-        ("base_color", TextureInput::BaseColor),
-        ("metallic", TextureInput::Metallic),
-    ];
-
-    /// Whether its texture holds data rather than colours: an 8-bit image
-    /// given to it is read as it is, not decoded from sRGB.
-    pub fn is_data(self) -> bool {
-        !matches!(
-            self,
-            TextureInput::Diffuse
-                | TextureInput::Reflection
-                | TextureInput::Absorption
-                | TextureInput::Emission
-                | TextureInput::BaseColor
-        )
-    }
-}
-
 /// The coordinates a texture reads.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum TextureSpace {
@@ -254,41 +202,6 @@ pub enum MaterialKind {
     /// roughness `gloss`, its refracting share `transmission`.
     Principled(PrincipledParams),
 }
-
-/// The parameters of `type principled` beyond those it shares (each in
-/// [0, 1]).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct PrincipledParams {
-    /// `metallic`.
-    pub metallic: f64,
-    /// `specular`, when given instead of `ior`.
-    pub specular: Option<f64>,
-    /// `specular_tint`.
-    pub specular_tint: f64,
-    /// `anisotropic`.
-    pub anisotropic: f64,
-    /// `sheen`.
-    pub sheen: f64,
-    /// `sheen_tint`.
-    pub sheen_tint: f64,
-    /// `clearcoat`.
-    pub clearcoat: f64,
-    /// `clearcoat_roughness`.
-    pub clearcoat_roughness: f64,
-}
-
-/// The parameters only `type principled` reads.
-pub const PRINCIPLED_ONLY: [&str; 9] = [
-    "base_color",
-    "metallic",
-    "specular",
-    "specular_tint",
-    "anisotropic",
-    "sheen",
-    "sheen_tint",
-    "clearcoat",
-    "clearcoat_roughness",
-];
 
 /// A material, resolved.
 #[derive(Debug, Clone, PartialEq)]

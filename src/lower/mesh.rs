@@ -4,41 +4,13 @@
 
 use crate::source::{Files, MAX_MESH_BYTES};
 use glam::{Vec2, Vec3};
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 /// The most bytes a material library (`.mtl`) may hold.
 pub const MAX_MTL_BYTES: u64 = 64 << 20;
 
-/// The most material libraries (`mtllib`) an OBJ may name: each is read
-/// once per name, and a hostile file could name one a million times.
-pub const MAX_LIBRARIES: usize = 16;
-
-/// Reads a material library an OBJ names (its path resolved against the
-/// OBJ's folder); the error is a sentence.
-pub type LibraryReader<'a> = dyn FnMut(&Path) -> Result<Vec<u8>, String> + 'a;
-
-/// Triangles with optional per-vertex normals and texture coordinates.
-#[derive(Debug, Clone, Default)]
-pub struct MeshData {
-    /// Vertex positions.
-    pub positions: Vec<Vec3>,
-    /// Vertex normals (empty when the file has none).
-    pub normals: Vec<Vec3>,
-    /// Vertex texture coordinates, (0, 0) at an image's bottom-left (empty
-    /// when the file has none).
-    pub uvs: Vec<Vec2>,
-    /// Triangles as vertex indices.
-    pub triangles: Vec<[u32; 3]>,
-    /// Per triangle, its index in `materials` (`u32::MAX`: none); empty
-    /// when the file names no material.
-    pub face_material: Vec<u32>,
-    /// The materials of the OBJ's libraries (`mtllib`), as `tobj` reads them.
-    pub materials: Vec<tobj::Material>,
-    /// The libraries read (to watch and to revalidate a cached mesh).
-    pub libraries: Vec<PathBuf>,
-    /// Why a library could not be read, one sentence each.
-    pub library_errors: Vec<String>,
-}
+pub use super::mesh_data::{LibraryReader, MeshData};
+pub use super::obj::MAX_LIBRARIES;
 
 /// Reads an OBJ or PLY file and an OBJ's material libraries; the error is
 /// a sentence for a diagnostic.
@@ -74,7 +46,7 @@ pub fn parse_with(
         .map(str::to_ascii_lowercase);
     let folder = path.parent().unwrap_or(Path::new(""));
     let mesh = match ext.as_deref() {
-        Some("obj") => parse_obj(bytes, folder, library)?,
+        Some("obj") => super::obj::parse_obj(bytes, folder, library)?,
         Some("ply") => parse_ply(bytes)?,
         _ => return Err("unknown mesh format (expected .obj or .ply)".into()),
     };
@@ -110,102 +82,6 @@ pub fn parse_with(
         ));
     }
     Ok(mesh)
-}
-
-fn parse_obj(bytes: &[u8], folder: &Path, library: &mut LibraryReader) -> Result<MeshData, String> {
-    let opts = tobj::LoadOptions {
-        triangulate: true,
-        single_index: true,
-        ..Default::default()
-    };
-    // Material libraries are read through `library` (the scene's files);
-    // one that cannot be read leaves its faces without a material.
-    // (tobj asks through an `Fn`: the reader and the lists are borrowed
-    // mutably inside.)
-    let reader = std::cell::RefCell::new(library);
-    let libraries = std::cell::RefCell::new(Vec::new());
-    let library_errors = std::cell::RefCell::new(Vec::new());
-    let (models, materials) = tobj::load_obj_buf(&mut std::io::Cursor::new(bytes), &opts, |name| {
-        let path = folder.join(name);
-        let failed = |e: String| {
-            (library_errors.borrow_mut()).push(format!("cannot read `{}`: {e}", name.display()));
-        };
-        if libraries.borrow().len() >= MAX_LIBRARIES {
-            if libraries.borrow().len() == MAX_LIBRARIES {
-                failed(format!(
-                    "the file names more than {MAX_LIBRARIES} material libraries"
-                ));
-                libraries.borrow_mut().push(PathBuf::new());
-            }
-            return Err(tobj::LoadError::OpenFileFailed);
-        }
-        libraries.borrow_mut().push(path.clone());
-        let text = (reader.borrow_mut())(&path).map_err(|e| {
-            failed(e);
-            tobj::LoadError::OpenFileFailed
-        })?;
-        let (text, dropped) = super::mtl::readable(&text);
-        for line in dropped {
-            failed(format!(
-                "its line `{line}` is not a colour ptsc reads (three numbers, or one)"
-            ));
-        }
-        tobj::load_mtl_buf(&mut std::io::Cursor::new(text)).inspect_err(|e| failed(e.to_string()))
-    })
-    .map_err(|e| format!("cannot read the OBJ file: {e}"))?;
-    let (mut libraries, library_errors) = (libraries.into_inner(), library_errors.into_inner());
-    libraries.retain(|p| !p.as_os_str().is_empty());
-    let materials = materials.unwrap_or_default();
-    let mut out = MeshData::default();
-    for m in models {
-        let base = out.positions.len() as u32;
-        let mesh = m.mesh;
-        out.positions.extend(
-            mesh.positions
-                .chunks_exact(3)
-                .map(|c| Vec3::new(c[0], c[1], c[2])),
-        );
-        if !mesh.normals.is_empty() && mesh.normals.len() == mesh.positions.len() {
-            out.normals.extend(
-                mesh.normals
-                    .chunks_exact(3)
-                    .map(|c| Vec3::new(c[0], c[1], c[2])),
-            );
-        }
-        // `vt` has (0, 0) at the image's bottom-left, as ptsc.
-        if 3 * mesh.texcoords.len() == 2 * mesh.positions.len() {
-            out.uvs.extend(
-                mesh.texcoords
-                    .chunks_exact(2)
-                    .map(|c| Vec2::new(c[0], c[1])),
-            );
-        }
-        let before = out.triangles.len();
-        out.triangles.extend(
-            mesh.indices
-                .chunks_exact(3)
-                .map(|c| [base + c[0], base + c[1], base + c[2]]),
-        );
-        let id = (mesh.material_id)
-            .filter(|&i| i < materials.len())
-            .map_or(u32::MAX, |i| i as u32);
-        out.face_material.resize(before, u32::MAX);
-        out.face_material.resize(out.triangles.len(), id);
-    }
-    if out.face_material.iter().all(|&m| m == u32::MAX) {
-        out.face_material.clear();
-    }
-    out.materials = materials;
-    out.libraries = libraries;
-    out.library_errors = library_errors;
-    // Attributes only when every object of the file has them.
-    if out.normals.len() != out.positions.len() {
-        out.normals.clear();
-    }
-    if out.uvs.len() != out.positions.len() {
-        out.uvs.clear();
-    }
-    Ok(out)
 }
 
 #[derive(Clone, Copy, PartialEq)]

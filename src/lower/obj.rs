@@ -1,0 +1,113 @@
+//! Wavefront OBJ through `tobj`: positions, normals, texture coordinates,
+//! and each face's material from the `mtllib` libraries the file names
+//! (read through the scene's files by the caller's reader).
+
+use super::mesh_data::{LibraryReader, MeshData};
+use glam::{Vec2, Vec3};
+use std::path::{Path, PathBuf};
+
+/// The most material libraries (`mtllib`) an OBJ may name: each is read
+/// once per name, and a hostile file could name one a million times.
+pub const MAX_LIBRARIES: usize = 16;
+
+/// The mesh of an OBJ file's bytes, its libraries read by `library`
+/// relative to `folder`.
+pub(super) fn parse_obj(
+    bytes: &[u8],
+    folder: &Path,
+    library: &mut LibraryReader,
+) -> Result<MeshData, String> {
+    let opts = tobj::LoadOptions {
+        triangulate: true,
+        single_index: true,
+        ..Default::default()
+    };
+    // Material libraries are read through `library` (the scene's files);
+    // one that cannot be read leaves its faces without a material.
+    // (tobj asks through an `Fn`: the reader and the lists are borrowed
+    // mutably inside.)
+    let reader = std::cell::RefCell::new(library);
+    let libraries = std::cell::RefCell::new(Vec::new());
+    let library_errors = std::cell::RefCell::new(Vec::new());
+    let (models, materials) = tobj::load_obj_buf(&mut std::io::Cursor::new(bytes), &opts, |name| {
+        let path = folder.join(name);
+        let failed = |e: String| {
+            (library_errors.borrow_mut()).push(format!("cannot read `{}`: {e}", name.display()));
+        };
+        if libraries.borrow().len() >= MAX_LIBRARIES {
+            if libraries.borrow().len() == MAX_LIBRARIES {
+                failed(format!(
+                    "the file names more than {MAX_LIBRARIES} material libraries"
+                ));
+                libraries.borrow_mut().push(PathBuf::new());
+            }
+            return Err(tobj::LoadError::OpenFileFailed);
+        }
+        libraries.borrow_mut().push(path.clone());
+        let text = (reader.borrow_mut())(&path).map_err(|e| {
+            failed(e);
+            tobj::LoadError::OpenFileFailed
+        })?;
+        let (text, dropped) = super::mtl::readable(&text);
+        for line in dropped {
+            failed(format!(
+                "its line `{line}` is not a colour ptsc reads (three numbers, or one)"
+            ));
+        }
+        tobj::load_mtl_buf(&mut std::io::Cursor::new(text)).inspect_err(|e| failed(e.to_string()))
+    })
+    .map_err(|e| format!("cannot read the OBJ file: {e}"))?;
+    let (mut libraries, library_errors) = (libraries.into_inner(), library_errors.into_inner());
+    libraries.retain(|p| !p.as_os_str().is_empty());
+    let materials = materials.unwrap_or_default();
+    let mut out = MeshData::default();
+    for m in models {
+        let base = out.positions.len() as u32;
+        let mesh = m.mesh;
+        out.positions.extend(
+            mesh.positions
+                .chunks_exact(3)
+                .map(|c| Vec3::new(c[0], c[1], c[2])),
+        );
+        if !mesh.normals.is_empty() && mesh.normals.len() == mesh.positions.len() {
+            out.normals.extend(
+                mesh.normals
+                    .chunks_exact(3)
+                    .map(|c| Vec3::new(c[0], c[1], c[2])),
+            );
+        }
+        // `vt` has (0, 0) at the image's bottom-left, as ptsc.
+        if 3 * mesh.texcoords.len() == 2 * mesh.positions.len() {
+            out.uvs.extend(
+                mesh.texcoords
+                    .chunks_exact(2)
+                    .map(|c| Vec2::new(c[0], c[1])),
+            );
+        }
+        let before = out.triangles.len();
+        out.triangles.extend(
+            mesh.indices
+                .chunks_exact(3)
+                .map(|c| [base + c[0], base + c[1], base + c[2]]),
+        );
+        let id = (mesh.material_id)
+            .filter(|&i| i < materials.len())
+            .map_or(u32::MAX, |i| i as u32);
+        out.face_material.resize(before, u32::MAX);
+        out.face_material.resize(out.triangles.len(), id);
+    }
+    if out.face_material.iter().all(|&m| m == u32::MAX) {
+        out.face_material.clear();
+    }
+    out.materials = materials;
+    out.libraries = libraries;
+    out.library_errors = library_errors;
+    // Attributes only when every object of the file has them.
+    if out.normals.len() != out.positions.len() {
+        out.normals.clear();
+    }
+    if out.uvs.len() != out.positions.len() {
+        out.uvs.clear();
+    }
+    Ok(out)
+}

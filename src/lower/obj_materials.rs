@@ -9,7 +9,13 @@ use super::mtl;
 use crate::check;
 use crate::diag::{codes, Diagnostic, Diagnostics};
 use crate::source::Files;
-use std::collections::BTreeSet;
+use std::collections::{BTreeSet, HashMap};
+use std::path::PathBuf;
+
+/// Per OBJ file, the scene's material for each of its material groups:
+/// a file placed many times (a loop of copies) maps its materials and
+/// warns once.
+type Mapped = HashMap<PathBuf, Vec<(u32, usize)>>;
 
 /// `scene` with each mesh that names no material split by its file's
 /// materials (`None`: no mesh brings any); the warnings go to `warnings`.
@@ -23,10 +29,12 @@ pub fn expand(
     // Made at the first mesh that brings materials (a scene without one
     // copies nothing): the objects so far, then each kept or split.
     let mut out: Option<check::Scene> = None;
+    let mut mapped = Mapped::new();
     for (o, object) in scene.objects.iter().enumerate() {
         let parts = match &object.shape {
             check::Shape::Mesh { group: None, .. } if object.material == default => {
-                split(object, scene, (cache, files), warnings, &mut out, o)
+                let target = (&mut out, &mut mapped);
+                split(object, (scene, o), (cache, files), warnings, target)
             }
             _ => None,
         };
@@ -41,20 +49,58 @@ pub fn expand(
 
 /// The material groups of the mesh `object` (the `o`th of `scene`) as
 /// objects, their materials added to `out` (made, with the objects before
-/// `o`, if not yet); `None` when its file brings no material.
+/// `o`, if not yet) unless `mapped` has them; `None` when its file brings
+/// no material.
 fn split(
     object: &check::Object,
-    scene: &check::Scene,
+    (scene, o): (&check::Scene, usize),
     (cache, files): (&mut LowerCache, &dyn Files),
     warnings: &mut Diagnostics,
-    out: &mut Option<check::Scene>,
-    o: usize,
+    (out, mapped): (&mut Option<check::Scene>, &mut Mapped),
 ) -> Option<Vec<check::Object>> {
     let check::Shape::Mesh {
         path,
         path_span,
         smooth,
         ..
+    } = &object.shape
+    else {
+        return None;
+    };
+    if !mapped.contains_key(path) {
+        let groups = map_file(object, (cache, files), warnings, (scene, o, out))?;
+        mapped.insert(path.clone(), groups);
+    }
+    let groups = mapped.get(path)?;
+    if groups.is_empty() {
+        return None;
+    }
+    let parts = groups.iter().map(|&(group, material)| check::Object {
+        shape: check::Shape::Mesh {
+            path: path.clone(),
+            path_span: *path_span,
+            smooth: *smooth,
+            group: Some(group),
+        },
+        material,
+        ..object.clone()
+    });
+    Some(parts.collect())
+}
+
+/// The material groups of the mesh file of `object` and the scene's
+/// material of each (added to `out`, made from `scene`'s first `o` objects
+/// if not yet); empty when the file brings no material, `None` when it
+/// cannot be read. Warns about its libraries and what its materials ask
+/// that ptsc cannot follow.
+fn map_file(
+    object: &check::Object,
+    (cache, files): (&mut LowerCache, &dyn Files),
+    warnings: &mut Diagnostics,
+    (scene, o, out): (&check::Scene, usize, &mut Option<check::Scene>),
+) -> Option<Vec<(u32, usize)>> {
+    let check::Shape::Mesh {
+        path, path_span, ..
     } = &object.shape
     else {
         return None;
@@ -72,7 +118,7 @@ fn split(
         );
     }
     if data.face_material.is_empty() {
-        return None;
+        return Some(Vec::new());
     }
     let target = out.get_or_insert_with(|| check::Scene {
         objects: scene.objects[..o].to_vec(),
@@ -80,7 +126,7 @@ fn split(
     });
     let folder = path.parent().unwrap_or(std::path::Path::new(""));
     let used: BTreeSet<u32> = data.face_material.iter().copied().collect();
-    let mut parts = Vec::with_capacity(used.len());
+    let mut groups = Vec::with_capacity(used.len());
     for group in used {
         let material = match data.materials.get(group as usize) {
             Some(m) => {
@@ -102,16 +148,7 @@ fn split(
             // Faces without a `usemtl`: the default grey.
             None => object.material,
         };
-        parts.push(check::Object {
-            shape: check::Shape::Mesh {
-                path: path.clone(),
-                path_span: *path_span,
-                smooth: *smooth,
-                group: Some(group),
-            },
-            material,
-            ..object.clone()
-        });
+        groups.push((group, material));
     }
-    Some(parts)
+    Some(groups)
 }

@@ -173,3 +173,27 @@ fn a_library_changed_alone_is_read_again_by_a_kept_cache() {
         "the kept mesh still had the old library"
     );
 }
+
+#[test]
+fn copies_of_one_file_share_its_materials_and_warn_once() {
+    let dir = crate::temp_dir_with(&[("two.mtl", &format!("{MTL}d 0.5\n"))]);
+    std::fs::write(
+        dir.path().join("two.obj"),
+        obj("mtllib two.mtl\n", true, true),
+    )
+    .unwrap();
+    let c = compile(
+        dir.path(),
+        &format!(
+            "{STAGE}for i in 0 .. 2 {{ mesh {{ file \"two.obj\" translate <i * 3, 0, 0> }} }}"
+        ),
+    );
+    let text = c.diagnostics.render_human(&c.sources, false);
+    let ir = c.ir.expect("compiles");
+    // Two copies (`0 .. 2` leaves 2 out), two groups each, the two
+    // materials once.
+    assert_eq!(ir.object_material.len(), 4);
+    let distinct: std::collections::BTreeSet<u32> = ir.object_material.iter().copied().collect();
+    assert_eq!(distinct.len(), 2, "{:?}", ir.object_material);
+    assert_eq!(text.matches("its opacity").count(), 1, "{text}");
+}

@@ -8,7 +8,6 @@ use super::signals::Signals;
 use super::{check::report, Format, Verbosity, EXIT_OK, EXIT_SCENE_ERROR, EXIT_USAGE};
 use crate::check::Animation;
 use crate::compile::{compile_file, Compiled, Options};
-use crate::ir::Scene;
 use crate::lower::cache::LowerCache;
 use crate::render::session::{Mode, Observer, PassDone, Plan, Report, Session, StatePolicy};
 use crate::render::state::Pass;
@@ -138,7 +137,7 @@ fn render_frame(
     let load_s = t0.elapsed().as_secs_f64();
     if verbosity == Verbosity::Verbose {
         let times = (compiled.check_seconds, compiled.lower_seconds);
-        print_loaded(session.scene(), load_s, times, args.memory_limit);
+        print_loaded(&session, load_s, times, args.memory_limit);
     }
     // A time budget's bar runs with the time; else with the samples.
     let budget = session.scene().settings.time;
@@ -209,17 +208,25 @@ fn batch_plan(
 
 /// `--verbose`'s account of the loaded scene: load times, primitives,
 /// lights, and the memory the render takes.
-fn print_loaded(ir: &Scene, load_s: f64, (check_s, lower_s): (f64, f64), limit: Option<u64>) {
+fn print_loaded(
+    session: &Session,
+    load_s: f64,
+    (check_s, lower_s): (f64, f64),
+    limit: Option<u64>,
+) {
     use crate::render::memory;
+    let ir = session.scene();
     eprintln!(
         "loaded in {load_s:.2} s (read and check {check_s:.2} s, lower {lower_s:.2} s): {} primitives, {} lights",
         ir.prim_object.len(),
         ir.lights.len()
     );
+    // What the session checked (half images and output variables
+    // included), with the scene's textures.
+    let film = memory::Need::film((ir.settings.width, ir.settings.height));
     let need = memory::Need {
         textures: ir.texture_bytes(),
-        ..memory::Need::film((ir.settings.width, ir.settings.height))
-            .with_halves(ir.settings.adaptive.is_some())
+        ..session.memory_need().unwrap_or(film)
     };
     let free = memory::available(limit)
         .map(|(bytes, which)| format!("; {} free ({which})", memory::gigabytes(bytes)))
@@ -327,7 +334,9 @@ impl Summary<'_> {
         let interrupted = report.outcome == crate::render::Outcome::Cancelled;
         let paths = report.samples as f64;
         let rays = report.rays;
-        let samples = match (interrupted, report.film.stopped_share()) {
+        // (A uniform render may keep half images, for the variance AOV.)
+        let converged = report.film.stopped_share().filter(|_| s.adaptive.is_some());
+        let samples = match (interrupted, converged) {
             (true, _) => format!(
                 "interrupted: {least} spp in every pixel, up to {most}, {mean:.1} on average"
             ),

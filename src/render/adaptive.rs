@@ -83,16 +83,21 @@ pub fn pass_ends(spp: u32, adaptive: Option<&Adaptive>) -> Vec<u32> {
 /// The noise of a pixel with `count` samples summing to `sum`, of which
 /// those of odd index sum to `odd` (see the module); 0 for a black pixel.
 pub fn error(sum: DVec3, odd: DVec3, count: u32) -> f64 {
-    let n_odd = (count / 2) as f64;
-    let n_even = (count - count / 2) as f64;
-    if n_odd == 0.0 {
+    let Some((even_mean, odd_mean)) = half_means(sum, odd, count) else {
         return f64::INFINITY;
-    }
-    let even_mean = (sum - odd) / n_even;
-    let odd_mean = odd / n_odd;
+    };
     let difference = (even_mean - odd_mean).abs().element_sum() / 2.0;
     let brightness = (sum / count as f64).element_sum().max(0.0);
     difference / (1e-4 + brightness.sqrt())
+}
+
+/// The means of a pixel's even and odd samples (indices 0, 2, … and 1,
+/// 3, …) from the sum of all `count` of them and of the odd ones; `None`
+/// below two samples.
+pub fn half_means(sum: DVec3, odd: DVec3, count: u32) -> Option<(DVec3, DVec3)> {
+    let n_odd = (count / 2) as f64;
+    let n_even = (count - count / 2) as f64;
+    (n_odd > 0.0).then(|| ((sum - odd) / n_even, odd / n_odd))
 }
 
 /// Decides after the pass that brought every sampling pixel to `count`

@@ -176,16 +176,16 @@ pub fn render_aovs(
 /// two samples).
 fn variance_planes(film: &Film) -> Vec<Vec<f32>> {
     let variance = |i: usize| -> Vec3 {
-        let (Some(halves), n) = (&film.halves, film.count[i]) else {
+        let Some(halves) = &film.halves else {
             return Vec3::ZERO;
         };
-        if n < 2 {
-            return Vec3::ZERO;
+        match super::adaptive::half_means(film.sum[i], halves.odd[i], film.count[i]) {
+            Some((even, odd)) => {
+                let half_difference = (even - odd) / 2.0;
+                (half_difference * half_difference).as_vec3()
+            }
+            None => Vec3::ZERO,
         }
-        let (n_odd, n_even) = ((n / 2) as f64, (n - n / 2) as f64);
-        let odd = halves.odd[i];
-        let half_difference = ((film.sum[i] - odd) / n_even - odd / n_odd) / 2.0;
-        (half_difference * half_difference).as_vec3()
     };
     let pixels: Vec<Vec3> = (0..film.count.len()).map(variance).collect();
     (0..3)

@@ -377,6 +377,11 @@ fn the_variance_aov_is_the_variance_of_each_pixels_mean() {
         let args = ["render", path_str(&scene), "--seed", seed, "--aov", aov];
         let (code, err) = ptsc_stderr(&[&args[..], &["-o", path_str(&out)]].concat());
         assert_eq!(code, 0, "{err}");
+        // The half images kept for the variance make no adaptive render.
+        assert!(
+            err.contains(" 16 spp in ") && !err.contains("converged"),
+            "{err}"
+        );
         images.push(out);
     }
     let (mut difference, mut estimate) = (0.0, 0.0);

@@ -43,6 +43,9 @@ pub(super) struct Batch {
     pub(super) denoise: bool,
     /// The tev viewer the passes are shown in (`--tev`).
     pub(super) tev: Option<crate::output::tev::Tev>,
+    /// The memory the render takes beyond the scene (checked before it
+    /// starts; `--verbose` prints it).
+    pub(super) need: Need,
 }
 
 /// Why the render must not start (a state the image would replace, a
@@ -134,6 +137,7 @@ pub(super) fn prepare(
         aovs,
         denoise,
         tev,
+        need,
     };
     Ok((batch, start.film))
 }
@@ -270,7 +274,7 @@ fn render_passes(
         observer.pass(&PassDone {
             elapsed: last_pass.elapsed(),
             total: t1.elapsed(),
-            ..PassDone::of(film, (spp, target), number)
+            ..PassDone::of(film, s.adaptive.is_some(), (spp, target), number)
         });
         last_pass = Instant::now();
         viewer.pass(film, spp >= target, observer);

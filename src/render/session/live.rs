@@ -134,7 +134,7 @@ pub(super) fn run(
                 elapsed: last.elapsed(),
                 total: t0.elapsed(),
                 image: Some(&result),
-                ..PassDone::of(film, (spp, s.samples), number)
+                ..PassDone::of(film, s.adaptive.is_some(), (spp, s.samples), number)
             });
             last = Instant::now();
         },

@@ -200,6 +200,16 @@ impl Session {
         }
     }
 
+    /// The memory a batch render takes beyond the scene's own (its film,
+    /// half images and output variables), as checked before it starts;
+    /// `None` for a live render.
+    pub fn memory_need(&self) -> Option<crate::render::memory::Need> {
+        match &self.kind {
+            Kind::Batch(batch, _) => Some(batch.need),
+            Kind::Live { .. } => None,
+        }
+    }
+
     /// Pixel samples the film ends with.
     pub fn samples_total(&self) -> u64 {
         let s = &self.scene.settings;

@@ -57,15 +57,22 @@ pub struct PassDone<'a> {
 }
 
 impl PassDone<'_> {
-    /// A pass that brought `film` to `spp` on the way to `target`.
-    pub(super) fn of(film: &Film, (spp, target): (u32, u32), number: u32) -> PassDone<'static> {
+    /// A pass that brought `film` to `spp` on the way to `target`; the
+    /// share converged only when the render samples `adaptive`ly (a film
+    /// may keep half images for the variance AOV alone).
+    pub(super) fn of(
+        film: &Film,
+        adaptive: bool,
+        (spp, target): (u32, u32),
+        number: u32,
+    ) -> PassDone<'static> {
         PassDone {
             number,
             spp,
             elapsed: Duration::ZERO,
             total: Duration::ZERO,
             image: None,
-            converged: film.stopped_share(),
+            converged: film.stopped_share().filter(|_| adaptive),
             samples_left: film.active_pixels() * target.saturating_sub(spp) as u64,
         }
     }

@@ -83,20 +83,8 @@ pub fn material(p: &Params, name: Option<String>, span: Span, diags: &mut Diagno
     } else {
         for name in PRINCIPLED_ONLY {
             if let Some((_, s)) = p.get(name) {
-                let model = match m.kind {
-                    MaterialKind::Mix => "the mix of lobes",
-                    MaterialKind::Conductor { .. } => "a conductor",
-                    MaterialKind::Plastic => "a plastic",
-                    MaterialKind::Dielectric => "a dielectric",
-                    MaterialKind::ThinDielectric => "a thin dielectric",
-                    MaterialKind::Principled(_) => "a principled material",
-                };
-                diags.push(no_effect(
-                    name,
-                    model,
-                    *s,
-                    "it is a parameter of `type principled`",
-                ));
+                let help = "it is a parameter of `type principled`";
+                diags.push(no_effect(name, model_name(&m.kind), *s, help));
             }
         }
         m.textures.retain(|(input, _)| {
@@ -238,7 +226,7 @@ fn mix_checks(p: &Params, m: &mut Material, diags: &mut Diagnostics) {
     if let Some((_, s)) = p.get("roughness") {
         diags.push(no_effect(
             "roughness",
-            "the mix of lobes",
+            model_name(&MaterialKind::Mix),
             *s,
             "`roughness <u, v>` roughens a metal (`type conductor`); here, roughen the reflection with `gloss`",
         ));
@@ -249,7 +237,7 @@ fn mix_checks(p: &Params, m: &mut Material, diags: &mut Diagnostics) {
         if let Some((_, s)) = p.get(name).filter(|_| !p.given("type")) {
             diags.push(no_effect(
                 name,
-                "the mix of lobes",
+                model_name(&MaterialKind::Mix),
                 *s,
                 "write `type conductor` to make a metal",
             ));
@@ -364,33 +352,41 @@ fn no_effect(name: &str, model: &str, span: Span, help: &str) -> Diagnostic {
     .with_help(help.to_string())
 }
 
+/// What a material model is called in diagnostics.
+fn model_name(kind: &MaterialKind) -> &'static str {
+    match kind {
+        MaterialKind::Mix => "the mix of lobes",
+        MaterialKind::Conductor { .. } => "a conductor",
+        MaterialKind::Plastic => "a plastic",
+        MaterialKind::Dielectric => "a dielectric",
+        MaterialKind::ThinDielectric => "a thin dielectric",
+        MaterialKind::Principled(_) => "a principled material",
+    }
+}
+
 /// The defaults of the models other than the mix, and the parameters they
 /// ignore.
 fn model_checks(p: &Params, m: &mut Material, diags: &mut Diagnostics) {
-    let (model, ignored, help): (&str, &[&str], &str) = match m.kind {
+    let model = model_name(&m.kind);
+    let (ignored, help): (&[&str], &str) = match m.kind {
         MaterialKind::Conductor { .. } => (
-            "a conductor",
             &["diffuse", "transmission", "absorption", "ior"],
             "a metal is its `preset` (or `eta` and `k`), tinted by `reflection` and roughened by `gloss`",
         ),
         MaterialKind::Plastic => (
-            "a plastic",
             &["transmission", "absorption", "preset", "eta", "k", "multiscatter", "roughness"],
             "a plastic is its `diffuse` base under a coat of index `ior`, roughened by `gloss`",
         ),
         MaterialKind::Dielectric => (
-            "a dielectric",
             &["diffuse", "reflection", "transmission", "preset", "eta", "k", "multiscatter", "roughness"],
             "glass is its `ior`, `gloss` (frosting) and `absorption` inside",
         ),
         MaterialKind::Mix => return,
         MaterialKind::Principled(_) => (
-            "a principled material",
             &["diffuse", "reflection", "preset", "eta", "k", "multiscatter"],
             "a principled material is its `base_color`, `metallic`, `gloss` (or `roughness`), `specular` (or `ior`), `transmission`, `sheen` and `clearcoat`",
         ),
         MaterialKind::ThinDielectric => (
-            "a thin dielectric",
             &[
                 "diffuse",
                 "reflection",

@@ -242,7 +242,12 @@ pub fn gather(
             }
         }
         let prototype = *prototype_of.entry(leaf.group).or_insert_with(|| {
-            match shapes::gather(&group.objects, scene.camera.shutter, (cache, files)) {
+            match shapes::gather(
+                &group.objects,
+                scene.camera.shutter,
+                (cache, files),
+                Default::default(),
+            ) {
                 Ok(g) => {
                     out.bounds.push(g.bounds());
                     let parts = (object_materials(group), object_frames(group));

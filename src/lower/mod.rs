@@ -71,11 +71,14 @@ pub fn lower(
     // others share their group's prototype.
     let split = instances::split(scene);
     let flat = split.scene.as_ref().unwrap_or(scene);
-    // Meshes without a material take their OBJ file's.
-    let expanded = obj_materials::expand(flat, (cache, files), warnings);
+    // Meshes without a material take their OBJ file's (each mesh is read
+    // once: the reads go on to the gathering).
+    let mut reads = shapes::MeshReads::new();
+    let expanded = obj_materials::expand(flat, (cache, files, &mut reads), warnings);
     let flat = expanded.as_ref().unwrap_or(flat);
     let coats = material::Coats::default();
-    let prepared = prepare(scene, flat, &split, adjust, (cache, files, coats), warnings)?;
+    let reading = (&mut *cache, files, coats, reads);
+    let prepared = prepare(scene, flat, &split, adjust, reading, warnings)?;
     Ok(prepared.build(flat, cache))
 }
 
@@ -90,7 +93,8 @@ pub fn validate(
 ) -> Diagnostics {
     let split = instances::split(scene);
     let flat = split.scene.as_ref().unwrap_or(scene);
-    let expanded = obj_materials::expand(flat, (cache, files), warnings);
+    let mut reads = shapes::MeshReads::new();
+    let expanded = obj_materials::expand(flat, (cache, files, &mut reads), warnings);
     let flat = expanded.as_ref().unwrap_or(flat);
     let coats = material::Coats::for_checking();
     match prepare(
@@ -98,7 +102,7 @@ pub fn validate(
         flat,
         &split,
         &|_| {},
-        (cache, files, coats),
+        (cache, files, coats, reads),
         warnings,
     ) {
         Ok(_) => Diagnostics::new(),
@@ -136,7 +140,12 @@ fn prepare(
     flat: &check::Scene,
     split: &instances::Split,
     adjust: &dyn Fn(&mut Settings),
-    (cache, files, mut coats): (&mut LowerCache, &dyn Files, material::Coats),
+    (cache, files, mut coats, reads): (
+        &mut LowerCache,
+        &dyn Files,
+        material::Coats,
+        shapes::MeshReads,
+    ),
     warnings: &mut Diagnostics,
 ) -> Result<Prepared, Diagnostics> {
     let mut settings = flat.render.settings.clone();
@@ -160,7 +169,7 @@ fn prepare(
     let shapes = match key.and_then(|k| cache.reuse_geometry(k)) {
         // Shared, not copied: materials and lights live outside the geometry.
         Some(g) => Ok(Shapes::Kept(g)),
-        None => shapes::gather(&flat.objects, flat.camera.shutter, (cache, files))
+        None => shapes::gather(&flat.objects, flat.camera.shutter, (cache, files), reads)
             .map(|g| Shapes::Gathered(g, key))
             .map_err(|d| diags.extend(d)),
     };

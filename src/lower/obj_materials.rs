@@ -6,6 +6,7 @@
 
 use super::cache::LowerCache;
 use super::mtl;
+use super::shapes::{read_mesh, MeshReads};
 use crate::check;
 use crate::diag::{codes, Diagnostic, Diagnostics};
 use crate::source::Files;
@@ -20,9 +21,10 @@ type Mapped = HashMap<PathBuf, Vec<(u32, usize)>>;
 /// `scene` with each mesh that names no material split by its file's
 /// materials (`None`: no mesh brings any); the warnings go to `warnings`.
 /// A mesh that cannot be read is left as it is (lowering reports it).
+/// The meshes read go to `reads`, for the gathering to use.
 pub fn expand(
     scene: &check::Scene,
-    (cache, files): (&mut LowerCache, &dyn Files),
+    (cache, files, reads): (&mut LowerCache, &dyn Files, &mut MeshReads),
     warnings: &mut Diagnostics,
 ) -> Option<check::Scene> {
     let default = scene.default_material?;
@@ -34,7 +36,7 @@ pub fn expand(
         let parts = match &object.shape {
             check::Shape::Mesh { group: None, .. } if object.material == default => {
                 let target = (&mut out, &mut mapped);
-                split(object, (scene, o), (cache, files), warnings, target)
+                split(object, (scene, o), (cache, files, reads), warnings, target)
             }
             _ => None,
         };
@@ -54,7 +56,7 @@ pub fn expand(
 fn split(
     object: &check::Object,
     (scene, o): (&check::Scene, usize),
-    (cache, files): (&mut LowerCache, &dyn Files),
+    reading: (&mut LowerCache, &dyn Files, &mut MeshReads),
     warnings: &mut Diagnostics,
     (out, mapped): (&mut Option<check::Scene>, &mut Mapped),
 ) -> Option<Vec<check::Object>> {
@@ -68,7 +70,7 @@ fn split(
         return None;
     };
     if !mapped.contains_key(path) {
-        let groups = map_file(object, (cache, files), warnings, (scene, o, out))?;
+        let groups = map_file(object, reading, warnings, (scene, o, out))?;
         mapped.insert(path.clone(), groups);
     }
     let groups = mapped.get(path)?;
@@ -95,7 +97,7 @@ fn split(
 /// that ptsc cannot follow.
 fn map_file(
     object: &check::Object,
-    (cache, files): (&mut LowerCache, &dyn Files),
+    (cache, files, reads): (&mut LowerCache, &dyn Files, &mut MeshReads),
     warnings: &mut Diagnostics,
     (scene, o, out): (&check::Scene, usize, &mut Option<check::Scene>),
 ) -> Option<Vec<(u32, usize)>> {
@@ -105,7 +107,7 @@ fn map_file(
     else {
         return None;
     };
-    let data = cache.mesh(files, path).ok()?;
+    let data = read_mesh(reads, (cache, files), path).ok()?;
     for error in &data.library_errors {
         warnings.push(
             Diagnostic::warning(

@@ -90,7 +90,7 @@ struct Gathering<'a> {
     wanted: u64,
     /// The meshes read so far by path: an object copied by many
     /// placements reads its file once.
-    meshes: HashMap<PathBuf, Result<Arc<MeshData>, String>>,
+    meshes: MeshReads,
     /// The world vertices of meshes split by their materials, by path and
     /// transform: one copy for all the groups.
     positions: HashMap<(PathBuf, [u64; 16]), Arc<Vec<Vec3>>>,
@@ -99,12 +99,31 @@ struct Gathering<'a> {
     files: &'a dyn Files,
 }
 
+/// Mesh files read in one compile, by path: each is read once, whoever
+/// asks first (the split by an OBJ's materials, then the gathering).
+pub type MeshReads = HashMap<PathBuf, Result<Arc<MeshData>, String>>;
+
+/// The mesh at `path` from `reads`, read through `cache` the first time.
+pub fn read_mesh(
+    reads: &mut MeshReads,
+    (cache, files): (&mut LowerCache, &dyn Files),
+    path: &std::path::Path,
+) -> Result<Arc<MeshData>, String> {
+    if let Some(read) = reads.get(path) {
+        return read.clone();
+    }
+    let read = cache.mesh(files, path);
+    reads.insert(path.to_path_buf(), read.clone());
+    read
+}
+
 /// The primitives of `objects` over the shutter interval, or every problem
-/// they have.
+/// they have; the meshes already in `reads` are not read again.
 pub fn gather(
     objects: &[check::Object],
     (t0, t1): (f64, f64),
     (cache, files): (&mut LowerCache, &dyn Files),
+    reads: MeshReads,
 ) -> Result<Gathered, Diagnostics> {
     let mut g = Gathering {
         out: Gathered {
@@ -114,7 +133,7 @@ pub fn gather(
         out_of_range: None,
         too_small: None,
         wanted: 0,
-        meshes: HashMap::new(),
+        meshes: reads,
         positions: HashMap::new(),
         diags: Diagnostics::new(),
         cache,
@@ -221,14 +240,9 @@ impl Gathering<'_> {
         pos
     }
 
-    /// The mesh at `path`, read once per gathering.
+    /// The mesh at `path`, read once per compile.
     fn read_mesh(&mut self, path: &std::path::Path) -> Result<Arc<MeshData>, String> {
-        if let Some(read) = self.meshes.get(path) {
-            return read.clone();
-        }
-        let read = self.cache.mesh(self.files, path);
-        self.meshes.insert(path.to_path_buf(), read.clone());
-        read
+        read_mesh(&mut self.meshes, (self.cache, self.files), path)
     }
 
     /// Counts the primitives `objects` make into `wanted` (a mesh its

@@ -197,3 +197,27 @@ fn copies_of_one_file_share_its_materials_and_warn_once() {
     assert_eq!(distinct.len(), 2, "{:?}", ir.object_material);
     assert_eq!(text.matches("its opacity").count(), 1, "{text}");
 }
+
+#[test]
+fn a_render_reads_each_mesh_file_once() {
+    use ptsc::compile::compile_str;
+    use ptsc::lower::cache::LowerCache;
+    let dir = crate::temp_dir_with(&[("two.mtl", MTL)]);
+    std::fs::write(
+        dir.path().join("two.obj"),
+        obj("mtllib two.mtl\n", true, true),
+    )
+    .unwrap();
+    std::fs::write(dir.path().join("plain.obj"), obj("", true, false)).unwrap();
+    let path = dir.path().join("scene.pts");
+    // A mesh split by its materials, and one that brings none: the split
+    // reads both, and the gathering takes what it read.
+    let text = format!("{STAGE}mesh {{ file \"two.obj\" }}\nmesh {{ file \"plain.obj\" }}");
+    let mut cache = LowerCache::one_off();
+    let options = Options {
+        cache: Some(&mut cache),
+        ..Options::default()
+    };
+    assert!(compile_str(&path, &text, options).ir.is_some());
+    assert_eq!(cache.mesh_loads, 2);
+}

@@ -40,7 +40,7 @@ pub fn material(p: &Params, name: Option<String>, span: Span, diags: &mut Diagno
     // brightest texel is known only once it is read: 1 until then).
     for (input, t) in &m.textures {
         let bright = match t.kind {
-            TextureKind::Image { .. } => [1.0; 3],
+            TextureKind::Image { factor, .. } => factor,
             _ => t.brightest(),
         };
         let number = bright.iter().cloned().fold(0.0, f64::max).min(1.0);

@@ -74,6 +74,11 @@ pub enum TextureKind {
         color_space: Option<ColorSpace>,
         /// Whether `path` is relative to the scene file's folder yet.
         resolved: bool,
+        /// Multiplies every texel (a glTF material's factor; 1 otherwise).
+        factor: Rgb,
+        /// The channel read where one number is wanted (`None`: the
+        /// luminance).
+        channel: Option<crate::texture::image::Channel>,
     },
 }
 

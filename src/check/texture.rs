@@ -87,6 +87,8 @@ pub fn check_texture(
                     .unwrap_or(Wrap::Repeat),
                 color_space: word("color_space").and_then(|w| ColorSpace::from_name(&w)),
                 resolved: false,
+                factor: [1.0; 3],
+                channel: None,
             }
         }
         "checker" => TextureKind::Checker,

@@ -91,7 +91,7 @@ pub fn ply(bytes: &[u8]) -> bool {
 /// reads as the same bytes (so that its `usemtl` lines find materials), and
 /// each triangle's material is one of them or none.
 pub fn obj(bytes: &[u8]) -> bool {
-    let parsed = mesh::parse_with(Path::new("fuzz.obj"), bytes, &mut |_| Ok(bytes.to_vec()));
+    let parsed = mesh::parse_with(Path::new("fuzz.obj"), bytes, &mut |_, _| Ok(bytes.to_vec()));
     if let Ok(m) = &parsed {
         assert!(m.face_material.is_empty() || m.face_material.len() == m.triangles.len());
         let n = m.materials.len() as u32;

@@ -233,9 +233,16 @@ fn lower_texture(
             path_span,
             wrap,
             color_space,
+            factor,
+            channel,
             ..
         } => match images.get(files, path, encoding(*color_space, data)) {
-            Ok(image) => Pattern::Image { image, wrap: *wrap },
+            Ok(image) => Pattern::Image {
+                image,
+                wrap: *wrap,
+                factor: DVec3::from_array(*factor).as_vec3(),
+                channel: *channel,
+            },
             Err(e) => {
                 diags.push(
                     Diagnostic::error(

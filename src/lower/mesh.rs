@@ -19,8 +19,8 @@ pub fn load(files: &dyn Files, path: &Path) -> Result<MeshData, String> {
 }
 
 /// Reads material libraries through `files`, at most [`MAX_MTL_BYTES`].
-pub fn library_reader(files: &dyn Files) -> impl FnMut(&Path) -> Result<Vec<u8>, String> + '_ {
-    move |path: &Path| files.read(path, MAX_MTL_BYTES).map_err(|e| e.to_string())
+pub fn library_reader(files: &dyn Files) -> impl FnMut(&Path, u64) -> Result<Vec<u8>, String> + '_ {
+    move |path: &Path, limit: u64| files.read(path, limit).map_err(|e| e.to_string())
 }
 
 /// The bytes of a mesh file, at most [`MAX_MESH_BYTES`].
@@ -31,7 +31,7 @@ pub fn read(files: &dyn Files, path: &Path) -> Result<Vec<u8>, String> {
 /// Parses the bytes of an OBJ or PLY file (the format follows `path`'s
 /// extension) and validates the result, reading no material library.
 pub fn parse(path: &Path, bytes: &[u8]) -> Result<MeshData, String> {
-    parse_with(path, bytes, &mut |_| Err("not read".to_string()))
+    parse_with(path, bytes, &mut |_, _| Err("not read".to_string()))
 }
 
 /// [`parse`], an OBJ's material libraries read by `library`.
@@ -48,7 +48,8 @@ pub fn parse_with(
     let mesh = match ext.as_deref() {
         Some("obj") => super::obj::parse_obj(bytes, folder, library)?,
         Some("ply") => parse_ply(bytes)?,
-        _ => return Err("unknown mesh format (expected .obj or .ply)".into()),
+        Some("gltf" | "glb") => super::gltf::parse_gltf(bytes, path, library)?,
+        _ => return Err("unknown mesh format (expected .obj, .ply, .gltf or .glb)".into()),
     };
     if mesh.triangles.is_empty() {
         return Err("the mesh has no triangles".into());

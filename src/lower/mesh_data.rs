@@ -1,11 +1,16 @@
 //! What a mesh file holds once read (`mesh.rs` reads PLY, `obj.rs` OBJ).
 
-use glam::{Vec2, Vec3};
+use crate::check::Material;
+use glam::{DMat4, Vec2, Vec3};
+use std::borrow::Cow;
+use std::ops::Range;
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 
-/// Reads a material library an OBJ names (its path resolved against the
-/// OBJ's folder); the error is a sentence.
-pub type LibraryReader<'a> = dyn FnMut(&Path) -> Result<Vec<u8>, String> + 'a;
+/// Reads a file a mesh file names (an OBJ's material library, a glTF's
+/// buffer; its path resolved against the mesh file's folder), at most the
+/// given bytes; the error is a sentence.
+pub type LibraryReader<'a> = dyn FnMut(&Path, u64) -> Result<Vec<u8>, String> + 'a;
 
 /// Triangles with optional per-vertex normals and texture coordinates.
 #[derive(Debug, Clone, Default)]
@@ -24,8 +29,122 @@ pub struct MeshData {
     pub face_material: Vec<u32>,
     /// The materials of the OBJ's libraries (`mtllib`), as `tobj` reads them.
     pub materials: Vec<tobj::Material>,
-    /// The libraries read (to watch and to revalidate a cached mesh).
+    /// The libraries read (to watch and to revalidate a cached mesh): an
+    /// OBJ's `.mtl` files, a glTF's external buffers.
     pub libraries: Vec<PathBuf>,
     /// Why a library could not be read, one sentence each.
     pub library_errors: Vec<String>,
+    /// What a scene file (glTF) places: its nodes, primitives and
+    /// materials (`None` for OBJ and PLY).
+    pub scene: Option<Box<FileScene>>,
+}
+
+/// A scene file's structure over the triangles of its [`MeshData`]: each
+/// primitive is a part (its own vertices and triangles), each node that
+/// places a mesh a placement of that mesh's parts.
+#[derive(Debug, Clone, Default)]
+pub struct FileScene {
+    /// The primitives read.
+    pub parts: Vec<Part>,
+    /// The placements of meshes by the file's nodes, in the file's frame.
+    pub placed: Vec<Placed>,
+    /// The file's materials in ptsc's terms (spans set where a statement
+    /// places the file).
+    pub materials: Vec<Material>,
+    /// Images held inside the file (GLB chunks, data URIs) under the
+    /// paths its materials' textures read them by.
+    pub embedded: Vec<(PathBuf, Arc<Vec<u8>>)>,
+    /// What the file asks that ptsc does not follow, one sentence each.
+    pub notes: Vec<String>,
+}
+
+/// One primitive: its vertices and triangles (ranges in the mesh data;
+/// the triangles' indices point into the whole vertex list).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Part {
+    /// The glTF mesh it belongs to.
+    pub mesh: u32,
+    /// Its vertices.
+    pub vertices: Range<u32>,
+    /// Its triangles.
+    pub triangles: Range<u32>,
+    /// Its material (index into [`FileScene::materials`]), if it has one.
+    pub material: Option<u32>,
+}
+
+/// A node that places a mesh.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Placed {
+    /// The mesh (as [`Part::mesh`]).
+    pub mesh: u32,
+    /// Node → file frame: the node's and its ancestors' transforms.
+    pub transform: DMat4,
+    /// The node's name, or `#index`.
+    pub node: String,
+}
+
+impl MeshData {
+    /// The vertices and triangles of part `group` of a scene file, or of
+    /// material group `group` of an OBJ (every vertex), or all: the
+    /// positions, normals and texture coordinates the triangles' indices
+    /// point into.
+    pub fn view(&self, group: Option<u32>) -> MeshView<'_> {
+        let part = (self.scene.as_ref()).and_then(|s| s.parts.get(group? as usize));
+        let Some(part) = part else {
+            let material = |k: usize| self.face_material.get(k).copied().unwrap_or(u32::MAX);
+            let triangles = match group {
+                None => Cow::Borrowed(&self.triangles[..]),
+                Some(g) => (self.triangles.iter().enumerate())
+                    .filter(|(k, _)| material(*k) == g)
+                    .map(|(_, t)| *t)
+                    .collect(),
+            };
+            return MeshView {
+                positions: &self.positions,
+                normals: &self.normals,
+                uvs: &self.uvs,
+                triangles,
+                part: false,
+            };
+        };
+        let v = part.vertices.start as usize..part.vertices.end as usize;
+        let base = part.vertices.start;
+        MeshView {
+            positions: self.positions.get(v.clone()).unwrap_or(&[]),
+            normals: self.normals.get(v.clone()).unwrap_or(&[]),
+            uvs: self.uvs.get(v.clone()).unwrap_or(&[]),
+            triangles: (self.triangles[part.triangles.start as usize..part.triangles.end as usize])
+                .iter()
+                .map(|t| t.map(|i| i - base))
+                .collect(),
+            part: true,
+        }
+    }
+
+    /// How many triangles [`MeshData::view`] of `group` has.
+    pub fn count(&self, group: Option<u32>) -> usize {
+        match (self.scene.as_ref()).and_then(|s| s.parts.get(group? as usize)) {
+            Some(part) => part.triangles.len(),
+            None => match group {
+                Some(g) => (self.face_material.iter()).filter(|&&m| m == g).count(),
+                None => self.triangles.len(),
+            },
+        }
+    }
+}
+
+/// Part of a mesh: its triangles with indices into its own vertex lists.
+#[derive(Debug)]
+pub struct MeshView<'a> {
+    /// Vertex positions.
+    pub positions: &'a [Vec3],
+    /// Vertex normals (empty: none).
+    pub normals: &'a [Vec3],
+    /// Vertex texture coordinates (empty: none).
+    pub uvs: &'a [Vec2],
+    /// Triangles as indices into the lists above.
+    pub triangles: Cow<'a, [[u32; 3]]>,
+    /// Whether it is a scene file's part (its own vertices), not all the
+    /// file's vertices.
+    pub part: bool,
 }

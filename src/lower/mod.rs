@@ -10,6 +10,10 @@ pub mod decode;
 mod environment;
 pub mod fingerprint;
 mod geometry;
+pub mod gltf;
+mod gltf_accessor;
+mod gltf_material;
+mod gltf_place;
 pub mod image;
 mod instances;
 mod lights;
@@ -67,13 +71,22 @@ pub fn lower(
     (cache, files): (&mut LowerCache, &dyn Files),
     warnings: &mut Diagnostics,
 ) -> Result<Scene, Diagnostics> {
+    // glTF files become their objects and placements (each mesh file is
+    // read once: the reads go on to the gathering).
+    let mut reads = shapes::MeshReads::new();
+    let placed = gltf_place::place(scene, (cache, files, &mut reads), warnings);
+    let scene = placed.scene.as_ref().unwrap_or(scene);
+    let over = placed.embedded.over(files);
+    let files: &dyn Files = if placed.embedded.is_empty() {
+        files
+    } else {
+        &over
+    };
     // Placements of groups placed once become the scene's objects; the
     // others share their group's prototype.
     let split = instances::split(scene);
     let flat = split.scene.as_ref().unwrap_or(scene);
-    // Meshes without a material take their OBJ file's (each mesh is read
-    // once: the reads go on to the gathering).
-    let mut reads = shapes::MeshReads::new();
+    // Meshes without a material take their OBJ file's.
     let expanded = obj_materials::expand(flat, (cache, files, &mut reads), warnings);
     let flat = expanded.as_ref().unwrap_or(flat);
     let coats = material::Coats::default();
@@ -91,9 +104,17 @@ pub fn validate(
     (cache, files): (&mut LowerCache, &dyn Files),
     warnings: &mut Diagnostics,
 ) -> Diagnostics {
+    let mut reads = shapes::MeshReads::new();
+    let placed = gltf_place::place(scene, (cache, files, &mut reads), warnings);
+    let scene = placed.scene.as_ref().unwrap_or(scene);
+    let over = placed.embedded.over(files);
+    let files: &dyn Files = if placed.embedded.is_empty() {
+        files
+    } else {
+        &over
+    };
     let split = instances::split(scene);
     let flat = split.scene.as_ref().unwrap_or(scene);
-    let mut reads = shapes::MeshReads::new();
     let expanded = obj_materials::expand(flat, (cache, files, &mut reads), warnings);
     let flat = expanded.as_ref().unwrap_or(flat);
     let coats = material::Coats::for_checking();

@@ -148,6 +148,8 @@ fn image(r: &TextureRef, folder: &Path, span: Span) -> Texture {
             wrap: if r.clamp { Wrap::Clamp } else { Wrap::Repeat },
             color_space: None,
             resolved: true,
+            factor: [1.0; 3],
+            channel: None,
         },
         colors: vec![(0.0, [1.0; 3]), (1.0, [0.0; 3])],
         space: TextureSpace::Uv,

@@ -215,7 +215,7 @@ fn an_obj_names_a_bounded_number_of_libraries() {
     }
     obj += "v 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl A\nf 1 2 3\n";
     let mut reads = 0;
-    let m = parse_with(Path::new("m.obj"), obj.as_bytes(), &mut |_| {
+    let m = parse_with(Path::new("m.obj"), obj.as_bytes(), &mut |_, _| {
         reads += 1;
         Ok(b"newmtl A\nKd 1 0 0\n".to_vec())
     })

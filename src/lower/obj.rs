@@ -44,7 +44,8 @@ pub(super) fn parse_obj(
             return Err(tobj::LoadError::OpenFileFailed);
         }
         libraries.borrow_mut().push(path.clone());
-        let text = (reader.borrow_mut())(&path).map_err(|e| {
+        let limit = super::mesh::MAX_MTL_BYTES;
+        let text = (reader.borrow_mut())(&path, limit).map_err(|e| {
             failed(e);
             tobj::LoadError::OpenFileFailed
         })?;

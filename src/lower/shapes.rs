@@ -68,14 +68,6 @@ impl Gathered {
     }
 }
 
-/// The triangles of `data` in material `group` (all without one).
-fn in_group(data: &MeshData, group: Option<u32>) -> impl Iterator<Item = &[u32; 3]> + '_ {
-    let material = |k: usize| data.face_material.get(k).copied().unwrap_or(u32::MAX);
-    (data.triangles.iter().enumerate())
-        .filter(move |(k, _)| group.is_none_or(|g| material(*k) == g))
-        .map(|(_, t)| t)
-}
-
 /// The most primitives a scene (or a group's prototype) may make, a mesh
 /// triangle counting one: about 4 GB once built (docs/language.md, "Limits").
 pub const MAX_PRIMITIVES: usize = 50_000_000;
@@ -215,14 +207,14 @@ impl Gathering<'_> {
         self.out.prims.push(Prim { shape, velocity }, o as u32);
     }
 
-    /// The vertices of the mesh at `path` (read as `data`) under `m`:
-    /// computed once for the material groups of one statement (`shared`),
-    /// each a part of the same mesh.
+    /// The vertices `positions` of the mesh at `path` under `m`: computed
+    /// once for the material groups of one statement (`shared`), each a
+    /// part of the same mesh.
     fn world_positions(
         &mut self,
         path: &std::path::Path,
         m: &glam::DMat4,
-        data: &MeshData,
+        positions: &[Vec3],
         shared: bool,
     ) -> Arc<Vec<Vec3>> {
         let key = (path.to_path_buf(), m.to_cols_array().map(f64::to_bits));
@@ -230,7 +222,7 @@ impl Gathering<'_> {
             return pos.clone();
         }
         let pos: Arc<Vec<Vec3>> = Arc::new(
-            (data.positions.iter())
+            (positions.iter())
                 .map(|p| m.transform_point3(p.as_dvec3()).as_vec3())
                 .collect(),
         );
@@ -253,7 +245,7 @@ impl Gathering<'_> {
         for (o, obj) in objects.iter().enumerate() {
             self.wanted += match &obj.shape {
                 check::Shape::Mesh { path, group, .. } => {
-                    (self.read_mesh(path)).map_or(0, |d| in_group(&d, *group).count() as u64)
+                    (self.read_mesh(path)).map_or(0, |d| d.count(*group) as u64)
                 }
                 check::Shape::Box { .. } => 6,
                 _ => 1,
@@ -347,7 +339,7 @@ impl Gathering<'_> {
                         path_span,
                     )
                     .with_label(e)
-                    .with_help("meshes are OBJ or PLY files with at least one triangle"),
+                    .with_help("meshes are OBJ, PLY or glTF files with at least one triangle"),
                 );
                 return;
             }
@@ -355,21 +347,23 @@ impl Gathering<'_> {
         let m = obj.transform;
         let velocity = obj.velocity.as_vec3();
         let flip = m.determinant() < 0.0;
-        let pos = self.world_positions(path, &m, &data, group.is_some());
+        let view = data.view(group);
+        let shared = group.is_some() && !view.part;
+        let pos = self.world_positions(path, &m, view.positions, shared);
         // The vertices' box, where the motion takes it: as the other shapes.
         let reach = pos.iter().fold(Aabb::EMPTY, |b, p| b.grow(*p));
         if !within_domain(reach, velocity, self.out.shutter) {
             self.out_of_range.get_or_insert(o);
         }
         let nm = m.inverse().transpose();
-        let use_normals = smooth && !data.normals.is_empty();
+        let use_normals = smooth && !view.normals.is_empty();
         let vnormals: Vec<Vec3> = match use_normals {
-            true => (data.normals.iter())
+            true => (view.normals.iter())
                 .map(|n| unit_f32(nm.transform_vector3(n.as_dvec3())))
                 .collect(),
             false => Vec::new(),
         };
-        let use_uvs = !data.uvs.is_empty();
+        let use_uvs = !view.uvs.is_empty();
         if !use_uvs {
             self.out.meshes_without_uvs.push(o as u32);
         }
@@ -378,13 +372,13 @@ impl Gathering<'_> {
         let plain = !use_normals && !use_uvs && velocity == Vec3::ZERO;
         let mut kept: Vec<[u32; 3]> = Vec::new();
         if plain {
-            kept.reserve_exact(data.triangles.len());
+            kept.reserve_exact(view.triangles.len());
         } else {
-            self.out.prims.records.reserve(data.triangles.len());
+            self.out.prims.records.reserve(view.triangles.len());
         }
         let mut degenerate = 0usize;
         let mut total = 0usize;
-        for t in in_group(&data, group) {
+        for t in view.triangles.iter() {
             total += 1;
             // Stored wound as rendered; vertex attributes stay in the
             // file's order (`Shape::own_uv` reads them so).
@@ -399,7 +393,7 @@ impl Gathering<'_> {
                 kept.push([a, b, c]);
                 continue;
             }
-            let attributes = self.out.attributes(*t, &vnormals, &data.uvs);
+            let attributes = self.out.attributes(*t, &vnormals, view.uvs);
             let shape = Shape::Triangle {
                 p0,
                 e1,

@@ -51,6 +51,29 @@ impl Wrap {
     }
 }
 
+/// One channel of an image read as a number (a glTF metallic-roughness
+/// map keeps roughness in green and metallic in blue).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Channel {
+    /// The first channel.
+    Red,
+    /// The second channel.
+    Green,
+    /// The third channel.
+    Blue,
+}
+
+impl Channel {
+    /// Its index in an RGB triple.
+    pub fn index(self) -> usize {
+        match self {
+            Channel::Red => 0,
+            Channel::Green => 1,
+            Channel::Blue => 2,
+        }
+    }
+}
+
 /// An image read in linear RGB: its decoded texels (shared by every
 /// texture that reads the file, whatever its encoding) and the curve that
 /// turns their values into linear ones.

@@ -63,6 +63,11 @@ pub enum Pattern {
         image: image::Image,
         /// What coordinates outside [0, 1] read.
         wrap: image::Wrap,
+        /// Multiplies every texel (a glTF material's factor; 1 otherwise).
+        factor: Vec3,
+        /// The channel read where one number is wanted (`None`: the
+        /// luminance).
+        channel: Option<image::Channel>,
     },
 }
 
@@ -96,17 +101,28 @@ impl Texture {
             }
             Pattern::Gradient => self.colors.at(gradient::ramp(p)),
             Pattern::Stripes => self.colors.end(gradient::stripe(p) > 0.5),
-            Pattern::Image { image, wrap } => image.lookup(Vec2::new(p.x, p.y), *wrap),
+            Pattern::Image {
+                image,
+                wrap,
+                factor,
+                ..
+            } => image.lookup(Vec2::new(p.x, p.y), *wrap) * *factor,
             Pattern::Noise { kind, params } => self.colors.at(kind.value(p, params)),
         }
     }
 
     /// The texture's value at `at` as one number (for a roughness, a
     /// weight or a height): the luminance of its colour, which is the
-    /// colour itself for a grey one.
+    /// colour itself for a grey one, or an image's chosen channel.
     pub fn eval_scalar(&self, at: &ShadingPoint) -> f32 {
         let c = self.eval(at);
-        0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z
+        match &self.pattern {
+            Pattern::Image {
+                channel: Some(channel),
+                ..
+            } => c[channel.index()],
+            _ => 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z,
+        }
     }
 
     /// The coordinates the texture reads at `at`.
@@ -121,7 +137,7 @@ impl Texture {
     /// The brightest colour the texture gives (by largest component).
     pub fn brightest(&self) -> Vec3 {
         match &self.pattern {
-            Pattern::Image { image, .. } => image.brightest(),
+            Pattern::Image { image, factor, .. } => image.brightest() * *factor,
             _ => self.colors.brightest(),
         }
     }

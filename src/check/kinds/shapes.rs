@@ -384,14 +384,14 @@ fn capsule(s: &mut ShapeInput) -> Option<Shape> {
 /// `mesh { }`
 pub const MESH: Kind = Kind {
     name: "mesh",
-    summary: "a triangle mesh read from a Wavefront OBJ or PLY file",
+    summary: "a triangle mesh read from a Wavefront OBJ, PLY or glTF 2.0 file",
     params: &[
-        p("file", Ty::Str, "\"bunny.ply\"").doc("the `.obj` or `.ply` file, relative to the scene file; vertex normals and texture coordinates are read when present. Required"),
-        p("smooth", Ty::Bool, "true").doc("interpolate the file's vertex normals. Default `false` (flat shading)"),
+        p("file", Ty::Str, "\"bunny.ply\"").doc("the `.obj`, `.ply`, `.gltf` or `.glb` file, relative to the scene file; vertex normals and texture coordinates are read when present, an OBJ's or glTF's materials when the mesh names none, a glTF's whole scene (its nodes' transforms on top of the mesh's). Required"),
+        p("smooth", Ty::Bool, "true").doc("interpolate the file's vertex normals. Default `false` (flat shading) for OBJ and PLY, `true` for glTF (its normals are part of the model)"),
     ],
     role: Role::Shape(mesh),
     positional: None,
-    povray: &[("mesh2", "ptsc reads meshes from files: `mesh { file \"model.obj\" }` (OBJ or PLY)")],
+    povray: &[("mesh2", "ptsc reads meshes from files: `mesh { file \"model.obj\" }` (OBJ, PLY or glTF)")],
 };
 
 fn mesh(s: &mut ShapeInput) -> Option<Shape> {
@@ -403,11 +403,11 @@ fn mesh(s: &mut ShapeInput) -> Option<Shape> {
     let (f, at) = (f.clone(), *at);
     let path = s.base_dir.join(&f);
     let ext = (path.extension().and_then(|e| e.to_str())).map(|e| e.to_ascii_lowercase());
-    if !matches!(ext.as_deref(), Some("obj") | Some("ply")) {
+    if !matches!(ext.as_deref(), Some("obj" | "ply" | "gltf" | "glb")) {
         s.diags().push(
             Diagnostic::error(codes::MESH_FILE, format!("unknown mesh format `{f}`"), at)
-                .with_label("not an .obj or .ply file")
-                .with_help("meshes are read from Wavefront OBJ (.obj) or PLY (.ply) files"),
+                .with_label("not an .obj, .ply, .gltf or .glb file")
+                .with_help("meshes are read from Wavefront OBJ (.obj), PLY (.ply) and glTF 2.0 (.gltf, .glb) files"),
         );
         return None;
     }
@@ -422,7 +422,7 @@ fn mesh(s: &mut ShapeInput) -> Option<Shape> {
                 at,
             )
             .with_label(format!("{} is {kind}", path.display()))
-            .with_help("a mesh is read from an OBJ or PLY file"),
+            .with_help("a mesh is read from an OBJ, PLY or glTF file"),
         ),
         Err(_) => Some(
             Diagnostic::error(codes::MESH_FILE, format!("mesh file `{f}` not found"), at)
@@ -437,7 +437,7 @@ fn mesh(s: &mut ShapeInput) -> Option<Shape> {
     Some(Shape::Mesh {
         path,
         path_span: at,
-        smooth: s.boolean("smooth", false),
+        smooth: s.boolean("smooth", matches!(ext.as_deref(), Some("gltf" | "glb"))),
         group: None,
     })
 }

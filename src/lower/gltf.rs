@@ -1,0 +1,441 @@
+//! glTF 2.0 scenes (`.gltf` with external or data-URI buffers, `.glb`):
+//! the default scene's node tree with every transform, each mesh read once
+//! however many nodes place it, its triangle primitives (positions,
+//! normals, `TEXCOORD_0`) and the file's materials (`gltf_material.rs`).
+//! The `gltf` crate parses the JSON and the GLB container; buffers are
+//! read through the scene's `Files` (the caller's reader) and accessors by
+//! our own checked code (`gltf_accessor.rs`). What is not followed (skins,
+//! morph targets, animations, cameras, lights, points and lines, unknown
+//! required extensions) is a note that lowering turns into a warning.
+//!
+//! Frames: glTF is y-up, right-handed, in metres, as ptsc reads any mesh
+//! file (no axis is changed); its texture coordinates have (0, 0) at the
+//! image's top-left, ptsc's at the bottom-left: v becomes 1 − v.
+
+use super::gltf_accessor::{self, Buffers};
+use super::mesh_data::{FileScene, LibraryReader, MeshData, Part, Placed};
+use crate::source::MAX_MESH_BYTES;
+use base64::Engine;
+use glam::{DMat4, DQuat, DVec3, Vec2, Vec3};
+use gltf::mesh::Mode;
+use gltf::Semantic;
+use std::borrow::Cow;
+use std::collections::BTreeSet;
+use std::path::{Path, PathBuf};
+
+/// The extensions ptsc reads (others a file requires are named in a note).
+pub const SUPPORTED_EXTENSIONS: [&str; 8] = [
+    "KHR_materials_clearcoat",
+    "KHR_materials_emissive_strength",
+    "KHR_materials_ior",
+    "KHR_materials_sheen",
+    "KHR_materials_specular",
+    "KHR_materials_transmission",
+    "KHR_texture_transform",
+    "KHR_mesh_quantization",
+];
+
+/// The most vertices a file's meshes may have together.
+pub const MAX_VERTICES: usize = 100_000_000;
+/// The most triangles a file's meshes may have together (each mesh once).
+pub const MAX_TRIANGLES: usize = super::shapes::MAX_PRIMITIVES;
+
+/// The scene of a glTF file's `bytes` (at `path`), its external buffers
+/// read by `library`.
+pub(super) fn parse_gltf(
+    bytes: &[u8],
+    path: &Path,
+    library: &mut LibraryReader,
+) -> Result<MeshData, String> {
+    let gltf =
+        gltf::Gltf::from_slice(bytes).map_err(|e| format!("cannot read the glTF file: {e}"))?;
+    let doc = &gltf.document;
+    let folder = path.parent().unwrap_or(Path::new(""));
+    let mut out = MeshData::default();
+    let mut scene = FileScene::default();
+    let buffers = read_buffers(doc, gltf.blob.as_deref(), (folder, library), &mut out)?;
+    notes_on_the_file(doc, &mut scene.notes);
+    let placed = walk(doc, &mut scene.notes)?;
+    let meshes: BTreeSet<u32> = placed.iter().map(|p| p.mesh).collect();
+    let mut attributes = Attributes::default();
+    for mesh in doc
+        .meshes()
+        .filter(|m| meshes.contains(&(m.index() as u32)))
+    {
+        read_mesh(&mesh, &buffers, (&mut out, &mut attributes), &mut scene)?;
+    }
+    attributes.finish(&mut out);
+    let with_parts: BTreeSet<u32> = scene.parts.iter().map(|p| p.mesh).collect();
+    scene.placed = placed;
+    scene.placed.retain(|p| with_parts.contains(&p.mesh));
+    if scene.placed.is_empty() {
+        return Err("the file's scene places no triangles".into());
+    }
+    super::gltf_material::read(doc, path, &buffers, &mut scene);
+    out.scene = Some(Box::new(scene));
+    Ok(out)
+}
+
+/// Every buffer's bytes: the GLB's binary chunk, a data URI's, or a file
+/// beside the glTF's (read through `library`, listed in `out.libraries`);
+/// together at most [`MAX_MESH_BYTES`].
+fn read_buffers<'a>(
+    doc: &gltf::Document,
+    blob: Option<&'a [u8]>,
+    (folder, library): (&Path, &mut LibraryReader),
+    out: &mut MeshData,
+) -> Result<Vec<Cow<'a, [u8]>>, String> {
+    let mut total = 0u64;
+    let mut buffers = Vec::with_capacity(doc.buffers().len());
+    for buffer in doc.buffers() {
+        let left = MAX_MESH_BYTES.saturating_sub(total);
+        let data: Cow<[u8]> = match buffer.source() {
+            gltf::buffer::Source::Bin => Cow::Borrowed(blob.ok_or(format!(
+                "buffer {} is the GLB's binary chunk, which the file does not have",
+                buffer.index()
+            ))?),
+            gltf::buffer::Source::Uri(uri) => match data_uri(uri, left)? {
+                Some(bytes) => Cow::Owned(bytes),
+                None => {
+                    let path = folder.join(relative_path(uri)?);
+                    out.libraries.push(path.clone());
+                    Cow::Owned(
+                        library(&path, left)
+                            .map_err(|e| format!("cannot read buffer `{}`: {e}", path.display()))?,
+                    )
+                }
+            },
+        };
+        if data.len() < buffer.length() {
+            return Err(format!(
+                "buffer {} holds {} bytes but declares {}",
+                buffer.index(),
+                data.len(),
+                buffer.length()
+            ));
+        }
+        total += data.len() as u64;
+        if total > MAX_MESH_BYTES {
+            return Err(format!(
+                "the buffers take more than {}",
+                crate::source::human_bytes(MAX_MESH_BYTES)
+            ));
+        }
+        buffers.push(data);
+    }
+    Ok(buffers)
+}
+
+/// The bytes of a `data:` URI (base64), at most `limit` of them; `None`
+/// when `uri` is not one.
+pub(super) fn data_uri(uri: &str, limit: u64) -> Result<Option<Vec<u8>>, String> {
+    let Some(rest) = uri.strip_prefix("data:") else {
+        return Ok(None);
+    };
+    let (header, payload) = rest.split_once(',').ok_or("a data URI without a comma")?;
+    if !header.ends_with(";base64") {
+        return Err("a data URI that is not base64".into());
+    }
+    // Decoded, four characters make three bytes: refused before decoding.
+    if (payload.len() as u64 / 4) * 3 > limit {
+        return Err(format!(
+            "a data URI of {} characters, more than the {} a file may hold",
+            payload.len(),
+            crate::source::human_bytes(limit)
+        ));
+    }
+    let bytes = (base64::engine::general_purpose::STANDARD)
+        .decode(payload.trim_end())
+        .map_err(|e| format!("a data URI that is not valid base64: {e}"))?;
+    Ok(Some(bytes))
+}
+
+/// A URI naming a file beside the glTF as a relative path (percent-escapes
+/// decoded); an absolute path or another scheme is refused.
+pub(super) fn relative_path(uri: &str) -> Result<PathBuf, String> {
+    if uri.contains("://") || uri.starts_with('/') || uri.starts_with('\\') {
+        return Err(format!(
+            "`{}` is not a relative path: ptsc reads the files beside the glTF only",
+            uri.chars().take(80).collect::<String>()
+        ));
+    }
+    let bytes = uri.as_bytes();
+    let mut decoded = Vec::with_capacity(bytes.len());
+    let mut k = 0;
+    while k < bytes.len() {
+        let hex = (bytes[k] == b'%')
+            .then(|| bytes.get(k + 1..k + 3))
+            .flatten()
+            .and_then(|h| u8::from_str_radix(std::str::from_utf8(h).ok()?, 16).ok());
+        match hex {
+            Some(b) => {
+                decoded.push(b);
+                k += 3;
+            }
+            None => {
+                decoded.push(bytes[k]);
+                k += 1;
+            }
+        }
+    }
+    Ok(PathBuf::from(
+        String::from_utf8_lossy(&decoded).into_owned(),
+    ))
+}
+
+/// Notes on what the file holds that ptsc does not follow.
+fn notes_on_the_file(doc: &gltf::Document, notes: &mut Vec<String>) {
+    for name in doc.extensions_required() {
+        if !SUPPORTED_EXTENSIONS.contains(&name) {
+            notes.push(format!("it requires the extension `{name}`, which ptsc does not read: what it changes is missing"));
+        }
+    }
+    if doc.animations().len() > 0 {
+        notes.push("its animations are not played: the scene is in its rest pose".into());
+    }
+    if doc.cameras().len() > 0 {
+        notes.push("its cameras are not used: the scene's `camera` is".into());
+    }
+}
+
+/// The nodes of the file's default scene (else its first) that place a
+/// mesh, with their transforms to the file's frame. A node reached twice
+/// (the graph is not a tree) is an error: the walk visits each node once.
+fn walk(doc: &gltf::Document, notes: &mut Vec<String>) -> Result<Vec<Placed>, String> {
+    let scene = (doc.default_scene())
+        .or_else(|| doc.scenes().next())
+        .ok_or("the file has no scene")?;
+    let mut seen = vec![false; doc.nodes().len()];
+    let mut stack: Vec<(gltf::Node, DMat4)> =
+        (scene.nodes()).map(|n| (n, DMat4::IDENTITY)).collect();
+    stack.reverse();
+    let mut placed = Vec::new();
+    while let Some((node, parent)) = stack.pop() {
+        let name = node_name(&node);
+        if std::mem::replace(&mut seen[node.index()], true) {
+            return Err(format!(
+                "node `{name}` is reached twice: the node graph is not a tree"
+            ));
+        }
+        let transform = parent * local_transform(&node.transform(), &name)?;
+        if let Some(mesh) = node.mesh() {
+            placed.push(Placed {
+                mesh: mesh.index() as u32,
+                transform,
+                node: name.clone(),
+            });
+        }
+        if node.skin().is_some() {
+            notes.push(format!(
+                "node `{name}` is skinned: its mesh is placed in its bind pose"
+            ));
+        }
+        let first_child = stack.len();
+        stack.extend(node.children().map(|c| (c, transform)));
+        stack[first_child..].reverse();
+    }
+    Ok(placed)
+}
+
+/// A node's name, or `#index` when it has none.
+fn node_name(node: &gltf::Node) -> String {
+    match node.name() {
+        Some(name) => name.chars().take(80).collect(),
+        None => format!("#{}", node.index()),
+    }
+}
+
+/// A node's transform to its parent's frame: its matrix, or translation ·
+/// rotation · scale (glTF 2.0 §5.25) in f64.
+pub fn local_transform(t: &gltf::scene::Transform, name: &str) -> Result<DMat4, String> {
+    let m = match t {
+        gltf::scene::Transform::Matrix { matrix } => {
+            DMat4::from_cols_array_2d(&matrix.map(|c| c.map(f64::from)))
+        }
+        gltf::scene::Transform::Decomposed {
+            translation,
+            rotation,
+            scale,
+        } => {
+            let q = DQuat::from_array(rotation.map(f64::from));
+            if !(q.length_squared() > 0.0) {
+                return Err(format!("node `{name}` has a rotation of length 0"));
+            }
+            DMat4::from_scale_rotation_translation(
+                DVec3::from_array(scale.map(f64::from)),
+                q.normalize(),
+                DVec3::from_array(translation.map(f64::from)),
+            )
+        }
+    };
+    if !m.is_finite() {
+        return Err(format!("node `{name}` has a transform that is not finite"));
+    }
+    Ok(m)
+}
+
+/// The vertex attributes read so far, one per vertex whether a primitive
+/// has them or not (zero normals shade flat, zero texture coordinates).
+#[derive(Default)]
+struct Attributes {
+    any_normals: bool,
+    any_uvs: bool,
+}
+
+impl Attributes {
+    /// Drops the lists no primitive gave.
+    fn finish(self, out: &mut MeshData) {
+        if !self.any_normals {
+            out.normals.clear();
+        }
+        if !self.any_uvs {
+            out.uvs.clear();
+        }
+    }
+}
+
+/// Reads the triangle primitives of `mesh` into `out` as parts of `scene`.
+fn read_mesh(
+    mesh: &gltf::Mesh,
+    buffers: &Buffers,
+    (out, attributes): (&mut MeshData, &mut Attributes),
+    scene: &mut FileScene,
+) -> Result<(), String> {
+    let name = mesh
+        .name()
+        .map_or(format!("#{}", mesh.index()), str::to_string);
+    for primitive in mesh.primitives() {
+        let mode = primitive.mode();
+        if matches!(
+            mode,
+            Mode::Points | Mode::Lines | Mode::LineLoop | Mode::LineStrip
+        ) {
+            scene.notes.push(format!(
+                "mesh `{name}` has {mode:?} primitives: only triangles are rendered"
+            ));
+            continue;
+        }
+        if primitive.morph_targets().len() > 0 {
+            scene.notes.push(format!(
+                "mesh `{name}` has morph targets: its base shape is rendered"
+            ));
+        }
+        if primitive.get(&Semantic::Colors(0)).is_some() {
+            scene.notes.push(format!(
+                "mesh `{name}` has vertex colours, which ptsc does not read"
+            ));
+        }
+        let read = read_primitive(&primitive, buffers, mode);
+        let (positions, normals, uvs, triangles) =
+            read.map_err(|e| format!("mesh `{name}`: {e}"))?;
+        if triangles.is_empty() {
+            scene
+                .notes
+                .push(format!("mesh `{name}` has a primitive without a triangle"));
+            continue;
+        }
+        // A hostile file can point many primitives at one huge accessor.
+        if out.positions.len() + positions.len() > MAX_VERTICES
+            || out.triangles.len() + triangles.len() > MAX_TRIANGLES
+        {
+            return Err(format!(
+                "its meshes have more than {} vertices or {} triangles",
+                crate::diag::group_digits(MAX_VERTICES as u64),
+                crate::diag::group_digits(MAX_TRIANGLES as u64)
+            ));
+        }
+        let base = out.positions.len() as u32;
+        let start = out.triangles.len() as u32;
+        let count = positions.len();
+        out.positions
+            .extend(positions.iter().map(|p| Vec3::from_array(*p)));
+        attributes.any_normals |= normals.is_some();
+        match normals {
+            Some(n) => out.normals.extend(n.iter().map(|n| Vec3::from_array(*n))),
+            None => out.normals.resize(out.positions.len(), Vec3::ZERO),
+        }
+        attributes.any_uvs |= uvs.is_some();
+        match uvs {
+            Some(uv) => out
+                .uvs
+                .extend(uv.iter().map(|[u, v]| Vec2::new(*u, 1.0 - v))),
+            None => out.uvs.resize(out.positions.len(), Vec2::ZERO),
+        }
+        out.triangles
+            .extend(triangles.iter().map(|t| t.map(|i| base + i)));
+        scene.parts.push(Part {
+            mesh: mesh.index() as u32,
+            vertices: base..base + count as u32,
+            triangles: start..out.triangles.len() as u32,
+            material: primitive.material().index().map(|m| m as u32),
+        });
+    }
+    Ok(())
+}
+
+/// A primitive's positions, normals, texture coordinates and triangles
+/// (indices into its own vertices, each checked).
+type Primitive = (
+    Vec<[f32; 3]>,
+    Option<Vec<[f32; 3]>>,
+    Option<Vec<[f32; 2]>>,
+    Vec<[u32; 3]>,
+);
+
+/// Reads one primitive of `mode` (triangles, a strip or a fan).
+fn read_primitive(p: &gltf::Primitive, buffers: &Buffers, mode: Mode) -> Result<Primitive, String> {
+    let position = p
+        .get(&Semantic::Positions)
+        .ok_or("a primitive without positions")?;
+    let positions = gltf_accessor::floats::<3>(&position, buffers, "positions")?;
+    let count = positions.len();
+    let same_count = |what: &str, n: usize| match n == count {
+        true => Ok(()),
+        false => Err(format!(
+            "the primitive has {n} {what} for {count} positions"
+        )),
+    };
+    let normals = match p.get(&Semantic::Normals) {
+        Some(a) => Some(gltf_accessor::floats::<3>(&a, buffers, "normals")?),
+        None => None,
+    };
+    let uvs = match p.get(&Semantic::TexCoords(0)) {
+        Some(a) => Some(gltf_accessor::floats::<2>(
+            &a,
+            buffers,
+            "texture coordinates",
+        )?),
+        None => None,
+    };
+    if let Some(n) = &normals {
+        same_count("normals", n.len())?;
+    }
+    if let Some(uv) = &uvs {
+        same_count("texture coordinates", uv.len())?;
+    }
+    let indices = match p.indices() {
+        Some(a) => gltf_accessor::indices(&a, buffers)?,
+        None => (0..count as u32).collect(),
+    };
+    if let Some(bad) = indices.iter().find(|&&i| i as usize >= count) {
+        return Err(format!(
+            "an index is {bad}, but the primitive has {count} vertices"
+        ));
+    }
+    let triangles = match mode {
+        Mode::TriangleStrip => (0..indices.len().saturating_sub(2))
+            .map(|k| match k % 2 {
+                0 => [indices[k], indices[k + 1], indices[k + 2]],
+                _ => [indices[k + 1], indices[k], indices[k + 2]],
+            })
+            .collect(),
+        Mode::TriangleFan => (1..indices.len().saturating_sub(1))
+            .map(|k| [indices[0], indices[k], indices[k + 1]])
+            .collect(),
+        _ => indices
+            .chunks_exact(3)
+            .map(|c| [c[0], c[1], c[2]])
+            .collect(),
+    };
+    Ok((positions, normals, uvs, triangles))
+}

@@ -1,0 +1,409 @@
+//! A glTF file's materials as ptsc's principled material, field by field
+//! (the table is in docs/language.md, "Models from glTF files"), and its
+//! images: a file beside the glTF is read by path like any texture; one
+//! held inside the file (a GLB buffer view, a data URI) is kept under a
+//! path of its own (`scene.glb#image3.png`) that lowering serves from
+//! memory.
+//!
+//! - `baseColorFactor` → `base_color`, `baseColorTexture` → its texture
+//!   times the factor (its alpha, and `alphaMode`, are cutouts: not yet);
+//! - `metallicFactor`, `roughnessFactor` → `metallic` and the perceptual
+//!   roughness; `metallicRoughnessTexture` → both, from its blue and green
+//!   channels times the factors;
+//! - `normalTexture` → `normal_map` (its `scale` is not followed unless 1);
+//! - `emissiveFactor` × `KHR_materials_emissive_strength`, `emissiveTexture`
+//!   → `emission`;
+//! - `KHR_materials_ior` → `ior`; `KHR_materials_transmission` →
+//!   `transmission`; `KHR_materials_specular` → `specular` (its factor times
+//!   the F0 of the index, as Burley's 0.08·specular);
+//!   `KHR_materials_clearcoat` → `clearcoat`, `clearcoat_roughness`;
+//!   `KHR_materials_sheen` → `sheen` (the colour's largest component) with
+//!   `sheen_tint` 1 when the colour is not grey;
+//! - `occlusionTexture` is not read: a path tracer finds the occlusion;
+//!   `doubleSided` neither: ptsc's surfaces have two sides;
+//! - a sampler's `wrapS` → `wrap` (`wrapT` is read as the same); `KHR_texture_transform` → the texture's
+//!   transform.
+
+use super::gltf::{data_uri, relative_path};
+use super::gltf_accessor::Buffers;
+use super::mesh_data::FileScene;
+use crate::check::scene::{
+    Material, MaterialKind, PrincipledParams, Rgb, Texture, TextureInput, TextureKind, TextureSpace,
+};
+use crate::span::Span;
+use crate::texture::image::{Channel, Wrap};
+use glam::{DMat4, DVec4};
+use serde_json::Value;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+/// Reads the images and materials of `doc` (the file at `path`) into
+/// `scene`.
+pub fn read(doc: &gltf::Document, path: &Path, buffers: &Buffers, scene: &mut FileScene) {
+    let images: Vec<Option<PathBuf>> = doc
+        .images()
+        .map(|image| image_path(&image, path, buffers, scene))
+        .collect();
+    for m in doc.materials() {
+        let mapped = material(&m, &images, &mut scene.notes);
+        scene.materials.push(mapped);
+    }
+}
+
+/// Where the texture of `image` is read from (a path inside the file for
+/// an embedded one, added to `scene.embedded`); `None`, with a note, when
+/// ptsc cannot read it.
+fn image_path(
+    image: &gltf::Image,
+    path: &Path,
+    buffers: &Buffers,
+    scene: &mut FileScene,
+) -> Option<PathBuf> {
+    let k = image.index();
+    let (bytes, mime) = match image.source() {
+        gltf::image::Source::Uri { uri, mime_type } => {
+            match data_uri(uri, super::image::MAX_IMAGE_BYTES) {
+                Ok(Some(bytes)) => (bytes, mime_type.or_else(|| mime_of_data(uri))),
+                Ok(None) => {
+                    let folder = path.parent().unwrap_or(Path::new(""));
+                    return match relative_path(uri) {
+                        Ok(p) => Some(folder.join(p)),
+                        Err(e) => {
+                            scene.notes.push(format!("image {k}: {e}"));
+                            None
+                        }
+                    };
+                }
+                Err(e) => {
+                    scene.notes.push(format!("image {k}: {e}"));
+                    return None;
+                }
+            }
+        }
+        gltf::image::Source::View { view, mime_type } => {
+            let bytes = (buffers.get(view.buffer().index()))
+                .and_then(|b| b.get(view.offset()..view.offset().checked_add(view.length())?));
+            match bytes {
+                Some(b) => (b.to_vec(), Some(mime_type)),
+                None => {
+                    scene.notes.push(format!(
+                        "image {k}: its buffer view reaches past its buffer"
+                    ));
+                    return None;
+                }
+            }
+        }
+    };
+    let extension = match mime {
+        Some("image/png") => "png",
+        Some("image/jpeg") => "jpg",
+        other => {
+            scene.notes.push(format!(
+                "image {k} is {}: ptsc reads PNG and JPEG",
+                other.unwrap_or("of no stated type")
+            ));
+            return None;
+        }
+    };
+    let mut name = path.as_os_str().to_owned();
+    name.push(format!("#image{k}.{extension}"));
+    let inside = PathBuf::from(name);
+    scene.embedded.push((inside.clone(), Arc::new(bytes)));
+    Some(inside)
+}
+
+/// The media type a data URI states (`data:image/png;base64,…`).
+fn mime_of_data(uri: &str) -> Option<&str> {
+    let header = uri.strip_prefix("data:")?.split([';', ',']).next()?;
+    (!header.is_empty()).then_some(header)
+}
+
+/// A JSON number of an extension's object, if given.
+fn number(ext: Option<&Value>, key: &str) -> Option<f64> {
+    ext?.get(key)?.as_f64().filter(|x| x.is_finite())
+}
+
+/// A colour from glTF's f32 components, negative or non-finite ones 0.
+fn rgb(c: [f32; 3]) -> Rgb {
+    c.map(|x| {
+        if x.is_finite() {
+            (x as f64).max(0.0)
+        } else {
+            0.0
+        }
+    })
+}
+
+/// The material `m` in ptsc's terms, its textures' images from `images`;
+/// what it asks that ptsc does not follow goes to `notes`.
+pub fn material(
+    m: &gltf::Material,
+    images: &[Option<PathBuf>],
+    notes: &mut Vec<String>,
+) -> Material {
+    let name = m
+        .name()
+        .map_or(format!("#{}", m.index().unwrap_or(0)), str::to_string);
+    let unit = |x: f64| {
+        if x.is_finite() {
+            x.clamp(0.0, 1.0)
+        } else {
+            0.0
+        }
+    };
+    let pbr = m.pbr_metallic_roughness();
+    let mut out = Material::default_at(Span::default());
+    out.name = Some(name.clone());
+    let [r, g, b, alpha] = pbr.base_color_factor();
+    out.diffuse = rgb([r, g, b]);
+    out.gloss = unit(pbr.roughness_factor() as f64);
+    let metallic = unit(pbr.metallic_factor() as f64);
+    out.ior = m.ior().map_or(1.5, |n| (n as f64).clamp(1.0, 10.0));
+    if m.ior().is_some_and(|n| n < 1.0) {
+        notes.push(format!(
+            "material `{name}`: an index of refraction below 1 is read as 1"
+        ));
+    }
+    out.transmission = m
+        .transmission()
+        .map_or(0.0, |t| unit(t.transmission_factor() as f64));
+    out.emission =
+        rgb(m.emissive_factor()).map(|c| c * m.emissive_strength().map_or(1.0, f64::from));
+    let clearcoat = m.extension_value("KHR_materials_clearcoat");
+    let sheen = m.extension_value("KHR_materials_sheen");
+    let sheen_color = (sheen.and_then(|s| s.get("sheenColorFactor")))
+        .and_then(|c| serde_json::from_value::<[f32; 3]>(c.clone()).ok())
+        .map_or([0.0; 3], rgb);
+    let sheen_weight = unit(sheen_color.iter().cloned().fold(0.0, f64::max));
+    let specular = m.specular().map(|s| {
+        let f0 = ((out.ior - 1.0) / (out.ior + 1.0)).powi(2);
+        if rgb(s.specular_color_factor()) != [1.0; 3] {
+            notes.push(format!(
+                "material `{name}`: its specular colour is not followed"
+            ));
+        }
+        unit(s.specular_factor() as f64 * f0 / 0.08)
+    });
+    out.kind = MaterialKind::Principled(PrincipledParams {
+        metallic,
+        // A refracting surface keeps its index; its reflection follows it.
+        specular: specular.filter(|_| out.transmission == 0.0),
+        specular_tint: 0.0,
+        anisotropic: 0.0,
+        sheen: sheen_weight,
+        sheen_tint: if sheen_color.iter().all(|&c| c == sheen_color[0]) {
+            0.0
+        } else {
+            1.0
+        },
+        clearcoat: number(clearcoat, "clearcoatFactor").map_or(0.0, unit),
+        clearcoat_roughness: number(clearcoat, "clearcoatRoughnessFactor").map_or(0.0, unit),
+    });
+    textures(m, images, &mut out, notes);
+    let mode = match m.alpha_mode() {
+        gltf::material::AlphaMode::Opaque => "OPAQUE",
+        gltf::material::AlphaMode::Mask => "MASK",
+        gltf::material::AlphaMode::Blend => "BLEND",
+    };
+    if mode != "OPAQUE" {
+        notes.push(format!(
+            "material `{name}`: its `alphaMode` {mode} is not followed: cutouts are not supported yet, the surface is opaque"
+        ));
+    } else if alpha < 1.0 {
+        notes.push(format!(
+            "material `{name}`: its alpha {alpha} has no effect under `alphaMode` OPAQUE"
+        ));
+    }
+    for (key, what) in [
+        ("KHR_materials_unlit", "its unlit shading"),
+        ("KHR_materials_volume", "its volume"),
+        ("KHR_materials_iridescence", "its iridescence"),
+        ("KHR_materials_anisotropy", "its anisotropy"),
+    ] {
+        if m.extension_value(key).is_some() {
+            notes.push(format!(
+                "material `{name}`: {what} (`{key}`) is not followed"
+            ));
+        }
+    }
+    out
+}
+
+/// The textures of `m` onto `out` (a textured parameter holds its factor,
+/// the texture's brightest value before its image is read).
+fn textures(
+    m: &gltf::Material,
+    images: &[Option<PathBuf>],
+    out: &mut Material,
+    notes: &mut Vec<String>,
+) {
+    let name = out.name.clone().unwrap_or_default();
+    let pbr = m.pbr_metallic_roughness();
+    let notes = std::cell::RefCell::new(notes);
+    let add_note = |e: String| notes.borrow_mut().push(format!("material `{name}`: {e}"));
+    let mut add =
+        |input: TextureInput, info: Source, factor: Rgb, channel: Option<Channel>| match texture(
+            &info, images, factor, channel,
+        ) {
+            Ok(t) => out.textures.push((input, t)),
+            Err(e) => add_note(e),
+        };
+    let [r, g, b, _] = pbr.base_color_factor();
+    if let Some(info) = pbr.base_color_texture() {
+        add(
+            TextureInput::BaseColor,
+            Source::of(&info),
+            rgb([r, g, b]),
+            None,
+        );
+    }
+    if let Some(info) = pbr.metallic_roughness_texture() {
+        let roughness = [pbr.roughness_factor() as f64; 3];
+        let metallic = [pbr.metallic_factor() as f64; 3];
+        add(
+            TextureInput::Gloss,
+            Source::of(&info),
+            roughness,
+            Some(Channel::Green),
+        );
+        add(
+            TextureInput::Metallic,
+            Source::of(&info),
+            metallic,
+            Some(Channel::Blue),
+        );
+    }
+    if let Some(info) = m.emissive_texture() {
+        let strength = m.emissive_strength().map_or(1.0, f64::from);
+        let factor = rgb(m.emissive_factor()).map(|c| c * strength);
+        add(TextureInput::Emission, Source::of(&info), factor, None);
+    }
+    if let Some(normal) = m.normal_texture() {
+        if normal.scale() != 1.0 {
+            let scale = normal.scale();
+            add_note(format!("its normal map's scale {scale} is read as 1"));
+        }
+        let transform = normal
+            .extension_value("KHR_texture_transform")
+            .map(transform_of_json);
+        let info = Source {
+            texture: normal.texture(),
+            tex_coord: normal.tex_coord(),
+            transform,
+        };
+        add(TextureInput::NormalMap, info, [1.0; 3], None);
+    }
+}
+
+/// A texture reference: the texture, its coordinate set, its transform
+/// (offset, rotation, scale).
+struct Source<'a> {
+    texture: gltf::Texture<'a>,
+    tex_coord: u32,
+    transform: Option<([f64; 2], f64, [f64; 2])>,
+}
+
+impl<'a> Source<'a> {
+    /// The reference of a `textureInfo`.
+    fn of(info: &gltf::texture::Info<'a>) -> Source<'a> {
+        let transform = info.texture_transform().map(|t| {
+            let [ox, oy] = t.offset().map(f64::from);
+            let [sx, sy] = t.scale().map(f64::from);
+            ([ox, oy], t.rotation() as f64, [sx, sy])
+        });
+        Source {
+            texture: info.texture(),
+            tex_coord: info
+                .texture_transform()
+                .and_then(|t| t.tex_coord())
+                .unwrap_or(info.tex_coord()),
+            transform,
+        }
+    }
+}
+
+/// A `KHR_texture_transform` object read from its JSON.
+fn transform_of_json(v: &Value) -> ([f64; 2], f64, [f64; 2]) {
+    let pair = |key: &str, default: [f64; 2]| {
+        (v.get(key)
+            .and_then(|p| serde_json::from_value::<[f64; 2]>(p.clone()).ok()))
+        .unwrap_or(default)
+    };
+    let rotation = v.get("rotation").and_then(Value::as_f64).unwrap_or(0.0);
+    (pair("offset", [0.0; 2]), rotation, pair("scale", [1.0; 2]))
+}
+
+/// The texture of `info`, its texels times `factor`, one number read from
+/// `channel`.
+fn texture(
+    info: &Source,
+    images: &[Option<PathBuf>],
+    factor: Rgb,
+    channel: Option<Channel>,
+) -> Result<Texture, String> {
+    let image = info.texture.source().index();
+    let path = (images.get(image).cloned().flatten()).ok_or(format!(
+        "texture {} reads image {image}, which is not read",
+        info.texture.index()
+    ))?;
+    if info.tex_coord != 0 {
+        return Err(format!(
+            "texture {} reads texture coordinates {}: ptsc reads set 0 only",
+            info.texture.index(),
+            info.tex_coord
+        ));
+    }
+    let sampler = info.texture.sampler();
+    let wrap = |mode: gltf::texture::WrappingMode| match mode {
+        gltf::texture::WrappingMode::ClampToEdge => Wrap::Clamp,
+        gltf::texture::WrappingMode::MirroredRepeat => Wrap::Mirror,
+        gltf::texture::WrappingMode::Repeat => Wrap::Repeat,
+    };
+    let transform = match info.transform {
+        Some(t) => uv_transform(t).ok_or("its texture transform is not finite")?,
+        None => DMat4::IDENTITY,
+    };
+    Ok(Texture {
+        kind: TextureKind::Image {
+            path,
+            path_span: Span::default(),
+            wrap: wrap(sampler.wrap_s()),
+            color_space: None,
+            resolved: true,
+            factor,
+            channel,
+        },
+        colors: vec![(0.0, [1.0; 3]), (1.0, [0.0; 3])],
+        space: TextureSpace::Uv,
+        transform,
+        span: Span::default(),
+    })
+}
+
+/// The texture transform (what ptsc's texture `transform` holds: the
+/// inverse of the map from the surface's (u, v) to the image's) of a
+/// `KHR_texture_transform`: glTF reads its image at T·R·S·uv in its own
+/// coordinates (v down), ptsc's have v up, so the map is F·T·R·S·F with
+/// F(u, v) = (u, 1 − v).
+pub fn uv_transform((offset, rotation, scale): ([f64; 2], f64, [f64; 2])) -> Option<DMat4> {
+    let flip = DMat4::from_cols(
+        DVec4::new(1.0, 0.0, 0.0, 0.0),
+        DVec4::new(0.0, -1.0, 0.0, 0.0),
+        DVec4::new(0.0, 0.0, 1.0, 0.0),
+        DVec4::new(0.0, 1.0, 0.0, 1.0),
+    );
+    let (s, c) = rotation.sin_cos();
+    let rotate = DMat4::from_cols(
+        DVec4::new(c, s, 0.0, 0.0),
+        DVec4::new(-s, c, 0.0, 0.0),
+        DVec4::Z,
+        DVec4::W,
+    );
+    let map = flip
+        * DMat4::from_translation([offset[0], offset[1], 0.0].into())
+        * rotate
+        * DMat4::from_scale([scale[0], scale[1], 1.0].into())
+        * flip;
+    let inverse = map.inverse();
+    (inverse.is_finite() && map.determinant().abs() > 1e-12).then_some(inverse)
+}

@@ -1,0 +1,395 @@
+//! Placing a glTF file's scene: a mesh statement naming a `.gltf` or
+//! `.glb` file becomes one object per primitive of each node that places a
+//! mesh, at the statement's transform times the node's. A mesh placed by
+//! several nodes (at the scene's top level) is stored once: its primitives
+//! become a group and each node a placement of it, which lowering shares
+//! (`instances.rs`). The file's materials are mapped once per file unless
+//! the statement gives a material; what the file asks that ptsc does not
+//! follow is one warning each at the statement. Images held inside the
+//! file are served to lowering from memory (`Embedded`).
+
+use super::cache::LowerCache;
+use super::mesh_data::{FileScene, MeshData};
+use super::shapes::{read_mesh, MeshReads};
+use crate::check::{self, Group, Instance, Object};
+use crate::diag::{codes, Diagnostic, Diagnostics};
+use crate::source::files::Stamp;
+use crate::source::{Files, ReadError};
+use crate::span::Span;
+use glam::DMat4;
+use std::collections::HashMap;
+use std::io::Read;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+/// Whether `path` names a glTF file.
+pub fn is_gltf(path: &Path) -> bool {
+    let ext = path.extension().and_then(|e| e.to_str());
+    ext.is_some_and(|e| e.eq_ignore_ascii_case("gltf") || e.eq_ignore_ascii_case("glb"))
+}
+
+/// The scene with its glTF mesh statements placed (`None`: it has none
+/// that could be read), and the images inside those files.
+pub struct Placed {
+    /// The scene with the files' objects, groups and placements.
+    pub scene: Option<check::Scene>,
+    /// The images held inside the files, by the path their textures read.
+    pub embedded: Embedded,
+}
+
+/// `scene` with every readable glTF mesh statement replaced by the file's
+/// objects (and groups for its shared meshes); the notes on each file are
+/// warnings in `warnings`. A file that cannot be read is left as it is:
+/// the gathering reports it.
+pub fn place(
+    scene: &check::Scene,
+    (cache, files, reads): (&mut LowerCache, &dyn Files, &mut MeshReads),
+    warnings: &mut Diagnostics,
+) -> Placed {
+    let mut placing = Placing {
+        out: None,
+        materials: HashMap::new(),
+        embedded: HashMap::new(),
+    };
+    let gltf = |o: &Object| matches!(&o.shape, check::Shape::Mesh { path, group: None, .. } if is_gltf(path));
+    let mut read = |path: &Path| read_mesh(reads, (&mut *cache, files), path).ok();
+    for (o, object) in scene.objects.iter().enumerate() {
+        let data = gltf(object)
+            .then(|| object_path(object))
+            .and_then(|p| read(p));
+        let Some(data) = data.filter(|d| d.scene.is_some()) else {
+            if let Some(out) = placing.out.as_mut() {
+                out.objects.push(object.clone());
+            }
+            continue;
+        };
+        let out = placing.out.get_or_insert_with(|| check::Scene {
+            objects: scene.objects[..o].to_vec(),
+            ..scene.clone()
+        });
+        let materials = placing.materials.entry(object_path(object).to_path_buf());
+        let first = matches!(materials, std::collections::hash_map::Entry::Vacant(_));
+        if first {
+            warn(object, &data, warnings);
+        }
+        let mapped = materials
+            .or_insert_with(|| map_materials(&data, object.span, out))
+            .clone();
+        place_top_level(object, &data, &mapped, out);
+        placing
+            .embedded
+            .extend(embedded_of(&data, object_path(object)));
+    }
+    for g in 0..scene.groups.len() {
+        for (k, object) in scene.groups[g].objects.iter().enumerate() {
+            let Some(data) = gltf(object)
+                .then(|| object_path(object))
+                .and_then(|p| read(p))
+            else {
+                continue;
+            };
+            if data.scene.is_none() {
+                continue;
+            }
+            let out = placing.out.get_or_insert_with(|| scene.clone());
+            let path = object_path(object).to_path_buf();
+            if !placing.materials.contains_key(&path) {
+                warn(object, &data, warnings);
+                let mapped = map_materials(&data, object.span, out);
+                placing.materials.insert(path.clone(), mapped);
+            }
+            let mapped = placing.materials[&path].clone();
+            let unmaterialled = scene.groups[g]
+                .unmaterialled
+                .get(k)
+                .copied()
+                .unwrap_or(false);
+            place_in_group(out, (g, k), (&data, &mapped), unmaterialled);
+            placing.embedded.extend(embedded_of(&data, &path));
+        }
+    }
+    if let Some(out) = placing.out.as_mut() {
+        for group in &mut out.groups {
+            // Emptied slots (a statement replaced by its file's objects).
+            let keep: Vec<bool> = (group.objects.iter()).map(|o| !is_placeholder(o)).collect();
+            let mut flags = keep.iter();
+            group.objects.retain(|_| *flags.next().unwrap_or(&true));
+            let mut flags = keep.iter();
+            group
+                .unmaterialled
+                .retain(|_| *flags.next().unwrap_or(&true));
+        }
+    }
+    Placed {
+        scene: placing.out,
+        embedded: Embedded {
+            held: placing.embedded,
+        },
+    }
+}
+
+/// What placing gathers.
+struct Placing {
+    out: Option<check::Scene>,
+    /// Per file, the scene's index of each of its materials.
+    materials: HashMap<PathBuf, Vec<usize>>,
+    embedded: HashMap<PathBuf, (Arc<Vec<u8>>, PathBuf)>,
+}
+
+/// The file a mesh object reads.
+fn object_path(object: &Object) -> &Path {
+    match &object.shape {
+        check::Shape::Mesh { path, .. } => path,
+        _ => Path::new(""),
+    }
+}
+
+/// The file's notes as warnings at the statement.
+fn warn(object: &Object, data: &MeshData, warnings: &mut Diagnostics) {
+    let (
+        Some(scene),
+        check::Shape::Mesh {
+            path, path_span, ..
+        },
+    ) = (&data.scene, &object.shape)
+    else {
+        return;
+    };
+    for note in &scene.notes {
+        warnings.push(
+            Diagnostic::warning(
+                codes::NO_EFFECT,
+                format!("`{}`: {note}", path.display()),
+                *path_span,
+            )
+            .with_label("not followed")
+            .with_help(
+                "the rest of the file is placed; see docs/language.md, \"Models from glTF files\"",
+            ),
+        );
+    }
+}
+
+/// The file's materials added to `out` (their spans the statement's).
+fn map_materials(data: &MeshData, span: Span, out: &mut check::Scene) -> Vec<usize> {
+    let Some(scene) = &data.scene else {
+        return Vec::new();
+    };
+    (scene.materials.iter())
+        .map(|m| {
+            let mut m = m.clone();
+            m.span = span;
+            for (_, t) in &mut m.textures {
+                t.span = span;
+                if let check::TextureKind::Image { path_span, .. } = &mut t.kind {
+                    *path_span = span;
+                }
+            }
+            out.materials.push(m);
+            out.materials.len() - 1
+        })
+        .collect()
+}
+
+/// The objects of the parts of `mesh`, in the mesh's frame, with their
+/// materials: the statement's `given`, else the file's, else `default`.
+fn parts_of(
+    object: &Object,
+    (scene, mesh): (&FileScene, u32),
+    mapped: &[usize],
+    given: Option<usize>,
+) -> Vec<Object> {
+    let check::Shape::Mesh {
+        path,
+        path_span,
+        smooth,
+        ..
+    } = &object.shape
+    else {
+        return Vec::new();
+    };
+    (scene.parts.iter().enumerate())
+        .filter(|(_, p)| p.mesh == mesh)
+        .map(|(k, part)| Object {
+            shape: check::Shape::Mesh {
+                path: path.clone(),
+                path_span: *path_span,
+                smooth: *smooth,
+                group: Some(k as u32),
+            },
+            material: given
+                .or_else(|| part.material.and_then(|m| mapped.get(m as usize).copied()))
+                .unwrap_or(object.material),
+            transform: DMat4::IDENTITY,
+            velocity: object.velocity,
+            span: object.span,
+        })
+        .collect()
+}
+
+/// Places the file of the top-level `object` into `out`: a mesh placed
+/// once as objects, a mesh placed by several nodes as a group placed by
+/// each.
+fn place_top_level(object: &Object, data: &MeshData, mapped: &[usize], out: &mut check::Scene) {
+    let Some(scene) = &data.scene else {
+        return;
+    };
+    let given = (Some(object.material) != out.default_material).then_some(object.material);
+    let mut uses: HashMap<u32, usize> = HashMap::new();
+    for p in &scene.placed {
+        *uses.entry(p.mesh).or_default() += 1;
+    }
+    let mut groups: HashMap<u32, usize> = HashMap::new();
+    for placed in &scene.placed {
+        let transform = object.transform * placed.transform;
+        if uses[&placed.mesh] < 2 {
+            let parts = parts_of(object, (scene, placed.mesh), mapped, given);
+            out.objects
+                .extend(parts.into_iter().map(|o| Object { transform, ..o }));
+            continue;
+        }
+        let group = *groups.entry(placed.mesh).or_insert_with(|| {
+            let objects = parts_of(object, (scene, placed.mesh), mapped, given);
+            out.groups.push(Group {
+                name: format!("{}#{}", object_path(object).display(), placed.mesh),
+                unmaterialled: vec![false; objects.len()],
+                placed_objects: objects.len() as u64,
+                objects,
+                instances: Vec::new(),
+                lights: Vec::new(),
+                placed_lights: 0,
+                span: object.span,
+            });
+            out.groups.len() - 1
+        });
+        out.instances.push(Instance {
+            group,
+            transform,
+            material: None,
+            velocity: object.velocity,
+            span: object.span,
+        });
+    }
+}
+
+/// Places the file of object `k` of group `g` into that group as objects
+/// (each node's copy of its mesh); the statement's slot is left as a
+/// placeholder for `place` to remove.
+fn place_in_group(
+    out: &mut check::Scene,
+    (g, k): (usize, usize),
+    (data, mapped): (&MeshData, &[usize]),
+    unmaterialled: bool,
+) {
+    let Some(scene) = &data.scene else {
+        return;
+    };
+    let object = out.groups[g].objects[k].clone();
+    let given = (!unmaterialled).then_some(object.material);
+    for placed in &scene.placed {
+        let parts = parts_of(&object, (scene, placed.mesh), mapped, given);
+        for part in parts {
+            // A part without a material of its own takes the instance's.
+            let takes_instances = unmaterialled && part.material == object.material;
+            let group = &mut out.groups[g];
+            group.objects.push(Object {
+                transform: object.transform * placed.transform,
+                ..part
+            });
+            group.unmaterialled.push(takes_instances);
+        }
+    }
+    out.groups[g].objects[k].shape = placeholder();
+}
+
+/// The shape a placed statement's slot holds until removed.
+fn placeholder() -> check::Shape {
+    check::Shape::Mesh {
+        path: PathBuf::new(),
+        path_span: Span::default(),
+        smooth: false,
+        group: Some(u32::MAX),
+    }
+}
+
+/// Whether `object` is a removed statement's slot.
+fn is_placeholder(object: &Object) -> bool {
+    object.shape == placeholder()
+}
+
+/// The images inside the file at `path`, by the paths their textures read.
+fn embedded_of<'a>(
+    data: &'a MeshData,
+    path: &'a Path,
+) -> impl Iterator<Item = (PathBuf, (Arc<Vec<u8>>, PathBuf))> + 'a {
+    (data.scene.iter().flat_map(|s| &s.embedded))
+        .map(move |(inside, bytes)| (inside.clone(), (bytes.clone(), path.to_path_buf())))
+}
+
+/// The scene's files with the images held inside glTF files served from
+/// memory (a file's stamp is the glTF file's: it changes with it).
+pub struct Embedded {
+    held: HashMap<PathBuf, (Arc<Vec<u8>>, PathBuf)>,
+}
+
+impl Embedded {
+    /// Whether no image is held.
+    pub fn is_empty(&self) -> bool {
+        self.held.is_empty()
+    }
+
+    /// `files` with the held images over it.
+    pub fn over<'a>(&'a self, files: &'a dyn Files) -> Over<'a> {
+        Over {
+            held: &self.held,
+            files,
+        }
+    }
+}
+
+/// [`Embedded`] over the scene's files.
+pub struct Over<'a> {
+    held: &'a HashMap<PathBuf, (Arc<Vec<u8>>, PathBuf)>,
+    files: &'a dyn Files,
+}
+
+impl Files for Over<'_> {
+    fn read(&self, path: &Path, limit: u64) -> Result<Vec<u8>, ReadError> {
+        match self.held.get(path) {
+            Some((bytes, _)) if bytes.len() as u64 > limit => Err(ReadError::TooLarge {
+                limit,
+                size: bytes.len() as u64,
+            }),
+            Some((bytes, _)) => Ok(bytes.to_vec()),
+            None => self.files.read(path, limit),
+        }
+    }
+
+    fn open(&self, path: &Path, limit: u64) -> Result<Box<dyn Read + '_>, ReadError> {
+        match self.held.get(path) {
+            Some(_) => Ok(Box::new(std::io::Cursor::new(self.read(path, limit)?))),
+            None => self.files.open(path, limit),
+        }
+    }
+
+    fn exists(&self, path: &Path) -> Result<(), ReadError> {
+        match self.held.contains_key(path) {
+            true => Ok(()),
+            false => self.files.exists(path),
+        }
+    }
+
+    fn canonical(&self, path: &Path) -> PathBuf {
+        match self.held.contains_key(path) {
+            true => path.to_path_buf(),
+            false => self.files.canonical(path),
+        }
+    }
+
+    fn stamp(&self, path: &Path) -> Option<Stamp> {
+        match self.held.get(path) {
+            Some((_, file)) => self.files.stamp(file),
+            None => self.files.stamp(path),
+        }
+    }
+}

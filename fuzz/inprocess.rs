@@ -6,7 +6,7 @@
 //! runs.
 //!
 //! ```text
-//! cargo run --release --example fuzz -- [--seconds N] [--seed S] scene|ply|obj|mtl|image|state|budget|all
+//! cargo run --release --example fuzz -- [--seconds N] [--seed S] scene|ply|obj|mtl|gltf|image|state|budget|all
 //! cargo run --release --example fuzz -- --time-seeds scene   # the cost of each seed
 //! ```
 //!
@@ -288,13 +288,14 @@ fn run(target: &str, seconds: f64, seed: u64, out: &Path) -> usize {
         "ply" => |b| ptsc::fuzz::ply(b),
         "obj" => |b| ptsc::fuzz::obj(b),
         "mtl" => |b| ptsc::fuzz::mtl(b),
+        "gltf" => |b| ptsc::fuzz::gltf(b),
         "image" => |b| ptsc::fuzz::image(b),
         "state" => |b| ptsc::fuzz::state(b),
         "budget" => |b| ptsc::fuzz::budget(b),
         other => panic!("unknown target {other}"),
     };
     // Files whose sizes sit in binary headers.
-    let binary = matches!(target, "image" | "state");
+    let binary = matches!(target, "image" | "state" | "gltf");
     let current = out.join(format!("current-{target}"));
     let started = Arc::new(AtomicU64::new(0));
     let t0 = Instant::now();
@@ -377,6 +378,7 @@ fn time_seeds(target: &str) {
             "scene" => ptsc::fuzz::scene(&bytes),
             "ply" => ptsc::fuzz::ply(&bytes),
             "mtl" => ptsc::fuzz::mtl(&bytes),
+            "gltf" => ptsc::fuzz::gltf(&bytes),
             "image" => ptsc::fuzz::image(&bytes),
             "state" => ptsc::fuzz::state(&bytes),
             "budget" => ptsc::fuzz::budget(&bytes),
@@ -405,13 +407,18 @@ fn main() {
             }
             "--seed" => seed = args.next().and_then(|s| s.parse().ok()).expect("--seed N"),
             "all" => targets.extend(
-                ["scene", "ply", "obj", "mtl", "image", "state", "budget"].map(String::from),
+                [
+                    "scene", "ply", "obj", "mtl", "gltf", "image", "state", "budget",
+                ]
+                .map(String::from),
             ),
             t => targets.push(t.to_string()),
         }
     }
     if targets.is_empty() {
-        eprintln!("usage: fuzz [--seconds N] [--seed S] scene|ply|obj|mtl|image|state|budget|all");
+        eprintln!(
+            "usage: fuzz [--seconds N] [--seed S] scene|ply|obj|mtl|gltf|image|state|budget|all"
+        );
         std::process::exit(2);
     }
     // Relative paths in the corpus (meshes, includes) start at the root.

@@ -100,6 +100,54 @@ pub fn obj(bytes: &[u8]) -> bool {
     mesh_invariants(parsed)
 }
 
+/// A glTF file given as bytes (a GLB when it starts with `glTF`, else
+/// JSON); an external buffer it names reads as the same bytes. When it
+/// parses: a mesh as [`ply`]'s, whose parts' ranges lie in its lists and
+/// do not overlap, each placement naming a mesh that has parts through a
+/// finite transform, and materials whose numbers lie in their ranges.
+/// Returns whether it parsed.
+pub fn gltf(bytes: &[u8]) -> bool {
+    let name = match bytes.starts_with(b"glTF") {
+        true => "fuzz.glb",
+        false => "fuzz.gltf",
+    };
+    let parsed = mesh::parse_with(Path::new(name), bytes, &mut |_, _| Ok(bytes.to_vec()));
+    if let Ok(m) = &parsed {
+        let scene = m.scene.as_ref().expect("a glTF file reads as a scene");
+        let (mut vertices, mut triangles) = (0, 0);
+        for (k, part) in scene.parts.iter().enumerate() {
+            assert_eq!(part.vertices.start, vertices, "parts in order");
+            assert_eq!(part.triangles.start, triangles, "parts in order");
+            (vertices, triangles) = (part.vertices.end, part.triangles.end);
+            let view = m.view(Some(k as u32));
+            let n = view.positions.len() as u32;
+            assert!(view.triangles.iter().flatten().all(|&i| i < n));
+            let mine = &m.triangles[part.triangles.start as usize..part.triangles.end as usize];
+            assert!(mine.iter().flatten().all(|i| part.vertices.contains(i)));
+            assert!(part
+                .material
+                .is_none_or(|k| (k as usize) < scene.materials.len()));
+        }
+        assert_eq!(vertices as usize, m.positions.len());
+        for placed in &scene.placed {
+            assert!(placed.transform.is_finite());
+            assert!(scene.parts.iter().any(|p| p.mesh == placed.mesh));
+        }
+        for material in &scene.materials {
+            let unit = |x: f64| (0.0..=1.0).contains(&x);
+            let colour = |c: [f64; 3]| c.iter().all(|x| x.is_finite() && *x >= 0.0);
+            assert!(colour(material.diffuse) && colour(material.emission));
+            assert!(unit(material.gloss) && unit(material.transmission));
+            assert!((1.0..=10.0).contains(&material.ior));
+            assert!(material
+                .textures
+                .iter()
+                .all(|(_, t)| t.transform.is_finite()));
+        }
+    }
+    mesh_invariants(parsed)
+}
+
 /// A material library (`.mtl`) given as bytes: when it parses, every
 /// material maps to a principled material whose numbers lie in their
 /// ranges and whose textures are images read at (u, v). Returns whether it

@@ -47,8 +47,9 @@ pub(super) fn parse_gltf(
     path: &Path,
     library: &mut LibraryReader,
 ) -> Result<MeshData, String> {
-    let gltf =
-        gltf::Gltf::from_slice(bytes).map_err(|e| format!("cannot read the glTF file: {e}"))?;
+    let gltf = gltf::Gltf::from_slice_without_validation(bytes)
+        .map_err(|e| format!("cannot read the glTF file: {e}"))?;
+    validate(&gltf.document)?;
     let doc = &gltf.document;
     let folder = path.parent().unwrap_or(Path::new(""));
     let mut out = MeshData::default();
@@ -74,6 +75,36 @@ pub(super) fn parse_gltf(
     super::gltf_material::read(doc, path, &buffers, &mut scene);
     out.scene = Some(Box::new(scene));
     Ok(out)
+}
+
+/// The `gltf` crate's checks of the JSON (every index in range, every
+/// required field there), less the bounds (`min`, `max`) that the
+/// specification asks of positions (ptsc computes its own, and exporters
+/// leave them out) and the refusal of required extensions it does not know
+/// (a warning instead: the rest of the file is placed).
+fn validate(doc: &gltf::Document) -> Result<(), String> {
+    use gltf::json::validation::{Error, Validate};
+    let root = doc.as_json();
+    let mut errors = Vec::new();
+    root.validate(root, gltf::json::Path::new, &mut |path, error| {
+        let path = path().to_string();
+        let bounds = path.ends_with(".min") || path.ends_with(".max");
+        // A required extension ptsc does not read is a note (`notes_on_the_file`).
+        let required = path.starts_with("extensionsRequired");
+        if !(bounds && matches!(error, Error::Missing)
+            || required && matches!(error, Error::Unsupported))
+        {
+            errors.push(format!("{path}: {error}"));
+        }
+    });
+    match errors.is_empty() {
+        true => Ok(()),
+        false => Err(format!(
+            "the glTF file is not valid: {}{}",
+            errors[..errors.len().min(3)].join("; "),
+            if errors.len() > 3 { "; …" } else { "" }
+        )),
+    }
 }
 
 /// Every buffer's bytes: the GLB's binary chunk, a data URI's, or a file
@@ -193,6 +224,9 @@ fn notes_on_the_file(doc: &gltf::Document, notes: &mut Vec<String>) {
     if doc.animations().len() > 0 {
         notes.push("its animations are not played: the scene is in its rest pose".into());
     }
+    if doc.extensions_used().any(|e| e == "KHR_lights_punctual") {
+        notes.push("its lights (`KHR_lights_punctual`) are not placed".into());
+    }
     if doc.cameras().len() > 0 {
         notes.push("its cameras are not used: the scene's `camera` is".into());
     }
@@ -258,7 +292,7 @@ pub fn local_transform(t: &gltf::scene::Transform, name: &str) -> Result<DMat4, 
             scale,
         } => {
             let q = DQuat::from_array(rotation.map(f64::from));
-            if !(q.length_squared() > 0.0) {
+            if q.length_squared().is_nan() || q.length_squared() <= 0.0 {
                 return Err(format!("node `{name}` has a rotation of length 0"));
             }
             DMat4::from_scale_rotation_translation(
@@ -439,3 +473,7 @@ fn read_primitive(p: &gltf::Primitive, buffers: &Buffers, mode: Mode) -> Result<
     };
     Ok((positions, normals, uvs, triangles))
 }
+
+#[cfg(test)]
+#[path = "gltf_tests.rs"]
+mod tests;

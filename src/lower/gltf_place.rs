@@ -56,7 +56,7 @@ pub fn place(
     for (o, object) in scene.objects.iter().enumerate() {
         let data = gltf(object)
             .then(|| object_path(object))
-            .and_then(|p| read(p));
+            .and_then(&mut read);
         let Some(data) = data.filter(|d| d.scene.is_some()) else {
             if let Some(out) = placing.out.as_mut() {
                 out.objects.push(object.clone());
@@ -84,7 +84,7 @@ pub fn place(
         for (k, object) in scene.groups[g].objects.iter().enumerate() {
             let Some(data) = gltf(object)
                 .then(|| object_path(object))
-                .and_then(|p| read(p))
+                .and_then(&mut read)
             else {
                 continue;
             };

@@ -13,6 +13,7 @@ mod files;
 mod fmt;
 mod folders;
 mod frames;
+mod gltf;
 mod golden;
 mod group_lights;
 mod hostile;

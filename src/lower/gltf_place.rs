@@ -9,7 +9,7 @@
 //! file are served to lowering from memory (`Embedded`).
 
 use super::cache::LowerCache;
-use super::mesh_data::{FileScene, MeshData};
+use super::mesh_data::{is_gltf, FileScene, MeshData};
 use super::shapes::{read_mesh, MeshReads};
 use crate::check::{self, Group, Instance, Object};
 use crate::diag::{codes, Diagnostic, Diagnostics};
@@ -21,12 +21,6 @@ use std::collections::HashMap;
 use std::io::Read;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
-
-/// Whether `path` names a glTF file.
-pub fn is_gltf(path: &Path) -> bool {
-    let ext = path.extension().and_then(|e| e.to_str());
-    ext.is_some_and(|e| e.eq_ignore_ascii_case("gltf") || e.eq_ignore_ascii_case("glb"))
-}
 
 /// The scene with its glTF mesh statements placed (`None`: it has none
 /// that could be read), and the images inside those files.

@@ -148,3 +148,9 @@ pub struct MeshView<'a> {
     /// file's vertices.
     pub part: bool,
 }
+
+/// Whether `path` names a glTF file (`.gltf` or `.glb`).
+pub fn is_gltf(path: &Path) -> bool {
+    let ext = path.extension().and_then(|e| e.to_str());
+    ext.is_some_and(|e| e.eq_ignore_ascii_case("gltf") || e.eq_ignore_ascii_case("glb"))
+}

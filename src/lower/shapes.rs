@@ -339,7 +339,10 @@ impl Gathering<'_> {
                         path_span,
                     )
                     .with_label(e)
-                    .with_help("meshes are OBJ, PLY or glTF files with at least one triangle"),
+                    .with_help(match super::mesh_data::is_gltf(path) {
+                        true => "ptsc reads glTF 2.0 (a .gltf with its buffers beside it or inside it, or a .glb); the Khronos glTF validator tells what else is wrong with the file",
+                        false => "meshes are OBJ, PLY or glTF files with at least one triangle",
+                    }),
                 );
                 return;
             }

@@ -85,6 +85,19 @@ pub(super) fn parse_gltf(
 fn validate(doc: &gltf::Document) -> Result<(), String> {
     use gltf::json::validation::{Error, Validate};
     let root = doc.as_json();
+    // The crate's own check of positions indexes the accessors unchecked
+    // (gltf-json 1.4.1, mesh.rs): attributes are checked first.
+    let accessors = root.accessors.len();
+    for (m, mesh) in root.meshes.iter().enumerate() {
+        for primitive in &mesh.primitives {
+            if let Some(bad) = (primitive.attributes.values()).find(|a| a.value() >= accessors) {
+                return Err(format!(
+                    "the glTF file is not valid: mesh {m} names accessor {}, but the file has {accessors}",
+                    bad.value()
+                ));
+            }
+        }
+    }
     let mut errors = Vec::new();
     root.validate(root, gltf::json::Path::new, &mut |path, error| {
         let path = path().to_string();

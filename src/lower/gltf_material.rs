@@ -27,6 +27,7 @@
 use super::gltf::{data_uri, relative_path};
 use super::gltf_accessor::Buffers;
 use super::mesh_data::FileScene;
+use crate::check::domain::{MAX_MAGNITUDE, MAX_RADIANCE};
 use crate::check::scene::{
     Material, MaterialKind, PrincipledParams, Rgb, Texture, TextureInput, TextureKind, TextureSpace,
 };
@@ -42,7 +43,7 @@ use std::sync::Arc;
 pub fn read(doc: &gltf::Document, path: &Path, buffers: &Buffers, scene: &mut FileScene) {
     let images: Vec<Option<PathBuf>> = doc
         .images()
-        .map(|image| image_path(&image, path, buffers, scene))
+        .map(|image| image_path(doc, &image, (path, buffers), scene))
         .collect();
     for m in doc.materials() {
         let mapped = material(&m, &images, &mut scene.notes);
@@ -54,12 +55,26 @@ pub fn read(doc: &gltf::Document, path: &Path, buffers: &Buffers, scene: &mut Fi
 /// an embedded one, added to `scene.embedded`); `None`, with a note, when
 /// ptsc cannot read it.
 fn image_path(
+    doc: &gltf::Document,
     image: &gltf::Image,
-    path: &Path,
-    buffers: &Buffers,
+    (path, buffers): (&Path, &Buffers),
     scene: &mut FileScene,
 ) -> Option<PathBuf> {
     let k = image.index();
+    // `Image::source` unwraps what the crate's checks do not ask for.
+    let json = &doc.as_json().images[k];
+    if json.uri.is_none() && json.buffer_view.is_none() {
+        scene
+            .notes
+            .push(format!("image {k} has neither a `uri` nor a `bufferView`"));
+        return None;
+    }
+    if json.buffer_view.is_some() && json.mime_type.is_none() {
+        scene.notes.push(format!(
+            "image {k} is in a buffer view without a `mimeType`"
+        ));
+        return None;
+    }
     let (bytes, mime) = match image.source() {
         gltf::image::Source::Uri { uri, mime_type } => {
             match data_uri(uri, super::image::MAX_IMAGE_BYTES) {
@@ -123,15 +138,23 @@ fn number(ext: Option<&Value>, key: &str) -> Option<f64> {
     ext?.get(key)?.as_f64().filter(|x| x.is_finite())
 }
 
-/// A colour from glTF's f32 components, negative or non-finite ones 0.
+/// A colour from glTF's f32 components, negative or non-finite ones 0,
+/// within the scene language's magnitudes.
 fn rgb(c: [f32; 3]) -> Rgb {
-    c.map(|x| {
-        if x.is_finite() {
-            (x as f64).max(0.0)
-        } else {
-            0.0
-        }
+    c.map(|x| match x.is_finite() {
+        true => (x as f64).clamp(0.0, MAX_MAGNITUDE),
+        false => 0.0,
     })
+}
+
+/// An emission of `factor` times `KHR_materials_emissive_strength`'s
+/// strength (a negative or non-finite one read as 1), within the language's
+/// radiances.
+fn emission(m: &gltf::Material) -> Rgb {
+    let strength = (m.emissive_strength())
+        .filter(|s| s.is_finite() && *s >= 0.0)
+        .map_or(1.0, f64::from);
+    rgb(m.emissive_factor()).map(|c| (c * strength).min(MAX_RADIANCE))
 }
 
 /// The material `m` in ptsc's terms, its textures' images from `images`;
@@ -167,8 +190,7 @@ pub fn material(
     out.transmission = m
         .transmission()
         .map_or(0.0, |t| unit(t.transmission_factor() as f64));
-    out.emission =
-        rgb(m.emissive_factor()).map(|c| c * m.emissive_strength().map_or(1.0, f64::from));
+    out.emission = emission(m);
     let clearcoat = m.extension_value("KHR_materials_clearcoat");
     let sheen = m.extension_value("KHR_materials_sheen");
     let sheen_color = (sheen.and_then(|s| s.get("sheenColorFactor")))
@@ -274,9 +296,7 @@ fn textures(
         );
     }
     if let Some(info) = m.emissive_texture() {
-        let strength = m.emissive_strength().map_or(1.0, f64::from);
-        let factor = rgb(m.emissive_factor()).map(|c| c * strength);
-        add(TextureInput::Emission, Source::of(&info), factor, None);
+        add(TextureInput::Emission, Source::of(&info), emission(m), None);
     }
     if let Some(normal) = m.normal_texture() {
         if normal.scale() != 1.0 {

@@ -341,6 +341,9 @@ pub enum Shape {
         path_span: Span,
         /// Interpolate vertex normals when the file has them.
         smooth: bool,
+        /// A glTF file's node (by name) whose subtree alone is placed,
+        /// with where the name is written.
+        node: Option<(String, Span)>,
         /// Only the faces of this material of the file's own (an OBJ's
         /// `usemtl` group, by index into its libraries' materials; `u32::MAX`
         /// for the faces without one): set by lowering, which splits a mesh

@@ -13,7 +13,7 @@
 //! image's top-left, ptsc's at the bottom-left: v becomes 1 − v.
 
 use super::gltf_accessor::{self, Buffers};
-use super::mesh_data::{FileScene, LibraryReader, MeshData, Part, Placed};
+use super::mesh_data::{FileNode, FileScene, LibraryReader, MeshData, Part, Placed};
 use crate::source::MAX_MESH_BYTES;
 use base64::Engine;
 use glam::{DMat4, DQuat, DVec3, Vec2, Vec3};
@@ -57,7 +57,10 @@ pub(super) fn parse_gltf(
     let buffers = read_buffers(doc, gltf.blob.as_deref(), (folder, library), &mut out)?;
     notes_on_the_file(doc, &mut scene.notes);
     let placed = walk(doc, &mut scene.notes)?;
-    let meshes: BTreeSet<u32> = placed.iter().map(|p| p.mesh).collect();
+    scene.nodes = nodes(doc)?;
+    // Every mesh a node places: `node "Name"` may pick one outside the
+    // default scene.
+    let meshes: BTreeSet<u32> = scene.nodes.iter().filter_map(|n| n.mesh).collect();
     let mut attributes = Attributes::default();
     for mesh in doc
         .meshes()
@@ -69,8 +72,8 @@ pub(super) fn parse_gltf(
     let with_parts: BTreeSet<u32> = scene.parts.iter().map(|p| p.mesh).collect();
     scene.placed = placed;
     scene.placed.retain(|p| with_parts.contains(&p.mesh));
-    if scene.placed.is_empty() {
-        return Err("the file's scene places no triangles".into());
+    if with_parts.is_empty() {
+        return Err("the file's nodes place no triangles".into());
     }
     super::gltf_material::read(doc, path, &buffers, &mut scene);
     out.scene = Some(Box::new(scene));
@@ -282,6 +285,21 @@ fn walk(doc: &gltf::Document, notes: &mut Vec<String>) -> Result<Vec<Placed>, St
         stack[first_child..].reverse();
     }
     Ok(placed)
+}
+
+/// Every node of the file with its own transform, mesh and children.
+fn nodes(doc: &gltf::Document) -> Result<Vec<FileNode>, String> {
+    (doc.nodes())
+        .map(|node| {
+            let name = node_name(&node);
+            Ok(FileNode {
+                local: local_transform(&node.transform(), &name)?,
+                mesh: node.mesh().map(|m| m.index() as u32),
+                children: node.children().map(|c| c.index() as u32).collect(),
+                name,
+            })
+        })
+        .collect()
 }
 
 /// A node's name, or `#index` when it has none.

@@ -9,7 +9,7 @@
 //! file are served to lowering from memory (`Embedded`).
 
 use super::cache::LowerCache;
-use super::mesh_data::{is_gltf, FileScene, MeshData};
+use super::mesh_data::{is_gltf, FileScene, MeshData, Placed as PlacedNode};
 use super::shapes::{read_mesh, MeshReads};
 use crate::check::{self, Group, Instance, Object};
 use crate::diag::{codes, Diagnostic, Diagnostics};
@@ -29,6 +29,8 @@ pub struct Placed {
     pub scene: Option<check::Scene>,
     /// The images held inside the files, by the path their textures read.
     pub embedded: Embedded,
+    /// A `node` the file does not have, a default scene without triangles.
+    pub errors: Diagnostics,
 }
 
 /// `scene` with every readable glTF mesh statement replaced by the file's
@@ -45,6 +47,7 @@ pub fn place(
         materials: HashMap::new(),
         embedded: HashMap::new(),
     };
+    let mut errors = Diagnostics::new();
     let gltf = |o: &Object| matches!(&o.shape, check::Shape::Mesh { path, group: None, .. } if is_gltf(path));
     let mut read = |path: &Path| read_mesh(reads, (&mut *cache, files), path).ok();
     for (o, object) in scene.objects.iter().enumerate() {
@@ -61,6 +64,9 @@ pub fn place(
             objects: scene.objects[..o].to_vec(),
             ..scene.clone()
         });
+        let Some(nodes) = placements(object, &data, &mut errors) else {
+            continue;
+        };
         let materials = placing.materials.entry(object_path(object).to_path_buf());
         let first = matches!(materials, std::collections::hash_map::Entry::Vacant(_));
         if first {
@@ -69,7 +75,7 @@ pub fn place(
         let mapped = materials
             .or_insert_with(|| map_materials(&data, object.span, out))
             .clone();
-        place_top_level(object, &data, &mapped, out);
+        place_top_level(object, (&data, &nodes), &mapped, out);
         placing
             .embedded
             .extend(embedded_of(&data, object_path(object)));
@@ -86,6 +92,10 @@ pub fn place(
                 continue;
             }
             let out = placing.out.get_or_insert_with(|| scene.clone());
+            let Some(nodes) = placements(object, &data, &mut errors) else {
+                out.groups[g].objects[k].shape = placeholder();
+                continue;
+            };
             let path = object_path(object).to_path_buf();
             if !placing.materials.contains_key(&path) {
                 warn(object, &data, warnings);
@@ -98,7 +108,7 @@ pub fn place(
                 .get(k)
                 .copied()
                 .unwrap_or(false);
-            place_in_group(out, (g, k), (&data, &mapped), unmaterialled);
+            place_in_group(out, (g, k), (&data, &nodes, &mapped), unmaterialled);
             placing.embedded.extend(embedded_of(&data, &path));
         }
     }
@@ -119,6 +129,48 @@ pub fn place(
         embedded: Embedded {
             held: placing.embedded,
         },
+        errors,
+    }
+}
+
+/// The nodes the statement `object` places of its file: the default
+/// scene's, or its `node`'s subtree; `None`, with an error, when there are
+/// none.
+fn placements(
+    object: &Object,
+    data: &MeshData,
+    errors: &mut Diagnostics,
+) -> Option<Vec<PlacedNode>> {
+    let (
+        Some(scene),
+        check::Shape::Mesh {
+            path,
+            path_span,
+            node,
+            ..
+        },
+    ) = (&data.scene, &object.shape)
+    else {
+        return None;
+    };
+    let (result, span) = match node {
+        Some((name, span)) => (scene.placements_under(name), *span),
+        None if scene.placed.is_empty() => (
+            Err("the file's default scene places no triangles".to_string()),
+            *path_span,
+        ),
+        None => (Ok(scene.placed.clone()), *path_span),
+    };
+    match result {
+        Ok(nodes) => Some(nodes),
+        Err(e) => {
+            errors.push(
+                Diagnostic::error(codes::MESH_FILE, format!("cannot place `{}`", path.display()), span)
+                    .with_label(e)
+                    .with_help("name a node of the file that holds meshes (`node \"Name\"`), or leave `node` out to place its default scene"),
+            );
+            None
+        }
     }
 }
 
@@ -209,6 +261,7 @@ fn parts_of(
                 path: path.clone(),
                 path_span: *path_span,
                 smooth: *smooth,
+                node: None,
                 group: Some(k as u32),
             },
             material: given
@@ -224,17 +277,22 @@ fn parts_of(
 /// Places the file of the top-level `object` into `out`: a mesh placed
 /// once as objects, a mesh placed by several nodes as a group placed by
 /// each.
-fn place_top_level(object: &Object, data: &MeshData, mapped: &[usize], out: &mut check::Scene) {
+fn place_top_level(
+    object: &Object,
+    (data, nodes): (&MeshData, &[PlacedNode]),
+    mapped: &[usize],
+    out: &mut check::Scene,
+) {
     let Some(scene) = &data.scene else {
         return;
     };
     let given = (Some(object.material) != out.default_material).then_some(object.material);
     let mut uses: HashMap<u32, usize> = HashMap::new();
-    for p in &scene.placed {
+    for p in nodes {
         *uses.entry(p.mesh).or_default() += 1;
     }
     let mut groups: HashMap<u32, usize> = HashMap::new();
-    for placed in &scene.placed {
+    for placed in nodes {
         let transform = object.transform * placed.transform;
         if uses[&placed.mesh] < 2 {
             let parts = parts_of(object, (scene, placed.mesh), mapped, given);
@@ -272,7 +330,7 @@ fn place_top_level(object: &Object, data: &MeshData, mapped: &[usize], out: &mut
 fn place_in_group(
     out: &mut check::Scene,
     (g, k): (usize, usize),
-    (data, mapped): (&MeshData, &[usize]),
+    (data, nodes, mapped): (&MeshData, &[PlacedNode], &[usize]),
     unmaterialled: bool,
 ) {
     let Some(scene) = &data.scene else {
@@ -280,7 +338,7 @@ fn place_in_group(
     };
     let object = out.groups[g].objects[k].clone();
     let given = (!unmaterialled).then_some(object.material);
-    for placed in &scene.placed {
+    for placed in nodes {
         let parts = parts_of(&object, (scene, placed.mesh), mapped, given);
         for part in parts {
             // A part without a material of its own takes the instance's.
@@ -302,6 +360,7 @@ fn placeholder() -> check::Shape {
         path: PathBuf::new(),
         path_span: Span::default(),
         smooth: false,
+        node: None,
         group: Some(u32::MAX),
     }
 }

@@ -302,7 +302,7 @@ fn hostile_files_are_refused_with_a_sentence() {
                 r#""scenes": [{"nodes": [0]}], "nodes": [{}]"#,
                 GOOD_ACCESSOR,
             ),
-            "places no triangles",
+            "place no triangles",
         ),
         (
             triangle_file(one, GOOD_ACCESSOR)

@@ -46,8 +46,11 @@ pub struct MeshData {
 pub struct FileScene {
     /// The primitives read.
     pub parts: Vec<Part>,
-    /// The placements of meshes by the file's nodes, in the file's frame.
+    /// The placements of meshes by the nodes of the file's default scene,
+    /// in the file's frame.
     pub placed: Vec<Placed>,
+    /// Every node of the file, by index (for `node "Name"`).
+    pub nodes: Vec<FileNode>,
     /// The file's materials in ptsc's terms (spans set where a statement
     /// places the file).
     pub materials: Vec<Material>,
@@ -70,6 +73,68 @@ pub struct Part {
     pub triangles: Range<u32>,
     /// Its material (index into [`FileScene::materials`]), if it has one.
     pub material: Option<u32>,
+}
+
+/// A node of a scene file.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FileNode {
+    /// Its name, or `#index`.
+    pub name: String,
+    /// Node → parent.
+    pub local: DMat4,
+    /// The mesh it places, if any (and the file has it read).
+    pub mesh: Option<u32>,
+    /// Its children, by index.
+    pub children: Vec<u32>,
+}
+
+impl FileScene {
+    /// The placements of node `name`'s subtree, in the node's frame (its
+    /// own transform left out); the error is a sentence (no such node, or
+    /// a node reached twice).
+    pub fn placements_under(&self, name: &str) -> Result<Vec<Placed>, String> {
+        let start = (self.nodes.iter().position(|n| n.name == name)).ok_or_else(|| {
+            let mut names: Vec<&str> = self.nodes.iter().map(|n| n.name.as_str()).collect();
+            names.truncate(12);
+            format!(
+                "the file has no node `{name}` (its nodes: {})",
+                names.join(", ")
+            )
+        })?;
+        let with_parts: std::collections::BTreeSet<u32> =
+            self.parts.iter().map(|p| p.mesh).collect();
+        let mut seen = vec![false; self.nodes.len()];
+        let mut stack = vec![(start as u32, DMat4::IDENTITY)];
+        let mut out = Vec::new();
+        while let Some((k, parent)) = stack.pop() {
+            let node = self
+                .nodes
+                .get(k as usize)
+                .ok_or("a child index past the nodes")?;
+            if std::mem::replace(&mut seen[k as usize], true) {
+                return Err(format!(
+                    "node `{}` is reached twice: the node graph is not a tree",
+                    node.name
+                ));
+            }
+            let transform = match k as usize == start {
+                true => DMat4::IDENTITY,
+                false => parent * node.local,
+            };
+            if let Some(mesh) = node.mesh.filter(|m| with_parts.contains(m)) {
+                out.push(Placed {
+                    mesh,
+                    transform,
+                    node: node.name.clone(),
+                });
+            }
+            stack.extend(node.children.iter().rev().map(|&c| (c, transform)));
+        }
+        match out.is_empty() {
+            true => Err(format!("node `{name}` and its children place no triangles")),
+            false => Ok(out),
+        }
+    }
 }
 
 /// A node that places a mesh.

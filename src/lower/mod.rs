@@ -91,8 +91,16 @@ pub fn lower(
     let flat = expanded.as_ref().unwrap_or(flat);
     let coats = material::Coats::default();
     let reading = (&mut *cache, files, coats, reads);
-    let prepared = prepare(scene, flat, &split, adjust, reading, warnings)?;
-    Ok(prepared.build(flat, cache))
+    let prepared = prepare(scene, flat, &split, adjust, reading, warnings);
+    let mut errors = placed.errors;
+    match prepared {
+        Ok(prepared) if !errors.has_errors() => Ok(prepared.build(flat, cache)),
+        Ok(_) => Err(errors),
+        Err(more) => {
+            errors.extend(more);
+            Err(errors)
+        }
+    }
 }
 
 /// Every problem [`lower`] would find in `scene`, found the same way
@@ -126,8 +134,12 @@ pub fn validate(
         (cache, files, coats, reads),
         warnings,
     ) {
-        Ok(_) => Diagnostics::new(),
-        Err(errors) => errors,
+        Ok(_) => placed.errors,
+        Err(more) => {
+            let mut errors = placed.errors;
+            errors.extend(more);
+            errors
+        }
     }
 }
 

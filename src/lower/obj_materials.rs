@@ -82,6 +82,7 @@ fn split(
             path: path.clone(),
             path_span: *path_span,
             smooth: *smooth,
+            node: None,
             group: Some(group),
         },
         material,

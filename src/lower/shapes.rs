@@ -274,6 +274,7 @@ impl Gathering<'_> {
                 path_span,
                 smooth,
                 group,
+                ..
             } => return self.mesh(o, obj, (path, *path_span), (*smooth, *group)),
             check::Shape::Plane { point, normal } => shapes.push(Shape::Plane {
                 point: pt(*point),

@@ -394,3 +394,41 @@ fn a_broken_file_is_an_error_at_the_statement_in_check_and_render() {
         );
     }
 }
+
+#[test]
+fn node_places_one_subtree_without_its_own_place() {
+    let d = two_cubes();
+    let dir = crate::temp_dir_with(&[("cubes.gltf", &d.gltf())]);
+    let picked = compile(
+        dir.path(),
+        &format!("{STAGE}mesh {{ file \"cubes.gltf\" node \"A\" translate <0, 0.5, 0> }}"),
+    );
+    let written = "box { min <-0.5, -0.5, -0.5> max <0.5, 0.5, 0.5> translate <0, 0.5, 0>
+        material { type principled base_color rgb <0.8, 0.1, 0.1> roughness 0.5 } }";
+    let reference = crate::render_pixels(ir_of(&compile(dir.path(), &format!("{STAGE}{written}"))));
+    let pixels = crate::render_pixels(ir_of(&picked));
+    let differing = (pixels.iter().zip(&reference))
+        .filter(|(p, q)| worst(&[**p], &[**q]) > 1e-3)
+        .count();
+    assert!(differing <= 6, "{differing} pixels differ");
+    // The parent's subtree is both cubes, in the parent's frame.
+    let parent = compile(
+        dir.path(),
+        &format!("{STAGE}mesh {{ file \"cubes.gltf\" node \"Parent\" }}"),
+    );
+    assert_eq!(
+        ir_of(&parent).object_material.len(),
+        3,
+        "the plane and two cubes"
+    );
+    // A node the file does not have: an error at `node`, in check too.
+    let scene = format!("{STAGE}mesh {{ file \"cubes.gltf\" node \"Parnet\" }}");
+    let c = compile(dir.path(), &scene);
+    let report = c.diagnostics.render_human(&c.sources, false);
+    assert!(
+        c.ir.is_none() && report.contains("no node `Parnet`") && report.contains("Parent"),
+        "{report}"
+    );
+    let (code, _, err) = crate::ptsc(&["check", dir.path().join("scene.pts").to_str().unwrap()]);
+    assert!(code != 0 && err.contains("no node `Parnet`"), "{err}");
+}

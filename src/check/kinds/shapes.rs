@@ -388,6 +388,7 @@ pub const MESH: Kind = Kind {
     params: &[
         p("file", Ty::Str, "\"bunny.ply\"").doc("the `.obj`, `.ply`, `.gltf` or `.glb` file, relative to the scene file; vertex normals and texture coordinates are read when present, an OBJ's or glTF's materials when the mesh names none, a glTF's whole scene (its nodes' transforms on top of the mesh's). Required"),
         p("smooth", Ty::Bool, "true").doc("interpolate the file's vertex normals. Default `false` (flat shading) for OBJ and PLY, `true` for glTF (its normals are part of the model)"),
+        p("node", Ty::Str, "\"Chair\"").doc("a glTF file's node, by name: only it and its children are placed, at the mesh's transforms (the node's own place in the file is left out). Default: the file's whole scene"),
     ],
     role: Role::Shape(mesh),
     positional: None,
@@ -434,10 +435,28 @@ fn mesh(s: &mut ShapeInput) -> Option<Shape> {
         s.diags().push(d);
         return None;
     }
+    let gltf = matches!(ext.as_deref(), Some("gltf" | "glb"));
+    let node = match s.params().get("node") {
+        Some((Val::Str(name), span)) => Some((name.clone(), *span)),
+        _ => None,
+    };
+    if let (Some((_, span)), false) = (&node, gltf) {
+        s.diags().push(
+            Diagnostic::error(
+                codes::MESH_FILE,
+                "`node` picks a node of a glTF file",
+                *span,
+            )
+            .with_label(format!("`{f}` is not a .gltf or .glb file"))
+            .with_help("remove `node`, or place a glTF file"),
+        );
+        return None;
+    }
     Some(Shape::Mesh {
         path,
         path_span: at,
-        smooth: s.boolean("smooth", matches!(ext.as_deref(), Some("gltf" | "glb"))),
+        smooth: s.boolean("smooth", gltf),
+        node,
         group: None,
     })
 }

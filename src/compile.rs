@@ -153,14 +153,6 @@ fn compile_from(path: &Path, bytes: Vec<u8>, options: Options, start: Instant) -
     };
     if let Some(scene) = checked.scene {
         compiled.output = scene.render.output.clone();
-        if options.fingerprint {
-            compiled.fingerprint = Some(crate::lower::fingerprint(
-                files,
-                &compiled.sources,
-                &scene,
-                options.animation,
-            ));
-        }
         let mut one_off = LowerCache::one_off();
         let cache = options.cache.unwrap_or(&mut one_off);
         let mut warnings = crate::diag::Diagnostics::new();
@@ -177,6 +169,16 @@ fn compile_from(path: &Path, bytes: Vec<u8>, options: Options, start: Instant) -
             ));
         }
         compiled.diagnostics.extend(warnings);
+        if options.fingerprint {
+            // After lowering: the files its meshes name (an OBJ's
+            // libraries, a glTF's buffers) were asked of `files` then.
+            compiled.fingerprint = Some(crate::lower::fingerprint(
+                files,
+                (&compiled.sources, &asked.paths()),
+                &scene,
+                options.animation,
+            ));
+        }
         if !options.output_elsewhere {
             let inputs = asked.paths();
             let output = check_scene_output(&scene.render, options.animation.frame, &inputs);

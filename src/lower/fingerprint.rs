@@ -21,7 +21,7 @@
 //! farm's nodes and a state file saved months ago need.
 
 use crate::check::{self, Animation};
-use crate::source::{Files, ReadError, SourceMap};
+use crate::source::{Files, ReadError, SourceMap, MAX_MESH_BYTES};
 use std::io::Read;
 
 /// FNV-1a's offset basis and prime (Fowler, Noll, Vo; IETF draft
@@ -34,7 +34,7 @@ const FNV_PRIME: u64 = 0x0000_0100_0000_01b3;
 /// its data files' bytes (see the module's documentation).
 pub fn fingerprint(
     files: &dyn Files,
-    sources: &SourceMap,
+    (sources, asked): (&SourceMap, &[std::path::PathBuf]),
     scene: &check::Scene,
     animation: Animation,
 ) -> u64 {
@@ -45,8 +45,21 @@ pub fn fingerprint(
     }
     hash = fnv(hash, &animation.frame.to_le_bytes());
     hash = fnv(hash, &animation.clock.to_bits().to_le_bytes());
-    for (path, limit) in super::data_files(scene) {
-        hash = hash_file(hash, files.open(&path, limit), limit);
+    let data = super::data_files(scene);
+    for (path, limit) in &data {
+        hash = hash_file(hash, files.open(path, *limit), *limit);
+    }
+    // The files the data files name, that lowering read: an OBJ's material
+    // libraries, a glTF's buffers. (Hashed after the rest: a scene without
+    // any keeps the fingerprint it had before they were.)
+    let mut named: Vec<&std::path::PathBuf> = (asked.iter())
+        .filter(|p| sources.files().iter().all(|f| &f.path != *p))
+        .filter(|p| data.iter().all(|(d, _)| d != *p) && files.exists(p).is_ok())
+        .collect();
+    named.sort();
+    named.dedup();
+    for path in named {
+        hash = hash_file(hash, files.open(path, MAX_MESH_BYTES), MAX_MESH_BYTES);
     }
     hash
 }
@@ -272,7 +285,12 @@ mod tests {
                 frame,
                 ..Animation::default()
             };
-            fingerprint(&Disk, &c.sources, &c.scene.expect("checks"), animation)
+            fingerprint(
+                &Disk,
+                (&c.sources, &[]),
+                &c.scene.expect("checks"),
+                animation,
+            )
         };
         let base = fp(
             "render { samples 4 }\nsphere { center <0,0,0> radius 1 }",

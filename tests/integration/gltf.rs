@@ -432,3 +432,42 @@ fn node_places_one_subtree_without_its_own_place() {
     let (code, _, err) = crate::ptsc(&["check", dir.path().join("scene.pts").to_str().unwrap()]);
     assert!(code != 0 && err.contains("no node `Parnet`"), "{err}");
 }
+
+#[test]
+fn the_fingerprint_sees_the_files_a_mesh_names() {
+    // A render state resumes only the same scene: a glTF's buffer or an
+    // OBJ's library changed is another scene.
+    let d = two_cubes();
+    let text = d.gltf();
+    let data = text.find("data:").unwrap();
+    let end = data + text[data..].find('"').unwrap();
+    let external = format!("{}cubes.bin{}", &text[..data], &text[end..]);
+    let dir = crate::temp_dir_with(&[("cubes.gltf", &external), ("m.mtl", "newmtl A\nKd 1 0 0\n")]);
+    std::fs::write(dir.path().join("cubes.bin"), &d.bin).unwrap();
+    std::fs::write(
+        dir.path().join("q.obj"),
+        "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl A\nf 1 2 3\n",
+    )
+    .unwrap();
+    let scene = format!("{STAGE}mesh {{ file \"cubes.gltf\" }}\nmesh {{ file \"q.obj\" }}");
+    let path = dir.path().join("scene.pts");
+    std::fs::write(&path, &scene).unwrap();
+    let fingerprint = || {
+        let options = Options {
+            fingerprint: true,
+            ..Options::default()
+        };
+        let c = compile_file(&path, options).unwrap();
+        ir_of(&c);
+        c.fingerprint.expect("asked for")
+    };
+    let before = fingerprint();
+    assert_eq!(before, fingerprint(), "stable");
+    let mut bin = d.bin.clone();
+    bin[0] ^= 1;
+    std::fs::write(dir.path().join("cubes.bin"), &bin).unwrap();
+    let after_bin = fingerprint();
+    assert_ne!(before, after_bin, "the buffer changed");
+    std::fs::write(dir.path().join("m.mtl"), "newmtl A\nKd 0 1 0\n").unwrap();
+    assert_ne!(after_bin, fingerprint(), "the library changed");
+}

@@ -4,9 +4,10 @@
 //! normals, `TEXCOORD_0`) and the file's materials (`gltf_material.rs`).
 //! The `gltf` crate parses the JSON and the GLB container; buffers are
 //! read through the scene's `Files` (the caller's reader) and accessors by
-//! our own checked code (`gltf_accessor.rs`). What is not followed (skins,
-//! morph targets, animations, cameras, lights, points and lines, unknown
-//! required extensions) is a note that lowering turns into a warning.
+//! our own checked code (`gltf_accessor.rs`); `KHR_lights_punctual` lights
+//! become the scene's. What is not followed (skins, morph targets,
+//! animations, cameras, points and lines, unknown required extensions) is a
+//! note that lowering turns into a warning.
 //!
 //! Frames: glTF is y-up, right-handed, in metres, as ptsc reads any mesh
 //! file (no axis is changed); its texture coordinates have (0, 0) at the
@@ -14,6 +15,8 @@
 
 use super::gltf_accessor::{self, Buffers};
 use super::mesh_data::{FileNode, FileScene, LibraryReader, MeshData, Part, Placed};
+use crate::check::domain::MAX_RADIANCE;
+use crate::check::Light;
 use crate::source::MAX_MESH_BYTES;
 use base64::Engine;
 use glam::{DMat4, DQuat, DVec3, Vec2, Vec3};
@@ -24,7 +27,8 @@ use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
 
 /// The extensions ptsc reads (others a file requires are named in a note).
-pub const SUPPORTED_EXTENSIONS: [&str; 8] = [
+pub const SUPPORTED_EXTENSIONS: [&str; 9] = [
+    "KHR_lights_punctual",
     "KHR_materials_clearcoat",
     "KHR_materials_emissive_strength",
     "KHR_materials_ior",
@@ -56,8 +60,22 @@ pub(super) fn parse_gltf(
     let mut scene = FileScene::default();
     let buffers = read_buffers(doc, gltf.blob.as_deref(), (folder, library), &mut out)?;
     notes_on_the_file(doc, &mut scene.notes);
-    let placed = walk(doc, &mut scene.notes)?;
+    let visited = walk(doc, &mut scene.notes)?;
     scene.nodes = nodes(doc)?;
+    let (nodes, mut placed) = (&scene.nodes, Vec::new());
+    for (k, transform) in visited {
+        if let Some(light) = &nodes[k].light {
+            scene.lights.push((light.clone(), transform));
+        }
+        if let Some(mesh) = nodes[k].mesh {
+            let node = nodes[k].name.clone();
+            placed.push(Placed {
+                mesh,
+                transform,
+                node,
+            });
+        }
+    }
     // Every mesh a node places: `node "Name"` may pick one outside the
     // default scene.
     let meshes: BTreeSet<u32> = scene.nodes.iter().filter_map(|n| n.mesh).collect();
@@ -240,18 +258,15 @@ fn notes_on_the_file(doc: &gltf::Document, notes: &mut Vec<String>) {
     if doc.animations().len() > 0 {
         notes.push("its animations are not played: the scene is in its rest pose".into());
     }
-    if doc.extensions_used().any(|e| e == "KHR_lights_punctual") {
-        notes.push("its lights (`KHR_lights_punctual`) are not placed".into());
-    }
     if doc.cameras().len() > 0 {
         notes.push("its cameras are not used: the scene's `camera` is".into());
     }
 }
 
-/// The nodes of the file's default scene (else its first) that place a
-/// mesh, with their transforms to the file's frame. A node reached twice
-/// (the graph is not a tree) is an error: the walk visits each node once.
-fn walk(doc: &gltf::Document, notes: &mut Vec<String>) -> Result<Vec<Placed>, String> {
+/// The nodes of the file's default scene (else its first), by index, with
+/// their transforms to the file's frame. A node reached twice (the graph
+/// is not a tree) is an error: the walk visits each node once.
+fn walk(doc: &gltf::Document, notes: &mut Vec<String>) -> Result<Vec<(usize, DMat4)>, String> {
     let scene = (doc.default_scene())
         .or_else(|| doc.scenes().next())
         .ok_or("the file has no scene")?;
@@ -268,13 +283,7 @@ fn walk(doc: &gltf::Document, notes: &mut Vec<String>) -> Result<Vec<Placed>, St
             ));
         }
         let transform = parent * local_transform(&node.transform(), &name)?;
-        if let Some(mesh) = node.mesh() {
-            placed.push(Placed {
-                mesh: mesh.index() as u32,
-                transform,
-                node: name.clone(),
-            });
-        }
+        placed.push((node.index(), transform));
         if node.skin().is_some() {
             notes.push(format!(
                 "node `{name}` is skinned: its mesh is placed in its bind pose"
@@ -289,17 +298,120 @@ fn walk(doc: &gltf::Document, notes: &mut Vec<String>) -> Result<Vec<Placed>, St
 
 /// Every node of the file with its own transform, mesh and children.
 fn nodes(doc: &gltf::Document) -> Result<Vec<FileNode>, String> {
+    let lights = lights(doc);
     (doc.nodes())
         .map(|node| {
             let name = node_name(&node);
+            let json = &doc.as_json().nodes[node.index()];
+            let light = (json.extensions.as_ref())
+                .and_then(|e| e.khr_lights_punctual.as_ref())
+                .and_then(|l| lights.get(l.light.value()).cloned().flatten());
             Ok(FileNode {
                 local: local_transform(&node.transform(), &name)?,
                 mesh: node.mesh().map(|m| m.index() as u32),
+                light,
                 children: node.children().map(|c| c.index() as u32).collect(),
                 name,
             })
         })
         .collect()
+}
+
+/// The file's lights (`KHR_lights_punctual`) as ptsc's, by index, each in
+/// its node's frame (at the origin, shining along −z): a point light's
+/// intensity in candela and a directional light's in lux are read as
+/// ptsc's intensity (W/sr) and irradiance (W/m²) times the colour, as
+/// renderers that take glTF's photometric numbers for radiometric ones do
+/// (no 683 lm/W: a lamp of 100 cd lights a room as 100 W/sr does in ptsc).
+/// A light of an unknown type is `None`. Read from the JSON: the crate's
+/// `Light::kind` unwraps a spot light's missing cone.
+fn lights(doc: &gltf::Document) -> Vec<Option<Light>> {
+    use gltf::json::extensions::scene::khr_lights_punctual::Type;
+    use gltf::json::validation::Checked;
+    let Some(ext) =
+        (doc.as_json().extensions.as_ref()).and_then(|e| e.khr_lights_punctual.as_ref())
+    else {
+        return Vec::new();
+    };
+    let finite = |x: f32, default: f64| match x.is_finite() && x >= 0.0 {
+        true => x as f64,
+        false => default,
+    };
+    (ext.lights.iter())
+        .map(|l| {
+            let strength = finite(l.intensity, 1.0);
+            let power = l
+                .color
+                .map(|c| (finite(c, 0.0) * strength).min(MAX_RADIANCE));
+            let down = DVec3::NEG_Z;
+            Some(match l.type_ {
+                Checked::Valid(Type::Point) => Light::Point {
+                    position: DVec3::ZERO,
+                    intensity: power,
+                },
+                Checked::Valid(Type::Spot) => {
+                    let (inner, outer) =
+                        (l.spot.as_ref()).map_or((0.0, std::f64::consts::FRAC_PI_4), |s| {
+                            (
+                                finite(s.inner_cone_angle, 0.0),
+                                finite(s.outer_cone_angle, 0.785),
+                            )
+                        });
+                    let angle = outer.to_degrees().clamp(0.01, 90.0);
+                    Light::Spot {
+                        position: DVec3::ZERO,
+                        direction: down,
+                        intensity: power,
+                        angle,
+                        hotspot: inner.to_degrees().clamp(0.0, angle),
+                    }
+                }
+                Checked::Valid(Type::Directional) => Light::Directional {
+                    direction: down,
+                    irradiance: power,
+                },
+                Checked::Invalid => return None,
+            })
+        })
+        .collect()
+}
+
+/// `light` (in its node's frame) moved by `m`.
+pub fn place_light(light: &Light, m: &DMat4) -> Light {
+    let direction = |d: DVec3| {
+        m.transform_vector3(d)
+            .try_normalize()
+            .unwrap_or(DVec3::NEG_Y)
+    };
+    match light.clone() {
+        Light::Point {
+            position,
+            intensity,
+        } => Light::Point {
+            position: m.transform_point3(position),
+            intensity,
+        },
+        Light::Spot {
+            position,
+            direction: d,
+            intensity,
+            angle,
+            hotspot,
+        } => Light::Spot {
+            position: m.transform_point3(position),
+            direction: direction(d),
+            intensity,
+            angle,
+            hotspot,
+        },
+        Light::Directional {
+            direction: d,
+            irradiance,
+        } => Light::Directional {
+            direction: direction(d),
+            irradiance,
+        },
+    }
 }
 
 /// A node's name, or `#index` when it has none.

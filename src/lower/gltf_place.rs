@@ -9,7 +9,7 @@
 //! file are served to lowering from memory (`Embedded`).
 
 use super::cache::LowerCache;
-use super::mesh_data::{is_gltf, FileScene, MeshData, Placed as PlacedNode};
+use super::mesh_data::{is_gltf, FileScene, MeshData, Placed as PlacedNode, Placing};
 use super::shapes::{read_mesh, MeshReads};
 use crate::check::{self, Group, Instance, Object};
 use crate::diag::{codes, Diagnostic, Diagnostics};
@@ -42,7 +42,7 @@ pub fn place(
     (cache, files, reads): (&mut LowerCache, &dyn Files, &mut MeshReads),
     warnings: &mut Diagnostics,
 ) -> Placed {
-    let mut placing = Placing {
+    let mut placing = Gathering {
         out: None,
         materials: HashMap::new(),
         embedded: HashMap::new(),
@@ -64,9 +64,13 @@ pub fn place(
             objects: scene.objects[..o].to_vec(),
             ..scene.clone()
         });
-        let Some(nodes) = placements(object, &data, &mut errors) else {
+        let Some((nodes, lights)) = placements(object, &data, &mut errors) else {
             continue;
         };
+        for (light, m) in &lights {
+            let light = super::gltf::place_light(light, &(object.transform * *m));
+            out.lights.push((light, object.span));
+        }
         let materials = placing.materials.entry(object_path(object).to_path_buf());
         let first = matches!(materials, std::collections::hash_map::Entry::Vacant(_));
         if first {
@@ -92,10 +96,25 @@ pub fn place(
                 continue;
             }
             let out = placing.out.get_or_insert_with(|| scene.clone());
-            let Some(nodes) = placements(object, &data, &mut errors) else {
+            let Some((nodes, lights)) = placements(object, &data, &mut errors) else {
                 out.groups[g].objects[k].shape = placeholder();
                 continue;
             };
+            // A group's lights are placed by the checker, before files are
+            // read: a file's lights inside a group are not placed.
+            if let (false, check::Shape::Mesh { path_span, .. }) =
+                (lights.is_empty(), &object.shape)
+            {
+                warnings.push(
+                    Diagnostic::warning(
+                        codes::NO_EFFECT,
+                        format!("the {} lights of `{}` are not placed: it is inside a group", lights.len(), object_path(object).display()),
+                        *path_span,
+                    )
+                    .with_label("lights left out")
+                    .with_help("place the file outside the group for its lights, or write them in the scene"),
+                );
+            }
             let path = object_path(object).to_path_buf();
             if !placing.materials.contains_key(&path) {
                 warn(object, &data, warnings);
@@ -136,11 +155,7 @@ pub fn place(
 /// The nodes the statement `object` places of its file: the default
 /// scene's, or its `node`'s subtree; `None`, with an error, when there are
 /// none.
-fn placements(
-    object: &Object,
-    data: &MeshData,
-    errors: &mut Diagnostics,
-) -> Option<Vec<PlacedNode>> {
+fn placements(object: &Object, data: &MeshData, errors: &mut Diagnostics) -> Option<Placing> {
     let (
         Some(scene),
         check::Shape::Mesh {
@@ -159,10 +174,10 @@ fn placements(
             Err("the file's default scene places no triangles".to_string()),
             *path_span,
         ),
-        None => (Ok(scene.placed.clone()), *path_span),
+        None => (Ok((scene.placed.clone(), scene.lights.clone())), *path_span),
     };
     match result {
-        Ok(nodes) => Some(nodes),
+        Ok(placed) => Some(placed),
         Err(e) => {
             errors.push(
                 Diagnostic::error(codes::MESH_FILE, format!("cannot place `{}`", path.display()), span)
@@ -175,7 +190,7 @@ fn placements(
 }
 
 /// What placing gathers.
-struct Placing {
+struct Gathering {
     out: Option<check::Scene>,
     /// Per file, the scene's index of each of its materials.
     materials: HashMap<PathBuf, Vec<usize>>,

@@ -1,6 +1,6 @@
 //! What a mesh file holds once read (`mesh.rs` reads PLY, `obj.rs` OBJ).
 
-use crate::check::Material;
+use crate::check::{Light, Material};
 use glam::{DMat4, Vec2, Vec3};
 use std::borrow::Cow;
 use std::ops::Range;
@@ -51,6 +51,9 @@ pub struct FileScene {
     pub placed: Vec<Placed>,
     /// Every node of the file, by index (for `node "Name"`).
     pub nodes: Vec<FileNode>,
+    /// The lights of the default scene's nodes, each with its node → file
+    /// transform.
+    pub lights: Vec<(Light, DMat4)>,
     /// The file's materials in ptsc's terms (spans set where a statement
     /// places the file).
     pub materials: Vec<Material>,
@@ -75,6 +78,10 @@ pub struct Part {
     pub material: Option<u32>,
 }
 
+/// What a walk of a scene file's nodes places: meshes and lights, each
+/// with its node → placement frame transform.
+pub type Placing = (Vec<Placed>, Vec<(Light, DMat4)>);
+
 /// A node of a scene file.
 #[derive(Debug, Clone, PartialEq)]
 pub struct FileNode {
@@ -84,6 +91,9 @@ pub struct FileNode {
     pub local: DMat4,
     /// The mesh it places, if any (and the file has it read).
     pub mesh: Option<u32>,
+    /// The light it holds (`KHR_lights_punctual`), in its frame: at the
+    /// origin, shining along −z.
+    pub light: Option<Light>,
     /// Its children, by index.
     pub children: Vec<u32>,
 }
@@ -92,7 +102,7 @@ impl FileScene {
     /// The placements of node `name`'s subtree, in the node's frame (its
     /// own transform left out); the error is a sentence (no such node, or
     /// a node reached twice).
-    pub fn placements_under(&self, name: &str) -> Result<Vec<Placed>, String> {
+    pub fn placements_under(&self, name: &str) -> Result<Placing, String> {
         let start = (self.nodes.iter().position(|n| n.name == name)).ok_or_else(|| {
             let mut names: Vec<&str> = self.nodes.iter().map(|n| n.name.as_str()).collect();
             names.truncate(12);
@@ -105,7 +115,7 @@ impl FileScene {
             self.parts.iter().map(|p| p.mesh).collect();
         let mut seen = vec![false; self.nodes.len()];
         let mut stack = vec![(start as u32, DMat4::IDENTITY)];
-        let mut out = Vec::new();
+        let (mut out, mut lights) = (Vec::new(), Vec::new());
         while let Some((k, parent)) = stack.pop() {
             let node = self
                 .nodes
@@ -121,6 +131,9 @@ impl FileScene {
                 true => DMat4::IDENTITY,
                 false => parent * node.local,
             };
+            if let Some(light) = &node.light {
+                lights.push((light.clone(), transform));
+            }
             if let Some(mesh) = node.mesh.filter(|m| with_parts.contains(m)) {
                 out.push(Placed {
                     mesh,
@@ -130,9 +143,9 @@ impl FileScene {
             }
             stack.extend(node.children.iter().rev().map(|&c| (c, transform)));
         }
-        match out.is_empty() {
+        match out.is_empty() && lights.is_empty() {
             true => Err(format!("node `{name}` and its children place no triangles")),
-            false => Ok(out),
+            false => Ok((out, lights)),
         }
     }
 }

@@ -51,7 +51,14 @@ impl Budget {
         let next = (pass_ends(target, self.adaptive.as_ref()).into_iter()).find(|&e| e > least)?;
         let done = film.total_samples().saturating_sub(self.samples_before);
         if done == 0 {
-            return Some(next);
+            // A resumed render has no measure of its speed yet, and its
+            // next doubling could take as long as all before it (it would
+            // be cut past the budget, its pixels a pass apart): one sample
+            // per pixel measures it first.
+            return Some(match self.samples_before {
+                0 => next,
+                _ => next.min(least.saturating_add(1)),
+            });
         }
         // Seconds for one sample in every pixel still sampling, from the
         // passes so far.
@@ -100,5 +107,14 @@ mod tests {
         // Spent: nothing more.
         budget.end = Instant::now();
         assert_eq!(budget.next_target(&film, 1000), None);
+    }
+
+    #[test]
+    fn a_resumed_render_measures_its_speed_before_it_doubles() {
+        let mut film = Film::new(2, 2, 0);
+        film.count.fill(100);
+        let budget = Budget::new(0.3, &film, None);
+        // Not the doubling to 128, which may not fit: one sample first.
+        assert_eq!(budget.next_target(&film, 1000), Some(101));
     }
 }

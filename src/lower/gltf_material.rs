@@ -46,7 +46,7 @@ pub fn read(doc: &gltf::Document, path: &Path, buffers: &Buffers, scene: &mut Fi
         .map(|image| image_path(doc, &image, (path, buffers), scene))
         .collect();
     for m in doc.materials() {
-        let mapped = material(&m, &images, &mut scene.notes);
+        let mapped = material(&m, &images, &mut scene.material_notes);
         scene.materials.push(mapped);
     }
 }
@@ -70,7 +70,7 @@ fn image_path(
         return None;
     }
     if json.buffer_view.is_some() && json.mime_type.is_none() {
-        scene.notes.push(format!(
+        scene.material_notes.push(format!(
             "image {k} is in a buffer view without a `mimeType`"
         ));
         return None;
@@ -84,13 +84,13 @@ fn image_path(
                     return match relative_path(uri) {
                         Ok(p) => Some(folder.join(p)),
                         Err(e) => {
-                            scene.notes.push(format!("image {k}: {e}"));
+                            scene.material_notes.push(format!("image {k}: {e}"));
                             None
                         }
                     };
                 }
                 Err(e) => {
-                    scene.notes.push(format!("image {k}: {e}"));
+                    scene.material_notes.push(format!("image {k}: {e}"));
                     return None;
                 }
             }
@@ -101,7 +101,7 @@ fn image_path(
             match bytes {
                 Some(b) => (b.to_vec(), Some(mime_type)),
                 None => {
-                    scene.notes.push(format!(
+                    scene.material_notes.push(format!(
                         "image {k}: its buffer view reaches past its buffer"
                     ));
                     return None;
@@ -113,7 +113,7 @@ fn image_path(
         Some("image/png") => "png",
         Some("image/jpeg") => "jpg",
         other => {
-            scene.notes.push(format!(
+            scene.material_notes.push(format!(
                 "image {k} is {}: ptsc reads PNG and JPEG",
                 other.unwrap_or("of no stated type")
             ));

@@ -43,6 +43,7 @@ pub fn place(
     warnings: &mut Diagnostics,
 ) -> Placed {
     let mut placing = Gathering {
+        warned: Default::default(),
         out: None,
         materials: HashMap::new(),
         embedded: HashMap::new(),
@@ -73,9 +74,13 @@ pub fn place(
         }
         let materials = placing.materials.entry(object_path(object).to_path_buf());
         let first = matches!(materials, std::collections::hash_map::Entry::Vacant(_));
-        if first {
-            warn(object, &data, warnings);
-        }
+        let given = Some(object.material) != out.default_material;
+        warn(
+            object,
+            &data,
+            (first, !given, &mut placing.warned),
+            warnings,
+        );
         let mapped = materials
             .or_insert_with(|| map_materials(&data, object.span, out))
             .clone();
@@ -116,17 +121,19 @@ pub fn place(
                 );
             }
             let path = object_path(object).to_path_buf();
-            if !placing.materials.contains_key(&path) {
-                warn(object, &data, warnings);
+            let first = !placing.materials.contains_key(&path);
+            let unmaterialled = scene.groups[g].unmaterialled.get(k) == Some(&true);
+            warn(
+                object,
+                &data,
+                (first, unmaterialled, &mut placing.warned),
+                warnings,
+            );
+            if first {
                 let mapped = map_materials(&data, object.span, out);
                 placing.materials.insert(path.clone(), mapped);
             }
             let mapped = placing.materials[&path].clone();
-            let unmaterialled = scene.groups[g]
-                .unmaterialled
-                .get(k)
-                .copied()
-                .unwrap_or(false);
             place_in_group(out, (g, k), (&data, &nodes, &mapped), unmaterialled);
             placing.embedded.extend(embedded_of(&data, &path));
         }
@@ -191,6 +198,9 @@ fn placements(object: &Object, data: &MeshData, errors: &mut Diagnostics) -> Opt
 
 /// What placing gathers.
 struct Gathering {
+    /// The files whose materials' notes were given (once, at the first
+    /// statement that uses the file's materials).
+    warned: std::collections::HashSet<PathBuf>,
     out: Option<check::Scene>,
     /// Per file, the scene's index of each of its materials.
     materials: HashMap<PathBuf, Vec<usize>>,
@@ -205,8 +215,15 @@ fn object_path(object: &Object) -> &Path {
     }
 }
 
-/// The file's notes as warnings at the statement.
-fn warn(object: &Object, data: &MeshData, warnings: &mut Diagnostics) {
+/// The file's notes as warnings at the statement: its general ones at the
+/// file's `first` statement, its materials' at the first that uses them
+/// (a statement that gives a material does not), listed in `warned`.
+fn warn(
+    object: &Object,
+    data: &MeshData,
+    (first, uses_materials, warned): (bool, bool, &mut std::collections::HashSet<PathBuf>),
+    warnings: &mut Diagnostics,
+) {
     let (
         Some(scene),
         check::Shape::Mesh {
@@ -216,7 +233,9 @@ fn warn(object: &Object, data: &MeshData, warnings: &mut Diagnostics) {
     else {
         return;
     };
-    for note in &scene.notes {
+    let materials = uses_materials && warned.insert(path.clone());
+    let general = scene.notes.iter().filter(|_| first);
+    for note in general.chain(scene.material_notes.iter().filter(|_| materials)) {
         warnings.push(
             Diagnostic::warning(
                 codes::NO_EFFECT,

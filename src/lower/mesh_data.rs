@@ -62,6 +62,9 @@ pub struct FileScene {
     pub embedded: Vec<(PathBuf, Arc<Vec<u8>>)>,
     /// What the file asks that ptsc does not follow, one sentence each.
     pub notes: Vec<String>,
+    /// The same, of its materials and images: not said to a statement
+    /// that gives its own material.
+    pub material_notes: Vec<String>,
 }
 
 /// One primitive: its vertices and triangles (ranges in the mesh data;

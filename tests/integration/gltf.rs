@@ -372,6 +372,16 @@ fn what_the_file_asks_beyond_ptsc_is_a_warning_at_the_statement() {
     let path = dir.path().join("scene.pts");
     let (_, _, err) = crate::ptsc(&["check", path.to_str().unwrap()]);
     assert!(err.contains("skinned") && err.contains("BLEND"), "{err}");
+    // A statement that gives its material hears nothing of the file's.
+    let given = compile(
+        dir.path(),
+        &format!("{STAGE}mesh {{ file \"odd.gltf\" material {{ diffuse rgb 0.5 }} }}"),
+    );
+    let report = given.diagnostics.render_human(&given.sources, false);
+    assert!(
+        report.contains("skinned") && !report.contains("BLEND"),
+        "{report}"
+    );
 }
 
 #[test]

@@ -418,9 +418,11 @@ impl Light {
     /// spot light's aim move as points, a direction turns with the linear
     /// part and is normalised again. Intensities, irradiance and a spot
     /// light's angles are kept: scaling a lamp does not make it brighter
-    /// (a scaled emissive shape does get brighter: it has more area).
+    /// (a scaled emissive shape does get brighter: it has more area). A
+    /// transform that flattens a direction to nothing (a glTF node scaled
+    /// by 0) keeps it as it was.
     pub fn placed(&self, m: &DMat4) -> Light {
-        let turn = |d: DVec3| m.transform_vector3(d).normalize();
+        let turn = |d: DVec3| m.transform_vector3(d).try_normalize().unwrap_or(d);
         match self.clone() {
             Light::Point {
                 position,

@@ -129,7 +129,8 @@ pub fn gltf(bytes: &[u8]) -> bool {
                 .is_none_or(|k| (k as usize) < scene.materials.len()));
         }
         assert_eq!(vertices as usize, m.positions.len());
-        for placed in &scene.placed {
+        let (placed, _) = scene.placements(None).unwrap_or_default();
+        for placed in &placed {
             assert!(placed.transform.is_finite());
             assert!(scene.parts.iter().any(|p| p.mesh == placed.mesh));
         }

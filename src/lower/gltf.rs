@@ -14,7 +14,7 @@
 //! image's top-left, ptsc's at the bottom-left: v becomes 1 − v.
 
 use super::gltf_accessor::{self, Buffers};
-use super::mesh_data::{FileNode, FileScene, LibraryReader, MeshData, Part, Placed};
+use super::mesh_data::{FileNode, FileScene, LibraryReader, MeshData, Part};
 use crate::check::domain::MAX_RADIANCE;
 use crate::check::Light;
 use crate::source::MAX_MESH_BYTES;
@@ -60,22 +60,11 @@ pub(super) fn parse_gltf(
     let mut scene = FileScene::default();
     let buffers = read_buffers(doc, gltf.blob.as_deref(), (folder, library), &mut out)?;
     notes_on_the_file(doc, &mut scene.notes);
-    let visited = walk(doc, &mut scene.notes)?;
-    scene.nodes = nodes(doc)?;
-    let (nodes, mut placed) = (&scene.nodes, Vec::new());
-    for (k, transform) in visited {
-        if let Some(light) = &nodes[k].light {
-            scene.lights.push((light.clone(), transform));
-        }
-        if let Some(mesh) = nodes[k].mesh {
-            let node = nodes[k].name.clone();
-            placed.push(Placed {
-                mesh,
-                transform,
-                node,
-            });
-        }
-    }
+    scene.nodes = nodes(doc, &mut scene.notes)?;
+    let default = (doc.default_scene()).or_else(|| doc.scenes().next());
+    scene.roots = default.map_or(Vec::new(), |s| {
+        s.nodes().map(|n| n.index() as u32).collect()
+    });
     // Every mesh a node places: `node "Name"` may pick one outside the
     // default scene.
     let meshes: BTreeSet<u32> = scene.nodes.iter().filter_map(|n| n.mesh).collect();
@@ -87,10 +76,7 @@ pub(super) fn parse_gltf(
         read_mesh(&mesh, &buffers, (&mut out, &mut attributes), &mut scene)?;
     }
     attributes.finish(&mut out);
-    let with_parts: BTreeSet<u32> = scene.parts.iter().map(|p| p.mesh).collect();
-    scene.placed = placed;
-    scene.placed.retain(|p| with_parts.contains(&p.mesh));
-    if with_parts.is_empty() {
+    if scene.parts.is_empty() {
         return Err("the file's nodes place no triangles".into());
     }
     super::gltf_material::read(doc, path, &buffers, &mut scene);
@@ -263,45 +249,18 @@ fn notes_on_the_file(doc: &gltf::Document, notes: &mut Vec<String>) {
     }
 }
 
-/// The nodes of the file's default scene (else its first), by index, with
-/// their transforms to the file's frame. A node reached twice (the graph
-/// is not a tree) is an error: the walk visits each node once.
-fn walk(doc: &gltf::Document, notes: &mut Vec<String>) -> Result<Vec<(usize, DMat4)>, String> {
-    let scene = (doc.default_scene())
-        .or_else(|| doc.scenes().next())
-        .ok_or("the file has no scene")?;
-    let mut seen = vec![false; doc.nodes().len()];
-    let mut stack: Vec<(gltf::Node, DMat4)> =
-        (scene.nodes()).map(|n| (n, DMat4::IDENTITY)).collect();
-    stack.reverse();
-    let mut placed = Vec::new();
-    while let Some((node, parent)) = stack.pop() {
-        let name = node_name(&node);
-        if std::mem::replace(&mut seen[node.index()], true) {
-            return Err(format!(
-                "node `{name}` is reached twice: the node graph is not a tree"
-            ));
-        }
-        let transform = parent * local_transform(&node.transform(), &name)?;
-        placed.push((node.index(), transform));
-        if node.skin().is_some() {
-            notes.push(format!(
-                "node `{name}` is skinned: its mesh is placed in its bind pose"
-            ));
-        }
-        let first_child = stack.len();
-        stack.extend(node.children().map(|c| (c, transform)));
-        stack[first_child..].reverse();
-    }
-    Ok(placed)
-}
-
-/// Every node of the file with its own transform, mesh and children.
-fn nodes(doc: &gltf::Document) -> Result<Vec<FileNode>, String> {
+/// Every node of the file with its own transform, mesh, light and
+/// children; a skinned one is noted.
+fn nodes(doc: &gltf::Document, notes: &mut Vec<String>) -> Result<Vec<FileNode>, String> {
     let lights = lights(doc);
     (doc.nodes())
         .map(|node| {
             let name = node_name(&node);
+            if node.skin().is_some() {
+                notes.push(format!(
+                    "node `{name}` is skinned: its mesh is placed in its bind pose"
+                ));
+            }
             let json = &doc.as_json().nodes[node.index()];
             let light = (json.extensions.as_ref())
                 .and_then(|e| e.khr_lights_punctual.as_ref())
@@ -374,44 +333,6 @@ fn lights(doc: &gltf::Document) -> Vec<Option<Light>> {
             })
         })
         .collect()
-}
-
-/// `light` (in its node's frame) moved by `m`.
-pub fn place_light(light: &Light, m: &DMat4) -> Light {
-    let direction = |d: DVec3| {
-        m.transform_vector3(d)
-            .try_normalize()
-            .unwrap_or(DVec3::NEG_Y)
-    };
-    match light.clone() {
-        Light::Point {
-            position,
-            intensity,
-        } => Light::Point {
-            position: m.transform_point3(position),
-            intensity,
-        },
-        Light::Spot {
-            position,
-            direction: d,
-            intensity,
-            angle,
-            hotspot,
-        } => Light::Spot {
-            position: m.transform_point3(position),
-            direction: direction(d),
-            intensity,
-            angle,
-            hotspot,
-        },
-        Light::Directional {
-            direction: d,
-            irradiance,
-        } => Light::Directional {
-            direction: direction(d),
-            irradiance,
-        },
-    }
 }
 
 /// A node's name, or `#index` when it has none.
@@ -502,6 +423,18 @@ fn read_mesh(
                 "mesh `{name}` has vertex colours, which ptsc does not read"
             ));
         }
+        // A hostile file can point many primitives at one huge accessor:
+        // the counts its accessors claim are checked before they are read.
+        let (vertices, triangles) = claimed(&primitive, mode);
+        if out.positions.len() + vertices > MAX_VERTICES
+            || out.triangles.len() + triangles > MAX_TRIANGLES
+        {
+            return Err(format!(
+                "its meshes have more than {} vertices or {} triangles",
+                crate::diag::group_digits(MAX_VERTICES as u64),
+                crate::diag::group_digits(MAX_TRIANGLES as u64)
+            ));
+        }
         let read = read_primitive(&primitive, buffers, mode);
         let (positions, normals, uvs, triangles) =
             read.map_err(|e| format!("mesh `{name}`: {e}"))?;
@@ -510,16 +443,6 @@ fn read_mesh(
                 .notes
                 .push(format!("mesh `{name}` has a primitive without a triangle"));
             continue;
-        }
-        // A hostile file can point many primitives at one huge accessor.
-        if out.positions.len() + positions.len() > MAX_VERTICES
-            || out.triangles.len() + triangles.len() > MAX_TRIANGLES
-        {
-            return Err(format!(
-                "its meshes have more than {} vertices or {} triangles",
-                crate::diag::group_digits(MAX_VERTICES as u64),
-                crate::diag::group_digits(MAX_TRIANGLES as u64)
-            ));
         }
         let base = out.positions.len() as u32;
         let start = out.triangles.len() as u32;
@@ -558,6 +481,18 @@ type Primitive = (
     Option<Vec<[f32; 2]>>,
     Vec<[u32; 3]>,
 );
+
+/// The vertices and triangles primitive `p` of `mode` claims (its
+/// accessors' counts), before any is read.
+fn claimed(p: &gltf::Primitive, mode: Mode) -> (usize, usize) {
+    let vertices = p.get(&Semantic::Positions).map_or(0, |a| a.count());
+    let corners = p.indices().map_or(vertices, |a| a.count());
+    let triangles = match mode {
+        Mode::TriangleStrip | Mode::TriangleFan => corners.saturating_sub(2),
+        _ => corners / 3,
+    };
+    (vertices, triangles)
+}
 
 /// Reads one primitive of `mode` (triangles, a strip or a fan).
 fn read_primitive(p: &gltf::Primitive, buffers: &Buffers, mode: Mode) -> Result<Primitive, String> {

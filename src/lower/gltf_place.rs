@@ -69,7 +69,7 @@ pub fn place(
             continue;
         };
         for (light, m) in &lights {
-            let light = super::gltf::place_light(light, &(object.transform * *m));
+            let light = light.placed(&(object.transform * *m));
             out.lights.push((light, object.span));
         }
         let materials = placing.materials.entry(object_path(object).to_path_buf());
@@ -175,21 +175,19 @@ fn placements(object: &Object, data: &MeshData, errors: &mut Diagnostics) -> Opt
     else {
         return None;
     };
-    let (result, span) = match node {
-        Some((name, span)) => (scene.placements_under(name), *span),
-        None if scene.placed.is_empty() => (
-            Err("the file's default scene places no triangles".to_string()),
-            *path_span,
-        ),
-        None => (Ok((scene.placed.clone(), scene.lights.clone())), *path_span),
-    };
+    let name = node.as_ref().map(|(name, _)| name.as_str());
+    let span = node.as_ref().map_or(*path_span, |(_, span)| *span);
+    let result = scene.placements(name);
     match result {
         Ok(placed) => Some(placed),
         Err(e) => {
             errors.push(
                 Diagnostic::error(codes::MESH_FILE, format!("cannot place `{}`", path.display()), span)
                     .with_label(e)
-                    .with_help("name a node of the file that holds meshes (`node \"Name\"`), or leave `node` out to place its default scene"),
+                    .with_help(match name {
+                        Some(_) => "name a node of the file that holds meshes (`node \"Name\"`), or leave `node` out to place its default scene",
+                        None => "a glTF scene's nodes form a tree of meshes; the Khronos glTF validator tells what else is wrong with the file, or `node \"Name\"` places one part of it",
+                    }),
             );
             None
         }

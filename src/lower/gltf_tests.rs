@@ -227,8 +227,11 @@ fn triangle_file(nodes: &str, accessor: &str) -> String {
 const GOOD_ACCESSOR: &str =
     r#"{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3"}"#;
 
+/// The file read, and what a statement without `node` places of it.
 fn parse(text: &str) -> Result<MeshData, String> {
-    crate::lower::mesh::parse(Path::new("t.gltf"), text.as_bytes())
+    let m = crate::lower::mesh::parse(Path::new("t.gltf"), text.as_bytes())?;
+    m.scene.as_ref().expect("a scene").placements(None)?;
+    Ok(m)
 }
 
 #[test]
@@ -240,12 +243,13 @@ fn a_tree_of_nodes_places_its_meshes() {
     let m = parse(&triangle_file(nodes, GOOD_ACCESSOR)).unwrap();
     let scene = m.scene.unwrap();
     assert_eq!(scene.parts.len(), 1, "the mesh is read once");
-    assert_eq!(scene.placed.len(), 2);
-    assert_eq!(scene.placed[0].node, "#1");
-    assert_eq!(scene.placed[1].node, "Second");
-    let p = scene.placed[0].transform.transform_point3(DVec3::ZERO);
+    let (placed, _) = scene.placements(None).unwrap();
+    assert_eq!(placed.len(), 2);
+    assert_eq!(placed[0].node, "#1");
+    assert_eq!(placed[1].node, "Second");
+    let p = placed[0].transform.transform_point3(DVec3::ZERO);
     assert_eq!(p, DVec3::new(1.0, 1.0, 0.0));
-    let p = scene.placed[1].transform.transform_point3(DVec3::X);
+    let p = placed[1].transform.transform_point3(DVec3::X);
     assert_eq!(p, DVec3::new(2.0, 1.0, 0.0));
 }
 
@@ -273,6 +277,23 @@ fn hostile_files_are_refused_with_a_sentence() {
             triangle_file(
                 one,
                 r#"{"bufferView": 0, "componentType": 5126, "count": 4000000000, "type": "VEC3"}"#,
+            ),
+            // Refused from the claim, before a byte is read or allocated.
+            "more than 100,000,000 vertices",
+        ),
+        (
+            // One past the most vertices a file may have.
+            triangle_file(
+                one,
+                r#"{"bufferView": 0, "componentType": 5126, "count": 100000001, "type": "VEC3"}"#,
+            ),
+            "more than 100,000,000 vertices",
+        ),
+        (
+            // At the most: refused by its buffer view, which holds three.
+            triangle_file(
+                one,
+                r#"{"bufferView": 0, "componentType": 5126, "count": 100000000, "type": "VEC3"}"#,
             ),
             "more than its buffer view holds",
         ),

@@ -46,14 +46,10 @@ pub struct MeshData {
 pub struct FileScene {
     /// The primitives read.
     pub parts: Vec<Part>,
-    /// The placements of meshes by the nodes of the file's default scene,
-    /// in the file's frame.
-    pub placed: Vec<Placed>,
-    /// Every node of the file, by index (for `node "Name"`).
+    /// Every node of the file, by index.
     pub nodes: Vec<FileNode>,
-    /// The lights of the default scene's nodes, each with its node → file
-    /// transform.
-    pub lights: Vec<(Light, DMat4)>,
+    /// The nodes of its default scene (else its first; none without one).
+    pub roots: Vec<u32>,
     /// The file's materials in ptsc's terms (spans set where a statement
     /// places the file).
     pub materials: Vec<Material>,
@@ -102,53 +98,61 @@ pub struct FileNode {
 }
 
 impl FileScene {
-    /// The placements of node `name`'s subtree, in the node's frame (its
-    /// own transform left out); the error is a sentence (no such node, or
-    /// a node reached twice).
-    pub fn placements_under(&self, name: &str) -> Result<Placing, String> {
-        let start = (self.nodes.iter().position(|n| n.name == name)).ok_or_else(|| {
-            let mut names: Vec<&str> = self.nodes.iter().map(|n| n.name.as_str()).collect();
-            names.truncate(12);
-            format!(
-                "the file has no node `{name}` (its nodes: {})",
-                names.join(", ")
-            )
-        })?;
+    /// What the statement places of the file: the default scene's nodes
+    /// in the file's frame, or node `name`'s subtree in the node's (its
+    /// own transform left out); the error is a sentence (no such node, a
+    /// node reached twice, nothing placed).
+    pub fn placements(&self, name: Option<&str>) -> Result<Placing, String> {
+        let starts: Vec<(u32, DMat4)> = match name {
+            None => (self.roots.iter())
+                .filter_map(|&k| Some((k, self.nodes.get(k as usize)?.local)))
+                .collect(),
+            Some(name) => {
+                let k = (self.nodes.iter().position(|n| n.name == name)).ok_or_else(|| {
+                    let mut names: Vec<&str> = self.nodes.iter().map(|n| n.name.as_str()).collect();
+                    names.truncate(12);
+                    format!(
+                        "the file has no node `{name}` (its nodes: {})",
+                        names.join(", ")
+                    )
+                })?;
+                vec![(k as u32, DMat4::IDENTITY)]
+            }
+        };
         let with_parts: std::collections::BTreeSet<u32> =
             self.parts.iter().map(|p| p.mesh).collect();
         let mut seen = vec![false; self.nodes.len()];
-        let mut stack = vec![(start as u32, DMat4::IDENTITY)];
+        let mut stack: Vec<(u32, DMat4)> = starts.into_iter().rev().collect();
         let (mut out, mut lights) = (Vec::new(), Vec::new());
-        while let Some((k, parent)) = stack.pop() {
-            let node = self
-                .nodes
-                .get(k as usize)
-                .ok_or("a child index past the nodes")?;
+        // Each node once: a node reached twice is a cycle or a second parent.
+        while let Some((k, transform)) = stack.pop() {
+            let node = (self.nodes.get(k as usize)).ok_or("a child index past the nodes")?;
             if std::mem::replace(&mut seen[k as usize], true) {
                 return Err(format!(
                     "node `{}` is reached twice: the node graph is not a tree",
                     node.name
                 ));
             }
-            let transform = match k as usize == start {
-                true => DMat4::IDENTITY,
-                false => parent * node.local,
-            };
             if let Some(light) = &node.light {
                 lights.push((light.clone(), transform));
             }
             if let Some(mesh) = node.mesh.filter(|m| with_parts.contains(m)) {
+                let node = node.name.clone();
                 out.push(Placed {
                     mesh,
                     transform,
-                    node: node.name.clone(),
+                    node,
                 });
             }
-            stack.extend(node.children.iter().rev().map(|&c| (c, transform)));
+            let children = node.children.iter().rev();
+            stack.extend(
+                children.filter_map(|&c| Some((c, transform * self.nodes.get(c as usize)?.local))),
+            );
         }
-        match out.is_empty() && lights.is_empty() {
-            true => Err(format!("node `{name}` and its children place no triangles")),
-            false => Ok((out, lights)),
+        match (out.is_empty(), name) {
+            (true, Some(name)) => Err(format!("node `{name}` and its children place no triangles")),
+            (true, None) => Err("the file's default scene places no triangles".into()),
+            (false, _) => Ok((out, lights)),
         }
     }
 }

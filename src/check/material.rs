@@ -33,6 +33,9 @@ pub fn material(p: &Params, name: Option<String>, span: Span, diags: &mut Diagno
         absorption: r.color("absorption", [0.0; 3]),
         emission: r.color("emission", [0.0; 3]),
         two_sided: r.boolean("two_sided", false),
+        opacity: r.num_in("opacity", 0.0, 1.0, false, 1.0),
+        opacity_cutoff: (p.given("opacity_cutoff"))
+            .then(|| r.num_in("opacity_cutoff", 0.0, 1.0, false, 0.5)),
         span,
     };
     // A textured parameter stands for its brightest value in the checks
@@ -57,9 +60,11 @@ pub fn material(p: &Params, name: Option<String>, span: Span, diags: &mut Diagno
                     pp.metallic = number;
                 }
             }
+            TextureInput::Opacity => m.opacity = number,
             TextureInput::NormalMap | TextureInput::Bump => {}
         }
     }
+    opacity_checks(p, &mut m, diags);
     if let Some((_, s)) = p.get("bump_height") {
         if !p.given("bump") {
             diags.push(
@@ -92,6 +97,43 @@ pub fn material(p: &Params, name: Option<String>, span: Span, diags: &mut Diagno
         });
     }
     m
+}
+
+/// `opacity` and `opacity_cutoff`: a cutout cannot emit (light sampling
+/// would choose points where the surface is not), and a cutoff needs an
+/// opacity to cut.
+fn opacity_checks(p: &Params, m: &mut Material, diags: &mut Diagnostics) {
+    let textured = m.textures.iter().any(|(i, _)| *i == TextureInput::Opacity);
+    if let Some((_, s)) = p.get("opacity_cutoff") {
+        if !p.given("opacity") {
+            diags.push(
+                Diagnostic::warning(
+                    codes::NO_EFFECT,
+                    "`opacity_cutoff` has no effect without `opacity`",
+                    *s,
+                )
+                .with_label("ignored")
+                .with_help("give `opacity` a number or a texture, e.g. an image's alpha: `opacity image { file \"leaf.png\" channel a }`"),
+            );
+            m.opacity_cutoff = None;
+        }
+    }
+    let Some((_, s)) = p.get("opacity") else {
+        return;
+    };
+    if m.emission.iter().any(|&c| c > 0.0) && (textured || m.opacity < 1.0) {
+        diags.push(
+            Diagnostic::error(
+                codes::CONFLICTING_PARAMS,
+                "an emitting surface cannot be cut out",
+                *s,
+            )
+            .with_label("`opacity` on a material with `emission`")
+            .with_help("lights are sampled over their whole surface; give the light its shape as geometry, or drop `opacity`"),
+        );
+        m.opacity = 1.0;
+        m.textures.retain(|(i, _)| *i != TextureInput::Opacity);
+    }
 }
 
 /// `type principled`: its base colour (held as `diffuse`), its roughness

@@ -243,6 +243,12 @@ pub struct Material {
     pub emission: Rgb,
     /// Whether emission leaves both sides.
     pub two_sided: bool,
+    /// How much of the surface is there (1: all of it; a textured opacity
+    /// holds its texture's brightest value here).
+    pub opacity: f64,
+    /// The opacity at and above which the surface is wholly there, below
+    /// which it is not (`None`: fractions pass at random).
+    pub opacity_cutoff: Option<f64>,
     /// Where it is declared.
     pub span: Span,
 }
@@ -266,8 +272,17 @@ impl Material {
             absorption: [0.0; 3],
             emission: [0.0; 3],
             two_sided: false,
+            opacity: 1.0,
+            opacity_cutoff: None,
             span,
         }
+    }
+
+    /// Whether rays pass its surface anywhere (an opacity texture, or an
+    /// opacity below 1 or below its cutoff).
+    pub fn is_cut_out(&self) -> bool {
+        let textured = (self.textures.iter()).any(|(i, _)| *i == TextureInput::Opacity);
+        textured || self.opacity < self.opacity_cutoff.unwrap_or(1.0)
     }
 
     /// Resolves the files its textures read against the scene file's folder.

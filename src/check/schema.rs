@@ -300,6 +300,10 @@ pub const MATERIAL: &[ParamSpec] = &[
         .doc("emitted radiance (colour ≥ 0 or texture): the object becomes an area light. Default black"),
     p("two_sided", Ty::Bool, "true")
         .doc("emission from both sides. Default `false`"),
+    p("opacity", Ty::Num, "image { file \"leaf.png\" channel a }").textured()
+        .doc("how much of the surface is there, 0..1 or a texture: rays pass where it is 0 (cutouts: leaves, fences), and through a fraction of it at random between. Default 1"),
+    p("opacity_cutoff", Ty::Num, "0.5")
+        .doc("with `opacity`: the surface is there where the opacity is at least this, and not at all elsewhere (a sharp cutout, glTF's `MASK`). Default none: fractions pass at random"),
     p(
         "normal_map",
         Ty::Texture,
@@ -413,7 +417,13 @@ pub const IMAGE: &[ParamSpec] = &[
     p("wrap", Ty::Word(WRAPS), "clamp"),
     p("space", Ty::Word(TEXTURE_SPACES), "object"),
     p("color_space", Ty::Word(COLOR_SPACES), "linear"),
+    p("channel", Ty::Word(CHANNELS), "a").doc(
+        "the channel a number is read from: `r`, `g`, `b` or `a` (alpha; an image without one is opaque). Default: the luminance",
+    ),
 ];
+
+/// The channels an image can be read from (`image { channel … }`).
+pub const CHANNELS: &[&str] = &crate::texture::image::Channel::WORDS;
 
 /// How an image's values are encoded (`image { color_space … }`).
 pub const COLOR_SPACES: &[&str] = &super::scene::ColorSpace::WORDS;

@@ -88,7 +88,9 @@ pub fn check_texture(
                 color_space: word("color_space").and_then(|w| ColorSpace::from_name(&w)),
                 resolved: false,
                 factor: [1.0; 3],
-                channel: None,
+                // A word checked against `Channel::WORDS` (the row's `Ty::Word`).
+                channel: word("channel")
+                    .and_then(|w| crate::texture::image::Channel::from_name(&w)),
             }
         }
         "checker" => TextureKind::Checker,

@@ -24,11 +24,13 @@ pub enum TextureInput {
     BaseColor,
     /// `metallic` (of `type principled`).
     Metallic,
+    /// `opacity`: where the surface is there (cutouts).
+    Opacity,
 }
 
 impl TextureInput {
     /// Every input with its parameter's name.
-    pub const ALL: [(&'static str, TextureInput); 10] = [
+    pub const ALL: [(&'static str, TextureInput); 11] = [
         ("diffuse", TextureInput::Diffuse),
         ("reflection", TextureInput::Reflection),
         ("gloss", TextureInput::Gloss),
@@ -39,6 +41,7 @@ impl TextureInput {
         ("bump", TextureInput::Bump),
         ("base_color", TextureInput::BaseColor),
         ("metallic", TextureInput::Metallic),
+        ("opacity", TextureInput::Opacity),
     ];
 
     /// Whether its texture holds data rather than colours: an 8-bit image

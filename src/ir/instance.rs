@@ -13,9 +13,10 @@
 //! part, which keeps each surface's outward side (also under a mirroring
 //! placement).
 
+use super::cutout::first_kept;
 use super::{Hit, Prim};
 use crate::accel::bvh4::{Bvh4, TreeHit};
-use crate::geometry::shape::Shape;
+use crate::geometry::shape::{Shape, ShapeHit};
 use crate::geometry::{Aabb, Ray};
 use glam::{Affine3A, Mat3, Vec2, Vec3};
 use std::sync::Arc;
@@ -51,22 +52,47 @@ pub struct Prototype {
 }
 
 impl Prototype {
-    /// The closest hit of `ray` (in the prototype's frame) with its primitives.
+    /// The closest hit of `ray` (in the prototype's frame) with its
+    /// primitives; `passes(prim, hit)` says where the ray goes through a
+    /// surface (cutouts).
     #[inline]
-    fn closest(&self, ray: &Ray, t_min: f32, t_max: f32) -> Option<TreeHit> {
+    fn closest(
+        &self,
+        ray: &Ray,
+        t_min: f32,
+        t_max: f32,
+        passes: impl Fn(u32, &ShapeHit) -> bool,
+    ) -> Option<TreeHit> {
         self.wide.closest(ray, t_min, t_max, |i, tmax| {
             let p = &self.prims[i as usize];
-            p.shape.intersect(local_ray(p, ray, &mut None), t_min, tmax)
+            let mut moved = None;
+            let local = local_ray(p, ray, &mut moved);
+            first_kept(
+                |lo| p.shape.intersect(local, lo, tmax),
+                t_min,
+                |h| passes(i, h),
+            )
         })
     }
 
     /// Whether anything of the prototype blocks `ray` (in its frame).
-    fn any(&self, ray: &Ray, t_min: f32, t_max: f32) -> bool {
+    fn any(
+        &self,
+        ray: &Ray,
+        t_min: f32,
+        t_max: f32,
+        passes: impl Fn(u32, &ShapeHit) -> bool,
+    ) -> bool {
         self.wide.any(ray, t_min, t_max, |i, tmax| {
             let p = &self.prims[i as usize];
-            p.shape
-                .intersect(local_ray(p, ray, &mut None), t_min, tmax)
-                .is_some()
+            let mut moved = None;
+            let local = local_ray(p, ray, &mut moved);
+            first_kept(
+                |lo| p.shape.intersect(local, lo, tmax),
+                t_min,
+                |h| passes(i, h),
+            )
+            .is_some()
         })
     }
 
@@ -186,15 +212,22 @@ impl Instances {
     }
 
     /// The closest hit of `ray` in `(t_min, t_max)` with any placement,
-    /// finished in the world.
+    /// finished in the world; `passes(placement, prim, hit)` says where
+    /// the ray goes through a surface (cutouts).
     #[inline(never)]
-    pub fn closest(&self, ray: &Ray, t_min: f32, t_max: f32) -> Option<Hit> {
+    pub fn closest(
+        &self,
+        ray: &Ray,
+        t_min: f32,
+        t_max: f32,
+        passes: impl Fn(u32, u32, &ShapeHit) -> bool,
+    ) -> Option<Hit> {
         let mut found: Option<(u32, TreeHit, Ray)> = None;
         self.tree.closest(ray, t_min, t_max, |k, tmax| {
             let placement = &self.placements[k as usize];
             let prototype = &self.prototypes[placement.prototype as usize];
             let local = placement.local_ray(ray);
-            let hit = prototype.closest(&local, t_min, tmax)?;
+            let hit = prototype.closest(&local, t_min, tmax, |i, h| passes(k, i, h))?;
             let shape_hit = hit.hit;
             // The tree calls back with a smaller t_max each time: a hit
             // here is the closest so far.
@@ -255,12 +288,21 @@ impl Instances {
     }
 
     /// Whether any placement blocks the segment `(t_min, t_max)` of `ray`.
+    /// `passes` as in [`Instances::closest`].
     #[inline(never)]
-    pub fn any(&self, ray: &Ray, t_min: f32, t_max: f32) -> bool {
+    pub fn any(
+        &self,
+        ray: &Ray,
+        t_min: f32,
+        t_max: f32,
+        passes: impl Fn(u32, u32, &ShapeHit) -> bool,
+    ) -> bool {
         self.tree.any(ray, t_min, t_max, |k, tmax| {
             let placement = &self.placements[k as usize];
             let prototype = &self.prototypes[placement.prototype as usize];
-            prototype.any(&placement.local_ray(ray), t_min, tmax)
+            prototype.any(&placement.local_ray(ray), t_min, tmax, |i, h| {
+                passes(k, i, h)
+            })
         })
     }
 }

@@ -2,6 +2,7 @@
 //! a power-proportional selection table. Built from the checked scene by
 //! [`lower`](lower::lower); every primitive remembers the span it came from.
 
+pub mod cutout;
 pub mod instance;
 mod memory;
 pub mod settings;
@@ -10,7 +11,7 @@ mod surface;
 use crate::accel::bvh4::{Bvh4, TreeHit};
 use crate::accel::ray_count;
 use crate::camera::Camera;
-use crate::geometry::shape::Shape;
+use crate::geometry::shape::{Shape, ShapeHit};
 use crate::geometry::{Aabb, Ray};
 use crate::light::selection::LightSampler;
 use crate::light::Light;
@@ -113,6 +114,8 @@ pub struct Scene {
     pub object_from_world: Vec<(u32, Affine3A)>,
     /// Groups placed several times: shared geometry and its placements.
     pub instances: Arc<instance::Instances>,
+    /// The cut-out materials, if any material is (see [`cutout`]).
+    pub cutouts: Option<Arc<cutout::Cutouts>>,
 }
 
 const _: () = assert!(std::mem::size_of::<Prim>() == 64);
@@ -201,22 +204,46 @@ impl Scene {
     /// primitives, then the placements of groups (if any).
     #[inline(always)]
     pub fn intersect(&self, ray: &Ray, t_min: f32, t_max: f32) -> Option<Hit> {
-        // The flat path as before placements existed, its hit built in
-        // place; a scene with placements goes out of line (choosing between
-        // two hits here cost scenes without placements 1.4 % of their
-        // instructions).
-        if self.instances.is_empty() {
-            return self.intersect_own(ray, t_min, t_max);
+        // The flat path as before placements and cutouts existed, its hit
+        // built in place; a scene with either goes out of line (choosing
+        // between two hits here cost scenes without placements 1.4 % of
+        // their instructions).
+        if self.instances.is_empty() && self.cutouts.is_none() {
+            return self.intersect_own(ray, t_min, t_max, |_, _| false);
         }
-        self.intersect_placed(ray, t_min, t_max)
+        self.intersect_general(ray, t_min, t_max)
     }
 
-    /// [`Scene::intersect`] in a scene with placements.
+    /// [`Scene::intersect`] in a scene with placements or cutouts.
     #[inline(never)]
-    fn intersect_placed(&self, ray: &Ray, t_min: f32, t_max: f32) -> Option<Hit> {
-        let own = self.intersect_own(ray, t_min, t_max);
+    fn intersect_general(&self, ray: &Ray, t_min: f32, t_max: f32) -> Option<Hit> {
+        match self.cutouts {
+            None => self.intersect_placed(ray, t_min, t_max, |_, _, _| false),
+            Some(_) => self.intersect_placed(ray, t_min, t_max, |instance, prim, hit| {
+                self.passes(ray, prim, instance, hit)
+            }),
+        }
+    }
+
+    /// The closest hit with the scene's own primitives, then with the
+    /// placements (if any); `passes(instance, prim, hit)` says where a
+    /// ray goes through a surface.
+    #[inline(always)]
+    fn intersect_placed(
+        &self,
+        ray: &Ray,
+        t_min: f32,
+        t_max: f32,
+        passes: impl Fn(u32, u32, &ShapeHit) -> bool,
+    ) -> Option<Hit> {
+        let own = self.intersect_own(ray, t_min, t_max, |prim, hit| {
+            passes(instance::NO_INSTANCE, prim, hit)
+        });
+        if self.instances.is_empty() {
+            return own;
+        }
         let t_max = own.map_or(t_max, |h| h.t);
-        self.instances.closest(ray, t_min, t_max).or(own)
+        self.instances.closest(ray, t_min, t_max, passes).or(own)
     }
 
     /// The closest hit along `ray` beyond `t_min` with the scene's own
@@ -229,20 +256,34 @@ impl Scene {
     // heuristics after unrelated changes. Measurements: docs/performance.md,
     // "Why the BVH and traversal are as they are".
     #[inline(always)]
-    fn intersect_own(&self, ray: &Ray, t_min: f32, t_max: f32) -> Option<Hit> {
+    fn intersect_own(
+        &self,
+        ray: &Ray,
+        t_min: f32,
+        t_max: f32,
+        passes: impl Fn(u32, &ShapeHit) -> bool,
+    ) -> Option<Hit> {
         ray_count::closest();
         let mut best = self.wide.closest(ray, t_min, t_max, |i, tmax| {
             let p = &self.prims[i as usize];
-            p.shape
-                .intersect(instance::local_ray(p, ray, &mut None), t_min, tmax)
+            let mut moved = None;
+            let local = instance::local_ray(p, ray, &mut moved);
+            cutout::first_kept(
+                |lo| p.shape.intersect(local, lo, tmax),
+                t_min,
+                |h| passes(i, h),
+            )
         });
         for &i in self.unbounded.iter() {
             let p = &self.prims[i as usize];
             let tmax = best.map_or(t_max, |b| b.hit.t);
-            if let Some(hit) =
-                p.shape
-                    .intersect(instance::local_ray(p, ray, &mut None), t_min, tmax)
-            {
+            let mut moved = None;
+            let local = instance::local_ray(p, ray, &mut moved);
+            if let Some(hit) = cutout::first_kept(
+                |lo| p.shape.intersect(local, lo, tmax),
+                t_min,
+                |h| passes(i, h),
+            ) {
                 best = Some(TreeHit {
                     prim: i,
                     hit,
@@ -303,16 +344,43 @@ impl Scene {
     /// Whether anything blocks the segment from `ray.o` to `ray.at(t_max)`.
     pub fn occluded(&self, ray: &Ray, t_min: f32, t_max: f32) -> bool {
         ray_count::shadow();
-        self.wide.any(ray, t_min, t_max, |i, tmax| {
+        if self.cutouts.is_none() {
+            return self.occluded_by(ray, t_min, t_max, |_, _, _| false);
+        }
+        self.occluded_cut(ray, t_min, t_max)
+    }
+
+    /// [`Scene::occluded`] in a scene with cutouts.
+    #[inline(never)]
+    fn occluded_cut(&self, ray: &Ray, t_min: f32, t_max: f32) -> bool {
+        self.occluded_by(ray, t_min, t_max, |instance, prim, hit| {
+            self.passes(ray, prim, instance, hit)
+        })
+    }
+
+    /// Whether anything blocks the segment, `passes(instance, prim, hit)`
+    /// saying where a ray goes through a surface.
+    #[inline(always)]
+    fn occluded_by(
+        &self,
+        ray: &Ray,
+        t_min: f32,
+        t_max: f32,
+        passes: impl Fn(u32, u32, &ShapeHit) -> bool,
+    ) -> bool {
+        let blocks = |i: u32, tmax: f32| {
             let p = &self.prims[i as usize];
-            p.shape
-                .intersect(instance::local_ray(p, ray, &mut None), t_min, tmax)
-                .is_some()
-        }) || self.unbounded.iter().any(|&i| {
-            let p = &self.prims[i as usize];
-            p.shape
-                .intersect(instance::local_ray(p, ray, &mut None), t_min, t_max)
-                .is_some()
-        }) || (!self.instances.is_empty() && self.instances.any(ray, t_min, t_max))
+            let mut moved = None;
+            let local = instance::local_ray(p, ray, &mut moved);
+            cutout::first_kept(
+                |lo| p.shape.intersect(local, lo, tmax),
+                t_min,
+                |h| passes(instance::NO_INSTANCE, i, h),
+            )
+            .is_some()
+        };
+        self.wide.any(ray, t_min, t_max, blocks)
+            || self.unbounded.iter().any(|&i| blocks(i, t_max))
+            || (!self.instances.is_empty() && self.instances.any(ray, t_min, t_max, passes))
     }
 }

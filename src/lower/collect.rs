@@ -47,6 +47,10 @@ pub struct Collected {
     mesh_first: Vec<u32>,
     /// Unbounded primitives (planes) and their objects, outside the numbering.
     pub planes: Vec<(Prim, u32)>,
+    /// Whether each object is cut out (`ir::cutout`; empty: none is): its
+    /// primitives keep records and stay out of the blocks, whose test
+    /// cannot ask for their opacity.
+    pub cut_objects: Vec<bool>,
 }
 
 impl Collected {
@@ -72,6 +76,11 @@ impl Collected {
         self.records.len() + self.meshes.iter().map(|m| m.triangles.len()).sum::<usize>()
     }
 
+    /// Whether `object` is cut out.
+    fn is_cut(&self, object: u32) -> bool {
+        self.cut_objects.get(object as usize) == Some(&true)
+    }
+
     /// Mesh triangle `i` (a number at or after the records): its mesh and
     /// `[p0, e1, e2]` (as stored), computed exactly as a record of it would be.
     fn mesh_triangle(&self, i: u32) -> (&PlainMesh, [Vec3; 3]) {
@@ -89,24 +98,38 @@ impl Collected {
     pub fn record(&self, i: u32) -> Prim {
         match self.records.get(i as usize) {
             Some(p) => p.clone(),
-            None => Prim {
-                shape: self.packed(i).expect("a mesh triangle").shape(),
-                velocity: Vec3::ZERO,
-            },
+            None => {
+                let (mesh, vertices) = self.mesh_triangle(i);
+                let [p0, e1, e2] = vertices;
+                Prim {
+                    shape: Shape::Triangle {
+                        p0,
+                        e1,
+                        e2,
+                        attributes: u32::MAX,
+                        swapped: mesh.swapped,
+                    },
+                    velocity: Vec3::ZERO,
+                }
+            }
         }
     }
 
     /// Whether [`Collected::packed`] gives primitive `i` a block lane (without
     /// gathering a mesh triangle's vertices, which the build does not need).
     pub fn packable(&self, i: u32) -> bool {
-        self.records
-            .get(i as usize)
-            .is_none_or(|p| packed_record(p).is_some())
+        match self.records.get(i as usize) {
+            Some(p) => !self.is_cut(self.record_object[i as usize]) && packed_record(p).is_some(),
+            None => self.cut_objects.is_empty() || !self.is_cut(self.mesh_triangle(i).0.object),
+        }
     }
 
     /// Primitive `i` packed for a [`Tri4`](crate::accel::tri4::Tri4)
     /// block, if it is a static triangle or quad.
     pub fn packed(&self, i: u32) -> Option<PackedTriangle> {
+        if !self.packable(i) {
+            return None;
+        }
         match self.records.get(i as usize) {
             Some(p) => packed_record(p),
             None => {

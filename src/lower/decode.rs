@@ -118,6 +118,87 @@ pub fn decode(
     }
 }
 
+/// The alpha channel of the image file `bytes` as a grey image (8 or 16
+/// bits, as stored), its header checked as [`decode`] checks one; an image
+/// without alpha is opaque: one texel of 1. OpenEXR alpha is not read.
+pub fn decode_alpha(
+    bytes: &[u8],
+    format: Format,
+    limits: &Limits,
+    admit: impl FnOnce(&Header) -> Result<(), String>,
+) -> Result<Texels, String> {
+    use image::ImageDecoder;
+    let format = match format {
+        Format::Png => image::ImageFormat::Png,
+        Format::Jpeg => image::ImageFormat::Jpeg,
+        Format::Hdr => image::ImageFormat::Hdr,
+        Format::Exr => {
+            return Err("the alpha channel of an OpenEXR image is not read: use a PNG".into())
+        }
+    };
+    let decoder = raster_decoder(bytes, format, limits)?;
+    let (width, height) = decoder.dimensions();
+    let color = decoder.color_type();
+    use image::ColorType as C;
+    let layout = match color {
+        C::La8 | C::Rgba8 => Layout::Gray8,
+        C::La16 | C::Rgba16 => Layout::Gray16,
+        C::Rgba32F => return Err("the alpha channel of a float image is not read".into()),
+        _ => {
+            let opaque = Header {
+                width: 1,
+                height: 1,
+                layout: Layout::Gray8,
+            };
+            admit(&opaque)?;
+            return Ok(Texels::new(1, 1, Samples::Gray8(vec![u8::MAX])));
+        }
+    };
+    let header = Header {
+        width,
+        height,
+        layout,
+    };
+    check(&header, limits)?;
+    check_length(bytes.len(), least_bytes(bytes, format, &header), &header)?;
+    admit(&header)?;
+    let channels = color.channel_count() as usize;
+    let count = header.texels() as usize * channels;
+    let samples = match layout {
+        Layout::Gray8 => Samples::Gray8(keep_alpha(read(decoder, count)?, channels)),
+        _ => Samples::Gray16(keep_alpha(read(decoder, count)?, channels)),
+    };
+    Ok(Texels::new(width as usize, height as usize, samples))
+}
+
+/// The `image` crate's decoder of `bytes`, its sides and allocations
+/// within `limits`.
+fn raster_decoder<'a>(
+    bytes: &'a [u8],
+    format: image::ImageFormat,
+    limits: &Limits,
+) -> Result<impl image::ImageDecoder + use<'a>, String> {
+    let mut reader = image::ImageReader::with_format(Cursor::new(bytes), format);
+    let mut image_limits = image::Limits::default();
+    image_limits.max_image_width = Some(limits.side);
+    image_limits.max_image_height = Some(limits.side);
+    image_limits.max_alloc = Some(limits.bytes);
+    reader.limits(image_limits);
+    reader.into_decoder().map_err(cannot_decode)
+}
+
+/// Keeps the last sample (alpha) of every texel of `channels` samples, in
+/// place.
+fn keep_alpha<T: Copy>(mut v: Vec<T>, channels: usize) -> Vec<T> {
+    let n = v.len() / channels;
+    for i in 0..n {
+        v[i] = v[i * channels + channels - 1];
+    }
+    v.truncate(n);
+    v.shrink_to_fit();
+    v
+}
+
 fn cannot_decode(e: impl std::fmt::Display) -> String {
     format!("cannot decode the image: {e}")
 }
@@ -208,13 +289,7 @@ fn decode_raster(
     admit: impl FnOnce(&Header) -> Result<(), String>,
 ) -> Result<Texels, String> {
     use image::ImageDecoder;
-    let mut reader = image::ImageReader::with_format(Cursor::new(bytes), format);
-    let mut image_limits = image::Limits::default();
-    image_limits.max_image_width = Some(limits.side);
-    image_limits.max_image_height = Some(limits.side);
-    image_limits.max_alloc = Some(limits.bytes);
-    reader.limits(image_limits);
-    let decoder = reader.into_decoder().map_err(cannot_decode)?;
+    let decoder = raster_decoder(bytes, format, limits)?;
     let (width, height) = decoder.dimensions();
     let color = decoder.color_type();
     let layout = layout_of(color).ok_or_else(|| format!("{color:?} images are not read"))?;

@@ -133,7 +133,30 @@ impl Images {
         path: &Path,
         encoding: Encoding,
     ) -> Result<Image, String> {
-        let key = files.canonical(path);
+        self.get_plane(files, path, encoding, false)
+    }
+
+    /// The alpha channel of the image at `path` as a grey image read
+    /// linearly (an image without alpha: one opaque texel), decoded on
+    /// first use and kept apart from the file's colours.
+    pub fn get_alpha(&mut self, files: &dyn Files, path: &Path) -> Result<Image, String> {
+        self.get_plane(files, path, Encoding::Linear, true)
+    }
+
+    /// [`Images::get`] of the file's colours or (`alpha`) of its alpha.
+    fn get_plane(
+        &mut self,
+        files: &dyn Files,
+        path: &Path,
+        encoding: Encoding,
+        alpha: bool,
+    ) -> Result<Image, String> {
+        let mut key = files.canonical(path);
+        if alpha {
+            let mut name = key.into_os_string();
+            name.push("#alpha");
+            key = PathBuf::from(name);
+        }
         let now = files.stamp(path);
         if let Some(c) = self.loaded.get(&key) {
             if self.used.contains(&key) || (c.stamp == now && now.is_some()) {
@@ -156,7 +179,7 @@ impl Images {
         }
         // A changed file: its old texels go before the new ones come.
         self.loaded.remove(&key);
-        let texels = Arc::new(self.decode(path, &bytes)?);
+        let texels = Arc::new(self.decode(path, &bytes, alpha)?);
         drop(bytes);
         self.decodes += 1;
         let cached = CachedImage {
@@ -172,7 +195,7 @@ impl Images {
     /// Decodes `bytes` of the file at `path`: admitted when the scene's
     /// images stay within the limit with it; the cache then forgets the
     /// images the scene has not read (yet) if it would hold more.
-    fn decode(&mut self, path: &Path, bytes: &[u8]) -> Result<Texels, String> {
+    fn decode(&mut self, path: &Path, bytes: &[u8], alpha: bool) -> Result<Texels, String> {
         let format = Format::of(path)?;
         let limits = Limits {
             side: MAX_IMAGE_SIDE,
@@ -181,7 +204,7 @@ impl Images {
         };
         let scene = self.scene_bytes();
         let (limit, used, loaded) = (self.limit, &self.used, &mut self.loaded);
-        decode::decode(bytes, format, &limits, |header: &Header| {
+        let admit = |header: &Header| {
             over_total(scene, header.bytes(), limit)
                 .map(|total| format!("{} {total}", header.describe()))
                 .map_or(Ok(()), Err)?;
@@ -190,7 +213,11 @@ impl Images {
                 loaded.retain(|p, _| used.contains(p));
             }
             Ok(())
-        })
+        };
+        match alpha {
+            false => decode::decode(bytes, format, &limits, admit),
+            true => decode::decode_alpha(bytes, format, &limits, admit),
+        }
     }
 
     /// A cached image (by its `key`) read again: the scene's once more, or

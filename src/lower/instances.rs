@@ -218,6 +218,7 @@ pub fn gather(
     let mut uneven: Vec<((usize, usize), Vec<Span>)> = Vec::new();
     let mut uneven_at: HashMap<(usize, usize), usize> = HashMap::new();
     let mut uneven_count: HashMap<(usize, usize), usize> = HashMap::new();
+    let cut = cut_group_objects(scene, shared, groups);
     for leaf in shared {
         let group = &groups[leaf.group];
         for (k, object) in group.objects.iter().enumerate() {
@@ -247,6 +248,7 @@ pub fn gather(
                 scene.camera.shutter,
                 (cache, files),
                 Default::default(),
+                cut[leaf.group].clone(),
             ) {
                 Ok(g) => {
                     out.bounds.push(g.bounds());
@@ -312,6 +314,30 @@ pub fn gather(
 
 /// Each object's material in a group's prototype: its own, or
 /// [`INHERITED`] when it names none.
+/// Whether each object of each group is cut out under any of its shared
+/// placements (an object that names no material takes each placement's);
+/// empty for a group with no cut-out object.
+fn cut_group_objects(
+    scene: &check::Scene,
+    shared: &[Leaf],
+    groups: &[check::Group],
+) -> Vec<Vec<bool>> {
+    let mut cut: Vec<Vec<bool>> = vec![Vec::new(); groups.len()];
+    for leaf in shared {
+        let group = &groups[leaf.group];
+        let objects = group.objects.iter().zip(&group.unmaterialled);
+        let here: Vec<bool> = objects
+            .map(|(o, &u)| scene.materials[material_under(o, u, leaf)].is_cut_out())
+            .collect();
+        if here.contains(&true) {
+            let all = &mut cut[leaf.group];
+            all.resize(here.len(), false);
+            all.iter_mut().zip(here).for_each(|(a, h)| *a |= h);
+        }
+    }
+    cut
+}
+
 fn object_materials(group: &check::Group) -> Vec<u32> {
     (group.objects.iter())
         .zip(&group.unmaterialled)

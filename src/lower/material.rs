@@ -4,6 +4,7 @@
 use crate::check;
 use crate::check::scene::TextureInput;
 use crate::diag::{codes, Diagnostic, Diagnostics};
+use crate::ir::cutout::Opacity;
 use crate::lower::image::{Encoding, Images};
 use crate::material::conductor::Conductor;
 use crate::material::plastic::CoatFamily;
@@ -11,6 +12,7 @@ use crate::material::plastic::Plastic;
 use crate::material::principled::Principled;
 use crate::material::{self, microfacet, Input, Material, NormalInput, Textured};
 use crate::source::Files;
+use crate::texture::image::Channel;
 use crate::texture::{ColorMap, Pattern, Space, Texture};
 use glam::{Affine3A, DVec3, Vec3};
 use std::collections::HashMap;
@@ -77,7 +79,10 @@ pub fn lower_material(
     // highlight, lies along each hit's tangent.
     let uneven = params.roughness.is_some_and(|r| r.x != r.y)
         || matches!(params.kind, material::Kind::Principled(p) if p.anisotropic > 0.0);
-    if m.textures.is_empty() && !uneven {
+    // An opacity texture is read by traversal (`lower_opacity`), not at
+    // the hit.
+    let shading_textures = (m.textures.iter()).any(|(i, _)| *i != TextureInput::Opacity);
+    if !shading_textures && !uneven {
         return Material::new(&params);
     }
     let textured_gloss = m.textures.iter().any(|(i, _)| *i == TextureInput::Gloss);
@@ -96,7 +101,11 @@ pub fn lower_material(
         coats,
         tangent: uneven,
     };
-    for (input, t) in &m.textures {
+    for (input, t) in m
+        .textures
+        .iter()
+        .filter(|(i, _)| *i != TextureInput::Opacity)
+    {
         let Some(texture) = lower_texture(t, input.is_data(), (images, files), diags) else {
             continue;
         };
@@ -126,6 +135,7 @@ pub fn lower_material(
                 Input::Diffuse
             }
             TextureInput::Metallic => Input::Metallic,
+            TextureInput::Opacity => unreachable!("filtered out above"),
             TextureInput::NormalMap => {
                 textured.normal = Some(NormalInput::Map(index));
                 continue;
@@ -143,6 +153,37 @@ pub fn lower_material(
     let mut material = Material::new(&params);
     material.textured = Some(Box::new(textured));
     material
+}
+
+/// Where a checked material's surface is there, if not everywhere: its
+/// opacity texture (pushed onto `textures`) or number, and its cutoff.
+pub fn lower_opacity(
+    m: &check::Material,
+    textures: &mut Vec<Texture>,
+    (images, files): (&mut Images, &dyn Files),
+    diags: &mut Diagnostics,
+) -> Option<Opacity> {
+    let cutoff = m.opacity_cutoff.map(|c| c as f32);
+    let textured = m.textures.iter().find(|(i, _)| *i == TextureInput::Opacity);
+    if let Some((_, t)) = textured {
+        let texture = lower_texture(t, true, (images, files), diags)?;
+        textures.push(texture);
+        return Some(Opacity {
+            value: 1.0,
+            texture: Some(textures.len() as u32 - 1),
+            cutoff,
+        });
+    }
+    let value = m.opacity as f32;
+    let opaque = match cutoff {
+        Some(c) => value >= c,
+        None => value >= 1.0,
+    };
+    (!opaque).then_some(Opacity {
+        value,
+        texture: None,
+        cutoff,
+    })
 }
 
 /// The renderer's scattering model for a checked material; smooth glass
@@ -236,28 +277,34 @@ fn lower_texture(
             factor,
             channel,
             ..
-        } => match images.get(files, path, encoding(*color_space, data)) {
-            Ok(image) => Pattern::Image {
-                image,
-                wrap: *wrap,
-                factor: DVec3::from_array(*factor).as_vec3(),
-                channel: *channel,
-            },
-            Err(e) => {
-                diags.push(
-                    Diagnostic::error(
-                        codes::IMAGE_FILE,
-                        format!("cannot load image `{}`", path.display()),
-                        *path_span,
-                    )
-                    .with_label(e)
-                    .with_help(
-                        "textures read .png, .jpg, .hdr and .exr files, relative to the scene",
-                    ),
-                );
-                return None;
+        } => {
+            let read = match channel {
+                Some(Channel::Alpha) => images.get_alpha(files, path),
+                _ => images.get(files, path, encoding(*color_space, data)),
+            };
+            match read {
+                Ok(image) => Pattern::Image {
+                    image,
+                    wrap: *wrap,
+                    factor: DVec3::from_array(*factor).as_vec3(),
+                    channel: *channel,
+                },
+                Err(e) => {
+                    diags.push(
+                        Diagnostic::error(
+                            codes::IMAGE_FILE,
+                            format!("cannot load image `{}`", path.display()),
+                            *path_span,
+                        )
+                        .with_label(e)
+                        .with_help(
+                            "textures read .png, .jpg, .hdr and .exr files, relative to the scene",
+                        ),
+                    );
+                    return None;
+                }
             }
-        },
+        }
     };
     let stops = (t.colors.iter())
         .map(|&(at, c)| (at as f32, DVec3::from_array(c).as_vec3()))

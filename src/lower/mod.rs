@@ -31,6 +31,7 @@ use crate::diag::codes;
 use crate::diag::{Diagnostic, Diagnostics};
 use crate::geometry::shape::Shape;
 use crate::geometry::Aabb;
+use crate::ir::cutout::{Cutouts, Opacity};
 use crate::ir::instance::Instances;
 use crate::ir::settings::Settings;
 use crate::ir::Scene;
@@ -157,7 +158,7 @@ enum Shapes {
 /// no problem can be found.
 struct Prepared {
     settings: Settings,
-    materials: (Vec<Material>, Vec<Texture>),
+    materials: (Vec<Material>, Vec<Option<Opacity>>, Vec<Texture>),
     environment: Option<Arc<EnvironmentMap>>,
     shapes: Shapes,
     placements: instances::Gathered,
@@ -193,6 +194,9 @@ fn prepare(
     let materials: Vec<Material> = (flat.materials.iter())
         .map(|m| lower_material(m, &mut textures, (images, files), &mut coats, &mut diags))
         .collect();
+    let opacities = (flat.materials.iter())
+        .map(|m| material::lower_opacity(m, &mut textures, (images, files), &mut diags))
+        .collect();
     let environment = (flat.environment.as_ref())
         .and_then(|e| environment::lower_environment(e, (images, files), &mut diags, warnings));
     images.keep_only_used();
@@ -202,9 +206,15 @@ fn prepare(
     let shapes = match key.and_then(|k| cache.reuse_geometry(k)) {
         // Shared, not copied: materials and lights live outside the geometry.
         Some(g) => Ok(Shapes::Kept(g)),
-        None => shapes::gather(&flat.objects, flat.camera.shutter, (cache, files), reads)
-            .map(|g| Shapes::Gathered(g, key))
-            .map_err(|d| diags.extend(d)),
+        None => shapes::gather(
+            &flat.objects,
+            flat.camera.shutter,
+            (cache, files),
+            reads,
+            cut_objects(flat),
+        )
+        .map(|g| Shapes::Gathered(g, key))
+        .map_err(|d| diags.extend(d)),
     };
     if diags.has_errors() {
         return Err(diags);
@@ -219,7 +229,7 @@ fn prepare(
     warn_missing_texcoords(flat, without_uvs, warnings);
     Ok(Prepared {
         settings,
-        materials: (materials, textures),
+        materials: (materials, opacities, textures),
         environment,
         shapes,
         placements,
@@ -248,6 +258,17 @@ impl Prepared {
             self.environment,
             placed,
         )
+    }
+}
+
+/// Whether each object of `scene` is cut out (its material's opacity).
+fn cut_objects(scene: &check::Scene) -> Vec<bool> {
+    let cut: Vec<bool> = (scene.objects.iter())
+        .map(|o| scene.materials[o.material].is_cut_out())
+        .collect();
+    match cut.contains(&true) {
+        true => cut,
+        false => Vec::new(),
     }
 }
 
@@ -308,7 +329,7 @@ fn data_files(scene: &check::Scene) -> Vec<(PathBuf, u64)> {
 fn finish(
     scene: &check::Scene,
     settings: Settings,
-    (materials, textures): (Vec<Material>, Vec<Texture>),
+    (materials, opacities, textures): (Vec<Material>, Vec<Option<Opacity>>, Vec<Texture>),
     geometry: Geometry,
     environment: Option<Arc<EnvironmentMap>>,
     placed: Instances,
@@ -394,6 +415,7 @@ fn finish(
     let shutter = (scene.camera.shutter.0 as f32, scene.camera.shutter.1 as f32);
     let bounds = bounds.union(instances::bounds(&placed, shutter));
     let mut ir = Scene {
+        cutouts: Cutouts::of(opacities).map(Arc::new),
         instances: Arc::new(placed),
         settings,
         camera,

@@ -116,6 +116,7 @@ pub fn gather(
     (t0, t1): (f64, f64),
     (cache, files): (&mut LowerCache, &dyn Files),
     reads: MeshReads,
+    cut_objects: Vec<bool>,
 ) -> Result<Gathered, Diagnostics> {
     let mut g = Gathering {
         out: Gathered {
@@ -136,6 +137,7 @@ pub fn gather(
         g.diags.push(too_many(objects[o].span, g.wanted));
         return Err(g.diags);
     }
+    g.out.prims.cut_objects = cut_objects;
     for (o, obj) in objects.iter().enumerate() {
         g.object(o, obj);
     }

@@ -61,7 +61,17 @@ pub enum Channel {
     Green,
     /// The third channel.
     Blue,
+    /// The alpha channel (read from a plane of its own: see
+    /// `lower::image::Images::get`; an image without one is opaque).
+    Alpha,
 }
+
+named_values!(Channel {
+    "r" => Red,
+    "g" => Green,
+    "b" => Blue,
+    "a" => Alpha,
+});
 
 impl Channel {
     /// Its index in an RGB triple.
@@ -70,6 +80,8 @@ impl Channel {
             Channel::Red => 0,
             Channel::Green => 1,
             Channel::Blue => 2,
+            // The alpha plane is stored as a grey image.
+            Channel::Alpha => 0,
         }
     }
 }

@@ -274,3 +274,48 @@ fn exr_channels_are_read_by_name_and_absurd_headers_refused_before_allocation() 
     assert!(e.contains("too few") || e.contains("cannot decode"), "{e}");
     assert!(decode_exr_channels(b"v/1\x01 not an exr", &LIMITS, &names).is_err());
 }
+
+#[test]
+fn the_alpha_plane_keeps_the_alpha_samples_and_an_image_without_alpha_is_opaque() {
+    use image::ExtendedColorType as C;
+    let alpha = |bytes: &[u8], format: Format| {
+        let mut admitted = None;
+        let t = decode_alpha(bytes, format, &LIMITS, |h| {
+            admitted = Some(*h);
+            Ok(())
+        });
+        (t, admitted)
+    };
+    // RGBA: the fourth sample of each texel.
+    let rgba = png(2, 1, &[10, 20, 30, 40, 50, 60, 70, 200], C::Rgba8);
+    let (t, header) = alpha(&rgba, Format::Png);
+    let t = t.unwrap();
+    assert_eq!((t.width(), t.height(), t.layout()), (2, 1, Layout::Gray8));
+    assert_eq!(header.unwrap().layout, Layout::Gray8);
+    let linear = |t: &Texels, i: usize| t.get(i, Curve::Linear).x;
+    assert_eq!(
+        (linear(&t, 0), linear(&t, 1)),
+        (40.0 / 255.0, 200.0 / 255.0)
+    );
+    // Grey and alpha, 16 bits.
+    let la16: Vec<u8> = [1000u16, 65535, 2000, 7]
+        .iter()
+        .flat_map(|v| v.to_ne_bytes())
+        .collect();
+    let (t, _) = alpha(&png(2, 1, &la16, C::La16), Format::Png);
+    let t = t.unwrap();
+    assert_eq!(t.layout(), Layout::Gray16);
+    assert_eq!((linear(&t, 0), linear(&t, 1)), (1.0, 7.0 / 65535.0));
+    // No alpha: one opaque texel.
+    let (t, _) = alpha(&png(2, 1, &[1, 2, 3, 4, 5, 6], C::Rgb8), Format::Png);
+    let t = t.unwrap();
+    assert_eq!((t.width(), t.height(), linear(&t, 0)), (1, 1, 1.0));
+    // A header over the limits is refused before admission, as colours are.
+    let mut huge = rgba.clone();
+    claim_png(&mut huge, 1 << 20, 1 << 20);
+    assert!(decode_alpha(&huge, Format::Png, &LIMITS, |h| panic!("{h:?} admitted")).is_err());
+    assert!(alpha(b"not an exr", Format::Exr)
+        .0
+        .unwrap_err()
+        .contains("OpenEXR"));
+}

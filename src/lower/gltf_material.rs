@@ -6,7 +6,8 @@
 //! memory.
 //!
 //! - `baseColorFactor` → `base_color`, `baseColorTexture` → its texture
-//!   times the factor (its alpha, and `alphaMode`, are cutouts: not yet);
+//!   times the factor; under `alphaMode` MASK or BLEND their alpha is
+//!   `opacity` (`alphaCutoff` → `opacity_cutoff` for MASK);
 //! - `metallicFactor`, `roughnessFactor` → `metallic` and the perceptual
 //!   roughness; `metallicRoughnessTexture` → both, from its blue and green
 //!   channels times the factors;
@@ -222,19 +223,12 @@ pub fn material(
         clearcoat_roughness: number(clearcoat, "clearcoatRoughnessFactor").map_or(0.0, unit),
     });
     textures(m, images, &mut out, notes);
-    let mode = match m.alpha_mode() {
-        gltf::material::AlphaMode::Opaque => "OPAQUE",
-        gltf::material::AlphaMode::Mask => "MASK",
-        gltf::material::AlphaMode::Blend => "BLEND",
-    };
-    if mode != "OPAQUE" {
-        notes.push(format!(
-            "material `{name}`: its `alphaMode` {mode} is not followed: cutouts are not supported yet, the surface is opaque"
-        ));
-    } else if alpha < 1.0 {
-        notes.push(format!(
+    match m.alpha_mode() {
+        gltf::material::AlphaMode::Opaque if alpha < 1.0 => notes.push(format!(
             "material `{name}`: its alpha {alpha} has no effect under `alphaMode` OPAQUE"
-        ));
+        )),
+        gltf::material::AlphaMode::Opaque => {}
+        mode => cut_out(m, images, mode, &mut out, notes),
     }
     for (key, what) in [
         ("KHR_materials_unlit", "its unlit shading"),
@@ -249,6 +243,42 @@ pub fn material(
         }
     }
     out
+}
+
+/// `alphaMode` MASK or BLEND → `opacity` (the base colour's alpha: its
+/// factor times its texture's alpha channel), with `opacity_cutoff` from
+/// `alphaCutoff` (default 0.5) for MASK. An emitting surface stays whole
+/// (a light is not cut out), with a note.
+fn cut_out(
+    m: &gltf::Material,
+    images: &[Option<PathBuf>],
+    mode: gltf::material::AlphaMode,
+    out: &mut Material,
+    notes: &mut Vec<String>,
+) {
+    let name = out.name.clone().unwrap_or_default();
+    let mode_name = match mode {
+        gltf::material::AlphaMode::Mask => "MASK",
+        _ => "BLEND",
+    };
+    if out.emission.iter().any(|&c| c > 0.0) {
+        notes.push(format!(
+            "material `{name}`: its `alphaMode` {mode_name} is not followed on an emitting surface, which stays whole"
+        ));
+        return;
+    }
+    let pbr = m.pbr_metallic_roughness();
+    let alpha = pbr.base_color_factor()[3].clamp(0.0, 1.0) as f64;
+    out.opacity = alpha;
+    if mode == gltf::material::AlphaMode::Mask {
+        out.opacity_cutoff = Some(m.alpha_cutoff().unwrap_or(0.5).clamp(0.0, 1.0) as f64);
+    }
+    if let Some(info) = pbr.base_color_texture() {
+        match texture(&Source::of(&info), images, [alpha; 3], Some(Channel::Alpha)) {
+            Ok(t) => out.textures.push((TextureInput::Opacity, t)),
+            Err(e) => notes.push(format!("material `{name}`: {e}")),
+        }
+    }
 }
 
 /// The textures of `m` onto `out` (a textured parameter holds its factor,

@@ -150,12 +150,57 @@ fn textures_carry_factors_channels_and_wraps() {
 }
 
 #[test]
-fn alpha_and_unknown_extensions_are_noted() {
-    let (_, notes) = first_material(r#"[{"name": "Leaf", "alphaMode": "MASK"}]"#);
+fn alpha_modes_are_cutouts_and_unknown_extensions_are_noted() {
+    let mask = r#"[{"name": "Leaf", "alphaMode": "MASK", "alphaCutoff": 0.3,
+        "pbrMetallicRoughness": {"baseColorFactor": [1, 1, 1, 0.8]}}]"#;
+    let (m, notes) = first_material(mask);
+    assert!(notes.is_empty(), "{notes:?}");
+    assert!((m.opacity - 0.8).abs() < 1e-6 && m.opacity_cutoff == Some(0.30000001192092896));
+    let blend =
+        r#"[{"alphaMode": "BLEND", "pbrMetallicRoughness": {"baseColorFactor": [1, 1, 1, 0.25]}}]"#;
+    let (m, _) = first_material(blend);
+    assert_eq!((m.opacity, m.opacity_cutoff), (0.25, None));
+    // MASK's cutoff defaults to 0.5; OPAQUE ignores alpha, with a note.
+    let (m, _) = first_material(r#"[{"alphaMode": "MASK"}]"#);
+    assert_eq!((m.opacity, m.opacity_cutoff), (1.0, Some(0.5)));
+    // A base colour texture's alpha channel, times the factor's alpha.
+    let textured = r#"[{"alphaMode": "MASK", "pbrMetallicRoughness": {
+        "baseColorFactor": [1, 1, 1, 0.5], "baseColorTexture": {"index": 0}}}]"#;
+    let (m, _) = first_material(textured);
+    let image = |input: TextureInput| match m.textures.iter().find(|(i, _)| *i == input) {
+        Some((_, t)) => match &t.kind {
+            TextureKind::Image {
+                path,
+                factor,
+                channel,
+                ..
+            } => (path.clone(), *factor, *channel),
+            k => panic!("{k:?}"),
+        },
+        None => panic!("no {input:?} texture"),
+    };
+    let (path, factor, channel) = image(TextureInput::Opacity);
+    assert_eq!((factor, channel), ([0.5; 3], Some(Channel::Alpha)));
+    assert_eq!(path, image(TextureInput::BaseColor).0);
+    let opaque =
+        r#"[{"name": "Glass", "pbrMetallicRoughness": {"baseColorFactor": [1, 1, 1, 0.5]}}]"#;
+    let (m, notes) = first_material(opaque);
+    assert!(!m.is_cut_out());
     assert!(
         notes
             .iter()
-            .any(|n| n.contains("MASK") && n.contains("Leaf")),
+            .any(|n| n.contains("OPAQUE") && n.contains("Glass")),
+        "{notes:?}"
+    );
+    // An emitting surface stays whole.
+    let lit = r#"[{"name": "Lamp", "alphaMode": "BLEND", "emissiveFactor": [1, 1, 1],
+        "pbrMetallicRoughness": {"baseColorFactor": [1, 1, 1, 0.5]}}]"#;
+    let (m, notes) = first_material(lit);
+    assert!(!m.is_cut_out());
+    assert!(
+        notes
+            .iter()
+            .any(|n| n.contains("Lamp") && n.contains("whole")),
         "{notes:?}"
     );
     let (_, notes) = first_material(r#"[{"extensions": {"KHR_materials_volume": {}}}]"#);

@@ -16,8 +16,8 @@
 //!   → `clearcoat_roughness`, `aniso` → `anisotropic`;
 //! - `Ke`/`map_Ke` → `emission`;
 //! - `map_Bump`/`bump` (`-bm` its height) → `bump`, `norm` → `normal_map`;
-//! - `d` < 1, `Tr` > 0 and `map_d` (opacity) have no counterpart yet:
-//!   a note names them;
+//! - `d` (or 1 − `Tr`) → `opacity`, `map_d` → its image's alpha channel
+//!   (as Blender reads it) times `d`: cutouts, fractions passed at random;
 //! - texture options: `-s` and `-o` scale and shift the texture
 //!   coordinates, `-clamp on` clamps, `-bm` as above; the rest are named.
 
@@ -25,7 +25,7 @@ use crate::check::scene::{
     Material, MaterialKind, PrincipledParams, Texture, TextureInput, TextureKind, TextureSpace,
 };
 use crate::span::Span;
-use crate::texture::image::Wrap;
+use crate::texture::image::{Channel, Wrap};
 use glam::DMat4;
 use std::path::Path;
 
@@ -133,6 +133,58 @@ fn texture_ref(text: &str) -> Option<TextureRef> {
         file: rest.to_string(),
         ..out
     })
+}
+
+/// `d` (or 1 − `Tr`) → `opacity`, `map_d` → its texture's alpha channel
+/// (as Blender reads it) times `d`; fractions pass at random (no cutoff).
+/// An emitting surface stays whole (a light is not cut out).
+fn opacity(
+    m: &tobj::Material,
+    folder: &Path,
+    span: Span,
+    out: &mut Material,
+    left_out: &mut Vec<String>,
+) {
+    let d = m
+        .dissolve
+        .map(f64::from)
+        .or_else(|| number(m, "Tr").map(|t| 1.0 - t))
+        .filter(|d| d.is_finite())
+        .map_or(1.0, |d| d.clamp(0.0, 1.0));
+    let map = m.dissolve_texture.as_ref();
+    if d >= 1.0 && map.is_none() {
+        return;
+    }
+    if out.emission.iter().any(|&c| c > 0.0) || m.unknown_param.contains_key("map_Ke") {
+        left_out.push("its opacity (`d`, `Tr`, `map_d`): an emitting surface stays whole".into());
+        return;
+    }
+    out.opacity = d;
+    let Some(text) = map else {
+        return;
+    };
+    match texture_ref(text) {
+        Some(r) => {
+            if !r.ignored.is_empty() {
+                left_out.push(format!(
+                    "`map_d`'s options {} (not followed)",
+                    r.ignored.join(" ")
+                ));
+            }
+            let mut t = image(&r, folder, span);
+            if let TextureKind::Image {
+                factor, channel, ..
+            } = &mut t.kind
+            {
+                *factor = [d; 3];
+                *channel = Some(Channel::Alpha);
+            }
+            out.textures.push((TextureInput::Opacity, t));
+        }
+        None => left_out.push(format!(
+            "`map_d {text}` (its options or its file name cannot be read)"
+        )),
+    }
 }
 
 /// An image texture of `file` in `folder`, read at the surface's (u, v)
@@ -307,12 +359,7 @@ pub fn material(m: &tobj::Material, folder: &Path, span: Span) -> Mapped {
     {
         p.metallic = 1.0;
     }
-    let opaque = m.dissolve.is_none_or(|d| d >= 1.0)
-        && number(m, "Tr").is_none_or(|t| t <= 0.0)
-        && m.dissolve_texture.is_none();
-    if !opaque {
-        left_out.push("its opacity (`d`, `Tr`, `map_d`): cutouts are not supported yet, the surface is opaque".into());
-    }
+    opacity(m, folder, span, &mut out, &mut left_out);
     Mapped {
         material: out,
         left_out,

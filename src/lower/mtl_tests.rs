@@ -147,16 +147,42 @@ fn texture_keys_become_textures_with_their_options() {
 }
 
 #[test]
-fn opacity_and_bad_texture_statements_are_named() {
-    for text in ["d 0.5", "Tr 0.3", "map_d alpha.png"] {
+fn opacity_maps_to_cutouts_and_bad_texture_statements_are_named() {
+    let opacity = |text: &str| {
         let m = mapped(&format!("newmtl O\n{text}\n"));
-        assert!(
-            m.left_out.iter().any(|l| l.contains("opacity")),
-            "{text}: {:?}",
-            m.left_out
-        );
+        assert!(m.left_out.is_empty(), "{text}: {:?}", m.left_out);
+        m.material
+    };
+    let d = opacity("d 0.5");
+    assert_eq!((d.opacity, d.opacity_cutoff), (0.5, None));
+    assert!(d.is_cut_out());
+    assert!((opacity("Tr 0.3").opacity - 0.7).abs() < 1e-6);
+    assert!(!opacity("d 1\nTr 0").is_cut_out());
+    // `map_d` reads its image's alpha, times `d`.
+    let map = opacity("d 0.8\nmap_d leaf.png");
+    let (input, t) = &map.textures[0];
+    assert_eq!(*input, TextureInput::Opacity);
+    match &t.kind {
+        TextureKind::Image {
+            path,
+            factor,
+            channel,
+            ..
+        } => {
+            assert!(path.ends_with("leaf.png"));
+            assert!((factor[0] - 0.8).abs() < 1e-6);
+            assert_eq!(*channel, Some(crate::texture::image::Channel::Alpha));
+        }
+        k => panic!("{k:?}"),
     }
-    assert!(mapped("newmtl O\nd 1\nTr 0\n").left_out.is_empty());
+    // A light is not cut out: named.
+    let lit = mapped("newmtl L\nKe 1 1 1\nd 0.5\n");
+    assert!(!lit.material.is_cut_out());
+    assert!(
+        lit.left_out.iter().any(|l| l.contains("opacity")),
+        "{:?}",
+        lit.left_out
+    );
     let bad = mapped("newmtl B\nmap_Kd -bm\n");
     assert!(bad.material.textures.is_empty());
     assert_eq!(bad.left_out.len(), 1, "{:?}", bad.left_out);

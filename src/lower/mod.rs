@@ -261,6 +261,30 @@ impl Prepared {
     }
 }
 
+/// The opacities of the materials that some surface uses (objects, groups'
+/// objects, placements): a scene cuts nothing out unless a surface is cut
+/// out (a glTF file's materials replaced by the scene's are unused).
+fn used_opacities(
+    mut opacities: Vec<Option<Opacity>>,
+    object_material: &[u32],
+    placed: &Instances,
+) -> Vec<Option<Opacity>> {
+    let mut used = vec![false; opacities.len()];
+    let prototypes = placed.prototypes.iter().flat_map(|p| &p.object_material);
+    let placements = placed.placements.iter().map(|p| &p.material);
+    for &m in object_material.iter().chain(prototypes).chain(placements) {
+        if let Some(u) = used.get_mut(m as usize) {
+            *u = true;
+        }
+    }
+    for (o, u) in opacities.iter_mut().zip(used) {
+        if !u {
+            *o = None;
+        }
+    }
+    opacities
+}
+
 /// Whether each object of `scene` is cut out (its material's opacity).
 fn cut_objects(scene: &check::Scene) -> Vec<bool> {
     let cut: Vec<bool> = (scene.objects.iter())
@@ -414,6 +438,7 @@ fn finish(
     let camera = lower_camera(&scene.camera, settings.width, settings.height);
     let shutter = (scene.camera.shutter.0 as f32, scene.camera.shutter.1 as f32);
     let bounds = bounds.union(instances::bounds(&placed, shutter));
+    let opacities = used_opacities(opacities, &object_material, &placed);
     let mut ir = Scene {
         cutouts: Cutouts::of(opacities).map(Arc::new),
         instances: Arc::new(placed),

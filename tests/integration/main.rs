@@ -3,6 +3,7 @@
 mod adaptive;
 mod catalogue;
 mod cli;
+mod cutouts;
 mod denoise;
 mod diagnostics;
 mod editors;

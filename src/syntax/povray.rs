@@ -63,7 +63,7 @@ const DIRECTIVES: &[(&str, &str)] = &[
 /// POV-Ray's blocks inside objects (`pigment { … }`), each with what ptsc
 /// writes instead.
 const BLOCKS: &[(&str, &str)] = &[
-    ("pigment", "POV-Ray's `pigment { color rgb … }` is `material { diffuse rgb … }` in ptsc (a pattern: `diffuse checker { … }`)"),
+    ("pigment", "POV-Ray's `pigment { color rgb … }` is `material { diffuse rgb … }` in ptsc (a pattern: `diffuse checker { … }`; `rgbt`'s transmit t: `opacity 1 − t`)"),
     ("texture", "POV-Ray's `texture { pigment { … } finish { … } }` is one `material { … }` in ptsc: `diffuse rgb …`, `gloss …`, `reflection rgb …`"),
     ("finish", "POV-Ray's `finish` is part of ptsc's `material { … }`: `type plastic gloss 0.3` for a highlight, `reflection rgb …` for a mirror, `emission rgb …` for a glow"),
     ("normal", "POV-Ray's `normal { bumps … }` is a material's `bump` in ptsc: `material { bump noise { scale 0.1 } bump_height 0.02 }` (or `normal_map image { file … }`)"),
@@ -71,7 +71,7 @@ const BLOCKS: &[(&str, &str)] = &[
     ("color_map", "POV-Ray's `color_map { [0 rgb …] [1 rgb …] }` is a pattern's stops in ptsc: `marble { stop 0 rgb 1 stop 1 rgb 0.2 }`"),
     ("colour_map", "POV-Ray's `colour_map { [0 rgb …] [1 rgb …] }` is a pattern's stops in ptsc: `marble { stop 0 rgb 1 stop 1 rgb 0.2 }`"),
     ("pigment_map", "ptsc has no pigment maps: a pattern's `stop`s are colours (`marble { stop 0 rgb 1 stop 1 rgb 0.2 }`)"),
-    ("image_map", "POV-Ray's `image_map { png \"file.png\" }` is `diffuse image { file \"file.png\" }` in a ptsc material"),
+    ("image_map", "POV-Ray's `image_map { png \"file.png\" }` is `diffuse image { file \"file.png\" }` in a ptsc material; its alpha as holes (POV-Ray's `transmit all`) is `opacity image { file \"file.png\" channel a }`"),
     ("photons", "the `path` integrator (the default) renders caustics without photons"),
     ("media", "ptsc has no participating media yet; absorption inside glass is `material { transmission 1 absorption rgb … }`"),
     ("bounded_by", "ptsc bounds every object itself (a BVH): leave `bounded_by` out"),

@@ -351,7 +351,7 @@ fn images_inside_a_glb_are_read_with_factors_and_channels() {
 fn what_the_file_asks_beyond_ptsc_is_a_warning_at_the_statement() {
     let mut d = two_cubes();
     d.nodes[0]["skin"] = json!(0);
-    d.materials[0]["alphaMode"] = json!("BLEND");
+    d.materials[0]["pbrMetallicRoughness"]["baseColorFactor"][3] = json!(0.5);
     let mut text: Value = serde_json::from_str(&d.gltf()).unwrap();
     text["skins"] = json!([{"joints": [2]}]);
     text["extensionsRequired"] = json!(["KHR_draco_mesh_compression"]);
@@ -362,7 +362,7 @@ fn what_the_file_asks_beyond_ptsc_is_a_warning_at_the_statement() {
     assert!(c.ir.is_some(), "{report}");
     for says in [
         "skinned",
-        "BLEND",
+        "OPAQUE",
         "KHR_draco_mesh_compression",
         "mesh { file \"odd.gltf\" }",
     ] {
@@ -371,7 +371,7 @@ fn what_the_file_asks_beyond_ptsc_is_a_warning_at_the_statement() {
     // `check` says the same.
     let path = dir.path().join("scene.pts");
     let (_, _, err) = crate::ptsc(&["check", path.to_str().unwrap()]);
-    assert!(err.contains("skinned") && err.contains("BLEND"), "{err}");
+    assert!(err.contains("skinned") && err.contains("OPAQUE"), "{err}");
     // A statement that gives its material hears nothing of the file's.
     let given = compile(
         dir.path(),

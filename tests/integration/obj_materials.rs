@@ -176,7 +176,12 @@ fn a_library_changed_alone_is_read_again_by_a_kept_cache() {
 
 #[test]
 fn copies_of_one_file_share_its_materials_and_warn_once() {
-    let dir = crate::temp_dir_with(&[("two.mtl", &format!("{MTL}d 0.5\n"))]);
+    let dir = crate::temp_dir_with(&[("two.mtl", &format!("{MTL}map_Kd -t 0.1 0.1 x.png\n"))]);
+    std::fs::write(
+        dir.path().join("x.png"),
+        include_bytes!("../../examples/models/leaf.png"),
+    )
+    .unwrap();
     std::fs::write(
         dir.path().join("two.obj"),
         obj("mtllib two.mtl\n", true, true),
@@ -195,7 +200,7 @@ fn copies_of_one_file_share_its_materials_and_warn_once() {
     assert_eq!(ir.object_material.len(), 4);
     let distinct: std::collections::BTreeSet<u32> = ir.object_material.iter().copied().collect();
     assert_eq!(distinct.len(), 2, "{:?}", ir.object_material);
-    assert_eq!(text.matches("its opacity").count(), 1, "{text}");
+    assert_eq!(text.matches("`map_Kd`'s options -t").count(), 1, "{text}");
 }
 
 #[test]

@@ -5,8 +5,8 @@ small table for examples/gltf.pts. It shows what ptsc reads of glTF 2.0: a
 node hierarchy (a table node holding a top and four legs, a vase rotated
 on the top), one leg mesh placed by four nodes (stored once), a
 base-colour texture with KHR_texture_transform, a metallic material, a
-clear-coated one, and an alpha-masked leaf (a cutout: not followed yet, a
-warning). Nothing is downloaded; run again after a change.
+clear-coated one, and an alpha-masked leaf (a cutout: the leaf image's
+alpha). Nothing is downloaded; run again after a change.
 
     python3 scripts/make_gltf_example.py
 """
@@ -20,7 +20,9 @@ OUT = Path(__file__).resolve().parent.parent / "examples" / "models"
 
 
 def png(width, height, pixel):
-    """An 8-bit RGB PNG of pixel(x, y) -> (r, g, b)."""
+    """An 8-bit RGB PNG of pixel(x, y) -> (r, g, b), or RGBA where it gives
+    four samples."""
+    colour = 6 if len(pixel(0, 0)) == 4 else 2
     rows = b"".join(
         b"\0" + bytes(c for x in range(width) for c in pixel(x, y)) for y in range(height)
     )
@@ -28,7 +30,7 @@ def png(width, height, pixel):
     def chunk(kind, data):
         return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data))
 
-    header = struct.pack(">IIBBBBB", width, height, 8, 2, 0, 0, 0)
+    header = struct.pack(">IIBBBBB", width, height, 8, colour, 0, 0, 0)
     return b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", header) + chunk(b"IDAT", zlib.compress(rows)) + chunk(b"IEND", b"")
 
 
@@ -127,6 +129,21 @@ class Builder:
         return len(self.meshes) - 1
 
 
+def leaf_texel(x, y):
+    """A leaf on a 64 x 64 image: opaque inside two circular arcs meeting at
+    the tip and the stem (a lens along the diagonal), with a paler midrib;
+    clear outside."""
+    u, v = (x + 0.5) / 64, (y + 0.5) / 64
+    # Along the diagonal from the stem (0.1, 0.9) to the tip (0.9, 0.1).
+    along = ((u - 0.1) - (v - 0.9)) / (2 * 0.8)
+    across = ((u - 0.1) + (v - 0.9)) / 2
+    half_width = 0.16 * math.sin(math.pi * min(max(along, 0.0), 1.0))
+    inside = 0.0 <= along <= 1.0 and abs(across) <= half_width
+    rib = abs(across) < 0.012
+    colour = (150, 190, 90) if rib else (60, 140, 50)
+    return colour + ((255 if inside else 0),)
+
+
 def document(embed_images):
     b = Builder()
     top = b.mesh("Top", box([-0.6, 0.0, -0.4], [0.6, 0.05, 0.4]), 0)
@@ -134,7 +151,7 @@ def document(embed_images):
     pot = b.mesh("Vase", vase(), 2)
     leaf_mesh = b.mesh("Leaf", leaf(), 3)
     checker = png(64, 64, lambda x, y: (200, 170, 120) if (x // 8 + y // 8) % 2 else (120, 80, 45))
-    leaf_png = png(32, 32, lambda x, y: (60, 140, 50))
+    leaf_png = png(64, 64, leaf_texel)
     images = []
     for name, data in (("checker.png", checker), ("leaf.png", leaf_png)):
         if embed_images:

@@ -119,6 +119,8 @@ impl LowerCache {
         number(scene.camera.shutter.0, &mut h);
         number(scene.camera.shutter.1, &mut h);
         for obj in &scene.objects {
+            // A cut-out object's primitives stay out of the BVH's blocks.
+            scene.materials[obj.material].is_cut_out().hash(&mut h);
             obj.transform
                 .to_cols_array()
                 .into_iter()
@@ -241,5 +243,21 @@ mod tests {
         std::fs::write(&obj, "v 0 0 0\nv 2 0 0\nv 0 2 0\nf 1 2 3\n").unwrap();
         lower_text(dir.path(), &scene(30, 0.9, 3.0), &mut cache);
         assert_eq!((cache.mesh_loads, cache.bvh_builds), (2, 3));
+        // A material cut out: its triangle leaves the blocks (a new BVH),
+        // and a ray through it passes.
+        let cut =
+            scene(30, 0.9, 3.0).replace("rgb 0.9 }", "rgb 0.9 opacity 0 opacity_cutoff 0.5 }");
+        let c = lower_text(dir.path(), &cut, &mut cache);
+        assert_eq!((cache.mesh_loads, cache.bvh_builds), (2, 4));
+        assert_eq!(
+            c.prims.len(),
+            c.prim_object.len(),
+            "every primitive has a record"
+        );
+        let ray = crate::geometry::Ray::new(glam::Vec3::new(0.2, 0.2, 5.0), -glam::Vec3::Z, 0.0);
+        assert!(c.intersect(&ray, 1e-4, f32::INFINITY).is_none());
+        let d = lower_text(dir.path(), &scene(30, 0.9, 3.0), &mut cache);
+        assert_eq!(cache.bvh_builds, 5);
+        assert!(d.intersect(&ray, 1e-4, f32::INFINITY).is_some());
     }
 }

@@ -13,8 +13,8 @@
 //! The random choice hashes the ray and the primitive: a pure function of
 //! the sample, so renders stay deterministic on any thread count.
 
-use super::instance::{INHERITED, NO_INSTANCE};
-use super::{Hit, Scene};
+use super::instance::{local_ray, INHERITED, NO_INSTANCE};
+use super::{Hit, Prim, Scene};
 use crate::geometry::shape::ShapeHit;
 use crate::geometry::Ray;
 use glam::Vec3;
@@ -73,18 +73,21 @@ fn ray_hash(ray: &Ray, prim: u32, instance: u32) -> f32 {
 /// shape with the most, has four.
 const MAX_CROSSINGS: usize = 4;
 
-/// The first hit that `intersect(t_min)` finds along a ray that does not
+/// The first hit of `prim` along `ray` in `(t_min, t_max)` that does not
 /// `pass` (a surface passed, the search goes on beyond it: a sphere's far
-/// side). Without cutouts (`pass` always false) this is `intersect(t_min)`.
+/// side). Without cutouts (`pass` always false) this is the shape's test.
 #[inline(always)]
 pub(super) fn first_kept(
-    intersect: impl Fn(f32) -> Option<ShapeHit>,
-    t_min: f32,
+    prim: &Prim,
+    ray: &Ray,
+    (t_min, t_max): (f32, f32),
     pass: impl Fn(&ShapeHit) -> bool,
 ) -> Option<ShapeHit> {
+    let mut moved = None;
+    let local = local_ray(prim, ray, &mut moved);
     let mut lo = t_min;
     for _ in 0..MAX_CROSSINGS {
-        let hit = intersect(lo)?;
+        let hit = prim.shape.intersect(local, lo, t_max)?;
         if !pass(&hit) {
             return Some(hit);
         }

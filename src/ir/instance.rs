@@ -65,13 +65,7 @@ impl Prototype {
     ) -> Option<TreeHit> {
         self.wide.closest(ray, t_min, t_max, |i, tmax| {
             let p = &self.prims[i as usize];
-            let mut moved = None;
-            let local = local_ray(p, ray, &mut moved);
-            first_kept(
-                |lo| p.shape.intersect(local, lo, tmax),
-                t_min,
-                |h| passes(i, h),
-            )
+            first_kept(p, ray, (t_min, tmax), |h| passes(i, h))
         })
     }
 
@@ -85,14 +79,7 @@ impl Prototype {
     ) -> bool {
         self.wide.any(ray, t_min, t_max, |i, tmax| {
             let p = &self.prims[i as usize];
-            let mut moved = None;
-            let local = local_ray(p, ray, &mut moved);
-            first_kept(
-                |lo| p.shape.intersect(local, lo, tmax),
-                t_min,
-                |h| passes(i, h),
-            )
-            .is_some()
+            first_kept(p, ray, (t_min, tmax), |h| passes(i, h)).is_some()
         })
     }
 

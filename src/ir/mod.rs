@@ -266,24 +266,12 @@ impl Scene {
         ray_count::closest();
         let mut best = self.wide.closest(ray, t_min, t_max, |i, tmax| {
             let p = &self.prims[i as usize];
-            let mut moved = None;
-            let local = instance::local_ray(p, ray, &mut moved);
-            cutout::first_kept(
-                |lo| p.shape.intersect(local, lo, tmax),
-                t_min,
-                |h| passes(i, h),
-            )
+            cutout::first_kept(p, ray, (t_min, tmax), |h| passes(i, h))
         });
         for &i in self.unbounded.iter() {
             let p = &self.prims[i as usize];
             let tmax = best.map_or(t_max, |b| b.hit.t);
-            let mut moved = None;
-            let local = instance::local_ray(p, ray, &mut moved);
-            if let Some(hit) = cutout::first_kept(
-                |lo| p.shape.intersect(local, lo, tmax),
-                t_min,
-                |h| passes(i, h),
-            ) {
+            if let Some(hit) = cutout::first_kept(p, ray, (t_min, tmax), |h| passes(i, h)) {
                 best = Some(TreeHit {
                     prim: i,
                     hit,
@@ -370,13 +358,9 @@ impl Scene {
     ) -> bool {
         let blocks = |i: u32, tmax: f32| {
             let p = &self.prims[i as usize];
-            let mut moved = None;
-            let local = instance::local_ray(p, ray, &mut moved);
-            cutout::first_kept(
-                |lo| p.shape.intersect(local, lo, tmax),
-                t_min,
-                |h| passes(instance::NO_INSTANCE, i, h),
-            )
+            cutout::first_kept(p, ray, (t_min, tmax), |h| {
+                passes(instance::NO_INSTANCE, i, h)
+            })
             .is_some()
         };
         self.wide.any(ray, t_min, t_max, blocks)

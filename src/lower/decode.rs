@@ -154,14 +154,7 @@ pub fn decode_alpha(
             return Ok(Texels::new(1, 1, Samples::Gray8(vec![u8::MAX])));
         }
     };
-    let header = Header {
-        width,
-        height,
-        layout,
-    };
-    check(&header, limits)?;
-    check_length(bytes.len(), least_bytes(bytes, format, &header), &header)?;
-    admit(&header)?;
+    let header = admitted(bytes, format, limits, (width, height, layout), admit)?;
     let channels = color.channel_count() as usize;
     let count = header.texels() as usize * channels;
     let samples = match layout {
@@ -197,6 +190,26 @@ fn keep_alpha<T: Copy>(mut v: Vec<T>, channels: usize) -> Vec<T> {
     v.truncate(n);
     v.shrink_to_fit();
     v
+}
+
+/// The header of a raster file of `width` × `height` texels in `layout`,
+/// checked against `limits` and the file's length, then `admit`ted.
+fn admitted(
+    bytes: &[u8],
+    format: image::ImageFormat,
+    limits: &Limits,
+    (width, height, layout): (u32, u32, Layout),
+    admit: impl FnOnce(&Header) -> Result<(), String>,
+) -> Result<Header, String> {
+    let header = Header {
+        width,
+        height,
+        layout,
+    };
+    check(&header, limits)?;
+    check_length(bytes.len(), least_bytes(bytes, format, &header), &header)?;
+    admit(&header)?;
+    Ok(header)
 }
 
 fn cannot_decode(e: impl std::fmt::Display) -> String {
@@ -293,14 +306,7 @@ fn decode_raster(
     let (width, height) = decoder.dimensions();
     let color = decoder.color_type();
     let layout = layout_of(color).ok_or_else(|| format!("{color:?} images are not read"))?;
-    let header = Header {
-        width,
-        height,
-        layout,
-    };
-    check(&header, limits)?;
-    check_length(bytes.len(), least_bytes(bytes, format, &header), &header)?;
-    admit(&header)?;
+    let header = admitted(bytes, format, limits, (width, height, layout), admit)?;
     let channels = color.channel_count() as usize;
     let count = header.texels() as usize * channels;
     let samples = match layout {

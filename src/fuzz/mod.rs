@@ -279,7 +279,36 @@ pub fn image(bytes: &[u8]) -> bool {
             }
         }
     }
-    any | exr_channels(bytes)
+    any | alpha_plane(bytes) | exr_channels(bytes)
+}
+
+/// The alpha plane of the same bytes (`image { channel a }`): refused
+/// when not admitted, within what it claims, values in [0, 1].
+fn alpha_plane(bytes: &[u8]) -> bool {
+    use crate::lower::decode::decode_alpha;
+    use crate::texture::texels::Curve;
+    let mut any = false;
+    for format in Format::ALL {
+        let refused = decode_alpha(bytes, format, &IMAGE_LIMITS, |_| Err("refused".into()));
+        assert!(
+            refused.is_err(),
+            "{format:?}: an alpha plane it did not admit"
+        );
+        let mut admitted = None;
+        let Ok(texels) = decode_alpha(bytes, format, &IMAGE_LIMITS, |h| {
+            admitted = Some(*h);
+            Ok(())
+        }) else {
+            continue;
+        };
+        any = true;
+        let claim = admitted.expect("a decoded alpha plane was admitted");
+        assert!(texels.bytes() <= claim.bytes() && claim.bytes() <= IMAGE_LIMITS.bytes);
+        assert!((0..texels.width() * texels.height())
+            .map(|i| texels.get(i, Curve::Linear).x)
+            .all(|a| (0.0..=1.0).contains(&a)));
+    }
+    any
 }
 
 /// The named-channel reading of `ptsc denoise` on the same bytes: within

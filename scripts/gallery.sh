@@ -9,7 +9,7 @@ ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 SPP=${SPP:-64}
 cargo build --release --quiet --manifest-path "$ROOT/Cargo.toml"
 mkdir -p "$ROOT/docs/gallery"
-for scene in cornell_colour_bleeding glass beer gloss dof motion mirror point_light checker image_map marble still_life studio metals plastic_and_glass outdoor many_lights dining_room forest column principled obj_materials gltf; do
+for scene in cornell_colour_bleeding glass beer gloss dof motion mirror point_light checker image_map marble still_life studio metals plastic_and_glass outdoor many_lights dining_room forest column principled obj_materials gltf cutouts; do
   "$ROOT/target/release/ptsc" render "$ROOT/examples/$scene.pts" --spp "$SPP" \
     -o "$ROOT/docs/gallery/$scene.png"
 done

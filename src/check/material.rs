@@ -67,15 +67,8 @@ pub fn material(p: &Params, name: Option<String>, span: Span, diags: &mut Diagno
     opacity_checks(p, &mut m, diags);
     if let Some((_, s)) = p.get("bump_height") {
         if !p.given("bump") {
-            diags.push(
-                Diagnostic::warning(
-                    codes::NO_EFFECT,
-                    "`bump_height` has no effect without `bump`",
-                    *s,
-                )
-                .with_label("ignored")
-                .with_help("give `bump` a texture, e.g. `bump noise { scale 0.05 }`"),
-            );
+            let help = "give `bump` a texture, e.g. `bump noise { scale 0.05 }`";
+            diags.push(no_effect_without("bump_height", "bump", *s, help));
         }
     }
     if m.kind == MaterialKind::Mix {
@@ -106,15 +99,8 @@ fn opacity_checks(p: &Params, m: &mut Material, diags: &mut Diagnostics) {
     let textured = m.textures.iter().any(|(i, _)| *i == TextureInput::Opacity);
     if let Some((_, s)) = p.get("opacity_cutoff") {
         if !p.given("opacity") {
-            diags.push(
-                Diagnostic::warning(
-                    codes::NO_EFFECT,
-                    "`opacity_cutoff` has no effect without `opacity`",
-                    *s,
-                )
-                .with_label("ignored")
-                .with_help("give `opacity` a number or a texture, e.g. an image's alpha: `opacity image { file \"leaf.png\" channel a }`"),
-            );
+            let help = "give `opacity` a number or a texture, e.g. an image's alpha: `opacity image { file \"leaf.png\" channel a }`";
+            diags.push(no_effect_without("opacity_cutoff", "opacity", *s, help));
             m.opacity_cutoff = None;
         }
     }
@@ -388,6 +374,17 @@ fn no_effect(name: &str, model: &str, span: Span, help: &str) -> Diagnostic {
     Diagnostic::warning(
         codes::NO_EFFECT,
         format!("`{name}` has no effect on {model}"),
+        span,
+    )
+    .with_label("ignored")
+    .with_help(help.to_string())
+}
+
+/// The warning for `name`, at `span`, given without `needs`.
+fn no_effect_without(name: &str, needs: &str, span: Span, help: &str) -> Diagnostic {
+    Diagnostic::warning(
+        codes::NO_EFFECT,
+        format!("`{name}` has no effect without `{needs}`"),
         span,
     )
     .with_label("ignored")

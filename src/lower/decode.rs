@@ -43,6 +43,17 @@ impl Format {
     /// Every format.
     pub const ALL: [Format; 4] = [Format::Png, Format::Jpeg, Format::Hdr, Format::Exr];
 
+    /// The `image` crate's format for the formats it decodes (`None`:
+    /// OpenEXR, which the `exr` crate reads).
+    fn raster(self) -> Option<image::ImageFormat> {
+        match self {
+            Format::Png => Some(image::ImageFormat::Png),
+            Format::Jpeg => Some(image::ImageFormat::Jpeg),
+            Format::Hdr => Some(image::ImageFormat::Hdr),
+            Format::Exr => None,
+        }
+    }
+
     /// The format of the file at `path`, by its extension.
     pub fn of(path: &Path) -> Result<Format, String> {
         let ext = path.extension().and_then(|e| e.to_str());
@@ -110,11 +121,9 @@ pub fn decode(
     limits: &Limits,
     admit: impl FnOnce(&Header) -> Result<(), String>,
 ) -> Result<Texels, String> {
-    match format {
-        Format::Png => decode_raster(bytes, image::ImageFormat::Png, limits, admit),
-        Format::Jpeg => decode_raster(bytes, image::ImageFormat::Jpeg, limits, admit),
-        Format::Hdr => decode_raster(bytes, image::ImageFormat::Hdr, limits, admit),
-        Format::Exr => decode_exr(bytes, limits, admit),
+    match format.raster() {
+        Some(raster) => decode_raster(bytes, raster, limits, admit),
+        None => decode_exr(bytes, limits, admit),
     }
 }
 
@@ -128,14 +137,8 @@ pub fn decode_alpha(
     admit: impl FnOnce(&Header) -> Result<(), String>,
 ) -> Result<Texels, String> {
     use image::ImageDecoder;
-    let format = match format {
-        Format::Png => image::ImageFormat::Png,
-        Format::Jpeg => image::ImageFormat::Jpeg,
-        Format::Hdr => image::ImageFormat::Hdr,
-        Format::Exr => {
-            return Err("the alpha channel of an OpenEXR image is not read: use a PNG".into())
-        }
-    };
+    let format =
+        (format.raster()).ok_or("the alpha channel of an OpenEXR image is not read: use a PNG")?;
     let decoder = raster_decoder(bytes, format, limits)?;
     let (width, height) = decoder.dimensions();
     let color = decoder.color_type();

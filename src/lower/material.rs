@@ -163,25 +163,26 @@ pub fn lower_opacity(
     (images, files): (&mut Images, &dyn Files),
     diags: &mut Diagnostics,
 ) -> Option<Opacity> {
+    if !m.is_cut_out() {
+        return None;
+    }
     let cutoff = m.opacity_cutoff.map(|c| c as f32);
     let textured = m.textures.iter().find(|(i, _)| *i == TextureInput::Opacity);
-    if let Some((_, t)) = textured {
-        let texture = lower_texture(t, true, (images, files), diags)?;
-        textures.push(texture);
-        return Some(Opacity {
-            value: 1.0,
-            texture: Some(textures.len() as u32 - 1),
-            cutoff,
-        });
-    }
-    let value = m.opacity as f32;
-    let opaque = match cutoff {
-        Some(c) => value >= c,
-        None => value >= 1.0,
+    let texture = match textured {
+        Some((_, t)) => {
+            textures.push(lower_texture(t, true, (images, files), diags)?);
+            Some(textures.len() as u32 - 1)
+        }
+        None => None,
     };
-    (!opaque).then_some(Opacity {
-        value,
-        texture: None,
+    Some(Opacity {
+        // A textured opacity holds its brightest value in `m.opacity`.
+        value: if texture.is_some() {
+            1.0
+        } else {
+            m.opacity as f32
+        },
+        texture,
         cutoff,
     })
 }

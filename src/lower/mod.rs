@@ -72,36 +72,11 @@ pub fn lower(
     (cache, files): (&mut LowerCache, &dyn Files),
     warnings: &mut Diagnostics,
 ) -> Result<Scene, Diagnostics> {
-    // glTF files become their objects and placements (each mesh file is
-    // read once: the reads go on to the gathering).
-    let mut reads = shapes::MeshReads::new();
-    let placed = gltf_place::place(scene, (cache, files, &mut reads), warnings);
-    let scene = placed.scene.as_ref().unwrap_or(scene);
-    let over = placed.embedded.over(files);
-    let files: &dyn Files = if placed.embedded.is_empty() {
-        files
-    } else {
-        &over
-    };
-    // Placements of groups placed once become the scene's objects; the
-    // others share their group's prototype.
-    let split = instances::split(scene);
-    let flat = split.scene.as_ref().unwrap_or(scene);
-    // Meshes without a material take their OBJ file's.
-    let expanded = obj_materials::expand(flat, (cache, files, &mut reads), warnings);
-    let flat = expanded.as_ref().unwrap_or(flat);
     let coats = material::Coats::default();
-    let reading = (&mut *cache, files, coats, reads);
-    let prepared = prepare(scene, flat, &split, adjust, reading, warnings);
-    let mut errors = placed.errors;
-    match prepared {
-        Ok(prepared) if !errors.has_errors() => Ok(prepared.build(flat, cache)),
-        Ok(_) => Err(errors),
-        Err(more) => {
-            errors.extend(more);
-            Err(errors)
-        }
-    }
+    let reading = (cache, files, coats);
+    read_and_prepare(scene, adjust, reading, warnings, |flat, prepared, cache| {
+        prepared.map(|p| p.build(flat, cache))
+    })
 }
 
 /// Every problem [`lower`] would find in `scene`, found the same way
@@ -113,6 +88,26 @@ pub fn validate(
     (cache, files): (&mut LowerCache, &dyn Files),
     warnings: &mut Diagnostics,
 ) -> Diagnostics {
+    let reading = (cache, files, material::Coats::for_checking());
+    read_and_prepare(scene, &|_| {}, reading, warnings, |_, prepared, _| {
+        prepared.err().unwrap_or_default()
+    })
+}
+
+/// What [`lower`] and [`validate`] share: glTF files become their objects
+/// and placements (each mesh file read once: the reads go on to the
+/// gathering), placements of groups placed once become the scene's objects
+/// (the others share their group's prototype), meshes without a material
+/// take their OBJ file's, and everything is read and checked
+/// ([`prepare`]); then `finish` gets the flat scene and what was prepared
+/// or every problem found.
+fn read_and_prepare<R>(
+    scene: &check::Scene,
+    adjust: &dyn Fn(&mut Settings),
+    (cache, files, coats): (&mut LowerCache, &dyn Files, material::Coats),
+    warnings: &mut Diagnostics,
+    finish: impl FnOnce(&check::Scene, Result<Prepared, Diagnostics>, &mut LowerCache) -> R,
+) -> R {
     let mut reads = shapes::MeshReads::new();
     let placed = gltf_place::place(scene, (cache, files, &mut reads), warnings);
     let scene = placed.scene.as_ref().unwrap_or(scene);
@@ -126,22 +121,18 @@ pub fn validate(
     let flat = split.scene.as_ref().unwrap_or(scene);
     let expanded = obj_materials::expand(flat, (cache, files, &mut reads), warnings);
     let flat = expanded.as_ref().unwrap_or(flat);
-    let coats = material::Coats::for_checking();
-    match prepare(
-        scene,
-        flat,
-        &split,
-        &|_| {},
-        (cache, files, coats, reads),
-        warnings,
-    ) {
-        Ok(_) => placed.errors,
+    let reading = (&mut *cache, files, coats, reads);
+    let prepared = prepare(scene, flat, &split, adjust, reading, warnings);
+    let mut errors = placed.errors;
+    let prepared = match prepared {
+        Ok(prepared) if !errors.has_errors() => Ok(prepared),
+        Ok(_) => Err(errors),
         Err(more) => {
-            let mut errors = placed.errors;
             errors.extend(more);
-            errors
+            Err(errors)
         }
-    }
+    };
+    finish(flat, prepared, cache)
 }
 
 /// The scene's geometry before the BVH: kept from an earlier compile, or

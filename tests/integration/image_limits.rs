@@ -201,3 +201,47 @@ fn an_environment_maps_bytes_count_its_distribution() {
     let distribution = 4 * (3 * (2 * 8 + 1) + 2 * 3 + 1);
     assert_eq!(ir.texture_bytes(), 32 * 12 + distribution + 256);
 }
+
+#[test]
+fn the_largest_alpha_plane_decodes_within_a_small_memory() {
+    // 16,384² texels of 8-bit grey and alpha (zeros: 260 KiB of file),
+    // written a row at a time.
+    let n = 16_384u32;
+    let dir = tempfile::tempdir().unwrap();
+    let file = std::fs::File::create(dir.path().join("alpha.png")).unwrap();
+    let mut e = png::Encoder::new(std::io::BufWriter::new(file), n, n);
+    e.set_color(png::ColorType::GrayscaleAlpha);
+    e.set_depth(png::BitDepth::Eight);
+    let mut w = e.write_header().unwrap();
+    {
+        use std::io::Write;
+        let mut stream = w.stream_writer().unwrap();
+        let row = vec![0u8; 2 * n as usize];
+        for _ in 0..n {
+            stream.write_all(&row).unwrap();
+        }
+        stream.finish().unwrap();
+    }
+    // The file is complete (its buffer flushed) before ptsc reads it.
+    drop(w);
+    let scene = dir.path().join("alpha.pts");
+    std::fs::write(
+        &scene,
+        format!(
+            "{CAMERA}point_light {{ position <0, 5, 5> intensity rgb 10 }}\n\
+             render {{ resolution <8, 8> samples 1 }}\n\
+             sphere {{ center <0, 0, 0> radius 1 material {{ diffuse rgb 0.5\n\
+               opacity image {{ file \"alpha.png\" channel a }} opacity_cutoff 0.5 }} }}\n"
+        ),
+    )
+    .unwrap();
+    // The decoder's 512 MiB of grey and alpha, of which the 256 MiB alpha
+    // plane is kept: within 768 MiB of address space for the process.
+    for command in ["check {scene}", "render {scene} -o {out}.exr"] {
+        let case = generated(
+            command,
+            &format!("// run: {command}\n// exit: 0\n// timeout: 30\n// memory: 768"),
+        );
+        check_case(&case, &scene, dir.path());
+    }
+}

@@ -81,8 +81,24 @@ impl Checker<'_> {
                     base_dir: base,
                     files: self.files,
                 };
-                let shape = convert(&mut input);
-                self.object(shape, material, &material_entries, (&p, kind_span, span));
+                let mut shape = convert(&mut input);
+                let mut pending = Vec::new();
+                if row.param("materials").is_some() {
+                    let swaps = self.swaps(block, material_entries.first().map(|m| m.1));
+                    if let (Some(Shape::Mesh { swaps: slot, .. }), Some(swaps)) =
+                        (&mut shape, swaps)
+                    {
+                        (*slot, pending) = swaps;
+                    }
+                }
+                let at = self.object(shape, material, &material_entries, (&p, kind_span, span));
+                for (k, name) in pending.into_iter().filter(|_| at.is_some()) {
+                    let at = ObjectRef {
+                        swap: Some(k),
+                        ..at.unwrap()
+                    };
+                    self.pending_materials.push((at, name));
+                }
             }
         }
     }
@@ -149,25 +165,26 @@ impl Checker<'_> {
     }
 
     /// An object of `shape` (when it checked) and `material`, with the
-    /// block's transforms and motion: kept in the open group or the scene.
+    /// block's transforms and motion: kept in the open group or the scene,
+    /// at the place returned.
     fn object(
         &mut self,
         shape: Option<Shape>,
         material: Option<usize>,
         material_entries: &[(&MaterialRef, Span)],
         (p, kind_span, span): (&Params, Span, Span),
-    ) {
+    ) -> Option<ObjectRef> {
         let transform: DMat4 = objects::transform(p, &mut self.diags);
         let velocity = objects::velocity(p);
         let (Some(shape), Some(material)) = (shape, material) else {
-            return;
+            return None;
         };
         if matches!(shape, Shape::Plane { .. })
             && material != PENDING_MATERIAL
             && self.materials[material].is_emissive()
         {
             self.diags.push(emissive_plane(kind_span));
-            return;
+            return None;
         }
         let object = Object {
             shape,
@@ -184,6 +201,7 @@ impl Checker<'_> {
                 ObjectRef {
                     group: Some(g),
                     index: group.objects.len() - 1,
+                    swap: None,
                 }
             }
             None => {
@@ -191,6 +209,7 @@ impl Checker<'_> {
                 ObjectRef {
                     group: None,
                     index: self.objects.len() - 1,
+                    swap: None,
                 }
             }
         };
@@ -199,6 +218,7 @@ impl Checker<'_> {
                 self.pending_materials.push((at, (*name).clone()));
             }
         }
+        Some(at)
     }
 
     /// Resolves the material entries of an object to an index (a default one when absent).

@@ -206,6 +206,10 @@ impl Checker<'_> {
                 let index = m.index;
                 // The objects of a loop name it at one place, once per iteration.
                 self.env.symbols.record_use(m.def, name.span, true);
+                if let Some(k) = at.swap {
+                    swaps::set(object, k, index);
+                    continue;
+                }
                 object.material = index;
                 if matches!(object.shape, Shape::Plane { .. })
                     && self.materials[index].is_emissive()
@@ -220,9 +224,13 @@ impl Checker<'_> {
                 self.materials.push(Material::default_at(span));
                 self.materials.len() - 1
             });
-            match at.group {
-                Some(g) => self.groups[g].objects[at.index].material = material,
-                None => self.objects[at.index].material = material,
+            let object = match at.group {
+                Some(g) => &mut self.groups[g].objects[at.index],
+                None => &mut self.objects[at.index],
+            };
+            match at.swap {
+                Some(k) => swaps::set(object, k, material),
+                None => object.material = material,
             }
             let names = self.material_names.keys().map(String::as_str);
             let suggestion = (self.env)

@@ -22,6 +22,7 @@ mod reader;
 pub mod scene;
 pub mod schema;
 mod statements;
+mod swaps;
 pub mod symbols;
 pub mod texture;
 pub mod texture_input;
@@ -246,6 +247,9 @@ struct ObjectRef {
     group: Option<usize>,
     /// Its index there.
     index: usize,
+    /// Which of a mesh's replaced materials (`materials { … }`) is meant,
+    /// if not the object's own.
+    swap: Option<usize>,
 }
 
 struct Checker<'f> {

@@ -36,6 +36,8 @@ enum Source<'a> {
     Value(&'a crate::syntax::ast::Expr),
     Texture(&'a crate::syntax::ast::Ident, &'a Block, Span),
     Stop(Span),
+    /// `materials { … }`, read by the mesh's statement.
+    Materials(Span),
 }
 
 impl Source<'_> {
@@ -43,7 +45,7 @@ impl Source<'_> {
     fn span(&self) -> Span {
         match self {
             Source::Value(e) => e.span,
-            Source::Texture(_, _, span) | Source::Stop(span) => *span,
+            Source::Texture(_, _, span) | Source::Stop(span) | Source::Materials(span) => *span,
         }
     }
 }
@@ -296,6 +298,7 @@ impl<'s> Collecting<'s> {
                 span,
             } => Some((name, Source::Texture(kind, block, *span))),
             Entry::Stop { word, span, .. } => Some((word, Source::Stop(*span))),
+            Entry::Materials { word, span, .. } => Some((word, Source::Materials(*span))),
             Entry::Material { .. } => None,
         }
     }
@@ -395,6 +398,8 @@ impl<'s> Collecting<'s> {
         match *source {
             // Stops are read with their texture (`check::texture`).
             Source::Stop(_) => None,
+            // Resolved with the block's material (`check::block_statement`).
+            Source::Materials(_) => None,
             Source::Value(value) if spec.texture => match named_texture(value, env) {
                 Some(t) => Some(Val::Texture(Box::new(t))),
                 None => typed_value(spec, value, env, diags),

@@ -23,6 +23,19 @@ pub fn foreign_block(
         .iter()
         .flat_map(|s| s.iter().map(|p| p.name))
         .collect();
+    let takes_materials = (schemas.iter().flat_map(|s| s.iter()))
+        .any(|p| p.name == word && p.ty == super::schema::Ty::Materials);
+    if takes_materials {
+        return Diagnostic::error(
+            codes::FOREIGN_BLOCK,
+            format!("`{word}` holds names in quotes, each with a material"),
+            span,
+        )
+        .with_label("not a name in quotes and a material")
+        .with_help(format!(
+            "write the file's material names in quotes: `{word} {{ \"Leaf\" green  \"Bark\" material {{ diffuse rgb 0.3 }} }}`"
+        ));
+    }
     if all.contains(&word) {
         return Diagnostic::error(
             codes::FOREIGN_BLOCK,

@@ -364,7 +364,20 @@ pub enum Shape {
         /// for the faces without one): set by lowering, which splits a mesh
         /// by the materials its file gives (`lower::obj_materials`).
         group: Option<u32>,
+        /// The file's materials replaced by name (`materials { … }`).
+        swaps: Vec<MaterialSwap>,
     },
+}
+
+/// One of a mesh file's materials replaced by the scene's.
+#[derive(Debug, Clone, PartialEq)]
+pub struct MaterialSwap {
+    /// The material's name in the file.
+    pub name: String,
+    /// Where the name is written.
+    pub span: Span,
+    /// The scene's material (index into [`Scene::materials`]).
+    pub material: usize,
 }
 
 impl Shape {

@@ -34,6 +34,8 @@ pub enum Ty {
     Matrix,
     /// Only a texture (`kind { … }` or a texture's name).
     Texture,
+    /// Names in quotes, each with a material (`{ "Leaf" green }`).
+    Materials,
 }
 
 impl Ty {
@@ -52,6 +54,7 @@ impl Ty {
             Ty::NumOrVec2 => "a number or a vector of 2".into(),
             Ty::Matrix => "a vector of 12 or 16 numbers".into(),
             Ty::Texture => "a texture such as `image { file \"normal.png\" }`".into(),
+            Ty::Materials => "names in quotes, each with a material: `{ \"Leaf\" green }`".into(),
         }
     }
 }

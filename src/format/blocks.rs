@@ -5,31 +5,47 @@
 use super::exprs::{expr, parenthesised};
 use super::printer::{Printer, WIDTH};
 use crate::span::Span;
-use crate::syntax::ast::{Block, Entry, Expr, ExprKind, MaterialRef};
+use crate::syntax::ast::{Block, Entry, Expr, ExprKind, MaterialRef, MaterialSwap};
 
 /// Writes a block, on the line or broken.
 pub(super) fn block(p: &mut Printer, b: &Block) {
-    p.comments_before(b.span.start as usize);
-    match flat(p, b) {
+    braced(p, b.span, &b.entries, (entry_span, entry_lead, entry));
+}
+
+/// How a braced list's items are written: where each is, where the
+/// comments before it end, and its writer (`after`: another item comes
+/// before it).
+type ItemWriter<T> = (fn(&T) -> Span, fn(&T) -> Span, fn(&mut Printer, &T, bool));
+
+/// Writes `items` between the braces at `span`, on the line when they fit
+/// in [`WIDTH`] columns and hold no comment, else one per line.
+fn braced<T>(p: &mut Printer, span: Span, items: &[T], how: ItemWriter<T>) {
+    p.comments_before(span.start as usize);
+    match flat(p, span, items, how.2) {
         Some(line) if p.column() + line.chars().count() <= WIDTH => p.write(&line),
-        _ => broken(p, b),
+        _ => broken(p, span, items, how),
     }
 }
 
-/// The block on one line, if it holds no comment (nor a multi-line
+/// The items on one line, if they hold no comment (nor a multi-line
 /// entry written as it is).
-fn flat(p: &Printer, b: &Block) -> Option<String> {
-    if p.comment_before(b.span.end as usize) {
+fn flat<T>(
+    p: &Printer,
+    span: Span,
+    items: &[T],
+    write: fn(&mut Printer, &T, bool),
+) -> Option<String> {
+    if p.comment_before(span.end as usize) {
         return None;
     }
     let mut sub = Printer::new(p.text, Vec::new());
-    if b.entries.is_empty() {
+    if items.is_empty() {
         sub.write("{}");
     } else {
         sub.write("{");
-        for (k, e) in b.entries.iter().enumerate() {
+        for (k, e) in items.iter().enumerate() {
             sub.space();
-            entry(&mut sub, e, k > 0);
+            write(&mut sub, e, k > 0);
         }
         sub.space();
         sub.write("}");
@@ -39,28 +55,21 @@ fn flat(p: &Printer, b: &Block) -> Option<String> {
     (!line.contains('\n')).then(|| line.to_string())
 }
 
-/// Writes a block one entry per line.
-fn broken(p: &mut Printer, b: &Block) {
-    let (start, close) = (b.span.start as usize, b.span.end as usize - 1);
+/// Writes the items one per line.
+fn broken<T>(p: &mut Printer, span: Span, items: &[T], (span_of, lead, write): ItemWriter<T>) {
+    let (start, close) = (span.start as usize, span.end as usize - 1);
     p.token(start, "{");
     p.end_line();
     p.indent += 1;
     p.last_end = start + 1;
     let mut first = true;
-    for (k, e) in b.entries.iter().enumerate() {
-        let span = entry_span(e);
-        // A positional list's first value may start after signs that
-        // cancelled out (`!!1`): a comment between them leads the entry.
-        let lead = match e {
-            Entry::Positional { values, .. } => values.first().map_or(span, |v| v.span),
-            _ => span,
-        };
-        p.leading(lead.start as usize, first);
-        entry(p, e, k > 0);
-        let limit = b
-            .entries
+    for (k, e) in items.iter().enumerate() {
+        let span = span_of(e);
+        p.leading(lead(e).start as usize, first);
+        write(p, e, k > 0);
+        let limit = items
             .get(k + 1)
-            .map_or(close, |n| entry_span(n).start as usize);
+            .map_or(close, |n| span_of(n).start as usize);
         let item_end = p.code_end(span.start as usize, span.end as usize);
         p.trailing(item_end, limit);
         p.end_line();
@@ -72,6 +81,16 @@ fn broken(p: &mut Printer, b: &Block) {
     p.token(close, "}");
 }
 
+/// Where the comments before an entry end: a positional list's first
+/// value may start after signs that cancelled out (`!!1`), and a comment
+/// between them leads the entry.
+fn entry_lead(e: &Entry) -> Span {
+    match e {
+        Entry::Positional { values, .. } => values.first().map_or(entry_span(e), |v| v.span),
+        _ => entry_span(e),
+    }
+}
+
 /// Where an entry is.
 fn entry_span(e: &Entry) -> Span {
     match e {
@@ -81,6 +100,7 @@ fn entry_span(e: &Entry) -> Span {
         | Entry::Stop { span, .. }
         | Entry::Foreign { span, .. }
         | Entry::Positional { span, .. }
+        | Entry::Materials { span, .. }
         | Entry::Material { span, .. } => *span,
     }
 }
@@ -117,13 +137,41 @@ fn entry(p: &mut Printer, e: &Entry, after: bool) {
         }
         Entry::Foreign { span, .. } => verbatim(p, *span),
         Entry::Positional { values, .. } => positional(p, values, after),
-        Entry::Material { material, span } => {
-            p.token(span.start as usize, "material");
+        Entry::Material { material, span } => material_ref(p, material, span.start as usize),
+        Entry::Materials {
+            word,
+            swaps,
+            braces,
+            ..
+        } => {
+            p.token(word.span.start as usize, &word.name);
             p.space();
-            match material {
-                MaterialRef::Named(name) => p.token(name.span.start as usize, &name.name),
-                MaterialRef::Inline(b) => block(p, b),
-            }
+            braced(p, *braces, swaps, (|s| s.span, |s| s.span, swap));
+        }
+    }
+}
+
+/// Writes `material name` or `material { … }`, its word at `at`.
+fn material_ref(p: &mut Printer, material: &MaterialRef, at: usize) {
+    p.token(at, "material");
+    p.space();
+    match material {
+        MaterialRef::Named(name) => p.token(name.span.start as usize, &name.name),
+        MaterialRef::Inline(b) => block(p, b),
+    }
+}
+
+/// Writes `"Name" material` of a `materials` block: the name as written.
+fn swap(p: &mut Printer, s: &MaterialSwap, _after: bool) {
+    let (start, end) = (s.name_span.start as usize, s.name_span.end as usize);
+    p.token(start, &p.text[start..end]);
+    p.space();
+    match &s.material {
+        MaterialRef::Named(name) => p.token(name.span.start as usize, &name.name),
+        MaterialRef::Inline(_) => {
+            let at = s.name_span.end as usize;
+            let word = at + p.text[at..].find("material").unwrap_or(0);
+            material_ref(p, &s.material, word);
         }
     }
 }

@@ -199,6 +199,13 @@ fn entries(block: &Block, out: &mut Vec<(usize, usize)>) {
                 material: MaterialRef::Inline(block),
                 ..
             } => entries(block, out),
+            Entry::Materials { swaps, .. } => {
+                for swap in swaps {
+                    if let MaterialRef::Inline(block) = &swap.material {
+                        entries(block, out);
+                    }
+                }
+            }
             _ => {}
         }
     }

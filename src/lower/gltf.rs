@@ -1,7 +1,8 @@
 //! glTF 2.0 scenes (`.gltf` with external or data-URI buffers, `.glb`):
 //! the default scene's node tree with every transform, each mesh read once
 //! however many nodes place it, its triangle primitives (positions,
-//! normals, `TEXCOORD_0`) and the file's materials (`gltf_material.rs`).
+//! normals, the `TEXCOORD_n` its material reads) and the file's materials
+//! (`gltf_material.rs`).
 //! The `gltf` crate parses the JSON and the GLB container; buffers are
 //! read through the scene's `Files` (the caller's reader) and accessors by
 //! our own checked code (`gltf_accessor.rs`); `KHR_lights_punctual` lights
@@ -435,7 +436,13 @@ fn read_mesh(
                 crate::diag::group_digits(MAX_TRIANGLES as u64)
             ));
         }
-        let read = read_primitive(&primitive, buffers, mode);
+        // The coordinates its material's textures read (`TEXCOORD_1`
+        // for a model whose second set holds them).
+        let set = match primitive.material().index() {
+            Some(_) => super::gltf_material::uv_set(&primitive.material()),
+            None => 0,
+        };
+        let read = read_primitive(&primitive, buffers, (mode, set));
         let (positions, normals, uvs, triangles) =
             read.map_err(|e| format!("mesh `{name}`: {e}"))?;
         if triangles.is_empty() {
@@ -494,8 +501,13 @@ fn claimed(p: &gltf::Primitive, mode: Mode) -> (usize, usize) {
     (vertices, triangles)
 }
 
-/// Reads one primitive of `mode` (triangles, a strip or a fan).
-fn read_primitive(p: &gltf::Primitive, buffers: &Buffers, mode: Mode) -> Result<Primitive, String> {
+/// Reads one primitive of `mode` (triangles, a strip or a fan), its
+/// texture coordinates from `TEXCOORD_<set>`.
+fn read_primitive(
+    p: &gltf::Primitive,
+    buffers: &Buffers,
+    (mode, set): (Mode, u32),
+) -> Result<Primitive, String> {
     let position = p
         .get(&Semantic::Positions)
         .ok_or("a primitive without positions")?;
@@ -511,7 +523,7 @@ fn read_primitive(p: &gltf::Primitive, buffers: &Buffers, mode: Mode) -> Result<
         Some(a) => Some(gltf_accessor::floats::<3>(&a, buffers, "normals")?),
         None => None,
     };
-    let uvs = match p.get(&Semantic::TexCoords(0)) {
+    let uvs = match p.get(&Semantic::TexCoords(set)) {
         Some(a) => Some(gltf_accessor::floats::<2>(
             &a,
             buffers,

@@ -49,6 +49,9 @@ pub fn read(doc: &gltf::Document, path: &Path, buffers: &Buffers, scene: &mut Fi
     for m in doc.materials() {
         let mapped = material(&m, &images, &mut scene.material_notes);
         scene.materials.push(mapped);
+        scene
+            .material_names
+            .push(m.name().unwrap_or_default().to_string());
     }
 }
 
@@ -274,7 +277,8 @@ fn cut_out(
         out.opacity_cutoff = Some(m.alpha_cutoff().unwrap_or(0.5).clamp(0.0, 1.0) as f64);
     }
     if let Some(info) = pbr.base_color_texture() {
-        match texture(&Source::of(&info), images, [alpha; 3], Some(Channel::Alpha)) {
+        let source = Source::of(&info, uv_set(m));
+        match texture(&source, images, [alpha; 3], Some(Channel::Alpha)) {
             Ok(t) => out.textures.push((TextureInput::Opacity, t)),
             Err(e) => notes.push(format!("material `{name}`: {e}")),
         }
@@ -291,6 +295,7 @@ fn textures(
 ) {
     let name = out.name.clone().unwrap_or_default();
     let pbr = m.pbr_metallic_roughness();
+    let set = uv_set(m);
     let notes = std::cell::RefCell::new(notes);
     let add_note = |e: String| notes.borrow_mut().push(format!("material `{name}`: {e}"));
     let mut add =
@@ -304,7 +309,7 @@ fn textures(
     if let Some(info) = pbr.base_color_texture() {
         add(
             TextureInput::BaseColor,
-            Source::of(&info),
+            Source::of(&info, set),
             rgb([r, g, b]),
             None,
         );
@@ -314,19 +319,24 @@ fn textures(
         let metallic = [pbr.metallic_factor() as f64; 3];
         add(
             TextureInput::Gloss,
-            Source::of(&info),
+            Source::of(&info, set),
             roughness,
             Some(Channel::Green),
         );
         add(
             TextureInput::Metallic,
-            Source::of(&info),
+            Source::of(&info, set),
             metallic,
             Some(Channel::Blue),
         );
     }
     if let Some(info) = m.emissive_texture() {
-        add(TextureInput::Emission, Source::of(&info), emission(m), None);
+        add(
+            TextureInput::Emission,
+            Source::of(&info, set),
+            emission(m),
+            None,
+        );
     }
     if let Some(normal) = m.normal_texture() {
         if normal.scale() != 1.0 {
@@ -340,22 +350,41 @@ fn textures(
             texture: normal.texture(),
             tex_coord: normal.tex_coord(),
             transform,
+            set,
         };
         add(TextureInput::NormalMap, info, [1.0; 3], None);
     }
 }
 
 /// A texture reference: the texture, its coordinate set, its transform
-/// (offset, rotation, scale).
+/// (offset, rotation, scale), and the set its material's surfaces read.
 struct Source<'a> {
     texture: gltf::Texture<'a>,
     tex_coord: u32,
     transform: Option<([f64; 2], f64, [f64; 2])>,
+    set: u32,
+}
+
+/// The texture coordinate set a material's surfaces read (`TEXCOORD_n`):
+/// its base colour texture's, else its first texture's (metallic-roughness,
+/// emissive, normal), 0 without textures. ptsc keeps one set per surface:
+/// a texture of the material that reads another is left out with a note.
+pub fn uv_set(m: &gltf::Material) -> u32 {
+    let pbr = m.pbr_metallic_roughness();
+    let sets = [
+        pbr.base_color_texture()
+            .map(|i| Source::of(&i, 0).tex_coord),
+        pbr.metallic_roughness_texture()
+            .map(|i| Source::of(&i, 0).tex_coord),
+        m.emissive_texture().map(|i| Source::of(&i, 0).tex_coord),
+        m.normal_texture().map(|n| n.tex_coord()),
+    ];
+    sets.into_iter().flatten().next().unwrap_or(0)
 }
 
 impl<'a> Source<'a> {
-    /// The reference of a `textureInfo`.
-    fn of(info: &gltf::texture::Info<'a>) -> Source<'a> {
+    /// The reference of a `textureInfo` on a surface that reads `set`.
+    fn of(info: &gltf::texture::Info<'a>, set: u32) -> Source<'a> {
         let transform = info.texture_transform().map(|t| {
             let [ox, oy] = t.offset().map(f64::from);
             let [sx, sy] = t.scale().map(f64::from);
@@ -368,6 +397,7 @@ impl<'a> Source<'a> {
                 .and_then(|t| t.tex_coord())
                 .unwrap_or(info.tex_coord()),
             transform,
+            set,
         }
     }
 }
@@ -396,11 +426,12 @@ fn texture(
         "texture {} reads image {image}, which is not read",
         info.texture.index()
     ))?;
-    if info.tex_coord != 0 {
+    if info.tex_coord != info.set {
         return Err(format!(
-            "texture {} reads texture coordinates {}: ptsc reads set 0 only",
+            "texture {} reads texture coordinates {} while the material's others read set {}: ptsc reads one set per material, and leaves it out",
             info.texture.index(),
-            info.tex_coord
+            info.tex_coord,
+            info.set
         ));
     }
     let sampler = info.texture.sampler();

@@ -81,9 +81,8 @@ pub fn place(
             (first, !given, &mut placing.warned),
             warnings,
         );
-        let mapped = materials
-            .or_insert_with(|| map_materials(&data, object.span, out))
-            .clone();
+        let mapped = materials.or_insert_with(|| map_materials(&data, object.span, out));
+        let mapped = swapped(mapped, object, &data, warnings);
         place_top_level(object, (&data, &nodes), &mapped, out);
         placing
             .embedded
@@ -133,7 +132,7 @@ pub fn place(
                 let mapped = map_materials(&data, object.span, out);
                 placing.materials.insert(path.clone(), mapped);
             }
-            let mapped = placing.materials[&path].clone();
+            let mapped = swapped(&placing.materials[&path], object, &data, warnings);
             place_in_group(out, (g, k), (&data, &nodes, &mapped), unmaterialled);
             placing.embedded.extend(embedded_of(&data, &path));
         }
@@ -269,6 +268,28 @@ fn map_materials(data: &MeshData, span: Span, out: &mut check::Scene) -> Vec<usi
         .collect()
 }
 
+/// The scene's materials of the file's (`mapped`) with those the statement
+/// `object` replaces by name (`materials { … }`); a name the file does not
+/// have is a warning.
+fn swapped(
+    mapped: &[usize],
+    object: &Object,
+    data: &MeshData,
+    warnings: &mut Diagnostics,
+) -> Vec<usize> {
+    let (Some(scene), check::Shape::Mesh { swaps, path, .. }) = (&data.scene, &object.shape) else {
+        return mapped.to_vec();
+    };
+    if swaps.is_empty() {
+        return mapped.to_vec();
+    }
+    let names = scene.material_names.iter().map(String::as_str);
+    super::swaps::warn_unmatched(swaps, names, path, warnings);
+    (mapped.iter().zip(&scene.material_names))
+        .map(|(&m, name)| super::swaps::replacing(swaps, name).unwrap_or(m))
+        .collect()
+}
+
 /// The objects of the parts of `mesh`, in the mesh's frame, with their
 /// materials: the statement's `given`, else the file's, else `default`.
 fn parts_of(
@@ -295,6 +316,7 @@ fn parts_of(
                 smooth: *smooth,
                 node: None,
                 group: Some(k as u32),
+                swaps: Vec::new(),
             },
             material: given
                 .or_else(|| part.material.and_then(|m| mapped.get(m as usize).copied()))
@@ -394,6 +416,7 @@ fn placeholder() -> check::Shape {
         smooth: false,
         node: None,
         group: Some(u32::MAX),
+        swaps: Vec::new(),
     }
 }
 

@@ -414,3 +414,66 @@ fn data_uris_are_bounded_before_decoding() {
         PathBuf::from("a b/c.bin")
     );
 }
+
+#[test]
+fn a_material_reads_one_set_of_texture_coordinates() {
+    // Base colour and emission on set 1: both kept; a normal map on set 0
+    // is left out with a note.
+    let (m, notes) = first_material(
+        r#"[{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0, "texCoord": 1}},
+             "emissiveFactor": [1, 1, 1], "emissiveTexture": {"index": 1, "texCoord": 1},
+             "normalTexture": {"index": 1}}]"#,
+    );
+    let inputs: Vec<TextureInput> = m.textures.iter().map(|(i, _)| *i).collect();
+    assert_eq!(inputs, [TextureInput::BaseColor, TextureInput::Emission]);
+    assert!(
+        notes
+            .iter()
+            .any(|n| n.contains("reads texture coordinates 0") && n.contains("set 1")),
+        "{notes:?}"
+    );
+    let d = doc(
+        r#"{"asset": {"version": "2.0"}, "images": [{"uri": "a.png"}], "textures": [{"source": 0}],
+            "materials": [{"normalTexture": {"index": 0, "texCoord": 1}}, {}]}"#,
+    );
+    let sets: Vec<u32> = d
+        .materials()
+        .map(|m| crate::lower::gltf_material::uv_set(&m))
+        .collect();
+    assert_eq!(sets, [1, 0]);
+}
+
+#[test]
+fn a_primitive_reads_the_coordinates_its_material_reads() {
+    let floats: [f32; 21] = [
+        0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0, // positions
+        0.5, 0.5, 0.5, 0.5, 0.5, 0.5, // TEXCOORD_0
+        0.0, 0.0, 1.0, 0.0, 0.0, 1.0, // TEXCOORD_1
+    ];
+    let bytes: Vec<u8> = floats.iter().flat_map(|f| f.to_le_bytes()).collect();
+    let data = base64::Engine::encode(&base64::engine::general_purpose::STANDARD, &bytes);
+    let file = |set: u32| {
+        format!(
+            r#"{{"asset": {{"version": "2.0"}}, "scene": 0, "scenes": [{{"nodes": [0]}}], "nodes": [{{"mesh": 0}}],
+                "images": [{{"uri": "a.png"}}], "textures": [{{"source": 0}}],
+                "materials": [{{"pbrMetallicRoughness": {{"baseColorTexture": {{"index": 0, "texCoord": {set}}}}}}}],
+                "meshes": [{{"primitives": [{{"attributes": {{"POSITION": 0, "TEXCOORD_0": 1, "TEXCOORD_1": 2}}, "material": 0}}]}}],
+                "accessors": [{{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3"}},
+                              {{"bufferView": 0, "byteOffset": 36, "componentType": 5126, "count": 3, "type": "VEC2"}},
+                              {{"bufferView": 0, "byteOffset": 60, "componentType": 5126, "count": 3, "type": "VEC2"}}],
+                "bufferViews": [{{"buffer": 0, "byteLength": 84}}],
+                "buffers": [{{"byteLength": 84, "uri": "data:application/octet-stream;base64,{data}"}}]}}"#
+        )
+    };
+    let uvs = |set| parse(&file(set)).unwrap().uvs;
+    // v is flipped (glTF's origin is the image's top left).
+    assert_eq!(uvs(0), vec![glam::Vec2::new(0.5, 0.5); 3]);
+    assert_eq!(
+        uvs(1),
+        vec![
+            glam::Vec2::new(0.0, 1.0),
+            glam::Vec2::new(1.0, 1.0),
+            glam::Vec2::new(0.0, 0.0)
+        ]
+    );
+}

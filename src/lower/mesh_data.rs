@@ -53,6 +53,8 @@ pub struct FileScene {
     /// The file's materials in ptsc's terms (spans set where a statement
     /// places the file).
     pub materials: Vec<Material>,
+    /// Their names in the file (empty for a material without one).
+    pub material_names: Vec<String>,
     /// Images held inside the file (GLB chunks, data URIs) under the
     /// paths its materials' textures read them by.
     pub embedded: Vec<(PathBuf, Arc<Vec<u8>>)>,

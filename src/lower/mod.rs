@@ -24,6 +24,7 @@ pub mod mtl;
 mod obj;
 mod obj_materials;
 mod shapes;
+mod swaps;
 pub use fingerprint::fingerprint;
 
 use crate::check;

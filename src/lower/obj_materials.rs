@@ -13,10 +13,10 @@ use crate::source::Files;
 use std::collections::{BTreeSet, HashMap};
 use std::path::PathBuf;
 
-/// Per OBJ file, the scene's material for each of its material groups:
-/// a file placed many times (a loop of copies) maps its materials and
-/// warns once.
-type Mapped = HashMap<PathBuf, Vec<(u32, usize)>>;
+/// Per OBJ file and the materials its statement replaces, the scene's
+/// material for each of its material groups: a file placed many times (a
+/// loop of copies) maps its materials and warns once.
+type Mapped = HashMap<(PathBuf, Vec<(String, usize)>), Vec<(u32, usize)>>;
 
 /// `scene` with each mesh that names no material split by its file's
 /// materials (`None`: no mesh brings any); the warnings go to `warnings`.
@@ -64,16 +64,23 @@ fn split(
         path,
         path_span,
         smooth,
+        swaps,
         ..
     } = &object.shape
     else {
         return None;
     };
-    if !mapped.contains_key(path) {
+    let key = (
+        path.clone(),
+        (swaps.iter())
+            .map(|s| (s.name.clone(), s.material))
+            .collect(),
+    );
+    if !mapped.contains_key(&key) {
         let groups = map_file(object, reading, warnings, (scene, o, out))?;
-        mapped.insert(path.clone(), groups);
+        mapped.insert(key.clone(), groups);
     }
-    let groups = mapped.get(path)?;
+    let groups = mapped.get(&key)?;
     if groups.is_empty() {
         return None;
     }
@@ -84,6 +91,7 @@ fn split(
             smooth: *smooth,
             node: None,
             group: Some(group),
+            swaps: Vec::new(),
         },
         material,
         ..object.clone()
@@ -103,12 +111,17 @@ fn map_file(
     (scene, o, out): (&check::Scene, usize, &mut Option<check::Scene>),
 ) -> Option<Vec<(u32, usize)>> {
     let check::Shape::Mesh {
-        path, path_span, ..
+        path,
+        path_span,
+        swaps,
+        ..
     } = &object.shape
     else {
         return None;
     };
     let data = read_mesh(reads, (cache, files), path).ok()?;
+    let names = data.materials.iter().map(|m| m.name.as_str());
+    super::swaps::warn_unmatched(swaps, names, path, warnings);
     for error in &data.library_errors {
         warnings.push(
             Diagnostic::warning(
@@ -131,8 +144,11 @@ fn map_file(
     let used: BTreeSet<u32> = data.face_material.iter().copied().collect();
     let mut groups = Vec::with_capacity(used.len());
     for group in used {
-        let material = match data.materials.get(group as usize) {
-            Some(m) => {
+        let file_material = data.materials.get(group as usize);
+        let replaced = file_material.and_then(|m| super::swaps::replacing(swaps, &m.name));
+        let material = match (file_material, replaced) {
+            (_, Some(scene_material)) => scene_material,
+            (Some(m), None) => {
                 let mapped = mtl::material(m, folder, *path_span);
                 for note in &mapped.left_out {
                     warnings.push(
@@ -142,14 +158,14 @@ fn map_file(
                             *path_span,
                         )
                         .with_label("left out")
-                        .with_help("give the mesh a `material` to replace the file's"),
+                        .with_help("replace it (`materials { \"Name\" my_material }`) or give the mesh a `material`"),
                     );
                 }
                 target.materials.push(mapped.material);
                 target.materials.len() - 1
             }
             // Faces without a `usemtl`: the default grey.
-            None => object.material,
+            (None, None) => object.material,
         };
         groups.push((group, material));
     }

@@ -241,6 +241,31 @@ pub enum Entry {
         /// The whole entry.
         span: Span,
     },
+    /// `materials { "Name" material … }`: a mesh file's materials
+    /// replaced by name.
+    Materials {
+        /// The word `materials`.
+        word: Ident,
+        /// The replacements, in order.
+        swaps: Vec<MaterialSwap>,
+        /// From `{` to `}`.
+        braces: Span,
+        /// The whole entry.
+        span: Span,
+    },
+}
+
+/// `"Name" material`: one of a mesh file's materials replaced.
+#[derive(Debug, Clone, PartialEq)]
+pub struct MaterialSwap {
+    /// The material's name in the file.
+    pub name: String,
+    /// Where the name is written (its quotes included).
+    pub name_span: Span,
+    /// The scene's material that replaces it.
+    pub material: MaterialRef,
+    /// The whole pair.
+    pub span: Span,
 }
 
 /// How an object names its material.

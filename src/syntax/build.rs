@@ -341,7 +341,47 @@ impl<'t> Builder<'t> {
                 };
                 Entry::Material { material, span }
             }
+            Rule::materials_entry => {
+                let word = self.build_ident(inner.next().unwrap());
+                let open = self.span(&inner.next().unwrap());
+                let swaps = inner
+                    .filter(|p| p.as_rule() == Rule::material_swap)
+                    .map(|p| self.build_swap(p))
+                    .collect();
+                let braces = Span::new(self.file, open.start as usize, span.end as usize);
+                Entry::Materials {
+                    word,
+                    swaps,
+                    braces,
+                    span,
+                }
+            }
             r => unreachable!("not an entry: {r:?}"),
+        }
+    }
+
+    /// `"Name" material`: a name in quotes, then a material's name or
+    /// `material { … }`.
+    fn build_swap(&self, pair: Pair<Rule>) -> MaterialSwap {
+        let span = self.span(&pair);
+        let mut inner = pair.into_inner();
+        let name = inner.next().unwrap();
+        let name_span = self.span(&name);
+        let name = unescape(name.into_inner().next().unwrap().as_str());
+        let m = inner.next().unwrap();
+        let material = match m.as_rule() {
+            Rule::ident => MaterialRef::Named(self.build_ident(m)),
+            Rule::material_entry => match self.build_entry(m) {
+                Entry::Material { material, .. } => material,
+                _ => unreachable!("a material entry builds a material"),
+            },
+            r => unreachable!("a replaced material is a name or a material entry, got {r:?}"),
+        };
+        MaterialSwap {
+            name,
+            name_span,
+            material,
+            span,
         }
     }
 

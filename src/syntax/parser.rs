@@ -59,6 +59,8 @@ pub fn rule_name(rule: Rule) -> &'static str {
         Rule::texture_param => "a parameter given a texture",
         Rule::texture_decl | Rule::kw_texture => "`texture`",
         Rule::color_stop | Rule::stop_word => "a colour stop `stop 0.5 rgb …`",
+        Rule::materials_entry | Rule::materials_word => "`materials { … }`",
+        Rule::material_swap => "a material's name in quotes and a material (`\"Leaf\" green`)",
         Rule::expr | Rule::component | Rule::operand | Rule::primary => {
             "a value (number, vector, colour, string or name)"
         }

@@ -73,14 +73,15 @@ fn uv() -> impl Strategy<Value = DVec2> {
 }
 
 /// A linear map that is neither close to singular nor too uneven (its
-/// singular values within a factor of 30), often mirroring.
+/// condition number in the Frobenius norm under 90, so its singular values
+/// within a factor of 90), often mirroring. (A bound on the determinant
+/// alone let through a map of condition 312, whose placed hits graze the
+/// triangle in its own frame: texture coordinates 2.6e-3 off in f32.)
 fn linear_map() -> impl Strategy<Value = DMat3> {
     (vector(-2.0, 2.0), vector(-2.0, 2.0), vector(-2.0, 2.0))
         .prop_map(|(x, y, z)| DMat3::from_cols(x, y, z))
         .prop_filter("well conditioned", |m| {
-            let det = m.determinant().abs();
-            let norm = m.x_axis.length() + m.y_axis.length() + m.z_axis.length();
-            det > 0.05 && det > norm.powi(3) / 27_000.0
+            m.determinant().abs() > 0.05 && condition(*m) < 90.0
         })
 }
 

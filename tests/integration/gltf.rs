@@ -250,6 +250,36 @@ fn a_scene_written_as_gltf_renders_as_written_in_pts() {
 }
 
 #[test]
+fn materials_replaces_a_files_material_by_name() {
+    let d = two_cubes();
+    let dir = crate::temp_dir_with(&[("cubes.gltf", &d.gltf())]);
+    std::fs::write(dir.path().join("cubes.glb"), d.glb()).unwrap();
+    let blue = "material { diffuse rgb <0.2, 0.3, 0.9> }";
+    let written = TWO_CUBES_PTS.replace(
+        "material { type principled base_color rgb <0.9, 0.6, 0.2> metallic 1 roughness 0.3 }",
+        blue,
+    );
+    assert_ne!(written, TWO_CUBES_PTS);
+    let reference = crate::render_pixels(ir_of(&compile(dir.path(), &format!("{STAGE}{written}"))));
+    for file in ["cubes.gltf", "cubes.glb"] {
+        let scene = format!(
+            "{STAGE}mesh {{ file \"{file}\" materials {{ \"Gold\" {blue} \"Gould\" {blue} }} }}"
+        );
+        let c = compile(dir.path(), &scene);
+        let pixels = crate::render_pixels(ir_of(&c));
+        let differing = (pixels.iter().zip(&reference))
+            .filter(|(p, q)| worst(&[**p], &[**q]) > 1e-3)
+            .count();
+        assert!(differing <= 6, "{file}: {differing} pixels differ");
+        let text = c.diagnostics.render_human(&c.sources, false);
+        assert!(
+            text.contains("has no material `Gould`") && text.contains("did you mean `Gold`?"),
+            "{text}"
+        );
+    }
+}
+
+#[test]
 fn a_mesh_placed_by_several_nodes_is_stored_once() {
     let mut d = Doc::default();
     let cube = d.mesh(&CUBE.0, None, &CUBE.1, None);

@@ -226,3 +226,50 @@ fn a_render_reads_each_mesh_file_once() {
     assert!(compile_str(&path, &text, options).ir.is_some());
     assert_eq!(cache.mesh_loads, 2);
 }
+
+#[test]
+fn materials_replaces_the_files_by_name_and_warns_of_names_it_lacks() {
+    let dir = crate::temp_dir_with(&[
+        ("two.mtl", MTL),
+        ("red.obj", &obj("", true, false)),
+        ("gold.obj", &obj("", false, true)),
+    ]);
+    std::fs::write(
+        dir.path().join("two.obj"),
+        obj("mtllib two.mtl\n", true, true),
+    )
+    .unwrap();
+    // The replacing material is declared after the mesh that names it.
+    let swapped = compile(
+        dir.path(),
+        &format!(
+            "{STAGE}mesh {{ file \"two.obj\" materials {{ \"Gold\" blue  \"Silver\" blue }} }}
+             material blue {{ diffuse rgb <0.2, 0.3, 0.9> }}"
+        ),
+    );
+    let written = compile(
+        dir.path(),
+        &format!(
+            "{STAGE}mesh {{ file \"red.obj\" material {{ type principled base_color rgb <0.8, 0.1, 0.1> specular 0.5 roughness {:.17} }} }}
+             mesh {{ file \"gold.obj\" material {{ diffuse rgb <0.2, 0.3, 0.9> }} }}",
+            roughness_of_exponent(100.0)
+        ),
+    );
+    let text = swapped.diagnostics.render_human(&swapped.sources, false);
+    let (Some(a), Some(b)) = (swapped.ir.as_ref(), written.ir.as_ref()) else {
+        panic!("{text}");
+    };
+    assert!(
+        text.contains("has no material `Silver`") && text.contains("\"Silver\""),
+        "the name the file lacks is a warning at it: {text}"
+    );
+    assert_eq!(swapped.diagnostics.items.len(), 1, "{text}");
+    let (pa, pb) = (crate::render_pixels(a), crate::render_pixels(b));
+    let worst = (pa.iter().zip(&pb))
+        .flat_map(|(p, q)| (0..3).map(move |k| (p[k] - q[k]).abs()))
+        .fold(0.0f32, f32::max);
+    assert!(worst < 1e-4, "largest difference {worst}");
+    let blue = pa.iter().filter(|p| p[2] > p[0] * 2.0).count();
+    let red = pa.iter().filter(|p| p[0] > p[2] * 2.0).count();
+    assert!(blue > 20 && red > 20, "{blue} blue and {red} red pixels");
+}

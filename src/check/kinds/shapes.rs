@@ -388,6 +388,7 @@ pub const MESH: Kind = Kind {
     params: &[
         p("file", Ty::Str, "\"bunny.ply\"").doc("the `.obj`, `.ply`, `.gltf` or `.glb` file, relative to the scene file; vertex normals and texture coordinates are read when present, an OBJ's or glTF's materials when the mesh names none, a glTF's whole scene (its nodes' transforms on top of the mesh's). Required"),
         p("smooth", Ty::Bool, "true").doc("interpolate the file's vertex normals. Default `false` (flat shading) for OBJ and PLY, `true` for glTF (its normals are part of the model)"),
+        p("materials", Ty::Materials, "{ \"Leaf\" green }").doc("replaces the file's materials by name (an OBJ's `newmtl`, a glTF material's `name`): each name in quotes, then a material's name or `material { … }`; the others stay the file's. A name the file does not have is a warning. Without effect when the mesh has a `material`, which replaces them all"),
         p("node", Ty::Str, "\"Chair\"").doc("a glTF file's node, by name: only it and its children are placed, at the mesh's transforms (the node's own place in the file is left out). Default: the file's whole scene"),
     ],
     role: Role::Shape(mesh),
@@ -458,5 +459,6 @@ fn mesh(s: &mut ShapeInput) -> Option<Shape> {
         smooth: s.boolean("smooth", gltf),
         node,
         group: None,
+        swaps: Vec::new(),
     })
 }

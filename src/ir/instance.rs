@@ -42,6 +42,9 @@ pub struct Prototype {
     pub normals: Arc<Vec<[Vec3; 3]>>,
     /// Vertex texture coordinates of its mesh triangles with attributes.
     pub uvs: Arc<Vec<[Vec2; 3]>>,
+    /// Corner tangents of its mesh triangles with attributes (see
+    /// [`crate::ir::Scene::tangents`]).
+    pub tangents: Arc<Vec<[glam::Vec4; 3]>>,
     /// Bounds of its primitives over the shutter, in its frame.
     pub bounds: Aabb,
     /// Each object's material (index into the scene's), or [`INHERITED`].

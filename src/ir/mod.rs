@@ -95,6 +95,11 @@ pub struct Scene {
     /// Vertex texture coordinates of mesh triangles with attributes, by the
     /// same index; shorter than `normals` when the last ones have none.
     pub uvs: Arc<Vec<[Vec2; 3]>>,
+    /// Corner tangents of mesh triangles with attributes for normal maps,
+    /// by the same index (xyz along ∂p/∂u, smoothed; w = ±1 the side of
+    /// the bitangent n × t, 0 for a triangle without: its ∂p/∂u serves);
+    /// shorter than `normals` when the last ones have none.
+    pub tangents: Arc<Vec<[glam::Vec4; 3]>>,
     /// The emissive primitives, ascending; the i-th is light i (area lights
     /// come first in `lights`).
     pub area_lights: Vec<u32>,

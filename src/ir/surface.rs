@@ -33,6 +33,8 @@ struct Frame<'a> {
     placement: Option<&'a Placement>,
     /// The vertex texture coordinates the record's `attributes` index.
     uvs: &'a [[Vec2; 3]],
+    /// The corner tangents the record's `attributes` index.
+    tangents: &'a [[glam::Vec4; 3]],
 }
 
 impl Frame<'_> {
@@ -120,7 +122,11 @@ impl Scene {
         let (dpdu, dpdv) = self.derivatives(hit, time);
         match normal {
             NormalInput::Map(i) => {
-                shading_normal::mapped_normal(self.textures[i as usize].eval(at), n, dpdu)
+                let texel = self.textures[i as usize].eval(at);
+                match self.corner_tangent(hit, time) {
+                    Some((t, side)) => shading_normal::mapped_normal_along(texel, n, t, side),
+                    None => shading_normal::mapped_normal(texel, n, dpdu),
+                }
             }
             NormalInput::Bump { texture, height } => {
                 let texture = &self.textures[texture as usize];
@@ -152,6 +158,40 @@ impl Scene {
         }
     }
 
+    /// The tangent a mesh triangle's corners give at a hit (their own, a
+    /// file's or MikkTSpace's, interpolated) in the world, and the side of
+    /// its bitangent (±1); `None` where the triangle has none.
+    fn corner_tangent(&self, hit: &Hit, time: f32) -> Option<(Vec3, f32)> {
+        let frame = self.frame(hit, time);
+        let Some(Prim {
+            shape: Shape::Triangle { attributes, .. },
+            ..
+        }) = frame.record
+        else {
+            return None;
+        };
+        let corners = frame.tangents.get(*attributes as usize)?;
+        if corners[0].w == 0.0 {
+            return None;
+        }
+        let (u, v) = (hit.uv.x, hit.uv.y);
+        let t = (1.0 - u - v) * corners[0].truncate()
+            + u * corners[1].truncate()
+            + v * corners[2].truncate();
+        let t = frame.world_vector(t);
+        // A mirroring placement turns the bitangent's side, as a mirroring
+        // transform of the mesh did when it was read.
+        let mirrored = frame
+            .placement
+            .is_some_and(|p| p.world_from_group.matrix3.determinant() < 0.0);
+        let side = if mirrored {
+            -corners[0].w
+        } else {
+            corners[0].w
+        };
+        (t != Vec3::ZERO && t.is_finite()).then_some((t, side))
+    }
+
     /// Where textures are evaluated at a hit at `time`: its texture
     /// coordinates, the point in its object's frame (at time 0) and in the
     /// world.
@@ -180,6 +220,7 @@ impl Scene {
                 from_space: self.from_world(hit.prim).copied(),
                 placement: None,
                 uvs: &self.uvs,
+                tangents: &self.tangents,
             };
         }
         let placement = &self.instances.placements[hit.instance as usize];
@@ -195,6 +236,7 @@ impl Scene {
             from_space: prototype.object_from_group(hit.prim).copied(),
             placement: Some(placement),
             uvs: &prototype.uvs,
+            tangents: &prototype.tangents,
         }
     }
 

@@ -9,7 +9,7 @@ use crate::accel::numbering::Numbering;
 use crate::accel::tri4::MAX_PACKED;
 use crate::geometry::Aabb;
 use crate::ir::Prim;
-use glam::{Vec2, Vec3};
+use glam::{Vec2, Vec3, Vec4};
 use std::sync::Arc;
 
 /// The part of the IR that depends only on shapes, transforms, motion and
@@ -23,6 +23,8 @@ pub struct Geometry {
     pub normals: Arc<Vec<[Vec3; 3]>>,
     /// Their vertex texture coordinates.
     pub uvs: Arc<Vec<[Vec2; 3]>>,
+    /// Their corner tangents for normal maps.
+    pub tangents: Arc<Vec<[Vec4; 3]>>,
     /// Bounds of the bounded primitives over the shutter.
     pub bounds: Aabb,
     /// The BVH.
@@ -41,6 +43,7 @@ pub fn build(gathered: Gathered) -> Geometry {
         mut prims,
         normals,
         uvs,
+        tangents,
         meshes_without_uvs,
         shutter,
     } = gathered;
@@ -92,6 +95,7 @@ pub fn build(gathered: Gathered) -> Geometry {
         prims: Arc::new(records),
         normals: Arc::new(normals),
         uvs: Arc::new(uvs),
+        tangents: Arc::new(tangents),
         bounds,
         wide: Arc::new(wide),
         unbounded: Arc::new(unbounded),

@@ -1,8 +1,9 @@
 //! glTF 2.0 scenes (`.gltf` with external or data-URI buffers, `.glb`):
 //! the default scene's node tree with every transform, each mesh read once
 //! however many nodes place it, its triangle primitives (positions,
-//! normals, the `TEXCOORD_n` its material reads) and the file's materials
-//! (`gltf_material.rs`).
+//! normals, the `TEXCOORD_n` its material reads, tangents: the file's or
+//! MikkTSpace's where a normal map needs them, `tangents.rs`) and the
+//! file's materials (`gltf_material.rs`).
 //! The `gltf` crate parses the JSON and the GLB container; buffers are
 //! read through the scene's `Files` (the caller's reader) and accessors by
 //! our own checked code (`gltf_accessor.rs`); `KHR_lights_punctual` lights
@@ -20,7 +21,7 @@ use crate::check::domain::MAX_RADIANCE;
 use crate::check::Light;
 use crate::source::MAX_MESH_BYTES;
 use base64::Engine;
-use glam::{DMat4, DQuat, DVec3, Vec2, Vec3};
+use glam::{DMat4, DQuat, DVec3, Vec2, Vec3, Vec4};
 use gltf::mesh::Mode;
 use gltf::Semantic;
 use std::borrow::Cow;
@@ -379,6 +380,7 @@ pub fn local_transform(t: &gltf::scene::Transform, name: &str) -> Result<DMat4, 
 struct Attributes {
     any_normals: bool,
     any_uvs: bool,
+    any_tangents: bool,
 }
 
 impl Attributes {
@@ -386,6 +388,9 @@ impl Attributes {
     fn finish(self, out: &mut MeshData) {
         if !self.any_normals {
             out.normals.clear();
+        }
+        if !self.any_tangents {
+            out.face_tangents.clear();
         }
         if !self.any_uvs {
             out.uvs.clear();
@@ -443,7 +448,7 @@ fn read_mesh(
             None => 0,
         };
         let read = read_primitive(&primitive, buffers, (mode, set));
-        let (positions, normals, uvs, triangles) =
+        let (positions, normals, uvs, triangles, tangents) =
             read.map_err(|e| format!("mesh `{name}`: {e}"))?;
         if triangles.is_empty() {
             scene
@@ -468,6 +473,19 @@ fn read_mesh(
                 .extend(uv.iter().map(|[u, v]| Vec2::new(*u, 1.0 - v))),
             None => out.uvs.resize(out.positions.len(), Vec2::ZERO),
         }
+        let start_vertex = base as usize;
+        let vertices = (
+            &out.positions[start_vertex..],
+            &out.normals[start_vertex..],
+            &out.uvs[start_vertex..],
+        );
+        let wants = primitive.material().normal_texture().is_some();
+        let corners = corner_tangents(vertices, &triangles, tangents, wants);
+        attributes.any_tangents |= corners.is_some();
+        let corners = corners.unwrap_or_else(|| vec![[Vec4::ZERO; 3]; triangles.len()]);
+        out.face_tangents
+            .resize(out.triangles.len(), [Vec4::ZERO; 3]);
+        out.face_tangents.extend(corners);
         out.triangles
             .extend(triangles.iter().map(|t| t.map(|i| base + i)));
         scene.parts.push(Part {
@@ -480,14 +498,40 @@ fn read_mesh(
     Ok(())
 }
 
-/// A primitive's positions, normals, texture coordinates and triangles
-/// (indices into its own vertices, each checked).
+/// A primitive's positions, normals, texture coordinates, triangles
+/// (indices into its own vertices, each checked) and tangents.
 type Primitive = (
     Vec<[f32; 3]>,
     Option<Vec<[f32; 3]>>,
     Option<Vec<[f32; 2]>>,
     Vec<[u32; 3]>,
+    Option<Vec<[f32; 4]>>,
 );
+
+/// The tangents at the corners of a primitive's `triangles` over its
+/// `vertices` (positions, normals and ptsc's texture coordinates, zero
+/// where the file has none): the file's `TANGENT`, else, when its material
+/// `wants` them (a normal map), MikkTSpace's; `None` without.
+fn corner_tangents(
+    (positions, normals, uvs): (&[Vec3], &[Vec3], &[Vec2]),
+    triangles: &[[u32; 3]],
+    file: Option<Vec<[f32; 4]>>,
+    wants: bool,
+) -> Option<Vec<[Vec4; 3]>> {
+    if let Some(file) = file {
+        // The sign alone of w counts (the specification asks ±1).
+        let corner = |i: u32| {
+            let [x, y, z, w] = file[i as usize];
+            Vec4::new(x, y, z, if w < 0.0 { -1.0 } else { 1.0 })
+        };
+        return Some(triangles.iter().map(|t| t.map(corner)).collect());
+    }
+    let has = |v: &[Vec3]| v.iter().any(|n| *n != Vec3::ZERO);
+    if !wants || !has(normals) || uvs.iter().all(|uv| *uv == Vec2::ZERO) {
+        return None;
+    }
+    super::tangents::generate(positions, normals, uvs, triangles)
+}
 
 /// The vertices and triangles primitive `p` of `mode` claims (its
 /// accessors' counts), before any is read.
@@ -531,6 +575,13 @@ fn read_primitive(
         )?),
         None => None,
     };
+    let tangents = match p.get(&Semantic::Tangents) {
+        Some(a) => Some(gltf_accessor::floats::<4>(&a, buffers, "tangents")?),
+        None => None,
+    };
+    if let Some(t) = &tangents {
+        same_count("tangents", t.len())?;
+    }
     if let Some(n) = &normals {
         same_count("normals", n.len())?;
     }
@@ -561,7 +612,7 @@ fn read_primitive(
             .map(|c| [c[0], c[1], c[2]])
             .collect(),
     };
-    Ok((positions, normals, uvs, triangles))
+    Ok((positions, normals, uvs, triangles, tangents))
 }
 
 #[cfg(test)]

@@ -370,6 +370,7 @@ pub fn build(gathered: Gathered, cache: &mut LowerCache) -> Instances {
                 wide: geometry.wide,
                 normals: geometry.normals,
                 uvs: geometry.uvs,
+                tangents: geometry.tangents,
                 bounds: geometry.bounds,
                 object_material,
                 object_from_group,

@@ -1,7 +1,7 @@
 //! What a mesh file holds once read (`mesh.rs` reads PLY, `obj.rs` OBJ).
 
 use crate::check::{Light, Material};
-use glam::{DMat4, Vec2, Vec3};
+use glam::{DMat4, Vec2, Vec3, Vec4};
 use std::borrow::Cow;
 use std::ops::Range;
 use std::path::{Path, PathBuf};
@@ -24,6 +24,11 @@ pub struct MeshData {
     pub uvs: Vec<Vec2>,
     /// Triangles as vertex indices.
     pub triangles: Vec<[u32; 3]>,
+    /// Per triangle, the tangent at each of its corners for normal maps
+    /// (xyz along ∂p/∂u, w the bitangent's side: n × t · w points along
+    /// +v), from a glTF file's `TANGENT` or generated (MikkTSpace); a zero
+    /// w where a triangle has none; empty when no triangle has any.
+    pub face_tangents: Vec<[Vec4; 3]>,
     /// Per triangle, its index in `materials` (`u32::MAX`: none); empty
     /// when the file names no material.
     pub face_material: Vec<u32>,
@@ -179,18 +184,27 @@ impl MeshData {
         let part = (self.scene.as_ref()).and_then(|s| s.parts.get(group? as usize));
         let Some(part) = part else {
             let material = |k: usize| self.face_material.get(k).copied().unwrap_or(u32::MAX);
-            let triangles = match group {
-                None => Cow::Borrowed(&self.triangles[..]),
-                Some(g) => (self.triangles.iter().enumerate())
-                    .filter(|(k, _)| material(*k) == g)
-                    .map(|(_, t)| *t)
-                    .collect(),
+            let (triangles, tangents) = match group {
+                None => (
+                    Cow::Borrowed(&self.triangles[..]),
+                    Cow::Borrowed(&self.face_tangents[..]),
+                ),
+                Some(g) => {
+                    let kept = |k: &usize| material(*k) == g;
+                    let indices = (0..self.triangles.len()).filter(kept);
+                    let tangents = (0..self.face_tangents.len()).filter(kept);
+                    (
+                        indices.map(|k| self.triangles[k]).collect(),
+                        tangents.map(|k| self.face_tangents[k]).collect(),
+                    )
+                }
             };
             return MeshView {
                 positions: &self.positions,
                 normals: &self.normals,
                 uvs: &self.uvs,
                 triangles,
+                tangents,
                 part: false,
             };
         };
@@ -204,6 +218,11 @@ impl MeshData {
                 .iter()
                 .map(|t| t.map(|i| i - base))
                 .collect(),
+            tangents: Cow::Borrowed(
+                (self.face_tangents)
+                    .get(part.triangles.start as usize..part.triangles.end as usize)
+                    .unwrap_or(&[]),
+            ),
             part: true,
         }
     }
@@ -231,6 +250,9 @@ pub struct MeshView<'a> {
     pub uvs: &'a [Vec2],
     /// Triangles as indices into the lists above.
     pub triangles: Cow<'a, [[u32; 3]]>,
+    /// Each triangle's corner tangents (empty: none; see
+    /// [`MeshData::face_tangents`]).
+    pub tangents: Cow<'a, [[Vec4; 3]]>,
     /// Whether it is a scene file's part (its own vertices), not all the
     /// file's vertices.
     pub part: bool,

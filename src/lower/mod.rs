@@ -25,6 +25,7 @@ mod obj;
 mod obj_materials;
 mod shapes;
 mod swaps;
+mod tangents;
 pub use fingerprint::fingerprint;
 
 use crate::check;
@@ -118,6 +119,9 @@ fn read_and_prepare<R>(
     } else {
         &over
     };
+    // An OBJ's materials inside a group, before the group is placed.
+    let grouped = obj_materials::expand_groups(scene, (cache, files, &mut reads), warnings);
+    let scene = grouped.as_ref().unwrap_or(scene);
     let split = instances::split(scene);
     let flat = split.scene.as_ref().unwrap_or(scene);
     let expanded = obj_materials::expand(flat, (cache, files, &mut reads), warnings);
@@ -358,6 +362,7 @@ fn finish(
         prim_object,
         normals,
         uvs,
+        tangents,
         bounds,
         wide,
         unbounded,
@@ -447,6 +452,7 @@ fn finish(
         textures,
         normals,
         uvs,
+        tangents,
         area_lights,
         lights,
         light_sampler: LightSampler::default(),

@@ -1,8 +1,9 @@
 //! The materials an OBJ file brings: a mesh statement that names no
 //! material takes its file's (`usemtl` groups over `mtllib` libraries,
-//! mapped by `mtl.rs`), one object per material group; a material in the
-//! scene overrides them all. What cannot be followed is a warning at the
-//! mesh statement.
+//! mapped by `mtl.rs`), one object per material group, at the top level of
+//! the scene or inside a group; a material in the scene overrides them all,
+//! `materials { … }` some by name. What cannot be followed is a warning at
+//! the mesh statement.
 
 use super::cache::LowerCache;
 use super::mtl;
@@ -44,6 +45,55 @@ pub fn expand(
             (Some(parts), Some(target)) => target.objects.extend(parts),
             (None, Some(target)) => target.objects.push(object.clone()),
             _ => {}
+        }
+    }
+    out
+}
+
+/// `scene` with each mesh inside a group that names no material split by
+/// its file's materials (`None`: none brings any), before the groups are
+/// placed: a part of a file's material keeps it under every placement,
+/// the faces without one take the placement's material as the statement
+/// did. The warnings go to `warnings`.
+pub fn expand_groups(
+    scene: &check::Scene,
+    (cache, files, reads): (&mut LowerCache, &dyn Files, &mut MeshReads),
+    warnings: &mut Diagnostics,
+) -> Option<check::Scene> {
+    let mut out: Option<check::Scene> = None;
+    let mut mapped = Mapped::new();
+    let everything = scene.objects.len();
+    for (g, group) in scene.groups.iter().enumerate() {
+        let mut objects = Vec::with_capacity(group.objects.len());
+        let mut unmaterialled = Vec::with_capacity(group.objects.len());
+        let mut changed = false;
+        for (k, object) in group.objects.iter().enumerate() {
+            let takes_placements = group.unmaterialled.get(k) == Some(&true);
+            let parts = match &object.shape {
+                check::Shape::Mesh { group: None, .. } if takes_placements => {
+                    let target = (&mut out, &mut mapped);
+                    let reading = (&mut *cache, files, &mut *reads);
+                    split(object, (scene, everything), reading, warnings, target)
+                }
+                _ => None,
+            };
+            match parts {
+                Some(parts) => {
+                    changed = true;
+                    for part in parts {
+                        unmaterialled.push(part.material == object.material);
+                        objects.push(part);
+                    }
+                }
+                None => {
+                    unmaterialled.push(takes_placements);
+                    objects.push(object.clone());
+                }
+            }
+        }
+        if let (true, Some(target)) = (changed, out.as_mut()) {
+            target.groups[g].objects = objects;
+            target.groups[g].unmaterialled = unmaterialled;
         }
     }
     out

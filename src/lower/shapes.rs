@@ -18,7 +18,7 @@ use crate::geometry::texcoord;
 use crate::geometry::Aabb;
 use crate::ir::Prim;
 use crate::source::Files;
-use glam::{DMat4, DVec3, Vec2, Vec3};
+use glam::{DMat4, DVec3, Vec2, Vec3, Vec4};
 use std::collections::HashMap;
 use std::path::PathBuf;
 use std::sync::Arc;
@@ -33,6 +33,9 @@ pub struct Gathered {
     pub normals: Vec<[Vec3; 3]>,
     /// Their vertex texture coordinates, by the same index.
     pub uvs: Vec<[Vec2; 3]>,
+    /// Their corner tangents for normal maps, by the same index (see
+    /// [`crate::ir::Scene::tangents`]).
+    pub tangents: Vec<[Vec4; 3]>,
     /// The mesh objects whose files have no texture coordinates.
     pub meshes_without_uvs: Vec<u32>,
     /// The shutter interval the primitives are bounded over.
@@ -42,10 +45,21 @@ pub struct Gathered {
 impl Gathered {
     /// Adds the vertex attributes of a mesh triangle of vertices `t` (in
     /// the file's order) from its mesh's `normals` and `uvs` (either may be
-    /// empty); returns their index, or `u32::MAX` when the mesh has none.
-    fn attributes(&mut self, t: [u32; 3], normals: &[Vec3], uvs: &[glam::Vec2]) -> u32 {
-        if normals.is_empty() && uvs.is_empty() {
+    /// empty) and its corner `tangents`; returns their index, or
+    /// `u32::MAX` when the mesh has none.
+    fn attributes(
+        &mut self,
+        t: [u32; 3],
+        (normals, uvs): (&[Vec3], &[glam::Vec2]),
+        tangents: Option<[Vec4; 3]>,
+    ) -> u32 {
+        if normals.is_empty() && uvs.is_empty() && tangents.is_none() {
             return u32::MAX;
+        }
+        if let Some(tangents) = tangents {
+            // Earlier triangles without tangents: none (w = 0).
+            (self.tangents).resize(self.normals.len(), [Vec4::ZERO; 3]);
+            self.tangents.push(tangents);
         }
         // A zero normal is flat shading.
         self.normals.push(match normals.is_empty() {
@@ -370,12 +384,20 @@ impl Gathering<'_> {
             false => Vec::new(),
         };
         let use_uvs = !view.uvs.is_empty();
+        // Tangents move as the surface's directions; a mirror turns the
+        // bitangent's side.
+        let side = if flip { -1.0 } else { 1.0 };
+        let tangent = |c: Vec4| match c.w {
+            0.0 => Vec4::ZERO,
+            w => unit_f32(m.transform_vector3(c.truncate().as_dvec3())).extend(w * side),
+        };
+        let use_tangents = view.tangents.len() == view.triangles.len() && !view.tangents.is_empty();
         if !use_uvs {
             self.out.meshes_without_uvs.push(o as u32);
         }
         // A static mesh without vertex attributes keeps its triangles
         // as vertex indices: most of them will never need a record.
-        let plain = !use_normals && !use_uvs && velocity == Vec3::ZERO;
+        let plain = !use_normals && !use_uvs && !use_tangents && velocity == Vec3::ZERO;
         let mut kept: Vec<[u32; 3]> = Vec::new();
         if plain {
             kept.reserve_exact(view.triangles.len());
@@ -384,7 +406,7 @@ impl Gathering<'_> {
         }
         let mut degenerate = 0usize;
         let mut total = 0usize;
-        for t in view.triangles.iter() {
+        for (k, t) in view.triangles.iter().enumerate() {
             total += 1;
             // Stored wound as rendered; vertex attributes stay in the
             // file's order (`Shape::own_uv` reads them so).
@@ -399,7 +421,10 @@ impl Gathering<'_> {
                 kept.push([a, b, c]);
                 continue;
             }
-            let attributes = self.out.attributes(*t, &vnormals, view.uvs);
+            let tangents = (view.tangents.get(k))
+                .filter(|_| use_tangents)
+                .map(|c| c.map(tangent));
+            let attributes = self.out.attributes(*t, (&vnormals, view.uvs), tangents);
             let shape = Shape::Triangle {
                 p0,
                 e1,

@@ -30,6 +30,16 @@ pub fn mapped_normal(texel: Vec3, n: Vec3, dpdu: Vec3) -> Vec3 {
     (m.x * t + m.y * b + m.z * n).normalize_or(n)
 }
 
+/// [`mapped_normal`] in the frame of a mesh's tangent `t` (made
+/// perpendicular to `n`) and the bitangent n × t on its `side` (±1; −1
+/// where the texture coordinates are mirrored), as glTF defines a normal
+/// map's frame.
+pub fn mapped_normal_along(texel: Vec3, n: Vec3, t: Vec3, side: f32) -> Vec3 {
+    let m = texel * 2.0 - Vec3::ONE;
+    let (t, b) = tangent_frame(n, t);
+    (m.x * t + side * m.y * b + m.z * n).normalize_or(n)
+}
+
 /// The normal of a surface displaced along its normal `n` by a height whose
 /// derivatives along the surface's parameters are `dh_du` and `dh_dv`
 /// (Blinn 1978, "Simulation of wrinkled surfaces"; pbrt-v4's `BumpMap`

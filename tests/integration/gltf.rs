@@ -308,7 +308,7 @@ fn a_mesh_placed_by_several_nodes_is_stored_once() {
 }
 
 /// A PNG of one colour, 4 × 4.
-fn flat_png(rgb: [u8; 3]) -> Vec<u8> {
+pub fn flat_png(rgb: [u8; 3]) -> Vec<u8> {
     let mut out = Vec::new();
     let mut encoder = png::Encoder::new(&mut out, 4, 4);
     encoder.set_color(png::ColorType::Rgb);

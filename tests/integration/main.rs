@@ -15,6 +15,7 @@ mod fmt;
 mod folders;
 mod frames;
 mod gltf;
+mod gltf_tangents;
 mod golden;
 mod group_lights;
 mod hostile;

@@ -273,3 +273,43 @@ fn materials_replaces_the_files_by_name_and_warns_of_names_it_lacks() {
     let red = pa.iter().filter(|p| p[0] > p[2] * 2.0).count();
     assert!(blue > 20 && red > 20, "{blue} blue and {red} red pixels");
 }
+
+#[test]
+fn a_group_placed_twice_keeps_its_objs_materials() {
+    let dir = crate::temp_dir_with(&[("two.mtl", MTL)]);
+    std::fs::write(
+        dir.path().join("two.obj"),
+        obj("mtllib two.mtl\n", true, true),
+    )
+    .unwrap();
+    let placed = compile(
+        dir.path(),
+        &format!(
+            "{STAGE}group g {{ mesh {{ file \"two.obj\" scale 0.5 materials {{ \"Gold\" blue }} }} }}
+             instance g {{ translate <-0.5, 0, 0> }}
+             instance g {{ translate <0.5, 0.2, 0> material {{ diffuse rgb <0, 1, 0> }} }}
+             material blue {{ diffuse rgb <0.2, 0.3, 0.9> }}"
+        ),
+    );
+    let flat = compile(
+        dir.path(),
+        &format!(
+            "{STAGE}mesh {{ file \"two.obj\" scale 0.5 translate <-0.5, 0, 0> materials {{ \"Gold\" blue }} }}
+             mesh {{ file \"two.obj\" scale 0.5 translate <0.5, 0.2, 0> materials {{ \"Gold\" blue }} }}
+             material blue {{ diffuse rgb <0.2, 0.3, 0.9> }}"
+        ),
+    );
+    let text = placed.diagnostics.render_human(&placed.sources, false);
+    let (Some(a), Some(b)) = (placed.ir.as_ref(), flat.ir.as_ref()) else {
+        panic!("{text}");
+    };
+    assert_eq!(a.instances.placements.len(), 2, "the group is shared");
+    let (pa, pb) = (crate::render_pixels(a), crate::render_pixels(b));
+    let worst = (pa.iter().zip(&pb))
+        .flat_map(|(p, q)| (0..3).map(move |k| (p[k] - q[k]).abs()))
+        .fold(0.0f32, f32::max);
+    assert!(worst < 1e-3, "largest difference {worst}");
+    let blue = pa.iter().filter(|p| p[2] > p[0] * 2.0).count();
+    let red = pa.iter().filter(|p| p[0] > p[2] * 2.0).count();
+    assert!(blue > 10 && red > 10, "{blue} blue and {red} red pixels");
+}

@@ -36,6 +36,7 @@ pub fn material(p: &Params, name: Option<String>, span: Span, diags: &mut Diagno
         opacity: r.num_in("opacity", 0.0, 1.0, false, 1.0),
         opacity_cutoff: (p.given("opacity_cutoff"))
             .then(|| r.num_in("opacity_cutoff", 0.0, 1.0, false, 0.5)),
+        vertex_color: r.boolean("vertex_color", false),
         span,
     };
     // A textured parameter stands for its brightest value in the checks

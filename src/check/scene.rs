@@ -249,6 +249,9 @@ pub struct Material {
     /// The opacity at and above which the surface is wholly there, below
     /// which it is not (`None`: fractions pass at random).
     pub opacity_cutoff: Option<f64>,
+    /// Whether the diffuse colour is multiplied by the mesh's vertex
+    /// colours.
+    pub vertex_color: bool,
     /// Where it is declared.
     pub span: Span,
 }
@@ -274,6 +277,7 @@ impl Material {
             two_sided: false,
             opacity: 1.0,
             opacity_cutoff: None,
+            vertex_color: false,
             span,
         }
     }

@@ -307,6 +307,8 @@ pub const MATERIAL: &[ParamSpec] = &[
         .doc("how much of the surface is there, 0..1 or a texture: rays pass where it is 0 (cutouts: leaves, fences), and through a fraction of it at random between. Default 1"),
     p("opacity_cutoff", Ty::Num, "0.5")
         .doc("with `opacity`: the surface is there where the opacity is at least this, and not at all elsewhere (a sharp cutout, glTF's `MASK`). Default none: fractions pass at random"),
+    p("vertex_color", Ty::Bool, "true")
+        .doc("multiplies the diffuse colour (a principled's `base_color`) by the mesh's vertex colours (a glTF's `COLOR_0`), white where a surface has none. Default `false` (`true` for a glTF material whose primitives have colours)"),
     p(
         "normal_map",
         Ty::Texture,

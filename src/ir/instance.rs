@@ -45,6 +45,8 @@ pub struct Prototype {
     /// Corner tangents of its mesh triangles with attributes (see
     /// [`crate::ir::Scene::tangents`]).
     pub tangents: Arc<Vec<[glam::Vec4; 3]>>,
+    /// Vertex colours of its mesh triangles with attributes.
+    pub colors: Arc<Vec<[Vec3; 3]>>,
     /// Bounds of its primitives over the shutter, in its frame.
     pub bounds: Aabb,
     /// Each object's material (index into the scene's), or [`INHERITED`].

@@ -100,6 +100,10 @@ pub struct Scene {
     /// the bitangent n × t, 0 for a triangle without: its ∂p/∂u serves);
     /// shorter than `normals` when the last ones have none.
     pub tangents: Arc<Vec<[glam::Vec4; 3]>>,
+    /// Vertex colours of mesh triangles with attributes, by the same index
+    /// (white for a triangle without); shorter than `normals` when the
+    /// last ones have none.
+    pub colors: Arc<Vec<[Vec3; 3]>>,
     /// The emissive primitives, ascending; the i-th is light i (area lights
     /// come first in `lights`).
     pub area_lights: Vec<u32>,

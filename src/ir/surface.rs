@@ -35,6 +35,8 @@ struct Frame<'a> {
     uvs: &'a [[Vec2; 3]],
     /// The corner tangents the record's `attributes` index.
     tangents: &'a [[glam::Vec4; 3]],
+    /// The vertex colours the record's `attributes` index.
+    colors: &'a [[Vec3; 3]],
 }
 
 impl Frame<'_> {
@@ -101,6 +103,9 @@ impl Scene {
                 }
             }
         }
+        if t.vertex_color {
+            params.diffuse *= self.vertex_color(hit, time);
+        }
         if let Some(coats) = &t.coats {
             params.kind = Kind::Plastic(coats.at(params.gloss));
         }
@@ -156,6 +161,24 @@ impl Scene {
                 shading_normal::bumped_normal(n, dpdu, dpdv, dh_du, dh_dv)
             }
         }
+    }
+
+    /// The vertex colour at a hit: its mesh triangle's corners'
+    /// interpolated, white where it has none.
+    fn vertex_color(&self, hit: &Hit, time: f32) -> Vec3 {
+        let frame = self.frame(hit, time);
+        let Some(Prim {
+            shape: Shape::Triangle { attributes, .. },
+            ..
+        }) = frame.record
+        else {
+            return Vec3::ONE;
+        };
+        let Some(c) = frame.colors.get(*attributes as usize) else {
+            return Vec3::ONE;
+        };
+        let (u, v) = (hit.uv.x, hit.uv.y);
+        (1.0 - u - v) * c[0] + u * c[1] + v * c[2]
     }
 
     /// The tangent a mesh triangle's corners give at a hit (their own, a
@@ -221,6 +244,7 @@ impl Scene {
                 placement: None,
                 uvs: &self.uvs,
                 tangents: &self.tangents,
+                colors: &self.colors,
             };
         }
         let placement = &self.instances.placements[hit.instance as usize];
@@ -237,6 +261,7 @@ impl Scene {
             placement: Some(placement),
             uvs: &prototype.uvs,
             tangents: &prototype.tangents,
+            colors: &prototype.colors,
         }
     }
 

@@ -25,6 +25,8 @@ pub struct Geometry {
     pub uvs: Arc<Vec<[Vec2; 3]>>,
     /// Their corner tangents for normal maps.
     pub tangents: Arc<Vec<[Vec4; 3]>>,
+    /// Their vertex colours.
+    pub colors: Arc<Vec<[Vec3; 3]>>,
     /// Bounds of the bounded primitives over the shutter.
     pub bounds: Aabb,
     /// The BVH.
@@ -44,6 +46,7 @@ pub fn build(gathered: Gathered) -> Geometry {
         normals,
         uvs,
         tangents,
+        colors,
         meshes_without_uvs,
         shutter,
     } = gathered;
@@ -96,6 +99,7 @@ pub fn build(gathered: Gathered) -> Geometry {
         normals: Arc::new(normals),
         uvs: Arc::new(uvs),
         tangents: Arc::new(tangents),
+        colors: Arc::new(colors),
         bounds,
         wide: Arc::new(wide),
         unbounded: Arc::new(unbounded),

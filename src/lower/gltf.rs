@@ -381,6 +381,7 @@ struct Attributes {
     any_normals: bool,
     any_uvs: bool,
     any_tangents: bool,
+    any_colors: bool,
 }
 
 impl Attributes {
@@ -391,6 +392,9 @@ impl Attributes {
         }
         if !self.any_tangents {
             out.face_tangents.clear();
+        }
+        if !self.any_colors {
+            out.colors.clear();
         }
         if !self.any_uvs {
             out.uvs.clear();
@@ -424,11 +428,6 @@ fn read_mesh(
                 "mesh `{name}` has morph targets: its base shape is rendered"
             ));
         }
-        if primitive.get(&Semantic::Colors(0)).is_some() {
-            scene.notes.push(format!(
-                "mesh `{name}` has vertex colours, which ptsc does not read"
-            ));
-        }
         // A hostile file can point many primitives at one huge accessor:
         // the counts its accessors claim are checked before they are read.
         let (vertices, triangles) = claimed(&primitive, mode);
@@ -450,6 +449,8 @@ fn read_mesh(
         let read = read_primitive(&primitive, buffers, (mode, set));
         let (positions, normals, uvs, triangles, tangents) =
             read.map_err(|e| format!("mesh `{name}`: {e}"))?;
+        let colors = vertex_colors(&primitive, buffers, positions.len())
+            .map_err(|e| format!("mesh `{name}`: {e}"))?;
         if triangles.is_empty() {
             scene
                 .notes
@@ -483,6 +484,17 @@ fn read_mesh(
         let corners = corner_tangents(vertices, &triangles, tangents, wants);
         attributes.any_tangents |= corners.is_some();
         let corners = corners.unwrap_or_else(|| vec![[Vec4::ZERO; 3]; triangles.len()]);
+        attributes.any_colors |= colors.is_some();
+        match colors {
+            Some(c) => {
+                out.colors.resize(start_vertex, Vec3::ONE);
+                out.colors.extend(c);
+                if let Some(m) = primitive.material().index() {
+                    scene.colored_materials.push(m as u32);
+                }
+            }
+            None => out.colors.resize(out.positions.len(), Vec3::ONE),
+        }
         out.face_tangents
             .resize(out.triangles.len(), [Vec4::ZERO; 3]);
         out.face_tangents.extend(corners);
@@ -507,6 +519,44 @@ type Primitive = (
     Vec<[u32; 3]>,
     Option<Vec<[f32; 4]>>,
 );
+
+/// A primitive's `COLOR_0` (RGB or RGBA of floats or normalised
+/// integers; the alpha is not read), each within [0, 1], for its `count`
+/// vertices; `None` without.
+fn vertex_colors(
+    p: &gltf::Primitive,
+    buffers: &Buffers,
+    count: usize,
+) -> Result<Option<Vec<Vec3>>, String> {
+    let Some(a) = p.get(&Semantic::Colors(0)) else {
+        return Ok(None);
+    };
+    let rgb: Vec<[f32; 3]> = match a.dimensions() {
+        gltf::accessor::Dimensions::Vec4 => (gltf_accessor::floats::<4>(&a, buffers, "colours")?)
+            .into_iter()
+            .map(|[r, g, b, _]| [r, g, b])
+            .collect(),
+        _ => gltf_accessor::floats::<3>(&a, buffers, "colours")?,
+    };
+    if rgb.len() != count {
+        return Err(format!(
+            "the primitive has {} colours for {count} positions",
+            rgb.len()
+        ));
+    }
+    let unit = |c: f32| {
+        if c.is_finite() {
+            c.clamp(0.0, 1.0)
+        } else {
+            0.0
+        }
+    };
+    Ok(Some(
+        rgb.into_iter()
+            .map(|c| Vec3::from_array(c.map(unit)))
+            .collect(),
+    ))
+}
 
 /// The tangents at the corners of a primitive's `triangles` over its
 /// `vertices` (positions, normals and ptsc's texture coordinates, zero

@@ -48,6 +48,11 @@ pub fn read(doc: &gltf::Document, path: &Path, buffers: &Buffers, scene: &mut Fi
         .collect();
     for m in doc.materials() {
         let mapped = material(&m, &images, &mut scene.material_notes);
+        let mut mapped = mapped;
+        // glTF multiplies the base colour by `COLOR_0` where a primitive has it.
+        mapped.vertex_color = scene
+            .colored_materials
+            .contains(&(m.index().unwrap_or(usize::MAX) as u32));
         scene.materials.push(mapped);
         scene
             .material_names

@@ -371,6 +371,7 @@ pub fn build(gathered: Gathered, cache: &mut LowerCache) -> Instances {
                 normals: geometry.normals,
                 uvs: geometry.uvs,
                 tangents: geometry.tangents,
+                colors: geometry.colors,
                 bounds: geometry.bounds,
                 object_material,
                 object_from_group,

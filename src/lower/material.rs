@@ -82,7 +82,7 @@ pub fn lower_material(
     // An opacity texture is read by traversal (`lower_opacity`), not at
     // the hit.
     let shading_textures = (m.textures.iter()).any(|(i, _)| *i != TextureInput::Opacity);
-    if !shading_textures && !uneven {
+    if !shading_textures && !uneven && !m.vertex_color {
         return Material::new(&params);
     }
     let textured_gloss = m.textures.iter().any(|(i, _)| *i == TextureInput::Gloss);
@@ -100,6 +100,7 @@ pub fn lower_material(
         normal: None,
         coats,
         tangent: uneven,
+        vertex_color: m.vertex_color,
     };
     for (input, t) in m
         .textures

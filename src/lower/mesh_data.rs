@@ -22,6 +22,9 @@ pub struct MeshData {
     /// Vertex texture coordinates, (0, 0) at an image's bottom-left (empty
     /// when the file has none).
     pub uvs: Vec<Vec2>,
+    /// Vertex colours, linear RGB in [0, 1] (empty when the file has none;
+    /// white for the vertices of a primitive without).
+    pub colors: Vec<Vec3>,
     /// Triangles as vertex indices.
     pub triangles: Vec<[u32; 3]>,
     /// Per triangle, the tangent at each of its corners for normal maps
@@ -60,6 +63,9 @@ pub struct FileScene {
     pub materials: Vec<Material>,
     /// Their names in the file (empty for a material without one).
     pub material_names: Vec<String>,
+    /// The materials of primitives with vertex colours (they multiply
+    /// their base colour by them), by index.
+    pub colored_materials: Vec<u32>,
     /// Images held inside the file (GLB chunks, data URIs) under the
     /// paths its materials' textures read them by.
     pub embedded: Vec<(PathBuf, Arc<Vec<u8>>)>,
@@ -203,6 +209,7 @@ impl MeshData {
                 positions: &self.positions,
                 normals: &self.normals,
                 uvs: &self.uvs,
+                colors: &self.colors,
                 triangles,
                 tangents,
                 part: false,
@@ -214,6 +221,7 @@ impl MeshData {
             positions: self.positions.get(v.clone()).unwrap_or(&[]),
             normals: self.normals.get(v.clone()).unwrap_or(&[]),
             uvs: self.uvs.get(v.clone()).unwrap_or(&[]),
+            colors: self.colors.get(v.clone()).unwrap_or(&[]),
             triangles: (self.triangles[part.triangles.start as usize..part.triangles.end as usize])
                 .iter()
                 .map(|t| t.map(|i| i - base))
@@ -248,6 +256,8 @@ pub struct MeshView<'a> {
     pub normals: &'a [Vec3],
     /// Vertex texture coordinates (empty: none).
     pub uvs: &'a [Vec2],
+    /// Vertex colours (empty: none).
+    pub colors: &'a [Vec3],
     /// Triangles as indices into the lists above.
     pub triangles: Cow<'a, [[u32; 3]]>,
     /// Each triangle's corner tangents (empty: none; see

@@ -36,6 +36,8 @@ pub struct Gathered {
     /// Their corner tangents for normal maps, by the same index (see
     /// [`crate::ir::Scene::tangents`]).
     pub tangents: Vec<[Vec4; 3]>,
+    /// Their vertex colours, by the same index (white where none).
+    pub colors: Vec<[Vec3; 3]>,
     /// The mesh objects whose files have no texture coordinates.
     pub meshes_without_uvs: Vec<u32>,
     /// The shutter interval the primitives are bounded over.
@@ -50,11 +52,15 @@ impl Gathered {
     fn attributes(
         &mut self,
         t: [u32; 3],
-        (normals, uvs): (&[Vec3], &[glam::Vec2]),
+        (normals, uvs, colors): (&[Vec3], &[glam::Vec2], &[Vec3]),
         tangents: Option<[Vec4; 3]>,
     ) -> u32 {
-        if normals.is_empty() && uvs.is_empty() && tangents.is_none() {
+        if normals.is_empty() && uvs.is_empty() && colors.is_empty() && tangents.is_none() {
             return u32::MAX;
+        }
+        if !colors.is_empty() {
+            (self.colors).resize(self.normals.len(), [Vec3::ONE; 3]);
+            self.colors.push(t.map(|i| colors[i as usize]));
         }
         if let Some(tangents) = tangents {
             // Earlier triangles without tangents: none (w = 0).
@@ -397,7 +403,10 @@ impl Gathering<'_> {
         }
         // A static mesh without vertex attributes keeps its triangles
         // as vertex indices: most of them will never need a record.
-        let plain = !use_normals && !use_uvs && !use_tangents && velocity == Vec3::ZERO;
+        let use_colors = view.colors.len() == view.positions.len() && !view.colors.is_empty();
+        let colors = if use_colors { view.colors } else { &[] };
+        let plain =
+            !use_normals && !use_uvs && !use_tangents && !use_colors && velocity == Vec3::ZERO;
         let mut kept: Vec<[u32; 3]> = Vec::new();
         if plain {
             kept.reserve_exact(view.triangles.len());
@@ -424,7 +433,9 @@ impl Gathering<'_> {
             let tangents = (view.tangents.get(k))
                 .filter(|_| use_tangents)
                 .map(|c| c.map(tangent));
-            let attributes = self.out.attributes(*t, (&vnormals, view.uvs), tangents);
+            let attributes = self
+                .out
+                .attributes(*t, (&vnormals, view.uvs, colors), tangents);
             let shape = Shape::Triangle {
                 p0,
                 e1,

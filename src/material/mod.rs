@@ -107,6 +107,9 @@ pub struct Textured {
     pub coats: Option<std::sync::Arc<plastic::CoatFamily>>,
     /// Whether each hit's tangent is needed (a metal rough unevenly).
     pub tangent: bool,
+    /// Whether the diffuse colour is multiplied by the mesh's vertex
+    /// colours at the hit.
+    pub vertex_color: bool,
 }
 
 /// A material parameter a texture can give.

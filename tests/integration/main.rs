@@ -15,7 +15,7 @@ mod fmt;
 mod folders;
 mod frames;
 mod gltf;
-mod gltf_tangents;
+mod gltf_attributes;
 mod golden;
 mod group_lights;
 mod hostile;

@@ -1,6 +1,8 @@
-//! Normal maps on glTF meshes take their frame from tangents (`lower::
-//! tangents`): the file's `TANGENT` with its handedness, else MikkTSpace's,
-//! smooth across the triangles of a curved mesh as the maps are baked.
+//! A glTF mesh's vertex attributes beyond positions: normal maps take
+//! their frame from tangents (`lower::tangents`: the file's `TANGENT` with
+//! its handedness, else MikkTSpace's, smooth across the triangles of a
+//! curved mesh as the maps are baked), and `COLOR_0` multiplies the base
+//! colour.
 
 use crate::gltf::Doc;
 use glam::Vec3;
@@ -167,4 +169,76 @@ fn generated_tangents_do_not_jump_where_the_triangles_meet() {
     assert!((below - above).length() < 0.03, "{below} vs {above}");
     // Tilted 45° off the normal, towards +x on the whole.
     assert!((below.z - 0.707).abs() < 0.05 && below.x > 0.5, "{below}");
+}
+
+/// A square facing +z whose vertices are coloured `rgb` (as floats, or as
+/// normalised bytes with an alpha), its material white.
+fn coloured_square(rgb: [f32; 3], bytes: bool) -> Doc {
+    let mut d = Doc::default();
+    d.materials.push(json!({"pbrMetallicRoughness": {
+        "baseColorFactor": [1, 1, 1, 1], "metallicFactor": 0.0, "roughnessFactor": 0.5}}));
+    let p = [-0.5, 0.0, 0.0, 0.5, 0.0, 0.0, 0.5, 1.0, 0.0, -0.5, 1.0, 0.0];
+    let position = d.floats(&p, "VEC3", 3);
+    let color = match bytes {
+        false => json!(d.floats(&rgb.repeat(4), "VEC3", 3)),
+        true => {
+            let rgba: Vec<u8> = [rgb.map(|c| (c * 255.0).round() as u8).to_vec(), vec![255]]
+                .concat()
+                .repeat(4);
+            let view = d.view(&rgba);
+            d.accessors
+                .push(json!({"bufferView": view, "componentType": 5121,
+                "normalized": true, "count": 4, "type": "VEC4"}));
+            json!(d.accessors.len() - 1)
+        }
+    };
+    let indices = d.indices(&[0, 1, 2, 0, 2, 3]);
+    d.meshes.push(
+        json!({"primitives": [{"attributes": {"POSITION": position, "COLOR_0": color},
+        "indices": indices, "material": 0}]}),
+    );
+    let node = d.node(json!({"mesh": 0}));
+    d.roots.push(node);
+    d
+}
+
+#[test]
+fn vertex_colours_multiply_the_base_colour() {
+    let stage = "camera { position <0, 0.5, 2> look_at <0, 0.5, 0> fov 50 }
+render { resolution <32, 24> samples 8 }
+sky { sun_elevation 50 }
+";
+    let written = format!(
+        "{stage}quad {{ corner <-0.5, 0, 0> edge1 <1, 0, 0> edge2 <0, 1, 0>
+            material {{ type principled base_color rgb <0.8, 0.2, 0.2> roughness 0.5 }} }}"
+    );
+    let dir = crate::temp_dir_with(&[("written.pts", &written)]);
+    let render = |name: &str| {
+        let path = dir.path().join(name);
+        let c = compile_file(&path, Options::default()).unwrap();
+        let ir =
+            c.ir.as_ref()
+                .unwrap_or_else(|| panic!("{}", c.diagnostics.render_human(&c.sources, false)));
+        crate::render_pixels(ir)
+    };
+    let reference = render("written.pts");
+    for bytes in [false, true] {
+        std::fs::write(
+            dir.path().join("c.glb"),
+            coloured_square([0.8, 0.2, 0.2], bytes).glb(),
+        )
+        .unwrap();
+        std::fs::write(
+            dir.path().join("s.pts"),
+            format!("{stage}mesh {{ file \"c.glb\" }}"),
+        )
+        .unwrap();
+        let pixels = render("s.pts");
+        let differing = (pixels.iter().zip(&reference))
+            .filter(|(p, q)| (0..3).any(|k| (p[k] - q[k]).abs() > 1e-3))
+            .count();
+        assert!(differing <= 6, "bytes {bytes}: {differing} pixels differ");
+        let red = pixels.iter().filter(|p| p[0] > 2.0 * p[1]).count();
+        assert!(red > 100, "the square is red in {red} pixels");
+    }
 }

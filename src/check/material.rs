@@ -37,6 +37,7 @@ pub fn material(p: &Params, name: Option<String>, span: Span, diags: &mut Diagno
         opacity_cutoff: (p.given("opacity_cutoff"))
             .then(|| r.num_in("opacity_cutoff", 0.0, 1.0, false, 0.5)),
         vertex_color: r.boolean("vertex_color", false),
+        normal_scale: r.num_in("normal_scale", -100.0, 100.0, false, 1.0),
         span,
     };
     // A textured parameter stands for its brightest value in the checks
@@ -66,6 +67,12 @@ pub fn material(p: &Params, name: Option<String>, span: Span, diags: &mut Diagno
         }
     }
     opacity_checks(p, &mut m, diags);
+    if let Some((_, s)) = p.get("normal_scale") {
+        if !p.given("normal_map") {
+            let help = "give `normal_map` a texture, e.g. `normal_map image { file \"bricks_normal.png\" }`";
+            diags.push(no_effect_without("normal_scale", "normal_map", *s, help));
+        }
+    }
     if let Some((_, s)) = p.get("bump_height") {
         if !p.given("bump") {
             let help = "give `bump` a texture, e.g. `bump noise { scale 0.05 }`";

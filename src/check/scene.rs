@@ -252,6 +252,8 @@ pub struct Material {
     /// Whether the diffuse colour is multiplied by the mesh's vertex
     /// colours.
     pub vertex_color: bool,
+    /// The normal map's tangent and bitangent components' scale.
+    pub normal_scale: f64,
     /// Where it is declared.
     pub span: Span,
 }
@@ -278,6 +280,7 @@ impl Material {
             opacity: 1.0,
             opacity_cutoff: None,
             vertex_color: false,
+            normal_scale: 1.0,
             span,
         }
     }

@@ -316,6 +316,8 @@ pub const MATERIAL: &[ParamSpec] = &[
     )
     .textured()
         .doc("a tangent-space normal map (texture) bending the shading normal. Default none"),
+    p("normal_scale", Ty::Num, "0.5")
+        .doc("with `normal_map`: scales the map's tangent and bitangent components before they are normalised (glTF's `normalTexture.scale`): 0 flattens it, more than 1 steepens it, −100..100. Default 1"),
     p("bump", Ty::Texture, "noise { scale 0.05 }").textured()
         .doc("a height field (texture) bending the shading normal, times `bump_height`. Default none"),
     p("bump_height", Ty::Num, "0.01").of(Magnitude)

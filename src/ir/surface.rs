@@ -126,11 +126,11 @@ impl Scene {
         let n = hit.n_shading;
         let (dpdu, dpdv) = self.derivatives(hit, time);
         match normal {
-            NormalInput::Map(i) => {
-                let texel = self.textures[i as usize].eval(at);
+            NormalInput::Map { texture, scale } => {
+                let texel = self.textures[texture as usize].eval(at);
                 match self.corner_tangent(hit, time) {
-                    Some((t, side)) => shading_normal::mapped_normal_along(texel, n, t, side),
-                    None => shading_normal::mapped_normal(texel, n, dpdu),
+                    Some(tangent) => shading_normal::mapped_normal_along(texel, scale, n, tangent),
+                    None => shading_normal::mapped_normal(texel, scale, n, dpdu),
                 }
             }
             NormalInput::Bump { texture, height } => {

@@ -11,7 +11,7 @@
 //! - `metallicFactor`, `roughnessFactor` → `metallic` and the perceptual
 //!   roughness; `metallicRoughnessTexture` → both, from its blue and green
 //!   channels times the factors;
-//! - `normalTexture` → `normal_map` (its `scale` is not followed unless 1);
+//! - `normalTexture` → `normal_map`, its `scale` → `normal_scale`;
 //! - `emissiveFactor` × `KHR_materials_emissive_strength`, `emissiveTexture`
 //!   → `emission`;
 //! - `KHR_materials_ior` → `ior`; `KHR_materials_transmission` →
@@ -231,6 +231,7 @@ pub fn material(
         clearcoat_roughness: number(clearcoat, "clearcoatRoughnessFactor").map_or(0.0, unit),
     });
     textures(m, images, &mut out, notes);
+    out.normal_scale = m.normal_texture().map_or(1.0, |n| n.scale() as f64);
     match m.alpha_mode() {
         gltf::material::AlphaMode::Opaque if alpha < 1.0 => notes.push(format!(
             "material `{name}`: its alpha {alpha} has no effect under `alphaMode` OPAQUE"
@@ -344,10 +345,6 @@ fn textures(
         );
     }
     if let Some(normal) = m.normal_texture() {
-        if normal.scale() != 1.0 {
-            let scale = normal.scale();
-            add_note(format!("its normal map's scale {scale} is read as 1"));
-        }
         let transform = normal
             .extension_value("KHR_texture_transform")
             .map(transform_of_json);

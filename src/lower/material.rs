@@ -138,7 +138,10 @@ pub fn lower_material(
             TextureInput::Metallic => Input::Metallic,
             TextureInput::Opacity => unreachable!("filtered out above"),
             TextureInput::NormalMap => {
-                textured.normal = Some(NormalInput::Map(index));
+                textured.normal = Some(NormalInput::Map {
+                    texture: index,
+                    scale: m.normal_scale as f32,
+                });
                 continue;
             }
             TextureInput::Bump => {

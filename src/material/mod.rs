@@ -138,7 +138,12 @@ pub enum Input {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum NormalInput {
     /// A tangent-space normal map (see `texture::shading_normal`).
-    Map(u32),
+    Map {
+        /// The texture.
+        texture: u32,
+        /// Its tangent and bitangent components' scale.
+        scale: f32,
+    },
     /// A bump map: the texture's luminance times `height` displaces the
     /// surface along its normal.
     Bump {

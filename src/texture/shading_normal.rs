@@ -20,12 +20,22 @@ pub fn tangent_frame(n: Vec3, dpdu: Vec3) -> (Vec3, Vec3) {
     (t, n.cross(t))
 }
 
+/// A normal map's texel as a direction in its tangent frame: components
+/// in [0, 1] stand for [−1, 1], the tangent's and bitangent's times
+/// `scale` (glTF's `normalTexture.scale`: 0 flattens the map, 1 is as
+/// baked).
+fn decoded(texel: Vec3, scale: f32) -> Vec3 {
+    let m = texel * 2.0 - Vec3::ONE;
+    Vec3::new(m.x * scale, m.y * scale, m.z)
+}
+
 /// The normal a tangent-space normal map gives: the texel's components in
 /// [0, 1] stand for [−1, 1] along the tangent, the bitangent and the normal
-/// (the OpenGL convention: green points along +v). A texel that decodes to
-/// no direction leaves the normal as it is.
-pub fn mapped_normal(texel: Vec3, n: Vec3, dpdu: Vec3) -> Vec3 {
-    let m = texel * 2.0 - Vec3::ONE;
+/// (the OpenGL convention: green points along +v), the first two times
+/// `scale`. A texel that decodes to no direction leaves the normal as it
+/// is.
+pub fn mapped_normal(texel: Vec3, scale: f32, n: Vec3, dpdu: Vec3) -> Vec3 {
+    let m = decoded(texel, scale);
     let (t, b) = tangent_frame(n, dpdu);
     (m.x * t + m.y * b + m.z * n).normalize_or(n)
 }
@@ -34,8 +44,8 @@ pub fn mapped_normal(texel: Vec3, n: Vec3, dpdu: Vec3) -> Vec3 {
 /// perpendicular to `n`) and the bitangent n × t on its `side` (±1; −1
 /// where the texture coordinates are mirrored), as glTF defines a normal
 /// map's frame.
-pub fn mapped_normal_along(texel: Vec3, n: Vec3, t: Vec3, side: f32) -> Vec3 {
-    let m = texel * 2.0 - Vec3::ONE;
+pub fn mapped_normal_along(texel: Vec3, scale: f32, n: Vec3, (t, side): (Vec3, f32)) -> Vec3 {
+    let m = decoded(texel, scale);
     let (t, b) = tangent_frame(n, t);
     (m.x * t + side * m.y * b + m.z * n).normalize_or(n)
 }
@@ -111,14 +121,22 @@ mod tests {
     fn a_flat_normal_map_keeps_the_normal_and_others_tilt_it() {
         let n = Vec3::Z;
         let flat = Vec3::new(0.5, 0.5, 1.0);
-        assert!((mapped_normal(flat, n, Vec3::X) - n).length() < 1e-6);
+        assert!((mapped_normal(flat, 1.0, n, Vec3::X) - n).length() < 1e-6);
         // Red tilts towards +u, green towards +v (= n × u).
-        let m = mapped_normal(Vec3::new(1.0, 0.5, 1.0), n, Vec3::X);
+        let m = mapped_normal(Vec3::new(1.0, 0.5, 1.0), 1.0, n, Vec3::X);
         assert!((m - Vec3::new(1.0, 0.0, 1.0).normalize()).length() < 1e-6);
-        let m = mapped_normal(Vec3::new(0.5, 1.0, 1.0), n, Vec3::X);
+        let m = mapped_normal(Vec3::new(0.5, 1.0, 1.0), 1.0, n, Vec3::X);
         assert!((m - Vec3::new(0.0, 1.0, 1.0).normalize()).length() < 1e-6);
         // A texel that decodes to zero length leaves the normal.
-        assert_eq!(mapped_normal(Vec3::splat(0.5), n, Vec3::X), n);
+        assert_eq!(mapped_normal(Vec3::splat(0.5), 1.0, n, Vec3::X), n);
+        // A scale of 0 flattens the map; 2 steepens it as glTF's scale.
+        let texel = Vec3::new(0.75, 0.5, 0.75);
+        assert!((mapped_normal(texel, 0.0, n, Vec3::X) - n).length() < 1e-6);
+        let steep = mapped_normal(texel, 2.0, n, Vec3::X);
+        assert!(
+            (steep - Vec3::new(1.0, 0.0, 0.5).normalize()).length() < 1e-6,
+            "{steep}"
+        );
     }
 
     #[test]

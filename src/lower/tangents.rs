@@ -1,7 +1,10 @@
 //! Tangents for normal maps on triangle meshes, as glTF asks: a file's
 //! `TANGENT`, or when it has none, MikkTSpace's (Mikkelsen 2008,
 //! "Simulation of wrinkled surfaces revisited"; the tangent space Blender
-//! and the glTF tools bake normal maps in) through the `mikktspace` crate.
+//! and the glTF tools bake normal maps in) through the `bevy_mikktspace`
+//! crate (a port in safe Rust, with no dependencies, that answers every
+//! input: the C translation in the `mikktspace` crate panicked on some
+//! fuzzed files).
 //! Its tangents follow ∂p/∂u smoothed over a vertex's triangles, so a
 //! normal map's frame does not jump at the edges of a curved mesh as one
 //! made per triangle does.
@@ -24,7 +27,7 @@ impl Faces<'_> {
     }
 }
 
-impl mikktspace::Geometry for Faces<'_> {
+impl bevy_mikktspace::Geometry for Faces<'_> {
     fn num_faces(&self) -> usize {
         self.triangles.len()
     }
@@ -45,8 +48,17 @@ impl mikktspace::Geometry for Faces<'_> {
         self.uvs[self.vertex(face, vert)].to_array()
     }
 
-    fn set_tangent_encoded(&mut self, tangent: [f32; 4], face: usize, vert: usize) {
-        self.out[face][vert] = Vec4::from_array(tangent);
+    fn set_tangent(
+        &mut self,
+        tangent: Option<bevy_mikktspace::TangentSpace>,
+        face: usize,
+        vert: usize,
+    ) {
+        // A corner it finds no tangent for (a degenerate face alone) keeps
+        // w = 0: its triangle's own ∂p/∂u serves.
+        if let (Some(t), Some(slot)) = (tangent, self.out.get_mut(face)) {
+            slot[vert] = Vec4::from_array(t.tangent_encoded());
+        }
     }
 }
 
@@ -79,7 +91,8 @@ pub fn generate(
         triangles,
         out: vec![[Vec4::ZERO; 3]; triangles.len()],
     };
-    mikktspace::generate_tangents(&mut faces).then_some(faces.out)
+    bevy_mikktspace::generate_tangents(&mut faces).ok()?;
+    Some(faces.out)
 }
 
 #[cfg(test)]

@@ -35,6 +35,9 @@ impl Checker<'_> {
         let mut pending = Vec::new();
         let mut seen: HashMap<&str, Span> = HashMap::new();
         for swap in written {
+            // Resolved first: an unknown material is reported even in a
+            // pair that repeats a name (every mistake at once).
+            let material = self.object_material(&[(&swap.material, swap.span)], swap.span)?;
             if let Some(first) = seen.get(swap.name.as_str()) {
                 self.diags.push(
                     Diagnostic::error(
@@ -49,7 +52,6 @@ impl Checker<'_> {
                 continue;
             }
             seen.insert(&swap.name, swap.name_span);
-            let material = self.object_material(&[(&swap.material, swap.span)], swap.span)?;
             if let (true, MaterialRef::Named(name)) = (material == PENDING_MATERIAL, &swap.material)
             {
                 pending.push((out.len(), name.clone()));

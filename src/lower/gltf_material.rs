@@ -46,13 +46,13 @@ pub fn read(doc: &gltf::Document, path: &Path, buffers: &Buffers, scene: &mut Fi
         .images()
         .map(|image| image_path(doc, &image, (path, buffers), scene))
         .collect();
+    // A set: a hostile file's many materials and primitives would make a
+    // list's search quadratic.
+    let colored: std::collections::HashSet<u32> = scene.colored_materials.iter().copied().collect();
     for m in doc.materials() {
-        let mapped = material(&m, &images, &mut scene.material_notes);
-        let mut mapped = mapped;
+        let mut mapped = material(&m, &images, &mut scene.material_notes);
         // glTF multiplies the base colour by `COLOR_0` where a primitive has it.
-        mapped.vertex_color = scene
-            .colored_materials
-            .contains(&(m.index().unwrap_or(usize::MAX) as u32));
+        mapped.vertex_color = m.index().is_some_and(|k| colored.contains(&(k as u32)));
         scene.materials.push(mapped);
         scene
             .material_names

@@ -16,6 +16,16 @@ use std::f32::consts::TAU;
 /// of one texel; `tangents`: the file's, each vertex's `w` given.
 const SEGMENTS: usize = 8;
 
+/// Material 0 of `d`: a normal map of one `texel`, held in the file.
+fn normal_mapped(d: &mut Doc, texel: [u8; 3]) {
+    let png = crate::gltf::flat_png(texel);
+    let view = d.view(&png);
+    d.images
+        .push(json!({"bufferView": view, "mimeType": "image/png"}));
+    d.textures.push(json!({"source": 0}));
+    d.materials.push(json!({"normalTexture": {"index": 0}}));
+}
+
 fn cylinder(texel: [u8; 3], tangents: Option<f32>) -> Doc {
     let mut d = Doc::default();
     let (mut p, mut n, mut uv, mut t) = (vec![], vec![], vec![], vec![]);
@@ -34,12 +44,7 @@ fn cylinder(texel: [u8; 3], tangents: Option<f32>) -> Doc {
         let (a, b) = (2 * i, 2 * i + 2);
         indices.extend([a, b, b + 1, a, b + 1, a + 1]);
     }
-    let png = crate::gltf::flat_png(texel);
-    let view = d.view(&png);
-    d.images
-        .push(json!({"bufferView": view, "mimeType": "image/png"}));
-    d.textures.push(json!({"source": 0}));
-    d.materials.push(json!({"normalTexture": {"index": 0}}));
+    normal_mapped(&mut d, texel);
     let mut attributes = json!({
         "POSITION": d.floats(&p, "VEC3", 3),
         "NORMAL": d.floats(&n, "VEC3", 3),
@@ -125,12 +130,7 @@ fn the_files_tangents_keep_their_handedness() {
 /// from one triangle to the other; its material a normal map of one texel.
 fn skewed_square(texel: [u8; 3]) -> Doc {
     let mut d = Doc::default();
-    let png = crate::gltf::flat_png(texel);
-    let view = d.view(&png);
-    d.images
-        .push(json!({"bufferView": view, "mimeType": "image/png"}));
-    d.textures.push(json!({"source": 0}));
-    d.materials.push(json!({"normalTexture": {"index": 0}}));
+    normal_mapped(&mut d, texel);
     let p = [0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 1.0, 1.0, 0.0, 0.0, 1.0, 0.0];
     // glTF's v runs down: ptsc's are (0, 0), (1, 0.4), (1, 1), (0, 1).
     let uv = [0.0, 1.0, 1.0, 0.6, 1.0, 0.0, 0.0, 0.0];

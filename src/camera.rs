@@ -22,6 +22,11 @@ pub struct Camera {
 }
 
 impl Camera {
+    /// Where the camera is (the lens's centre).
+    pub fn position(&self) -> Vec3 {
+        self.position
+    }
+
     /// Builds the camera for an image of `width` × `height`: its position
     /// and orthonormal frame (`forward`, `right`, `up`), the vertical field
     /// of view in radians, the lens (aperture radius, focus distance; a

@@ -103,7 +103,8 @@ impl Checker<'_> {
         }
     }
 
-    /// A settings block (`render`, `camera`, `environment`, `sky`): kept,
+    /// A settings block (`render`, `camera`, `environment`, `sky`,
+    /// `atmosphere`): kept,
     /// unless given before.
     fn setting(
         &mut self,
@@ -160,6 +161,15 @@ impl Checker<'_> {
                     return;
                 }
                 self.sky = sky;
+            }
+            kinds::Setting::Atmosphere => {
+                let atmosphere = blocks::atmosphere(p, span, &mut self.diags);
+                if let Some(a) = &self.atmosphere {
+                    self.diags
+                        .push(duplicate_block("atmosphere", kind_span, a.span));
+                    return;
+                }
+                self.atmosphere = Some(atmosphere);
             }
         }
     }

@@ -298,3 +298,24 @@ pub fn sky(p: &Params, span: Span, diags: &mut Diagnostics) -> Option<Sky> {
         span,
     })
 }
+
+/// `atmosphere { }` → the medium around the objects.
+pub fn atmosphere(p: &Params, span: Span, diags: &mut Diagnostics) -> Atmosphere {
+    let mut r = Reader { p, diags };
+    let absorption = r.color("absorption", [0.0; 3]);
+    let medium = super::medium::read(p, absorption, diags);
+    let mut r = Reader { p, diags };
+    let center = match p.get("center") {
+        Some((Val::Vector(v), _)) if v.len() == 3 => Some(DVec3::new(v[0], v[1], v[2])),
+        _ => None,
+    };
+    let radius = p
+        .given("radius")
+        .then(|| r.num_in("radius", 0.0, 1e9, true, 1.0));
+    Atmosphere {
+        medium,
+        center,
+        radius,
+        span,
+    }
+}

@@ -38,6 +38,7 @@ impl Checker<'_> {
                 background,
                 environment: self.environment.take(),
                 sky: self.sky.take(),
+                atmosphere: self.atmosphere.take(),
                 materials: std::mem::take(&mut self.materials),
                 objects: std::mem::take(&mut self.objects),
                 lights: std::mem::take(&mut self.lights),

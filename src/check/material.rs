@@ -31,6 +31,8 @@ pub fn material(p: &Params, name: Option<String>, span: Span, diags: &mut Diagno
         ior_outside: r.num_in("ior_outside", 1.0, 10.0, false, 1.0),
         roughness: roughness(&mut r),
         absorption: r.color("absorption", [0.0; 3]),
+        scattering: [0.0; 3],
+        anisotropy: 0.0,
         emission: r.color("emission", [0.0; 3]),
         two_sided: r.boolean("two_sided", false),
         opacity: r.num_in("opacity", 0.0, 1.0, false, 1.0),
@@ -67,6 +69,7 @@ pub fn material(p: &Params, name: Option<String>, span: Span, diags: &mut Diagno
         }
     }
     opacity_checks(p, &mut m, diags);
+    medium_checks(p, &mut m, diags);
     if let Some((_, s)) = p.get("normal_scale") {
         if !p.given("normal_map") {
             let help = "give `normal_map` a texture, e.g. `normal_map image { file \"bricks_normal.png\" }`";
@@ -98,6 +101,25 @@ pub fn material(p: &Params, name: Option<String>, span: Span, diags: &mut Diagno
         });
     }
     m
+}
+
+/// The medium inside: read when the material has an inside (it refracts,
+/// or is `type none`), reported as having no effect otherwise.
+fn medium_checks(p: &Params, m: &mut Material, diags: &mut Diagnostics) {
+    let inside =
+        m.transmission > 0.0 || matches!(m.kind, MaterialKind::Dielectric | MaterialKind::None);
+    let opaque_model = matches!(
+        m.kind,
+        MaterialKind::Conductor { .. } | MaterialKind::Plastic | MaterialKind::ThinDielectric
+    );
+    if !inside && !opaque_model {
+        super::medium::warn_without_inside(p, diags);
+        return;
+    }
+    let medium = super::medium::read(p, m.absorption, diags);
+    m.absorption = medium.absorption;
+    m.scattering = medium.scattering;
+    m.anisotropy = medium.anisotropy;
 }
 
 /// `opacity` and `opacity_cutoff`: a cutout cannot emit (light sampling
@@ -237,7 +259,7 @@ fn mix_checks(p: &Params, m: &mut Material, diags: &mut Diagnostics) {
         }
     }
     if let Some((_, s)) = p.get("absorption") {
-        if m.transmission == 0.0 {
+        if m.transmission == 0.0 && !p.given("density") {
             diags.push(
                 Diagnostic::warning(
                     codes::NO_EFFECT,
@@ -245,7 +267,7 @@ fn mix_checks(p: &Params, m: &mut Material, diags: &mut Diagnostics) {
                     *s,
                 )
                 .with_label("ignored")
-                .with_help("absorption acts inside transparent objects: add `transmission 1`"),
+                .with_help("absorption acts inside transparent objects: add `transmission 1`, or `type none` for a medium without a surface"),
             );
         }
     }
@@ -374,6 +396,7 @@ fn kind(r: &mut Reader) -> MaterialKind {
             })
         }
         MaterialType::Mix => MaterialKind::Mix,
+        MaterialType::None => MaterialKind::None,
     }
 }
 
@@ -408,6 +431,7 @@ fn model_name(kind: &MaterialKind) -> &'static str {
         MaterialKind::Dielectric => "a dielectric",
         MaterialKind::ThinDielectric => "a thin dielectric",
         MaterialKind::Principled(_) => "a principled material",
+        MaterialKind::None => "a `type none` boundary",
     }
 }
 
@@ -417,11 +441,11 @@ fn model_checks(p: &Params, m: &mut Material, diags: &mut Diagnostics) {
     let model = model_name(&m.kind);
     let (ignored, help): (&[&str], &str) = match m.kind {
         MaterialKind::Conductor { .. } => (
-            &["diffuse", "transmission", "absorption", "ior"],
+            &["diffuse", "transmission", "absorption", "ior", "scattering", "anisotropy", "density", "medium_color"],
             "a metal is its `preset` (or `eta` and `k`), tinted by `reflection` and roughened by `gloss`",
         ),
         MaterialKind::Plastic => (
-            &["transmission", "absorption", "preset", "eta", "k", "multiscatter", "roughness"],
+            &["transmission", "absorption", "preset", "eta", "k", "multiscatter", "roughness", "scattering", "anisotropy", "density", "medium_color"],
             "a plastic is its `diffuse` base under a coat of index `ior`, roughened by `gloss`",
         ),
         MaterialKind::Dielectric => (
@@ -445,8 +469,32 @@ fn model_checks(p: &Params, m: &mut Material, diags: &mut Diagnostics) {
                 "k",
                 "multiscatter",
                 "roughness",
+                "scattering",
+                "anisotropy",
+                "density",
+                "medium_color",
             ],
             "a thin pane is its `ior` (and `ior_outside`) alone",
+        ),
+        MaterialKind::None => (
+            &[
+                "diffuse",
+                "reflection",
+                "transmission",
+                "gloss",
+                "ior",
+                "ior_outside",
+                "preset",
+                "eta",
+                "k",
+                "multiscatter",
+                "roughness",
+                "emission",
+                "two_sided",
+                "normal_map",
+                "bump",
+            ],
+            "a `type none` boundary has no surface: it is the medium inside (`absorption`, `scattering` or `density`, `anisotropy`)",
         ),
     };
     for &name in ignored {
@@ -487,6 +535,8 @@ fn model_checks(p: &Params, m: &mut Material, diags: &mut Diagnostics) {
             "reflection" => m.reflection = [0.0; 3],
             "transmission" => m.transmission = 0.0,
             "absorption" => m.absorption = [0.0; 3],
+            "scattering" => m.scattering = [0.0; 3],
+            "emission" => m.emission = [0.0; 3],
             "gloss" => m.gloss = 0.0,
             _ => {}
         }

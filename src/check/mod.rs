@@ -13,6 +13,7 @@ mod include;
 pub mod kinds;
 mod loops;
 mod material;
+pub mod medium;
 mod objects;
 mod param_errors;
 pub mod params;
@@ -278,6 +279,7 @@ struct Checker<'f> {
     environment: Option<scene::Environment>,
     /// The sky block, if any.
     sky: Option<scene::Sky>,
+    atmosphere: Option<scene::Atmosphere>,
     materials: Vec<Material>,
     material_names: HashMap<String, MaterialEntry>,
     /// The material of objects that name none, once one needs it.
@@ -339,6 +341,7 @@ impl<'f> Checker<'f> {
             background: None,
             environment: None,
             sky: None,
+            atmosphere: None,
             materials: Vec::new(),
             material_names: HashMap::new(),
             default_material: None,

@@ -171,6 +171,8 @@ pub enum MaterialType {
     ThinDielectric,
     /// Burley's principled model.
     Principled,
+    /// No surface: the boundary of a medium.
+    None,
 }
 
 named_values!(MaterialType {
@@ -180,6 +182,7 @@ named_values!(MaterialType {
     "dielectric" => Dielectric,
     "thin_dielectric" => ThinDielectric,
     "principled" => Principled,
+    "none" => None,
 });
 
 /// A material's scattering model (`type`).
@@ -206,6 +209,9 @@ pub enum MaterialKind {
     /// Burley's principled model: its base colour is `diffuse`, its
     /// roughness `gloss`, its refracting share `transmission`.
     Principled(PrincipledParams),
+    /// No surface (`type none`): light passes through; the boundary of
+    /// the medium inside.
+    None,
 }
 
 /// A material, resolved.
@@ -237,8 +243,13 @@ pub struct Material {
     /// A metal's GGX roughness along ∂p/∂u and ∂p/∂v, when given as such
     /// (`roughness`) rather than through `gloss`.
     pub roughness: Option<[f64; 2]>,
-    /// Beer's-law absorption coefficient per unit length inside.
+    /// Absorption coefficient per unit length of the medium inside
+    /// (Beer's law in glass).
     pub absorption: Rgb,
+    /// Scattering coefficient per unit length of the medium inside.
+    pub scattering: Rgb,
+    /// The medium's Henyey–Greenstein asymmetry g.
+    pub anisotropy: f64,
     /// Emitted radiance.
     pub emission: Rgb,
     /// Whether emission leaves both sides.
@@ -275,6 +286,8 @@ impl Material {
             ior_outside: 1.0,
             roughness: None,
             absorption: [0.0; 3],
+            scattering: [0.0; 3],
+            anisotropy: 0.0,
             emission: [0.0; 3],
             two_sided: false,
             opacity: 1.0,
@@ -500,6 +513,22 @@ impl Light {
     }
 }
 
+/// The `atmosphere { }` block: a medium filling the space around the
+/// objects, within a ball.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Atmosphere {
+    /// Its coefficients.
+    pub medium: super::medium::MediumParams,
+    /// The centre of the ball it fills, if given (else that of the
+    /// objects, the camera and the lights).
+    pub center: Option<DVec3>,
+    /// The ball's radius, if given (else just around the objects, the
+    /// camera and the lights).
+    pub radius: Option<f64>,
+    /// Where the block is.
+    pub span: Span,
+}
+
 /// The `sky { }` block: a daylight sky and its sun.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Sky {
@@ -545,6 +574,8 @@ pub struct Scene {
     pub environment: Option<Environment>,
     /// The daylight sky, if any (the background is then black).
     pub sky: Option<Sky>,
+    /// The medium around the objects, if any.
+    pub atmosphere: Option<Atmosphere>,
     /// Materials (named and inline), referenced by index.
     pub materials: Vec<Material>,
     /// Objects.

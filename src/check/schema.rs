@@ -277,6 +277,24 @@ pub const SKY: &[ParamSpec] = &[
         .doc("scales the sun (0: the sky alone). Default 1"),
 ];
 
+/// `atmosphere { }`
+pub const ATMOSPHERE: &[ParamSpec] = &[
+    p("absorption", Ty::Color, "rgb 0.01").of(Magnitude)
+        .doc("light absorbed per scene unit travelled (σa, colour ≥ 0, up to 1e6). Default black"),
+    p("scattering", Ty::Color, "rgb 0.05").of(Magnitude)
+        .doc("light scattered per scene unit travelled (σs, colour ≥ 0, up to 1e6). Default black"),
+    p("anisotropy", Ty::Num, "0.7")
+        .doc("Henyey–Greenstein g, −0.999..0.999: 0 scatters evenly, > 0 forward (haze), < 0 back. Default 0"),
+    p("density", Ty::Num, "0.05")
+        .doc("light stopped per scene unit (σt, 0..1e6), split by `medium_color`; instead of `absorption` and `scattering`"),
+    p("medium_color", Ty::Color, "rgb 1")
+        .doc("with `density`: the share of stopped light that scatters, per channel 0..1. Default white"),
+    p("center", Ty::Vec3, "<0, 0, 0>").of(Magnitude)
+        .doc("the centre of the ball the atmosphere fills. Default the centre of the scene's objects, camera and lights"),
+    p("radius", Ty::Num, "100").of(Size)
+        .doc("the radius of the ball the atmosphere fills (light from beyond it, a sky's or a sun's, crosses it). Default just around the objects, camera and lights"),
+];
+
 /// `material { }`
 pub const MATERIAL: &[ParamSpec] = &[
     p("diffuse", Ty::Color, "rgb <0.8, 0.8, 0.8>")
@@ -298,7 +316,15 @@ pub const MATERIAL: &[ParamSpec] = &[
     p("absorption", Ty::Color, "rgb <0.5, 0.1, 0.1>")
         .of(Magnitude)
         .textured()
-        .doc("Beer's law inside a dielectric, per scene unit travelled (colour ≥ 0 or texture). Default black"),
+        .doc("the medium inside a transparent object or a `type none` boundary: light absorbed per scene unit travelled (Beer's law; σa, colour ≥ 0 or texture). Default black"),
+    p("scattering", Ty::Color, "rgb 0.5").of(Magnitude)
+        .doc("the medium inside: light scattered per scene unit travelled (σs, colour ≥ 0, up to 1e6), with `transmission` or `type none`. Default black"),
+    p("anisotropy", Ty::Num, "0.6")
+        .doc("the medium's Henyey–Greenstein g, −0.999..0.999: 0 scatters evenly, > 0 forward (haze, water), < 0 back. Default 0"),
+    p("density", Ty::Num, "0.5")
+        .doc("the medium inside: light stopped per scene unit (σt, 0..1e6), split by `medium_color` between scattering and absorption; instead of `absorption` and `scattering`"),
+    p("medium_color", Ty::Color, "rgb <0.9, 0.95, 1>")
+        .doc("with `density`: the share of stopped light that scatters, per channel 0..1 (the single-scattering albedo; 1 a white fog, lower absorbs). Default white"),
     p("emission", Ty::Color, "rgb 10").of(Radiance).textured()
         .doc("emitted radiance (colour ≥ 0 or texture): the object becomes an area light. Default black"),
     p("two_sided", Ty::Bool, "true")
@@ -323,7 +349,7 @@ pub const MATERIAL: &[ParamSpec] = &[
     p("bump_height", Ty::Num, "0.01").of(Magnitude)
         .doc("scene units of height per unit of the `bump` texture (negative: dents). Default 0.01"),
     p("type", Ty::Word(MATERIAL_TYPES), "plastic")
-        .doc("the scattering model: `mix`, `conductor`, `plastic`, `dielectric`, `thin_dielectric` or `principled`. Default `mix`"),
+        .doc("the scattering model: `mix`, `conductor`, `plastic`, `dielectric`, `thin_dielectric`, `principled`, or `none` (no surface: the boundary of the medium inside). Default `mix`"),
     p("preset", Ty::Word(METAL_PRESETS), "gold")
         .doc("a named metal of `type conductor`: gold, silver, copper, aluminium, chromium"),
     p("eta", Ty::Color, "rgb <0.2, 0.92, 1.1>").of(Magnitude)

@@ -79,6 +79,9 @@ impl Aabb {
     }
 }
 
+/// Minimum ray distance (rays start offset from surfaces already).
+pub const T_MIN: f32 = 1e-5;
+
 /// Offsets a ray origin off a surface along the geometric normal, on the side
 /// `dir` leaves towards, by an amount that scales with the hit point's
 /// coordinates: 256 ulps of each coordinate, or 1/65536 near the origin where

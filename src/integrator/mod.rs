@@ -5,6 +5,7 @@
 pub mod debug;
 pub mod hybrid;
 pub mod path;
+pub mod volpath;
 pub mod whitted;
 
 use crate::geometry::{offset_origin, Ray};
@@ -34,8 +35,7 @@ pub fn make(kind: IntegratorKind) -> Box<dyn Integrator> {
     }
 }
 
-/// Minimum ray distance (rays start offset from surfaces already).
-pub const T_MIN: f32 = 1e-5;
+pub use crate::geometry::T_MIN;
 
 /// Next-event estimation at `hit` for outgoing direction `wo`: one light
 /// chosen by the scene's light selection, weighted against BSDF sampling with the power heuristic

@@ -25,6 +25,9 @@ impl Integrator for PathIntegrator {
 
 /// The path-traced radiance along `ray`.
 pub fn path_li(scene: &Scene, mut ray: Ray, sampler: &mut Sampler, nee: bool) -> Vec3 {
+    if scene.volumetric {
+        return super::volpath::volpath_li(scene, ray, sampler, nee);
+    }
     let s = &scene.settings;
     let mut radiance = Vec3::ZERO;
     let mut beta = Vec3::ONE;
@@ -131,7 +134,7 @@ pub fn path_li(scene: &Scene, mut ray: Ray, sampler: &mut Sampler, nee: bool) ->
 /// scaled down so that its largest RGB component is at most X, keeping its
 /// hue (Cycles' "indirect light clamp"). Off, `c` is added as it is.
 #[inline]
-fn add(radiance: &mut Vec3, c: Vec3, vertex: u32, clamp: Option<f32>) {
+pub(super) fn add(radiance: &mut Vec3, c: Vec3, vertex: u32, clamp: Option<f32>) {
     *radiance += match clamp {
         Some(x) if vertex >= 2 => scaled_within(c, x),
         _ => c,

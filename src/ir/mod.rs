@@ -4,6 +4,7 @@
 
 pub mod cutout;
 pub mod instance;
+pub mod media;
 mod memory;
 pub mod settings;
 mod surface;
@@ -125,6 +126,13 @@ pub struct Scene {
     pub instances: Arc<instance::Instances>,
     /// The cut-out materials, if any material is (see [`cutout`]).
     pub cutouts: Option<Arc<cutout::Cutouts>>,
+    /// The medium around the objects, if any.
+    pub atmosphere: Option<media::Atmosphere>,
+    /// The insides that hold the camera (see [`media::media_around`]).
+    pub camera_media: media::MediumStack,
+    /// Whether light meets scattering media or null boundaries (the path
+    /// integrator then runs its volumetric form).
+    pub volumetric: bool,
 }
 
 const _: () = assert!(std::mem::size_of::<Prim>() == 64);

@@ -68,6 +68,8 @@ pub fn lower_material(
         // int_ior / ext_ior).
         ior: (m.ior / m.ior_outside) as f32,
         absorption: DVec3::from_array(m.absorption).as_vec3(),
+        scattering: DVec3::from_array(m.scattering).as_vec3(),
+        anisotropy: m.anisotropy as f32,
         emission: DVec3::from_array(m.emission).as_vec3(),
         two_sided: m.two_sided,
         kind: material::Kind::Lobes,
@@ -227,6 +229,7 @@ fn kind(m: &check::Material, params: &mut material::Params, coats: &mut Coats) -
             }
         }
         check::MaterialKind::ThinDielectric => material::Kind::ThinDielectric,
+        check::MaterialKind::None => material::Kind::Null,
         check::MaterialKind::Principled(pp) => {
             // `specular` gives the index (relative to the outside, as `ior`).
             if let Some(s) = pp.specular {

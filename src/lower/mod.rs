@@ -18,6 +18,7 @@ pub mod image;
 mod instances;
 mod lights;
 mod material;
+mod media;
 pub mod mesh;
 mod mesh_data;
 pub mod mtl;
@@ -461,6 +462,9 @@ fn finish(
         background,
         env_light,
         bounds,
+        atmosphere: None,
+        camera_media: Default::default(),
+        volumetric: false,
     };
     let scene_bounds = if bounds.min.is_finite() {
         bounds.grow(v3(scene.camera.position))
@@ -487,6 +491,7 @@ fn finish(
             ir.env_light = None;
         }
     }
+    media::place_media(&mut ir, scene, scene_bounds);
     ir
 }
 

@@ -12,6 +12,7 @@ pub mod medium;
 pub mod microfacet;
 pub mod multiscatter;
 mod multiscatter_table;
+pub mod phase;
 pub mod plastic;
 pub mod principled;
 pub mod rough_dielectric;
@@ -47,6 +48,9 @@ pub enum Kind {
     /// base colour, `gloss` its roughness, `transmission` its refracting
     /// share and `ior` its index (the rest lives here).
     Principled(Principled),
+    /// No surface at all (`type none`): light passes straight through; the
+    /// boundary of a medium (fog in a box, an atmosphere's edge).
+    Null,
 }
 
 /// A resolved material.
@@ -79,8 +83,12 @@ pub struct Material {
     pub transmission: f32,
     /// Index of refraction inside.
     pub ior: f32,
-    /// Beer's-law absorption coefficient inside.
+    /// Absorption coefficient of the medium inside (Beer's law).
     pub absorption: Vec3,
+    /// Scattering coefficient of the medium inside.
+    pub scattering: Vec3,
+    /// The medium's Henyey–Greenstein asymmetry g.
+    pub anisotropy: f32,
     /// Emitted radiance.
     pub emission: Vec3,
     /// Emission from both sides.
@@ -168,8 +176,12 @@ pub struct Params {
     pub transmission: f32,
     /// Index of refraction inside.
     pub ior: f32,
-    /// Beer's-law absorption coefficient inside.
+    /// Absorption coefficient of the medium inside.
     pub absorption: Vec3,
+    /// Scattering coefficient of the medium inside.
+    pub scattering: Vec3,
+    /// The medium's Henyey–Greenstein asymmetry g.
+    pub anisotropy: f32,
     /// Emitted radiance.
     pub emission: Vec3,
     /// Emission from both sides.
@@ -195,6 +207,8 @@ impl Default for Params {
             transmission: 0.0,
             ior: 1.5,
             absorption: Vec3::ZERO,
+            scattering: Vec3::ZERO,
+            anisotropy: 0.0,
             emission: Vec3::ZERO,
             two_sided: false,
             roughness: None,
@@ -321,13 +335,20 @@ impl Material {
                 };
                 [0.0, 0.0, 1.0]
             }
+            // Nothing to choose: the integrators pass through it.
+            Kind::Null => {
+                diffuse = Vec3::ZERO;
+                reflection = Vec3::ZERO;
+                transmission = 0.0;
+                [0.0; 3]
+            }
         };
         let smooth_lobe = match p.kind {
             Kind::Lobes | Kind::Conductor(_) => {
                 lobe_pdf[0] > 0.0 || (lobe_pdf[1] > 0.0 && alpha > 0.0)
             }
             Kind::Plastic(_) | Kind::RoughDielectric | Kind::Principled(_) => true,
-            Kind::ThinDielectric => false,
+            Kind::ThinDielectric | Kind::Null => false,
         };
         Material {
             kind,
@@ -341,6 +362,8 @@ impl Material {
             transmission,
             ior: p.ior,
             absorption: p.absorption,
+            scattering: p.scattering,
+            anisotropy: p.anisotropy,
             emission: p.emission,
             two_sided: p.two_sided,
             lobe_pdf,
@@ -367,12 +390,30 @@ impl Material {
     }
 
     /// The medium inside, if light passing through the surface meets one
-    /// (Beer's law inside transmissive materials that absorb).
+    /// (inside transmissive materials and null boundaries that absorb or
+    /// scatter).
     #[inline]
     pub fn interior(&self) -> Option<medium::Medium> {
-        (self.transmission > 0.0 && self.absorption != Vec3::ZERO).then_some(medium::Medium {
-            absorption: self.absorption,
-        })
+        (self.has_inside() && (self.absorption != Vec3::ZERO || self.scattering != Vec3::ZERO))
+            .then_some(medium::Medium {
+                absorption: self.absorption,
+                scattering: self.scattering,
+                anisotropy: self.anisotropy,
+            })
+    }
+
+    /// Whether light can travel inside the object (it refracts into it, or
+    /// the surface is a null boundary): its inside is then a medium or
+    /// empty space, not the space around it.
+    #[inline]
+    pub fn has_inside(&self) -> bool {
+        self.transmission > 0.0 || self.is_null()
+    }
+
+    /// Whether the surface is a null boundary (`type none`).
+    #[inline]
+    pub fn is_null(&self) -> bool {
+        matches!(self.kind, Kind::Null)
     }
 
     /// Emitted radiance towards `wo` from a surface with geometric normal `n`.
@@ -525,6 +566,7 @@ impl Material {
             Kind::Conductor(c) => self.reflection * c.fresnel(1.0),
             Kind::Plastic(_) | Kind::Principled(_) => self.diffuse,
             Kind::RoughDielectric | Kind::ThinDielectric => Vec3::ONE,
+            Kind::Null => Vec3::ZERO,
         }
     }
 
@@ -567,7 +609,7 @@ impl Material {
                 (Vec3::splat(f), pdf)
             }
             Kind::Principled(pr) => pr.eval(self.diffuse, lo, li),
-            Kind::ThinDielectric | Kind::Lobes => (Vec3::ZERO, 0.0),
+            Kind::ThinDielectric | Kind::Lobes | Kind::Null => (Vec3::ZERO, 0.0),
         }
     }
 
@@ -638,6 +680,7 @@ impl Material {
                     Some(delta(-wo, Vec3::ONE, true))
                 }
             }
+            Kind::Null => Some(delta(-wo, Vec3::ONE, true)),
             Kind::Lobes => None,
         }
     }

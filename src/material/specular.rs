@@ -31,6 +31,7 @@ impl Material {
         let nf = if outside { n } else { -n };
         match self.kind {
             Kind::Lobes => self.mix_light(wo, nf, outside, sampler, trace),
+            Kind::Null => trace(sampler, 1.0, -wo),
             Kind::ThinDielectric => {
                 let r = thin_dielectric::reflectance(wo.dot(nf), self.ior);
                 let mut l = r * trace(sampler, r, reflect(wo, nf));
@@ -120,6 +121,8 @@ impl Material {
             transmission: self.transmission,
             ior: self.ior,
             absorption: self.absorption,
+            scattering: self.scattering,
+            anisotropy: self.anisotropy,
             emission: self.emission,
             two_sided: self.two_sided,
             lobe_pdf: [0.0, 1.0, 0.0],

@@ -53,6 +53,8 @@ pub enum Setting {
     Environment,
     /// `sky { }`
     Sky,
+    /// `atmosphere { }`
+    Atmosphere,
 }
 
 impl Kind {

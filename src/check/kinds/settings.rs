@@ -1,4 +1,5 @@
-//! The settings blocks: `render`, `camera`, `environment` and `sky`, each
+//! The settings blocks: `render`, `camera`, `environment`, `sky` and
+//! `atmosphere`, each
 //! given at most once at the top level of a scene (the checker keeps them;
 //! see `check/block_statement.rs`).
 
@@ -6,7 +7,7 @@ use super::super::schema;
 use super::kind::{Kind, Role, Setting};
 
 /// The rows of this file, in the order the docs list them.
-pub const ALL: &[&Kind] = &[&RENDER, &CAMERA, &ENVIRONMENT, &SKY];
+pub const ALL: &[&Kind] = &[&RENDER, &CAMERA, &ENVIRONMENT, &SKY, &ATMOSPHERE];
 
 /// `render { }`
 pub const RENDER: Kind = Kind {
@@ -46,4 +47,14 @@ pub const SKY: Kind = Kind {
     role: Role::Setting(Setting::Sky),
     positional: None,
     povray: &[("sky_sphere", "ptsc's `sky { … }` (a daylight sky and sun), `environment { … }` (an HDR image) or `background rgb …` is light from every direction, and lights the scene")],
+};
+
+/// `atmosphere { }`
+pub const ATMOSPHERE: Kind = Kind {
+    name: "atmosphere",
+    summary: "a medium filling the air around the objects: fog, haze, light shafts",
+    params: schema::ATMOSPHERE,
+    role: Role::Setting(Setting::Atmosphere),
+    positional: None,
+    povray: &[("fog", "POV-Ray's `fog { … }` is ptsc's `atmosphere { density 0.05  medium_color rgb 1 }`: a medium that scatters light (light shafts come with it) rather than a blend towards a colour")],
 };

@@ -88,7 +88,7 @@ def fog(res, spp):
         "spot": {"type": "spot", "intensity": rgb([12, 11, 9]), "cutoff_angle": 25.0, "beam_width": 25.0,
                  "to_world": mi.ScalarTransform4f().look_at(origin=[0, 0.9, 0], target=[0.25, -1, -0.2],
                                                             up=[0, 0, 1])},
-        "fog": box([-0.95] * 3, [0.95] * 3, NULL, homogeneous([0.05, 0.05, 0.08], [0.6, 0.6, 0.55], 0.4)),
+        "fog": box([-0.95] * 3, [0.95, 0.6, 0.95], NULL, homogeneous([0.05, 0.05, 0.08], [0.6, 0.6, 0.55], 0.4)),
     }
 
 

@@ -1,8 +1,11 @@
 //! Volumetric path tracing: the path integrator's form for scenes with
 //! participating media or null boundaries (`ir::Scene::volumetric`), as
 //! Mitsuba 3's `volpath` for homogeneous media. Along each segment a
-//! distance is sampled in the medium it crosses (chromatic media: a hero
-//! channel and the balance heuristic over channels, `material::medium`); a
+//! distance is sampled in the medium it crosses, from the extinction of the
+//! path's hero channel (drawn once per path); chromatic media are weighed
+//! by spectral MIS over the whole path (`ratio` below; pbrt-v4's `r_u`), a
+//! balance heuristic over the three channels' strategies that keeps the
+//! weights bounded. A
 //! scattering point samples a light through null boundaries and media
 //! (transmittance, `ir::media`) and the Henyey–Greenstein phase function,
 //! weighted against each other by the power heuristic (Veach 1997), as
@@ -119,6 +122,14 @@ struct PathState {
     prev_p: Vec3,
     prev_n: Vec3,
     media: MediumStack,
+    /// The channel whose extinction samples distances (drawn at the
+    /// path's first medium).
+    hero: Option<usize>,
+    /// Each channel's probability of the path's distance decisions had it
+    /// been the hero, relative to their average (which is 1): `beta` is
+    /// the path's contribution divided by that average, the balance
+    /// heuristic's estimate.
+    ratio: Vec3,
 }
 
 /// The volumetric path-traced radiance along `ray` (`nee`: sample lights).
@@ -131,6 +142,8 @@ pub fn volpath_li(scene: &Scene, mut ray: Ray, sampler: &mut Sampler, nee: bool)
         prev_p: ray.o,
         prev_n: Vec3::ZERO,
         media: scene.camera_media,
+        hero: None,
+        ratio: Vec3::ONE,
     };
     let mut segments = 0u32;
     let mut crossings = 0u32;
@@ -152,12 +165,15 @@ pub fn volpath_li(scene: &Scene, mut ray: Ray, sampler: &mut Sampler, nee: bool)
                 st.beta *= medium.transmittance(t1 - t0);
             } else {
                 sampler.pad();
-                let d = medium.sample_distance(t1 - t0, sampler.next_f32(), sampler.next_f32());
-                st.beta *= d.weight;
+                let hero = *(st.hero).get_or_insert_with(|| ((sampler.next_f32() * 3.0) as usize).min(2));
+                let d = medium.sample_distance(t1 - t0, hero, sampler.next_f32());
+                let mean = (st.ratio * d.pdf).element_sum() / 3.0;
+                if !(mean > 0.0) || st.beta == Vec3::ZERO {
+                    break;
+                }
+                st.beta *= d.value / mean;
+                st.ratio = st.ratio * d.pdf / mean;
                 if d.scattered {
-                    if st.beta == Vec3::ZERO {
-                        break;
-                    }
                     let p = ray.o + ray.d * (t0 + d.t);
                     if segments >= s.max_depth {
                         break;
@@ -273,14 +289,18 @@ fn escaped(scene: &Scene, ray: &Ray, st: &mut PathState, segments: u32, nee: boo
     add(&mut st.radiance, c, segments - 1, scene.settings.clamp);
 }
 
-/// Russian roulette after `segments` segments (as `path`: from `rr_depth`
-/// on, survival by the throughput's largest channel); whether the path
-/// goes on.
+/// Russian roulette after `segments` segments, from `rr_depth` on: a path
+/// whose throughput's largest channel is below 1 survives with that
+/// probability and is divided by it (pbrt-v4's rule); one at 1 or above
+/// goes on (`max_depth` ends it). Unlike `path`'s cap of 0.95, this never
+/// raises a throughput above 1, which keeps the long random walks of
+/// media of albedo near 1 from heavy tails (a white furnace's pixels
+/// strayed by 0.75 at 96 spp with the cap).
 fn roulette(beta: &mut Vec3, segments: u32, rr_depth: u32, bounce: u32, s: &mut Sampler) -> bool {
-    if segments < rr_depth {
+    let q = beta.max_element();
+    if segments < rr_depth || q >= 1.0 {
         return true;
     }
-    let q = beta.max_element().clamp(0.05, 0.95);
     s.start(bounce, Draws::Roulette);
     if s.next_f32() >= q {
         return false;

@@ -4,12 +4,16 @@
 //! there are many), the ambient term, mirror and glossy reflection,
 //! refraction weighted by exact Fresnel with total internal reflection, and
 //! Beer's law. Indirect diffuse light is not computed: that is the path
-//! integrator's job.
+//! integrator's job. Participating media only attenuate (light scattered
+//! into a ray is not computed; a medium that scatters darkens what lies
+//! behind it by its whole extinction, exp(−σt d)), and null boundaries
+//! (`type none`) are passed through, also by shadow rays.
 //!
 //! `.pts`: `render { integrator whitted  max_depth 8  light_samples 4  ambient rgb 0.05 }`.
 
 use super::{Integrator, T_MIN};
 use crate::geometry::{offset_origin, Ray};
+use crate::ir::media::{MediumStack, MAX_CROSSINGS};
 use crate::ir::{Hit, Scene};
 use crate::light::Light;
 use crate::material::Material;
@@ -32,9 +36,69 @@ impl Integrator for Whitted {
     }
 }
 
+/// The light a ray meets, passed through null boundaries: its hit (none:
+/// it left the scene) and the fraction of light that crosses the media
+/// on the way; `media` ends as the media at the hit.
+fn first_surface(scene: &Scene, ray: &mut Ray, media: &mut MediumStack) -> (Option<Hit>, Vec3) {
+    let mut tr = Vec3::ONE;
+    for _ in 0..MAX_CROSSINGS {
+        let mut hit = scene.intersect(ray, T_MIN, f32::INFINITY);
+        let mut slot = None;
+        let material = hit
+            .as_mut()
+            .map(|h| scene.material_at(h, -ray.d, ray.time, &mut slot));
+        let end = hit.as_ref().zip(material);
+        let t = hit.as_ref().map_or(f32::INFINITY, |h| h.t);
+        if let Some((m, t0, t1)) = scene.medium_span(media.segment(ray.d, end), ray, t) {
+            tr *= m.transmittance(t1 - t0);
+        }
+        match end {
+            Some((h, m)) if m.is_null() => {
+                media.cross(ray.d, h, m);
+                *ray = Ray::new(offset_origin(h.p, h.n_geo, ray.d), ray.d, ray.time);
+            }
+            _ => return (hit, tr),
+        }
+    }
+    (None, Vec3::ZERO)
+}
+
 /// Radiance along `ray`, which is path segment number `segment` and counts
 /// with `weight` (largest channel of the product of factors so far) in the pixel.
 pub fn trace(scene: &Scene, ray: Ray, sampler: &mut Sampler, segment: u32, weight: f32) -> Vec3 {
+    trace_in(scene, ray, sampler, (segment, weight), scene.camera_media)
+}
+
+/// [`trace`] for a ray that starts among `media`.
+fn trace_in(
+    scene: &Scene,
+    mut ray: Ray,
+    sampler: &mut Sampler,
+    (segment, weight): (u32, f32),
+    mut media: MediumStack,
+) -> Vec3 {
+    if !scene.volumetric {
+        return shade(scene, ray, sampler, (segment, weight), media);
+    }
+    let (hit, tr) = first_surface(scene, &mut ray, &mut media);
+    if tr == Vec3::ZERO {
+        return Vec3::ZERO;
+    }
+    match hit {
+        Some(_) => tr * shade(scene, ray, sampler, (segment, weight), media),
+        None => tr * scene.environment(ray.d),
+    }
+}
+
+/// Radiance along `ray`, whose first surface is not a null boundary, among
+/// `media` (Beer's law of a non-volumetric scene applied here, at the exit).
+fn shade(
+    scene: &Scene,
+    ray: Ray,
+    sampler: &mut Sampler,
+    (segment, weight): (u32, f32),
+    media: MediumStack,
+) -> Vec3 {
     let s = &scene.settings;
     let Some(mut hit) = scene.intersect(&ray, T_MIN, f32::INFINITY) else {
         return scene.environment(ray.d);
@@ -48,7 +112,7 @@ pub fn trace(scene: &Scene, ray: Ray, sampler: &mut Sampler, segment: u32, weigh
     }
     if m.has_smooth_lobe() {
         sampler.start(segment - 1, Draws::Light);
-        l += direct(scene, &hit, m, wo, ray.time, sampler);
+        l += direct(scene, (&hit, m, wo), ray.time, media, sampler);
     }
     if let Some(albedo) = m.ambient_albedo() {
         l += albedo * s.ambient;
@@ -65,12 +129,17 @@ pub fn trace(scene: &Scene, ray: Ray, sampler: &mut Sampler, segment: u32, weigh
             return Vec3::ZERO;
         }
         let r = Ray::new(offset_origin(hit.p, hit.n_geo, dir), dir, ray.time);
-        let l = trace(scene, r, sampler, segment + 1, w);
+        let mut inside = media;
+        if (dir.dot(hit.n_geo) > 0.0) != outside {
+            inside.cross(dir, &hit, m);
+        }
+        let l = trace_in(scene, r, sampler, (segment + 1, w), inside);
         sampler.pad();
         l
     });
-    // Beer's law over the segment just travelled inside this object.
-    if let Some(medium) = m.interior() {
+    // Beer's law over the segment just travelled inside this object (a
+    // volumetric scene's media are crossed by `trace_in`).
+    if let (Some(medium), false) = (m.interior(), scene.volumetric) {
         if !outside {
             l *= medium.transmittance(hit.t);
         }
@@ -85,10 +154,9 @@ pub fn trace(scene: &Scene, ray: Ray, sampler: &mut Sampler, segment: u32, weigh
 /// `light_samples 0`, delta lights only.
 fn direct(
     scene: &Scene,
-    hit: &Hit,
-    m: &Material,
-    wo: Vec3,
+    (hit, m, wo): (&Hit, &Material, Vec3),
     time: f32,
+    media: MediumStack,
     sampler: &mut Sampler,
 ) -> Vec3 {
     let n = scene.settings.light_samples.max(1);
@@ -105,7 +173,7 @@ fn direct(
             if only_delta && !light.is_delta() {
                 continue;
             }
-            acc += light_sample(scene, hit, m, wo, time, light, u) / pmf;
+            acc += light_sample(scene, (hit, m, wo), (time, media), light, u) / pmf;
         }
         return acc / n as f32;
     }
@@ -117,7 +185,7 @@ fn direct(
         let count = if light.is_delta() { 1 } else { n };
         let mut acc = Vec3::ZERO;
         for _ in 0..count {
-            acc += light_sample(scene, hit, m, wo, time, light, sampler.next_2d());
+            acc += light_sample(scene, (hit, m, wo), (time, media), light, sampler.next_2d());
         }
         l += acc / count as f32;
     }
@@ -134,10 +202,8 @@ const EVERY_LIGHT_UP_TO: usize = 16;
 /// light; zero when it is blocked).
 fn light_sample(
     scene: &Scene,
-    hit: &Hit,
-    m: &Material,
-    wo: Vec3,
-    time: f32,
+    (hit, m, wo): (&Hit, &Material, Vec3),
+    (time, media): (f32, MediumStack),
     light: &Light,
     u: glam::Vec2,
 ) -> Vec3 {
@@ -157,13 +223,20 @@ fn light_sample(
         return Vec3::ZERO;
     }
     let (shadow, t_max) = super::shadow_ray(hit, ls.wi, ls.dist, time);
-    if scene.occluded(&shadow, T_MIN, t_max) {
+    let tr = if scene.volumetric {
+        scene.transmittance(&shadow, t_max, media)
+    } else if scene.occluded(&shadow, T_MIN, t_max) {
+        Vec3::ZERO
+    } else {
+        Vec3::ONE
+    };
+    if tr == Vec3::ZERO {
         return Vec3::ZERO;
     }
     let cos = ls.wi.dot(hit.n_shading).abs();
     if light.is_delta() {
-        f * ls.li * cos
+        tr * f * ls.li * cos
     } else {
-        f * ls.li * cos / ls.pdf
+        tr * f * ls.li * cos / ls.pdf
     }
 }

@@ -3,12 +3,14 @@
 //! channel and a Henyey–Greenstein phase function. Absorption alone is the
 //! seed paper's coloured glass (Beer's law).
 //!
-//! Distance sampling follows pbrt-v3's `HomogeneousMedium::Sample`
-//! (Pharr, Jakob & Humphreys, 3rd ed., §15.2.2): one channel is picked
-//! uniformly (the "hero" channel), a distance drawn from its extinction,
-//! and the estimate divided by the average of the three channels' densities,
-//! the one-sample balance heuristic over channels (as Mitsuba 3's `volpath`
-//! does for RGB), so that chromatic media stay unbiased.
+//! Distance sampling draws a distance from one channel's extinction (the
+//! path's "hero" channel) and reports every channel's density of the same
+//! event, so that the integrator can weigh the three channels' sampling
+//! strategies over the whole path by the balance heuristic (spectral MIS:
+//! pbrt-v4 §14.2.2, its `r_u` rescaled path probabilities; Wilkie et al.
+//! 2014, "Hero wavelength spectral sampling"). Chromatic media stay
+//! unbiased, and a path's weight stays bounded where one channel's
+//! extinction is far from another's.
 
 use glam::Vec3;
 
@@ -32,8 +34,12 @@ pub struct DistanceSample {
     /// Whether light scattered inside the medium at `t` (else it reached
     /// the segment's end).
     pub scattered: bool,
-    /// The throughput's factor: σs·Tr/pdf at a scattering point, Tr/P at the end.
-    pub weight: Vec3,
+    /// What the event contributes per channel: σs·Tr(t) at a scattering
+    /// point, Tr(length) at the end.
+    pub value: Vec3,
+    /// The density of the event had each channel been the hero: σt·Tr(t)
+    /// at a scattering point, Tr(length) at the end.
+    pub pdf: Vec3,
 }
 
 impl Medium {
@@ -60,12 +66,12 @@ impl Medium {
     }
 
     /// Samples where light travelling a segment of length `length` (may be
-    /// infinite) scatters, with `u_channel` choosing the hero channel and
-    /// `u` the distance.
-    pub fn sample_distance(&self, length: f32, u_channel: f32, u: f32) -> DistanceSample {
+    /// infinite) scatters, from the extinction of channel `hero`, with `u`.
+    /// The caller divides by the hero's density, or (spectral MIS) by the
+    /// channels' average: see `integrator::volpath`.
+    pub fn sample_distance(&self, length: f32, hero: usize, u: f32) -> DistanceSample {
         let sigma_t = self.extinction();
-        let channel = ((u_channel * 3.0) as usize).min(2);
-        let s = sigma_t[channel];
+        let s = sigma_t[hero.min(2)];
         let t = if s > 0.0 {
             -(1.0 - u).ln() / s
         } else {
@@ -73,25 +79,19 @@ impl Medium {
         };
         if t < length {
             let tr = self.transmittance(t);
-            let pdf = (sigma_t * tr).element_sum() / 3.0;
-            let weight = if pdf > 0.0 {
-                self.scattering * tr / pdf
-            } else {
-                Vec3::ZERO
-            };
             return DistanceSample {
                 t,
                 scattered: true,
-                weight,
+                value: self.scattering * tr,
+                pdf: sigma_t * tr,
             };
         }
         let tr = self.transmittance(length);
-        let p = tr.element_sum() / 3.0;
-        let weight = if p > 0.0 { tr / p } else { Vec3::ZERO };
         DistanceSample {
             t: length,
             scattered: false,
-            weight,
+            value: tr,
+            pdf: tr,
         }
     }
 }
@@ -119,12 +119,15 @@ mod tests {
         let (mut passed, mut scattered, mut scattered_t) = (Vec3::ZERO, Vec3::ZERO, Vec3::ZERO);
         let n = 400_000;
         for _ in 0..n {
-            let d = m.sample_distance(length, s.next_f32(), s.next_f32());
+            let hero = ((s.next_f32() * 3.0) as usize).min(2);
+            let d = m.sample_distance(length, hero, s.next_f32());
+            // The one-sample balance heuristic over the hero channels.
+            let weight = d.value / (d.pdf.element_sum() / 3.0);
             if d.scattered {
-                scattered += d.weight;
-                scattered_t += d.weight * d.t;
+                scattered += weight;
+                scattered_t += weight * d.t;
             } else {
-                passed += d.weight;
+                passed += weight;
             }
         }
         let n = n as f32;
@@ -149,18 +152,19 @@ mod tests {
     #[test]
     fn infinite_segments_and_clear_channels_stay_finite() {
         let m = fog(Vec3::ZERO, Vec3::new(0.5, 0.0, 0.0));
-        for u in [0.0, 0.3, 0.5, 0.9, 0.999_999] {
-            let d = m.sample_distance(f32::INFINITY, u, 0.5);
-            assert!(
-                d.weight.is_finite() && d.t.is_finite() == d.scattered,
-                "{d:?}"
-            );
+        for hero in 0..3 {
+            for u in [0.0, 0.3, 0.5, 0.9, 0.999_999] {
+                let d = m.sample_distance(f32::INFINITY, hero, u);
+                let ok = d.value.is_finite() && d.pdf.is_finite();
+                assert!(ok && d.t.is_finite() == d.scattered, "{d:?}");
+                assert!(!d.scattered || d.pdf[hero] > 0.0, "{d:?}");
+            }
         }
         assert_eq!(m.transmittance(f32::INFINITY), Vec3::new(0.0, 1.0, 1.0));
         let dense = fog(Vec3::splat(1e6), Vec3::splat(1e6));
-        let d = dense.sample_distance(1.0, 0.5, 0.5);
-        assert!(d.scattered && d.weight.is_finite() && d.t < 1e-5);
-        let d = dense.sample_distance(1.0, 0.5, 1.0 - 1e-7);
-        assert!(d.weight.is_finite(), "{d:?}");
+        let d = dense.sample_distance(1.0, 1, 0.5);
+        assert!(d.scattered && d.value.is_finite() && d.t < 1e-5);
+        let d = dense.sample_distance(1.0, 1, 1.0 - 1e-7);
+        assert!(d.value.is_finite() && d.pdf.is_finite(), "{d:?}");
     }
 }

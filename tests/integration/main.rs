@@ -26,6 +26,7 @@ mod layering;
 mod lighting;
 mod lsp;
 mod materials;
+mod media;
 mod mitsuba;
 mod nasty;
 mod noise_params;

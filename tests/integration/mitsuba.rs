@@ -58,19 +58,19 @@ fn check_scene_within(name: &str, tolerance: f32) -> Measured {
 
 /// What [`measure`] finds.
 #[derive(Clone)]
-struct Measured {
+pub(crate) struct Measured {
     /// ptsc's image of each seed.
-    images: Vec<Vec<Vec3>>,
+    pub(crate) images: Vec<Vec<Vec3>>,
     /// ptsc's image averaged over the seeds.
-    average: Vec<Vec3>,
+    pub(crate) average: Vec<Vec3>,
     /// Mitsuba's reference.
-    reference: Vec<Vec3>,
+    pub(crate) reference: Vec<Vec3>,
     /// The per-channel ratio of the means, ptsc's over Mitsuba's.
-    ratio: Vec3,
+    pub(crate) ratio: Vec3,
     /// ptsc's median MAE/mean over the seeds.
-    mae: f64,
+    pub(crate) mae: f64,
     /// Mitsuba's own, from the baseline.
-    mitsuba_mae: f64,
+    pub(crate) mitsuba_mae: f64,
 }
 
 /// The scene file of `name`: the benchmark scenes are examples; the
@@ -87,7 +87,7 @@ fn scene_path(name: &str) -> std::path::PathBuf {
 /// [`measure_once`], each scene and light selection measured once per
 /// run: a scene's own test and the test of the rules ask for the same
 /// `auto` renders (seconds each), and the second waits for the first's.
-fn measure(name: &str, rule: Option<LightSelection>) -> Measured {
+pub(crate) fn measure(name: &str, rule: Option<LightSelection>) -> Measured {
     use std::collections::HashMap;
     use std::sync::{Arc, Mutex, OnceLock};
     type Cells = Mutex<HashMap<String, Arc<OnceLock<Measured>>>>;

@@ -165,7 +165,8 @@ pub fn volpath_li(scene: &Scene, mut ray: Ray, sampler: &mut Sampler, nee: bool)
                 st.beta *= medium.transmittance(t1 - t0);
             } else {
                 sampler.pad();
-                let hero = *(st.hero).get_or_insert_with(|| ((sampler.next_f32() * 3.0) as usize).min(2));
+                let hero =
+                    *(st.hero).get_or_insert_with(|| ((sampler.next_f32() * 3.0) as usize).min(2));
                 let d = medium.sample_distance(t1 - t0, hero, sampler.next_f32());
                 let mean = (st.ratio * d.pdf).element_sum() / 3.0;
                 if !(mean > 0.0) || st.beta == Vec3::ZERO {

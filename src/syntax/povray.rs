@@ -67,13 +67,15 @@ const BLOCKS: &[(&str, &str)] = &[
     ("texture", "POV-Ray's `texture { pigment { … } finish { … } }` is one `material { … }` in ptsc: `diffuse rgb …`, `gloss …`, `reflection rgb …`"),
     ("finish", "POV-Ray's `finish` is part of ptsc's `material { … }`: `type plastic gloss 0.3` for a highlight, `reflection rgb …` for a mirror, `emission rgb …` for a glow"),
     ("normal", "POV-Ray's `normal { bumps … }` is a material's `bump` in ptsc: `material { bump noise { scale 0.1 } bump_height 0.02 }` (or `normal_map image { file … }`)"),
-    ("interior", "POV-Ray's `interior { ior … }` is part of ptsc's `material { transmission 1 ior 1.5 absorption rgb … }`"),
+    ("interior", "POV-Ray's `interior { ior … media { … } }` is part of ptsc's `material { … }`: `transmission 1 ior 1.5` for glass, and the medium inside (`absorption rgb …`, `scattering rgb …`, `anisotropy …`) on the material itself; `type none` for fog or smoke without a surface"),
     ("color_map", "POV-Ray's `color_map { [0 rgb …] [1 rgb …] }` is a pattern's stops in ptsc: `marble { stop 0 rgb 1 stop 1 rgb 0.2 }`"),
     ("colour_map", "POV-Ray's `colour_map { [0 rgb …] [1 rgb …] }` is a pattern's stops in ptsc: `marble { stop 0 rgb 1 stop 1 rgb 0.2 }`"),
     ("pigment_map", "ptsc has no pigment maps: a pattern's `stop`s are colours (`marble { stop 0 rgb 1 stop 1 rgb 0.2 }`)"),
     ("image_map", "POV-Ray's `image_map { png \"file.png\" }` is `diffuse image { file \"file.png\" }` in a ptsc material; its alpha as holes (POV-Ray's `transmit all`) is `opacity image { file \"file.png\" channel a }`"),
     ("photons", "the `path` integrator (the default) renders caustics without photons"),
-    ("media", "ptsc has no participating media yet; absorption inside glass is `material { transmission 1 absorption rgb … }`"),
+    ("media", "POV-Ray's `media { absorption … scattering { … } density { … } }` is the medium of a ptsc material, on the object that bounds it: `material { type none  scattering rgb 0.5  absorption rgb 0.05  anisotropy 0.3 }` (or `density 0.5  medium_color rgb 0.9`); media do not glow in ptsc (for `emission`, make an object emissive: `emission rgb …`)"),
+    ("scattering", "POV-Ray's `scattering { 1, rgb … eccentricity g }` is a ptsc material's `scattering rgb …` (light scattered per unit) and `anisotropy g` (Henyey–Greenstein), with `transmission 1` or `type none`"),
+    ("density", "POV-Ray's `density { pattern … }` has no ptsc counterpart yet: ptsc's media are homogeneous (`density 0.5` on the material is a number)"),
     ("bounded_by", "ptsc bounds every object itself (a BVH): leave `bounded_by` out"),
     ("clipped_by", "ptsc has no CSG or clipping yet"),
 ];
@@ -81,7 +83,7 @@ const BLOCKS: &[(&str, &str)] = &[
 /// POV-Ray's object flags (a word without a value) with what ptsc does.
 const FLAGS: &[(&str, &str)] = &[
     ("no_shadow", "ptsc's objects always cast shadows (a light bulb is an emissive object: it lights the scene whatever is around it); remove `no_shadow`"),
-    ("hollow", "ptsc needs no `hollow`: nothing fills an object's inside unless its material absorbs (`absorption`); remove it"),
+    ("hollow", "ptsc needs no `hollow`: nothing fills an object's inside unless its material gives it a medium (`absorption`, `scattering` or `density`); remove it"),
     ("no_image", "ptsc draws every object in the image; remove `no_image`"),
     ("no_reflection", "ptsc shows every object in reflections; remove `no_reflection`"),
     ("double_illuminate", "light reaches the back of a thin surface in ptsc through `transmission` (e.g. `type thin_dielectric`); remove `double_illuminate`"),

@@ -71,8 +71,11 @@ fn white_furnace_a_medium_that_only_scatters_is_invisible() {
     // Inside a uniform white environment, a medium of albedo 1 neither
     // adds nor removes light, whatever its density, its phase function or
     // its boundary (none, or glass that refracts into it): every pixel is 1.
-    for (boundary, g) in [("type none", 0.0), ("type none", 0.8), ("transmission 1 ior 1.5", -0.5)]
-    {
+    for (boundary, g) in [
+        ("type none", 0.0),
+        ("type none", 0.8),
+        ("transmission 1 ior 1.5", -0.5),
+    ] {
         let scene = format!(
             "render {{ resolution <24, 24> samples 96 max_depth 1024 }}
              camera {{ position <0, 0, 4> look_at <0, 0, 0> fov 40 }}
@@ -85,12 +88,19 @@ fn white_furnace_a_medium_that_only_scatters_is_invisible() {
         let px = render_pixels(&ir);
         let m = mean(&px);
         for (k, c) in m.iter().enumerate() {
-            assert!((c - 1.0).abs() < 0.01, "{boundary}, g {g}: channel {k} mean {c}");
+            assert!(
+                (c - 1.0).abs() < 0.01,
+                "{boundary}, g {g}: channel {k} mean {c}"
+            );
         }
         // And no region strays: the pixels' RMS difference from 1 (measured
         // 0.02–0.03 for a grey medium, 0.04–0.07 for this chromatic one:
         // its channels' weights vary from path to path).
-        let rms = (px.iter().flatten().map(|c| ((c - 1.0) as f64).powi(2)).sum::<f64>()
+        let rms = (px
+            .iter()
+            .flatten()
+            .map(|c| ((c - 1.0) as f64).powi(2))
+            .sum::<f64>()
             / (3 * px.len()) as f64)
             .sqrt();
         assert!(rms < 0.12, "{boundary}, g {g}: RMS {rms}");
@@ -165,10 +175,16 @@ fn scenes_without_media_stay_on_the_plain_path() {
 fn hostile_media_give_finite_images() {
     let cases = [
         ("dense", "type none density 1000000 medium_color rgb 0.5"),
-        ("dense white", "type none density 1000000 medium_color rgb 1"),
+        (
+            "dense white",
+            "type none density 1000000 medium_color rgb 1",
+        ),
         ("forward", "type none scattering rgb 3 anisotropy 0.999"),
         ("backward", "type none scattering rgb 3 anisotropy -0.999"),
-        ("glass", "transmission 1 ior 1.5 scattering rgb 1000 absorption rgb 0.001"),
+        (
+            "glass",
+            "transmission 1 ior 1.5 scattering rgb 1000 absorption rgb 0.001",
+        ),
         ("clear", "type none"),
     ];
     for (what, medium) in cases {

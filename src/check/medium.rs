@@ -7,7 +7,7 @@
 
 use super::params::Params;
 use super::reader::{range_error, Reader};
-use super::scene::Rgb;
+use super::scene::{MediumParams, Rgb};
 use crate::diag::{codes, Diagnostic, Diagnostics};
 
 /// The largest coefficient or density, per scene unit: light crosses
@@ -16,17 +16,6 @@ pub const MAX_DENSITY: f64 = 1e6;
 
 /// The largest |anisotropy|: at ±1 the phase function is a delta.
 pub const MAX_ANISOTROPY: f64 = 0.999;
-
-/// A homogeneous medium's coefficients, checked.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct MediumParams {
-    /// Absorption coefficient per unit length (σa).
-    pub absorption: Rgb,
-    /// Scattering coefficient per unit length (σs).
-    pub scattering: Rgb,
-    /// Henyey–Greenstein g: 0 scatters evenly, > 0 forward, < 0 back.
-    pub anisotropy: f64,
-}
 
 /// The words that make a medium (the material's `absorption` is also
 /// Beer's law in glass).

@@ -513,12 +513,23 @@ impl Light {
     }
 }
 
+/// A homogeneous medium's coefficients, checked.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MediumParams {
+    /// Absorption coefficient per unit length (σa).
+    pub absorption: Rgb,
+    /// Scattering coefficient per unit length (σs).
+    pub scattering: Rgb,
+    /// Henyey–Greenstein g: 0 scatters evenly, > 0 forward, < 0 back.
+    pub anisotropy: f64,
+}
+
 /// The `atmosphere { }` block: a medium filling the space around the
 /// objects, within a ball.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Atmosphere {
     /// Its coefficients.
-    pub medium: super::medium::MediumParams,
+    pub medium: MediumParams,
     /// The centre of the ball it fills, if given (else that of the
     /// objects, the camera and the lights).
     pub center: Option<DVec3>,

@@ -11,7 +11,7 @@ use crate::material::medium::Medium;
 use glam::{DVec3, Vec3};
 
 /// A checked medium in the renderer's f32.
-pub fn lower_medium(m: &check::medium::MediumParams) -> Medium {
+pub fn lower_medium(m: &check::scene::MediumParams) -> Medium {
     Medium {
         absorption: DVec3::from_array(m.absorption).as_vec3(),
         scattering: DVec3::from_array(m.scattering).as_vec3(),

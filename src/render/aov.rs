@@ -87,23 +87,40 @@ struct FirstSurface {
 }
 
 /// The first non-specular surface along `ray` (through up to
-/// [`SPECULAR_BOUNCES`] perfect mirrors and glass); its depth is the first
-/// hit's distance, as a compositor's depth pass is.
+/// [`SPECULAR_BOUNCES`] perfect mirrors and glass, and through `type none`
+/// boundaries, which are not surfaces); its depth is the first hit's
+/// distance, as a compositor's depth pass is.
 fn first_surface(
     scene: &Scene,
     mut ray: Ray,
     sampler: &mut crate::sampling::sampler::Sampler,
 ) -> FirstSurface {
     let mut found = FirstSurface::default();
+    let mut crossings = 0;
+    // The distance to the boundaries crossed before the first surface.
+    let mut before = 0.0;
     for bounce in 0..=SPECULAR_BOUNCES {
         let Some(mut hit) = scene.intersect(&ray, T_MIN, f32::INFINITY) else {
             return found;
         };
         let wo = -ray.d;
         let mut textured = None;
-        let material = scene.material_at(&mut hit, wo, ray.time, &mut textured);
+        let mut material = scene.material_at(&mut hit, wo, ray.time, &mut textured);
+        while material.is_null() && crossings < crate::ir::media::MAX_CROSSINGS {
+            crossings += 1;
+            if bounce == 0 {
+                before += hit.t;
+            }
+            let from = crate::geometry::offset_origin(hit.p, hit.n_geo, ray.d);
+            ray = Ray::new(from, ray.d, ray.time);
+            let Some(next) = scene.intersect(&ray, T_MIN, f32::INFINITY) else {
+                return found;
+            };
+            hit = next;
+            material = scene.material_at(&mut hit, wo, ray.time, &mut textured);
+        }
         if bounce == 0 {
-            found.depth = hit.t;
+            found.depth = before + hit.t;
             found.object = scene.prim_object.get(hit.prim as usize).copied();
         }
         (found.albedo, found.normal, found.position) = (material.albedo(), hit.n_shading, hit.p);

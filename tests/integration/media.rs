@@ -231,3 +231,25 @@ fn media_renders_are_the_same_on_one_and_two_threads() {
     };
     assert_eq!(on(1), on(2));
 }
+
+#[test]
+fn aovs_look_through_null_boundaries() {
+    // A red wall seen through a fog box: the albedo and depth AOVs are the
+    // wall's (the boundary is not a surface).
+    let ir = compiled(
+        "render { resolution <4, 4> samples 4 }
+         camera { position <0, 0, 5> look_at <0, 0, 0> fov 10 }
+         point_light { position <0, 0, 4> intensity rgb 1 }
+         quad { corner <-2, -2, 0> edge1 <4, 0, 0> edge2 <0, 4, 0> material { diffuse rgb <0.8, 0.1, 0.1> } }
+         box { min <-1, -1, 1> max <1, 1, 3> material { type none density 0.2 } }",
+    );
+    let integ = ptsc::integrator::make(ir.settings.integrator);
+    let cancel = std::sync::atomic::AtomicBool::new(false);
+    let film = ptsc::render::render(&ir, integ.as_ref(), &cancel, &|_| {}, &mut |_, _| {}).film;
+    use ptsc::render::aov::{render_aovs, Aov};
+    let out = render_aovs(&ir, &[Aov::Albedo, Aov::Depth], &film, &cancel).unwrap();
+    let albedo_r = &out[0].1[0];
+    let depth = &out[1].1[0];
+    assert!(albedo_r.iter().all(|a| (a - 0.8).abs() < 1e-4), "{albedo_r:?}");
+    assert!(depth.iter().all(|d| (5.0..5.05).contains(d)), "{depth:?}");
+}

@@ -147,7 +147,9 @@ impl Scene {
         let mut ray = *ray;
         let mut left = t_max;
         for _ in 0..MAX_CROSSINGS {
-            let Some(mut hit) = self.intersect(&ray, crate::geometry::T_MIN, left) else {
+            let found = self.intersect(&ray, crate::geometry::T_MIN, left);
+            crate::accel::ray_count::closest_was_shadow();
+            let Some(mut hit) = found else {
                 if let Some((m, t0, t1)) = self.medium_span(media.innermost(), &ray, left) {
                     tr *= m.transmittance(t1 - t0);
                 }

@@ -78,6 +78,26 @@ pub fn direct_light_mis(
     f * ls.li * cos * w / light_pdf
 }
 
+/// Continues a path at `hit` by sampling its material for `wo` (the
+/// bounce's BSDF draws); `None` where the path ends: no sample, a weight
+/// that is zero or not finite, or a reflection that would cross a bent
+/// surface ([`crosses_surface`]).
+#[inline(always)]
+pub fn continue_path(
+    hit: &Hit,
+    material: &Material,
+    wo: Vec3,
+    bounce: u32,
+    sampler: &mut Sampler,
+) -> Option<crate::material::BsdfSample> {
+    sampler.start(bounce, crate::sampling::sampler::Draws::Bsdf);
+    let bs = material.sample(wo, hit.n_shading, sampler.next_f32(), sampler.next_2d())?;
+    let usable = bs.weight.is_finite()
+        && bs.weight != Vec3::ZERO
+        && (bs.transmitted || !crosses_surface(hit, wo, bs.wi));
+    usable.then_some(bs)
+}
+
 /// `c` scaled so that its largest component is at most `x`, its hue kept
 /// (a sample's bound and `render { clamp }`).
 #[inline]

@@ -91,17 +91,9 @@ pub fn path_li(scene: &Scene, mut ray: Ray, sampler: &mut Sampler, nee: bool) ->
             }
         }
         // Continue the path by sampling the BSDF.
-        sampler.start(bounce, Draws::Bsdf);
-        let Some(bs) = material.sample(wo, hit.n_shading, sampler.next_f32(), sampler.next_2d())
-        else {
+        let Some(bs) = super::continue_path(&hit, material, wo, bounce, sampler) else {
             break;
         };
-        if !bs.weight.is_finite()
-            || bs.weight == Vec3::ZERO
-            || (!bs.transmitted && super::crosses_surface(&hit, wo, bs.wi))
-        {
-            break;
-        }
         beta *= bs.weight;
         prev_pdf = bs.pdf;
         prev_p = hit.p;

@@ -247,17 +247,9 @@ pub fn volpath_li(scene: &Scene, mut ray: Ray, sampler: &mut Sampler, nee: bool)
                 );
             }
         }
-        sampler.start(bounce, Draws::Bsdf);
-        let Some(bs) = material.sample(wo, hit.n_shading, sampler.next_f32(), sampler.next_2d())
-        else {
+        let Some(bs) = super::continue_path(hit, material, wo, bounce, sampler) else {
             break;
         };
-        if !bs.weight.is_finite()
-            || bs.weight == Vec3::ZERO
-            || (!bs.transmitted && crosses_surface(hit, wo, bs.wi))
-        {
-            break;
-        }
         st.beta *= bs.weight;
         st.prev_pdf = bs.pdf;
         st.prev_p = hit.p;

@@ -250,6 +250,9 @@ fn aovs_look_through_null_boundaries() {
     let out = render_aovs(&ir, &[Aov::Albedo, Aov::Depth], &film, &cancel).unwrap();
     let albedo_r = &out[0].1[0];
     let depth = &out[1].1[0];
-    assert!(albedo_r.iter().all(|a| (a - 0.8).abs() < 1e-4), "{albedo_r:?}");
+    assert!(
+        albedo_r.iter().all(|a| (a - 0.8).abs() < 1e-4),
+        "{albedo_r:?}"
+    );
     assert!(depth.iter().all(|d| (5.0..5.05).contains(d)), "{depth:?}");
 }

@@ -493,6 +493,8 @@ fn model_checks(p: &Params, m: &mut Material, diags: &mut Diagnostics) {
                 "two_sided",
                 "normal_map",
                 "bump",
+                "opacity",
+                "opacity_cutoff",
             ],
             "a `type none` boundary has no surface: it is the medium inside (`absorption`, `scattering` or `density`, `anisotropy`)",
         ),
@@ -537,6 +539,8 @@ fn model_checks(p: &Params, m: &mut Material, diags: &mut Diagnostics) {
             "absorption" => m.absorption = [0.0; 3],
             "scattering" => m.scattering = [0.0; 3],
             "emission" => m.emission = [0.0; 3],
+            "opacity" => m.opacity = 1.0,
+            "opacity_cutoff" => m.opacity_cutoff = None,
             "gloss" => m.gloss = 0.0,
             _ => {}
         }

@@ -63,6 +63,19 @@ impl Vertex<'_> {
         }
     }
 
+    /// The media a shadow ray along `wi` starts among: `media` (those of
+    /// `wo`'s side), or, through a surface that refracts light towards
+    /// `wi` (rough glass), those across it.
+    fn media_towards(&self, scene: &Scene, media: MediumStack, wo: Vec3, wi: Vec3) -> MediumStack {
+        let mut across = media;
+        if let Vertex::Surface(hit, m) = self {
+            if (wi.dot(hit.n_geo) > 0.0) != (wo.dot(hit.n_geo) > 0.0) {
+                across.cross(scene, wi, hit, m);
+            }
+        }
+        across
+    }
+
     /// The shadow ray towards a light point at `dist` along `wi`, and how
     /// far it must be free.
     fn shadow_ray(&self, wi: Vec3, dist: f32, time: f32) -> (Ray, f32) {
@@ -101,6 +114,7 @@ fn direct_light(
         return Vec3::ZERO;
     }
     let (shadow, t_max) = vertex.shadow_ray(ls.wi, ls.dist, time);
+    let media = vertex.media_towards(scene, media, wo, ls.wi);
     let tr = scene.transmittance(&shadow, t_max, media);
     if tr == Vec3::ZERO {
         return Vec3::ZERO;
@@ -159,7 +173,7 @@ pub fn volpath_li(scene: &Scene, mut ray: Ray, sampler: &mut Sampler, nee: bool)
         let end = hit.as_ref().zip(material);
         let t_end = hit.as_ref().map_or(f32::INFINITY, |h| h.t);
         // The medium of this segment: scatter in it, or pass through it.
-        let segment = st.media.segment(ray.d, end);
+        let segment = st.media.segment(scene, ray.d, end);
         if let Some((medium, t0, t1)) = scene.medium_span(segment, &ray, t_end) {
             if !medium.scatters() {
                 st.beta *= medium.transmittance(t1 - t0);
@@ -179,6 +193,7 @@ pub fn volpath_li(scene: &Scene, mut ray: Ray, sampler: &mut Sampler, nee: bool)
                     if segments >= s.max_depth {
                         break;
                     }
+                    crossings = 0;
                     let vertex = Vertex::Medium(p, medium.anisotropy);
                     let wo = -ray.d;
                     if nee {
@@ -210,11 +225,12 @@ pub fn volpath_li(scene: &Scene, mut ray: Ray, sampler: &mut Sampler, nee: bool)
             if crossings > MAX_CROSSINGS {
                 break;
             }
-            st.media.cross(ray.d, hit, material);
+            st.media.cross(scene, ray.d, hit, material);
             ray = Ray::new(offset_origin(hit.p, hit.n_geo, ray.d), ray.d, ray.time);
             segments -= 1;
             continue;
         }
+        crossings = 0;
         // Emission seen along the path.
         let le = material.emitted(wo, hit.n_geo);
         if le != Vec3::ZERO {
@@ -255,7 +271,7 @@ pub fn volpath_li(scene: &Scene, mut ray: Ray, sampler: &mut Sampler, nee: bool)
         st.prev_p = hit.p;
         st.prev_n = hit.n_shading;
         if (bs.wi.dot(hit.n_geo) > 0.0) != (wo.dot(hit.n_geo) > 0.0) {
-            st.media.cross(bs.wi, hit, material);
+            st.media.cross(scene, bs.wi, hit, material);
         }
         if !roulette(&mut st.beta, segments, s.rr_depth, bounce, sampler) {
             break;

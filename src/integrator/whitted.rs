@@ -49,12 +49,12 @@ fn first_surface(scene: &Scene, ray: &mut Ray, media: &mut MediumStack) -> (Opti
             .map(|h| scene.material_at(h, -ray.d, ray.time, &mut slot));
         let end = hit.as_ref().zip(material);
         let t = hit.as_ref().map_or(f32::INFINITY, |h| h.t);
-        if let Some((m, t0, t1)) = scene.medium_span(media.segment(ray.d, end), ray, t) {
+        if let Some((m, t0, t1)) = scene.medium_span(media.segment(scene, ray.d, end), ray, t) {
             tr *= m.transmittance(t1 - t0);
         }
         match end {
             Some((h, m)) if m.is_null() => {
-                media.cross(ray.d, h, m);
+                media.cross(scene, ray.d, h, m);
                 *ray = Ray::new(offset_origin(h.p, h.n_geo, ray.d), ray.d, ray.time);
             }
             _ => return (hit, tr),
@@ -131,7 +131,7 @@ fn shade(
         let r = Ray::new(offset_origin(hit.p, hit.n_geo, dir), dir, ray.time);
         let mut inside = media;
         if (dir.dot(hit.n_geo) > 0.0) != outside {
-            inside.cross(dir, &hit, m);
+            inside.cross(scene, dir, &hit, m);
         }
         let l = trace_in(scene, r, sampler, (segment + 1, w), inside);
         sampler.pad();
@@ -224,6 +224,11 @@ fn light_sample(
     }
     let (shadow, t_max) = super::shadow_ray(hit, ls.wi, ls.dist, time);
     let tr = if scene.volumetric {
+        // Through a surface that refracts towards the light, from across it.
+        let mut media = media;
+        if (ls.wi.dot(hit.n_geo) > 0.0) != (wo.dot(hit.n_geo) > 0.0) {
+            media.cross(scene, ls.wi, hit, m);
+        }
         scene.transmittance(&shadow, t_max, media)
     } else if scene.occluded(&shadow, T_MIN, t_max) {
         Vec3::ZERO

@@ -12,7 +12,8 @@
 //! path that starts inside objects (the camera in the fog) finds them by a
 //! probe ray at the start ([`media_around`]). Overlapping media are not
 //! added: where two objects with media overlap, the one entered last fills
-//! the overlap.
+//! the overlap (leaving an object removes it from the stack wherever it
+//! stands).
 
 use super::{Hit, Scene};
 use crate::geometry::{offset_origin, Ray};
@@ -53,10 +54,11 @@ impl Atmosphere {
 const NESTING: usize = 4;
 
 /// The insides a path has entered and not left, innermost last: the
-/// medium of each (`None`: a transparent object without one, empty inside).
+/// object entered (its [`Scene::inside_key`]) and its medium (`None`: a
+/// transparent object without one, empty inside).
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct MediumStack {
-    items: [Option<Medium>; NESTING],
+    items: [(u64, Option<Medium>); NESTING],
     len: u8,
 }
 
@@ -75,43 +77,76 @@ impl MediumStack {
     pub fn innermost(&self) -> SegmentMedium {
         match self.len {
             0 => SegmentMedium::Outside,
-            n => SegmentMedium::Inside(self.items[n as usize - 1]),
+            n => SegmentMedium::Inside(self.items[n as usize - 1].1),
         }
     }
 
+    /// Where in the stack the object `key` is, if the path entered it.
+    fn find(&self, key: u64) -> Option<usize> {
+        self.items[..self.len as usize]
+            .iter()
+            .rposition(|(k, _)| *k == key)
+    }
+
     /// The medium of a segment along `d` that ends at `hit` on a surface of
-    /// `material` (`None`: it leaves the scene).
+    /// `material` (`None`: it leaves the scene): the innermost object's;
+    /// at the inside of an object the path did not enter (it started
+    /// there), that object's.
     #[inline]
-    pub fn segment(&self, d: Vec3, end: Option<(&Hit, &Material)>) -> SegmentMedium {
+    pub fn segment(&self, scene: &Scene, d: Vec3, end: Option<(&Hit, &Material)>) -> SegmentMedium {
         match end {
             Some((hit, m)) if m.has_inside() && d.dot(hit.n_geo) > 0.0 => {
-                SegmentMedium::Inside(m.interior())
+                match self.find(scene.inside_key(hit)) {
+                    Some(_) => self.innermost(),
+                    None => SegmentMedium::Inside(m.interior()),
+                }
             }
             _ => self.innermost(),
         }
     }
 
     /// Updates the stack for light crossing the surface of `material` at
-    /// `hit` along `d` (entering or leaving its inside).
+    /// `hit` along `d` (entering or leaving its inside): leaving removes
+    /// the object left, wherever it stands (overlapping objects are not
+    /// left in the order they were entered).
     #[inline]
-    pub fn cross(&mut self, d: Vec3, hit: &Hit, material: &Material) {
+    pub fn cross(&mut self, scene: &Scene, d: Vec3, hit: &Hit, material: &Material) {
         if !material.has_inside() {
             return;
         }
+        let key = scene.inside_key(hit);
         if d.dot(hit.n_geo) < 0.0 {
-            self.push(material.interior());
-        } else {
-            self.len = self.len.saturating_sub(1);
+            self.push(key, material.interior());
+        } else if let Some(i) = self.find(key) {
+            self.items.copy_within(i + 1..self.len as usize, i);
+            self.len -= 1;
         }
     }
 
-    fn push(&mut self, m: Option<Medium>) {
+    fn push(&mut self, key: u64, m: Option<Medium>) {
         if self.len as usize == NESTING {
             self.items.copy_within(1.., 0);
             self.len -= 1;
         }
-        self.items[self.len as usize] = m;
+        self.items[self.len as usize] = (key, m);
         self.len += 1;
+    }
+}
+
+impl Scene {
+    /// Which object a hit's surface bounds, for [`MediumStack`]: the
+    /// object of the scene's own primitives (a mesh's triangles are one);
+    /// a placed group's primitive with its placement.
+    #[inline]
+    pub fn inside_key(&self, hit: &Hit) -> u64 {
+        if hit.instance == super::instance::NO_INSTANCE {
+            self.prim_object
+                .get(hit.prim as usize)
+                .copied()
+                .unwrap_or(hit.prim) as u64
+        } else {
+            (1 << 63) | ((hit.instance as u64) << 32) | hit.prim as u64
+        }
     }
 }
 
@@ -160,14 +195,14 @@ impl Scene {
             if !material.is_null() {
                 return Vec3::ZERO;
             }
-            let segment = media.segment(ray.d, Some((&hit, material)));
+            let segment = media.segment(self, ray.d, Some((&hit, material)));
             if let Some((m, t0, t1)) = self.medium_span(segment, &ray, hit.t) {
                 tr *= m.transmittance(t1 - t0);
             }
             if tr == Vec3::ZERO {
                 return tr;
             }
-            media.cross(ray.d, &hit, material);
+            media.cross(self, ray.d, &hit, material);
             left -= hit.t;
             ray = Ray::new(offset_origin(hit.p, hit.n_geo, ray.d), ray.d, ray.time);
         }
@@ -183,31 +218,30 @@ pub fn media_around(scene: &Scene, point: Vec3) -> MediumStack {
     // A direction along no axis, so that it does not run along walls.
     let d = Vec3::new(0.352, 0.613, 0.707).normalize();
     let mut ray = Ray::new(point, d, 0.0);
-    let mut entered: Vec<u32> = Vec::new();
-    let mut holding: Vec<Option<Medium>> = Vec::new();
+    let mut entered: Vec<u64> = Vec::new();
+    let mut holding: Vec<(u64, Option<Medium>)> = Vec::new();
     for _ in 0..MAX_CROSSINGS {
         let Some(mut hit) = scene.intersect(&ray, crate::geometry::T_MIN, f32::INFINITY) else {
             break;
         };
-        let object = scene.prim_object.get(hit.prim as usize).copied();
         let mut slot = None;
         let material = scene.material_at(&mut hit, -d, 0.0, &mut slot);
         if material.has_inside() {
-            let key = object.unwrap_or(u32::MAX) ^ hit.instance.rotate_left(16);
+            let key = scene.inside_key(&hit);
             if d.dot(hit.n_geo) < 0.0 {
                 entered.push(key);
             } else if let Some(i) = entered.iter().rposition(|&k| k == key) {
                 entered.remove(i);
             } else {
-                holding.push(material.interior());
+                holding.push((key, material.interior()));
             }
         }
         ray = Ray::new(offset_origin(hit.p, hit.n_geo, d), d, 0.0);
     }
     // Met innermost first; the stack keeps the outermost first.
     let mut stack = MediumStack::default();
-    for m in holding.into_iter().rev() {
-        stack.push(m);
+    for (key, m) in holding.into_iter().rev() {
+        stack.push(key, m);
     }
     stack
 }

@@ -20,9 +20,13 @@ pub fn lower_medium(m: &check::scene::MediumParams) -> Medium {
 }
 
 /// The atmosphere in the ball given, or in the one just around `around`
-/// (the objects and the camera) and the lights placed in space.
-fn lower_atmosphere(a: &check::Atmosphere, around: Aabb, lights: &[Light]) -> Atmosphere {
-    let mut ball = around;
+/// (the objects), the camera and the lights placed in space.
+fn lower_atmosphere(
+    a: &check::Atmosphere,
+    (around, camera): (Aabb, Vec3),
+    lights: &[Light],
+) -> Atmosphere {
+    let mut ball = around.grow(camera);
     for l in lights {
         if let Light::Point { position, .. } | Light::Spot { position, .. } = l {
             ball = ball.grow(*position);
@@ -48,7 +52,7 @@ fn lower_atmosphere(a: &check::Atmosphere, around: Aabb, lights: &[Light]) -> At
 /// around the camera (after the scene's BVH is built: found by tracing).
 pub fn place_media(ir: &mut Scene, scene: &check::Scene, around: Aabb) {
     ir.atmosphere = (scene.atmosphere.as_ref())
-        .map(|a| lower_atmosphere(a, around, &ir.lights))
+        .map(|a| lower_atmosphere(a, (around, ir.camera.position()), &ir.lights))
         .filter(|a| a.medium.extinction() != Vec3::ZERO);
     let scattering =
         (ir.materials.iter()).any(|m| m.is_null() || m.interior().is_some_and(|i| i.scatters()));

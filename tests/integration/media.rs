@@ -256,3 +256,64 @@ fn aovs_look_through_null_boundaries() {
     );
     assert!(depth.iter().all(|d| (5.0..5.05).contains(d)), "{depth:?}");
 }
+
+#[test]
+fn overlapping_media_the_one_entered_last_fills_the_overlap() {
+    // Along the axis: into A (σa 0.5) at x = −1, into B (σa 0.2) at 0, out
+    // of A at 1, out of B at 2; a lamp of radiance 1 at x = 3. The overlap
+    // is B's: exp(−(0.5 + 0.2 + 0.2)).
+    let ir = compiled(
+        "render { resolution <3, 3> samples 4 }
+         camera { position <-3, 0, 0> look_at <0, 0, 0> fov 1 }
+         sphere { center <0, 0, 0> radius 1 material { type none absorption rgb 0.5 } }
+         sphere { center <1, 0, 0> radius 1 material { type none absorption rgb 0.2 } }
+         quad { corner <3, -1, 1> edge1 <0, 2, 0> edge2 <0, 0, -2> material { diffuse rgb 0 emission rgb 1 two_sided true } }",
+    );
+    let c = render_pixels(&ir)[4][0] as f64;
+    let want = (-0.9f64).exp();
+    assert!((c - want).abs() < 1e-3, "{c} vs {want}");
+}
+
+#[test]
+fn light_sampling_through_rough_glass_agrees_with_bsdf_sampling_alone() {
+    // Inside a frosted ball of scattering liquid, light sampled through the
+    // rough surface travels the air outside; sampling only the BSDF and the
+    // phase function must give the same mean (both are unbiased).
+    let scene = |nee: bool| {
+        format!(
+            "render {{ resolution <24, 24> samples 256 max_depth 64 light_sampling {nee} }}
+             camera {{ position <0, 0.5, 4> look_at <0, 0.3, 0> fov 35 }}
+             quad {{ corner <-3, 0, 3> edge1 <6, 0, 0> edge2 <0, 0, -6> material {{ diffuse rgb 0.5 }} }}
+             quad {{ corner <-2, 3, -2> edge1 <4, 0, 0> edge2 <0, 0, 4> material {{ diffuse rgb 0 emission rgb 2 }} }}
+             sphere {{ center <0, 0.8, 0> radius 0.8
+                      material {{ type dielectric ior 1.3 gloss 0.5 scattering rgb <1, 2, 3> absorption rgb 0.2 }} }}"
+        )
+    };
+    let with = mean(&render_pixels(&compiled(&scene(true))));
+    let without = mean(&render_pixels(&compiled(&scene(false))));
+    for k in 0..3 {
+        let r = with[k] / without[k];
+        assert!(
+            (r - 1.0).abs() < 0.02,
+            "channel {k}: {with:?} vs {without:?}"
+        );
+    }
+}
+
+#[test]
+fn the_default_atmosphere_holds_the_camera_and_the_lights() {
+    // Only an infinite plane: no bounded object to size the ball by.
+    let ir = compiled(
+        "camera { position <0, 5, 20> look_at <0, 0, 0> }
+         point_light { position <30, 8, 0> intensity rgb 10 }
+         plane { normal <0, 1, 0> material { diffuse rgb 0.5 } }
+         atmosphere { density 0.01 }",
+    );
+    let a = ir.atmosphere.expect("an atmosphere");
+    for p in [
+        glam::Vec3::new(0.0, 5.0, 20.0),
+        glam::Vec3::new(30.0, 8.0, 0.0),
+    ] {
+        assert!((p - a.center).length() < a.radius, "{p} outside {a:?}");
+    }
+}

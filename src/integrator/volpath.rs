@@ -22,6 +22,7 @@ use super::{crosses_surface, light_pdf, T_MIN};
 use crate::geometry::{offset_origin, Ray};
 use crate::ir::media::{MediumStack, MAX_CROSSINGS};
 use crate::ir::{Hit, Scene};
+use crate::material::medium::Medium;
 use crate::material::{phase, Material};
 use crate::sampling::sampler::{Draws, Sampler};
 use crate::sampling::warp::power_heuristic;
@@ -166,52 +167,20 @@ pub fn volpath_li(scene: &Scene, mut ray: Ray, sampler: &mut Sampler, nee: bool)
         let bounce = segments - 1;
         let mut hit = scene.intersect(&ray, T_MIN, f32::INFINITY);
         let mut slot = None;
-        let material = match hit.as_mut() {
-            Some(h) => Some(scene.material_at(h, -ray.d, ray.time, &mut slot)),
-            None => None,
-        };
+        let material = (hit.as_mut()).map(|h| scene.material_at(h, -ray.d, ray.time, &mut slot));
         let end = hit.as_ref().zip(material);
         let t_end = hit.as_ref().map_or(f32::INFINITY, |h| h.t);
         // The medium of this segment: scatter in it, or pass through it.
         let segment = st.media.segment(scene, ray.d, end);
-        if let Some((medium, t0, t1)) = scene.medium_span(segment, &ray, t_end) {
-            if !medium.scatters() {
-                st.beta *= medium.transmittance(t1 - t0);
-            } else {
-                sampler.pad();
-                let hero =
-                    *(st.hero).get_or_insert_with(|| ((sampler.next_f32() * 3.0) as usize).min(2));
-                let d = medium.sample_distance(t1 - t0, hero, sampler.next_f32());
-                let mean = (st.ratio * d.pdf).element_sum() / 3.0;
-                if !(mean > 0.0) || st.beta == Vec3::ZERO {
-                    break;
-                }
-                st.beta *= d.value / mean;
-                st.ratio = st.ratio * d.pdf / mean;
-                if d.scattered {
-                    let p = ray.o + ray.d * (t0 + d.t);
-                    if segments >= s.max_depth {
-                        break;
-                    }
+        if let Some(span) = scene.medium_span(segment, &ray, t_end) {
+            match through_medium(scene, &ray, span, (&mut st, segments), sampler, nee) {
+                InMedium::Passed => {}
+                InMedium::Scattered(next) => {
                     crossings = 0;
-                    let vertex = Vertex::Medium(p, medium.anisotropy);
-                    let wo = -ray.d;
-                    if nee {
-                        sampler.start(bounce, Draws::Light);
-                        let c = direct_light(scene, &vertex, wo, st.media, ray.time, sampler);
-                        add(&mut st.radiance, st.beta * c, segments, s.clamp);
-                    }
-                    sampler.start(bounce, Draws::Bsdf);
-                    let (wi, pdf) = phase::sample(wo, medium.anisotropy, sampler.next_2d());
-                    st.prev_pdf = pdf;
-                    st.prev_p = p;
-                    st.prev_n = Vec3::ZERO;
-                    if !roulette(&mut st.beta, segments, s.rr_depth, bounce, sampler) {
-                        break;
-                    }
-                    ray = Ray::new(p, wi, ray.time);
+                    ray = next;
                     continue;
                 }
+                InMedium::Ended => break,
             }
         }
         let (Some(hit), Some(material)) = (hit.as_ref(), material) else {
@@ -279,6 +248,65 @@ pub fn volpath_li(scene: &Scene, mut ray: Ray, sampler: &mut Sampler, nee: bool)
         ray = Ray::new(offset_origin(hit.p, hit.n_geo, bs.wi), bs.wi, ray.time);
     }
     st.radiance
+}
+
+/// What a segment's medium did to a path.
+enum InMedium {
+    /// It passed through to the segment's end (attenuated).
+    Passed,
+    /// It scattered, and goes on along this ray.
+    Scattered(Ray),
+    /// It ended there.
+    Ended,
+}
+
+/// Samples where the path along `ray` scatters in `medium` over `[t0, t1]`;
+/// at a scattering point (the path's vertex `segments`), samples a light
+/// and the phase function.
+fn through_medium(
+    scene: &Scene,
+    ray: &Ray,
+    (medium, t0, t1): (Medium, f32, f32),
+    (st, segments): (&mut PathState, u32),
+    sampler: &mut Sampler,
+    nee: bool,
+) -> InMedium {
+    if !medium.scatters() {
+        st.beta *= medium.transmittance(t1 - t0);
+        return InMedium::Passed;
+    }
+    let s = &scene.settings;
+    sampler.pad();
+    let hero = *(st.hero).get_or_insert_with(|| ((sampler.next_f32() * 3.0) as usize).min(2));
+    let d = medium.sample_distance(t1 - t0, hero, sampler.next_f32());
+    let mean = (st.ratio * d.pdf).element_sum() / 3.0;
+    if mean.is_nan() || mean <= 0.0 || st.beta == Vec3::ZERO {
+        return InMedium::Ended;
+    }
+    st.beta *= d.value / mean;
+    st.ratio = st.ratio * d.pdf / mean;
+    if !d.scattered {
+        return InMedium::Passed;
+    }
+    if segments >= s.max_depth {
+        return InMedium::Ended;
+    }
+    let (p, wo, bounce) = (ray.o + ray.d * (t0 + d.t), -ray.d, segments - 1);
+    if nee {
+        sampler.start(bounce, Draws::Light);
+        let vertex = Vertex::Medium(p, medium.anisotropy);
+        let c = direct_light(scene, &vertex, wo, st.media, ray.time, sampler);
+        add(&mut st.radiance, st.beta * c, segments, s.clamp);
+    }
+    sampler.start(bounce, Draws::Bsdf);
+    let (wi, pdf) = phase::sample(wo, medium.anisotropy, sampler.next_2d());
+    st.prev_pdf = pdf;
+    st.prev_p = p;
+    st.prev_n = Vec3::ZERO;
+    if !roulette(&mut st.beta, segments, s.rr_depth, bounce, sampler) {
+        return InMedium::Ended;
+    }
+    InMedium::Scattered(Ray::new(p, wi, ray.time))
 }
 
 /// Light from the environment along a ray that left the scene (already

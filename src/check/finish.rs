@@ -19,6 +19,7 @@ impl Checker<'_> {
         self.report_unused();
         let background = self.background.map(|b| b.0).unwrap_or([0.0; 3]);
         self.light_warnings(&render, background);
+        self.atmosphere_warnings();
         let camera = self.camera.take();
         if self.camera_span.is_none() {
             self.diags.push(
@@ -70,6 +71,30 @@ impl Checker<'_> {
     /// The warnings about the scene's light: none at all, an ambient term
     /// under the path integrator, whitted shading that ignores the only
     /// lights.
+    /// An atmosphere left to size itself around a scene with an infinite
+    /// plane ends at a ball near the objects: the plane's far part, the
+    /// horizon, shows no haze.
+    fn atmosphere_warnings(&mut self) {
+        let Some(a) = &self.atmosphere else {
+            return;
+        };
+        if a.radius.is_some() {
+            return;
+        }
+        let plane = (self.objects.iter()).find(|o| matches!(o.shape, Shape::Plane { .. }));
+        if let Some(plane) = plane {
+            self.diags.push(
+                Diagnostic::warning(
+                    codes::NO_EFFECT,
+                    "the atmosphere ends near the objects, short of this plane's horizon",
+                    plane.span,
+                )
+                .with_label("an infinite plane")
+                .with_help("without `radius`, `atmosphere` fills a ball just around the objects, the camera and the lights; give it a `radius` (and `center`) as far as the haze should reach"),
+            );
+        }
+    }
+
     fn light_warnings(&mut self, render: &RenderSettings, background: [f64; 3]) {
         let root = FileId(0);
         // Objects of groups placed count (an instance's material makes

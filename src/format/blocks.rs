@@ -133,6 +133,11 @@ fn entry(p: &mut Printer, e: &Entry, after: bool) {
             p.space();
             expr(p, position);
             p.space();
+            // `stop a (c)` would call `a`: the colour came from signs that
+            // cancelled (`!!(c)` is `(c)`), keep two.
+            if ends_with_name(p.text, position) && parenthesised(p.text, color) {
+                p.write("!!");
+            }
             apart(p, color, true);
         }
         Entry::Foreign { span, .. } => verbatim(p, *span),
@@ -204,10 +209,26 @@ fn positional(p: &mut Printer, values: &[Expr], after: bool) {
 /// and `1 -!x` would be a subtraction; `!!` cancels out, and parentheses
 /// after a name would make a call).
 fn apart(p: &mut Printer, e: &Expr, after_value: bool) {
-    if after_value && starts_with_minus(p.text, e) {
+    // (And a list right after a value would index it: `1 [2]`.)
+    if after_value && (starts_with_minus(p.text, e) || starts_with_list(p.text, e)) {
         p.write("!!");
     }
     expr(p, e);
+}
+
+/// Whether `e` is written starting with a list's `[`.
+fn starts_with_list(text: &str, e: &Expr) -> bool {
+    if parenthesised(text, e) {
+        return false;
+    }
+    match &e.kind {
+        ExprKind::List(_) => true,
+        ExprKind::Chain { first, .. } => starts_with_list(text, first),
+        ExprKind::Index { base, .. } | ExprKind::Member { base, .. } => {
+            starts_with_list(text, base)
+        }
+        _ => false,
+    }
 }
 
 /// Whether `e` is written starting with a `-`.
@@ -221,6 +242,22 @@ fn starts_with_minus(text: &str, e: &Expr) -> bool {
         ExprKind::Index { base, .. } | ExprKind::Member { base, .. } => {
             starts_with_minus(text, base)
         }
+        _ => false,
+    }
+}
+
+/// Whether `e` is written ending with a name (a parenthesis after it would
+/// make a call).
+fn ends_with_name(text: &str, e: &Expr) -> bool {
+    if parenthesised(text, e) {
+        return false;
+    }
+    match &e.kind {
+        ExprKind::Name(_) | ExprKind::Member { .. } => true,
+        ExprKind::Chain { rest, .. } => {
+            rest.last().is_some_and(|(_, _, x)| ends_with_name(text, x))
+        }
+        ExprKind::Neg(inner) | ExprKind::Not(inner) => ends_with_name(text, inner),
         _ => false,
     }
 }

@@ -216,34 +216,27 @@ fn apart(p: &mut Printer, e: &Expr, after_value: bool) {
     expr(p, e);
 }
 
-/// Whether `e` is written starting with a list's `[`.
-fn starts_with_list(text: &str, e: &Expr) -> bool {
+/// The operand `e` is written starting with (itself, or the first operand
+/// of its chain, index or member), if no parenthesis comes before it.
+fn leftmost<'e>(text: &str, e: &'e Expr) -> Option<&'e Expr> {
     if parenthesised(text, e) {
-        return false;
+        return None;
     }
     match &e.kind {
-        ExprKind::List(_) => true,
-        ExprKind::Chain { first, .. } => starts_with_list(text, first),
-        ExprKind::Index { base, .. } | ExprKind::Member { base, .. } => {
-            starts_with_list(text, base)
-        }
-        _ => false,
+        ExprKind::Chain { first, .. } => leftmost(text, first),
+        ExprKind::Index { base, .. } | ExprKind::Member { base, .. } => leftmost(text, base),
+        _ => Some(e),
     }
+}
+
+/// Whether `e` is written starting with a list's `[`.
+fn starts_with_list(text: &str, e: &Expr) -> bool {
+    leftmost(text, e).is_some_and(|l| matches!(l.kind, ExprKind::List(_)))
 }
 
 /// Whether `e` is written starting with a `-`.
 fn starts_with_minus(text: &str, e: &Expr) -> bool {
-    if parenthesised(text, e) {
-        return false;
-    }
-    match &e.kind {
-        ExprKind::Neg(_) => true,
-        ExprKind::Chain { first, .. } => starts_with_minus(text, first),
-        ExprKind::Index { base, .. } | ExprKind::Member { base, .. } => {
-            starts_with_minus(text, base)
-        }
-        _ => false,
-    }
+    leftmost(text, e).is_some_and(|l| matches!(l.kind, ExprKind::Neg(_)))
 }
 
 /// Whether `e` is written ending with a name (a parenthesis after it would
@@ -265,22 +258,17 @@ fn ends_with_name(text: &str, e: &Expr) -> bool {
 /// Whether `e` is written starting with a word (a name, `true`, `rgb`,
 /// `if`, a call).
 fn starts_with_word(text: &str, e: &Expr) -> bool {
-    if parenthesised(text, e) {
-        return false;
-    }
-    match &e.kind {
-        ExprKind::Name(_)
-        | ExprKind::Bool(_)
-        | ExprKind::Call { .. }
-        | ExprKind::Color(_)
-        | ExprKind::FilterColor { .. }
-        | ExprKind::If { .. } => true,
-        ExprKind::Chain { first, .. } => starts_with_word(text, first),
-        ExprKind::Index { base, .. } | ExprKind::Member { base, .. } => {
-            starts_with_word(text, base)
-        }
-        _ => false,
-    }
+    leftmost(text, e).is_some_and(|l| {
+        matches!(
+            l.kind,
+            ExprKind::Name(_)
+                | ExprKind::Bool(_)
+                | ExprKind::Call { .. }
+                | ExprKind::Color(_)
+                | ExprKind::FilterColor { .. }
+                | ExprKind::If { .. }
+        )
+    })
 }
 
 /// Writes the source of `span` as it is (without the blanks that end it):

@@ -9,6 +9,7 @@
 //! hit children are visited nearest first.
 
 use super::bvh::Bvh;
+use super::pages::PagedVec;
 use super::tri4::{PackedTriangle, Tri4, FLAGS, MAX_PACKED, PLAIN};
 use crate::geometry::shape::Shape;
 use crate::geometry::shape::ShapeHit;
@@ -17,7 +18,7 @@ use arrayvec::ArrayVec;
 use glam::{Vec2, Vec3};
 
 /// One node: four child boxes, each child a node or a leaf range.
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
 #[repr(C, align(64))]
 pub struct Node4 {
     /// Box minima per axis, one lane per child.
@@ -83,10 +84,10 @@ pub struct TreeHit {
 #[derive(Debug, Clone, Default)]
 pub struct Bvh4 {
     /// Nodes; the root is node 0.
-    pub nodes: Vec<Node4>,
+    pub nodes: PagedVec<Node4>,
     /// Blocks of up to four static triangles or quads, tested together; a
     /// leaf holds up to [`MAX_BLOCKS`] consecutive ones.
-    pub tris: Vec<Tri4>,
+    pub tris: PagedVec<Tri4>,
     /// The first plain primitive's number: plain lanes are numbered from it
     /// in block order (see [`Bvh4::renumber`]).
     pub plain_from: u32,
@@ -110,7 +111,7 @@ impl Bvh4 {
         // about half that), reserved up front so that the vector never grows
         // (old and new buffers at once) at the load's peak; pages never
         // written cost no memory.
-        out.nodes.reserve(bvh.len() / 2);
+        out.nodes.reserve_exact(bvh.len() / 2);
         let mut collapse = Collapse { bvh, out: &mut out };
         if bvh.node(0).count > 0 {
             // A single leaf: one node with one child.
@@ -196,7 +197,7 @@ impl Bvh4 {
         plain_from: u32,
         mut plain: impl FnMut(u32, u32),
     ) {
-        for n in &mut self.nodes {
+        for n in self.nodes.iter_mut() {
             for lane in 0..4 {
                 if n.count[lane] != 0 && blocks(n.count[lane]) == 0 {
                     n.child[lane] = record(n.child[lane]);
@@ -206,7 +207,7 @@ impl Bvh4 {
         self.plain_from = plain_from;
         self.plain_before = Vec::with_capacity(self.tris.len());
         let mut next = plain_from;
-        for block in &mut self.tris {
+        for block in self.tris.iter_mut() {
             self.plain_before.push(next - plain_from);
             for p in block.prim.iter_mut().filter(|p| **p != u32::MAX) {
                 let old = *p & !FLAGS;
@@ -271,7 +272,9 @@ impl Bvh4 {
         mut t_max: f32,
         mut hit: F,
     ) -> Option<TreeHit> {
-        if self.nodes.is_empty() {
+        // The buffers once, not at every step (see `PagedVec`'s deref).
+        let (nodes, tris): (&[Node4], &[Tri4]) = (&self.nodes, &self.tris);
+        if nodes.is_empty() {
             return None;
         }
         let r = RayLanes::new(ray);
@@ -291,7 +294,7 @@ impl Bvh4 {
             }
             if count >= FIRST_BLOCKS {
                 for b in first..first + blocks(count) {
-                    let block = &self.tris[b as usize];
+                    let block = &tris[b as usize];
                     if let Some(h) = block.closest(ray.o, ray.d, t_min, t_max) {
                         t_max = h.t;
                         best = Some(TreeHit {
@@ -325,7 +328,7 @@ impl Bvh4 {
             // lanes (min and max drop NaN), whose child is u32::MAX: the
             // bounds check that every index pays skips it instead of
             // panicking, at no extra cost.
-            let Some(n) = self.nodes.get(first as usize) else {
+            let Some(n) = nodes.get(first as usize) else {
                 continue;
             };
             let (t_near, mask) = r.slab4(n, t_max);
@@ -371,14 +374,15 @@ impl Bvh4 {
         t_max: f32,
         mut hit: F,
     ) -> bool {
-        if self.nodes.is_empty() {
+        let (nodes, tris): (&[Node4], &[Tri4]) = (&self.nodes, &self.tris);
+        if nodes.is_empty() {
             return false;
         }
         let r = RayLanes::new(ray);
         let mut stack = Stack::new(0u32);
         while let Some(node) = stack.pop() {
             // An empty lane, reached by a NaN ray: see `closest`.
-            let Some(n) = self.nodes.get(node as usize) else {
+            let Some(n) = nodes.get(node as usize) else {
                 continue;
             };
             let (_, mask) = r.slab4(n, t_max);
@@ -393,7 +397,7 @@ impl Bvh4 {
                         false
                     }
                     FIRST_BLOCKS..=BLOCK => (first..first + blocks(count))
-                        .any(|b| self.tris[b as usize].any(ray.o, ray.d, t_min, t_max)),
+                        .any(|b| tris[b as usize].any(ray.o, ray.d, t_min, t_max)),
                     _ => (first..first + count).any(|p| hit(p, t_max)),
                 };
                 if blocked {

@@ -16,7 +16,7 @@ use glam::{Vec3, Vec4};
 /// Up to four triangles `p0, p0 + e1, p0 + e2` or parallelograms spanned by
 /// `e1` and `e2` from `p0` (quads, see [`QUAD`]), one per lane; unused lanes
 /// are degenerate (zero edges never hit).
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
 #[repr(C, align(32))]
 pub struct Tri4 {
     /// First vertex, per axis.

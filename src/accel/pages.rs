@@ -11,8 +11,8 @@
 //!
 //! The buffer is an anonymous mapping (`memmap2`, safe to create) viewed as
 //! a slice of `T` through `bytemuck` (which checks size and alignment), so
-//! no `unsafe` is needed. Small buffers, and any platform where mapping
-//! fails, stay plain `Vec`s.
+//! no `unsafe` is needed. Small buffers, buffers the OS will not map (they
+//! move back to the heap) and other systems than Linux use plain `Vec`s.
 
 use bytemuck::Pod;
 use memmap2::MmapMut;
@@ -26,16 +26,18 @@ const MAPPED_FROM: usize = 4 << 20;
 
 /// A vector of `T` that moves to a mapping advised for huge pages once it
 /// holds (or reserves) [`MAPPED_FROM`] bytes. Dereferences to `[T]`.
-pub enum PagedVec<T: Pod> {
-    /// A small buffer on the heap.
+pub struct PagedVec<T: Pod>(Buffer<T>);
+
+/// Where a [`PagedVec`]'s elements are (private: `len` must stay within the
+/// mapping).
+enum Buffer<T: Pod> {
+    /// A small buffer on the heap, or a large one the OS would not map.
     Heap(Vec<T>),
-    /// A large one: the mapping and the elements in use.
+    /// A large one: the mapping (bytes past `len` elements are zero) and
+    /// the elements in use.
     Mapped {
-        /// The whole capacity; bytes past `len` elements are zero.
         map: MmapMut,
-        /// Elements in use.
         len: usize,
-        /// The element type the bytes hold.
         element: PhantomData<T>,
     },
 }
@@ -43,44 +45,34 @@ pub enum PagedVec<T: Pod> {
 impl<T: Pod> PagedVec<T> {
     /// An empty vector.
     pub fn new() -> Self {
-        PagedVec::Heap(Vec::new())
+        PagedVec(Buffer::Heap(Vec::new()))
     }
 
     /// How many elements fit before the buffer moves.
     pub fn capacity(&self) -> usize {
-        match self {
-            PagedVec::Heap(v) => v.capacity(),
-            PagedVec::Mapped { map, .. } => map.len() / size_of::<T>().max(1),
+        match &self.0 {
+            Buffer::Heap(v) => v.capacity(),
+            Buffer::Mapped { map, .. } => map.len() / size_of::<T>().max(1),
         }
     }
 
     /// Makes room for `additional` more elements, exactly.
     pub fn reserve_exact(&mut self, additional: usize) {
         let needed = self.len().saturating_add(additional);
-        if needed <= self.capacity() {
-            return;
-        }
-        if !self.remap(needed) {
-            if let PagedVec::Heap(v) = self {
-                v.reserve_exact(additional);
-            }
+        if needed > self.capacity() && !self.remap(needed) {
+            self.heap_reserve(additional, true);
         }
     }
 
     /// Appends an element, growing as a `Vec` does.
     pub fn push(&mut self, value: T) {
         let len = self.len();
-        if len == self.capacity() {
-            let grown = len.saturating_mul(2).max(4);
-            if !self.remap(grown) {
-                if let PagedVec::Heap(v) = self {
-                    v.reserve(1);
-                }
-            }
+        if len == self.capacity() && !self.remap(len.saturating_mul(2).max(4)) {
+            self.heap_reserve(1, false);
         }
-        match self {
-            PagedVec::Heap(v) => v.push(value),
-            PagedVec::Mapped { map, len, .. } => {
+        match &mut self.0 {
+            Buffer::Heap(v) => v.push(value),
+            Buffer::Mapped { map, len, .. } => {
                 let at = *len * size_of::<T>();
                 map[at..at + size_of::<T>()].copy_from_slice(bytemuck::bytes_of(&value));
                 *len += 1;
@@ -88,14 +80,35 @@ impl<T: Pod> PagedVec<T> {
         }
     }
 
+    /// Reserves on the heap, moving the elements out of a mapping the OS
+    /// would not grow (a `Vec` then fails as it would have anyway).
+    fn heap_reserve(&mut self, additional: usize, exact: bool) {
+        let mut v = match std::mem::replace(&mut self.0, Buffer::Heap(Vec::new())) {
+            Buffer::Heap(v) => v,
+            Buffer::Mapped { map, len, .. } => {
+                bytemuck::cast_slice::<u8, T>(&map[..len * size_of::<T>()]).to_vec()
+            }
+        };
+        if exact {
+            v.reserve_exact(additional);
+        } else {
+            v.reserve(additional);
+        }
+        self.0 = Buffer::Heap(v);
+    }
+
     /// Moves the elements to a mapping of `capacity` elements advised for
     /// huge pages, when that is large enough to be worth it and the OS
-    /// gives it; whether it did.
+    /// gives it; whether it did. Only on Linux: elsewhere the advice does
+    /// not exist and a mapping would bring nothing.
     fn remap(&mut self, capacity: usize) -> bool {
+        if !cfg!(target_os = "linux") || size_of::<T>() == 0 {
+            return false;
+        }
         let Some(bytes) = capacity.checked_mul(size_of::<T>()) else {
             return false;
         };
-        if bytes < MAPPED_FROM || size_of::<T>() == 0 {
+        if bytes < MAPPED_FROM {
             return false;
         }
         let Ok(mut map) = MmapMut::map_anon(bytes) else {
@@ -108,12 +121,17 @@ impl<T: Pod> PagedVec<T> {
         let len = self.len();
         let used = len * size_of::<T>();
         map[..used].copy_from_slice(bytemuck::cast_slice(&self[..]));
-        *self = PagedVec::Mapped {
+        self.0 = Buffer::Mapped {
             map,
             len,
             element: PhantomData,
         };
         true
+    }
+
+    /// Whether the elements live in a mapping.
+    pub fn is_mapped(&self) -> bool {
+        matches!(self.0, Buffer::Mapped { .. })
     }
 }
 
@@ -128,11 +146,9 @@ impl<T: Pod> Deref for PagedVec<T> {
 
     #[inline(always)]
     fn deref(&self) -> &[T] {
-        match self {
-            PagedVec::Heap(v) => v,
-            PagedVec::Mapped { map, len, .. } => {
-                bytemuck::cast_slice(&map[..*len * size_of::<T>()])
-            }
+        match &self.0 {
+            Buffer::Heap(v) => v,
+            Buffer::Mapped { map, len, .. } => bytemuck::cast_slice(&map[..*len * size_of::<T>()]),
         }
     }
 }
@@ -140,9 +156,9 @@ impl<T: Pod> Deref for PagedVec<T> {
 impl<T: Pod> DerefMut for PagedVec<T> {
     #[inline(always)]
     fn deref_mut(&mut self) -> &mut [T] {
-        match self {
-            PagedVec::Heap(v) => v,
-            PagedVec::Mapped { map, len, .. } => {
+        match &mut self.0 {
+            Buffer::Heap(v) => v,
+            Buffer::Mapped { map, len, .. } => {
                 bytemuck::cast_slice_mut(&mut map[..*len * size_of::<T>()])
             }
         }
@@ -183,13 +199,13 @@ mod tests {
         for k in 0..1000 {
             small.push([k as f32; 4]);
         }
-        assert!(matches!(small, PagedVec::Heap(_)));
+        assert!(!small.is_mapped());
         let n = MAPPED_FROM / size_of::<[f32; 4]>() + 3;
         let mut large: PagedVec<[f32; 4]> = PagedVec::new();
         for k in 0..n {
             large.push([k as f32; 4]);
         }
-        assert!(matches!(large, PagedVec::Mapped { .. }));
+        assert_eq!(large.is_mapped(), cfg!(target_os = "linux"));
         assert_eq!(large.len(), n);
         assert!((0..n).all(|k| large[k] == [k as f32; 4]));
         large[7][1] = -1.0;
@@ -204,7 +220,7 @@ mod tests {
         v.push(5);
         v.push(6);
         v.reserve_exact(MAPPED_FROM);
-        assert!(matches!(v, PagedVec::Mapped { .. }));
+        assert_eq!(v.is_mapped(), cfg!(target_os = "linux"));
         assert!(v.capacity() >= MAPPED_FROM + 2);
         assert_eq!(&v[..], &[5, 6]);
         v.push(7);
@@ -221,5 +237,19 @@ mod tests {
         v.push(1);
         assert!(!v.remap(usize::MAX / 8));
         assert_eq!(&v[..], &[1]);
+    }
+
+    #[test]
+    fn a_mapping_that_cannot_grow_moves_back_to_the_heap() {
+        let n = MAPPED_FROM / size_of::<u64>();
+        let mut v: PagedVec<u64> = (0..n as u64).collect();
+        assert_eq!(v.is_mapped(), cfg!(target_os = "linux"));
+        // What `push` and `reserve_exact` do when the OS refuses a larger
+        // mapping.
+        v.heap_reserve(1, false);
+        assert!(!v.is_mapped());
+        v.push(n as u64);
+        assert_eq!(v.len(), n + 1);
+        assert!(v.iter().enumerate().all(|(k, &x)| x == k as u64));
     }
 }

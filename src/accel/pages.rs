@@ -2,8 +2,9 @@
 //!
 //! A big mesh's tree is tens of megabytes read at random: with 4 KiB pages
 //! nearly every node visit and block test of an incoherent ray also misses
-//! the TLB (the 1M-triangle mesh's tree spans 12,000 pages; a core's
-//! second-level TLB holds about 2,000). Linux backs memory with 2 MiB pages
+//! the TLB (the 1M-triangle mesh's tree spans 12,000 pages; a recent x86
+//! core's second-level TLB holds 1,500 to 2,048 entries, by the vendors'
+//! manuals). Linux backs memory with 2 MiB pages
 //! ("transparent huge pages") where the process asks for them with
 //! `madvise(MADV_HUGEPAGE)`, its default setting, and Embree asks for its
 //! trees (`os_malloc` in its `common/sys/alloc.cpp`), so ptsc does too for
@@ -52,7 +53,8 @@ impl<T: Pod> PagedVec<T> {
     pub fn capacity(&self) -> usize {
         match &self.0 {
             Buffer::Heap(v) => v.capacity(),
-            Buffer::Mapped { map, .. } => map.len() / size_of::<T>().max(1),
+            // (Zero-sized elements are never mapped.)
+            Buffer::Mapped { map, .. } => map.len() / size_of::<T>(),
         }
     }
 

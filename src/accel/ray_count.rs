@@ -64,17 +64,6 @@ pub fn shadow() {
     bump(|n| n.shadow += 1);
 }
 
-/// Counts a closest-hit query just counted as a shadow query instead: a
-/// shadow ray through media walks from surface to surface with closest
-/// hits (`ir::media`).
-#[inline(always)]
-pub fn closest_was_shadow() {
-    bump(|n| {
-        n.closest -= 1;
-        n.shadow += 1;
-    });
-}
-
 #[inline(always)]
 fn bump(count: impl FnOnce(&mut RayCounts)) {
     COUNTS.with(|c| {

@@ -3,6 +3,7 @@
 //! parameters that mean nothing to it reported.
 
 use super::eval::Env;
+use super::medium::MEDIUM_WORDS;
 use super::params::{CheckTexture, Params, Val};
 use super::reader::{textures, Reader};
 use super::scene::*;
@@ -103,16 +104,22 @@ pub fn material(p: &Params, name: Option<String>, span: Span, diags: &mut Diagno
     m
 }
 
+/// Whether the model has no inside whatever its parameters (a metal, a
+/// plastic, a thin pane): it ignores a medium as it ignores its other
+/// unused words.
+fn opaque_model(kind: &MaterialKind) -> bool {
+    matches!(
+        kind,
+        MaterialKind::Conductor { .. } | MaterialKind::Plastic | MaterialKind::ThinDielectric
+    )
+}
+
 /// The medium inside: read when the material has an inside (it refracts,
 /// or is `type none`), reported as having no effect otherwise.
 fn medium_checks(p: &Params, m: &mut Material, diags: &mut Diagnostics) {
     let inside =
         m.transmission > 0.0 || matches!(m.kind, MaterialKind::Dielectric | MaterialKind::None);
-    let opaque_model = matches!(
-        m.kind,
-        MaterialKind::Conductor { .. } | MaterialKind::Plastic | MaterialKind::ThinDielectric
-    );
-    if !inside && !opaque_model {
+    if !inside && !opaque_model(&m.kind) {
         super::medium::warn_without_inside(p, diags);
         return;
     }
@@ -441,11 +448,11 @@ fn model_checks(p: &Params, m: &mut Material, diags: &mut Diagnostics) {
     let model = model_name(&m.kind);
     let (ignored, help): (&[&str], &str) = match m.kind {
         MaterialKind::Conductor { .. } => (
-            &["diffuse", "transmission", "absorption", "ior", "scattering", "anisotropy", "density", "medium_color"],
+            &["diffuse", "transmission", "absorption", "ior"],
             "a metal is its `preset` (or `eta` and `k`), tinted by `reflection` and roughened by `gloss`",
         ),
         MaterialKind::Plastic => (
-            &["transmission", "absorption", "preset", "eta", "k", "multiscatter", "roughness", "scattering", "anisotropy", "density", "medium_color"],
+            &["transmission", "absorption", "preset", "eta", "k", "multiscatter", "roughness"],
             "a plastic is its `diffuse` base under a coat of index `ior`, roughened by `gloss`",
         ),
         MaterialKind::Dielectric => (
@@ -469,10 +476,6 @@ fn model_checks(p: &Params, m: &mut Material, diags: &mut Diagnostics) {
                 "k",
                 "multiscatter",
                 "roughness",
-                "scattering",
-                "anisotropy",
-                "density",
-                "medium_color",
             ],
             "a thin pane is its `ior` (and `ior_outside`) alone",
         ),
@@ -499,6 +502,12 @@ fn model_checks(p: &Params, m: &mut Material, diags: &mut Diagnostics) {
             "a `type none` boundary has no surface: it is the medium inside (`absorption`, `scattering` or `density`, `anisotropy`)",
         ),
     };
+    // A model without an inside ignores the medium words too.
+    let medium_words = opaque_model(&m.kind).then_some(MEDIUM_WORDS);
+    let ignored: Vec<&str> = (ignored.iter().copied())
+        .chain(medium_words.into_iter().flatten())
+        .collect();
+    let ignored = &ignored[..];
     for &name in ignored {
         if let Some((_, s)) = p.get(name) {
             diags.push(no_effect(name, model, *s, help));

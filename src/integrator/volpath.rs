@@ -64,19 +64,6 @@ impl Vertex<'_> {
         }
     }
 
-    /// The media a shadow ray along `wi` starts among: `media` (those of
-    /// `wo`'s side), or, through a surface that refracts light towards
-    /// `wi` (rough glass), those across it.
-    fn media_towards(&self, scene: &Scene, media: MediumStack, wo: Vec3, wi: Vec3) -> MediumStack {
-        let mut across = media;
-        if let Vertex::Surface(hit, m) = self {
-            if (wi.dot(hit.n_geo) > 0.0) != (wo.dot(hit.n_geo) > 0.0) {
-                across.cross(scene, wi, hit, m);
-            }
-        }
-        across
-    }
-
     /// The shadow ray towards a light point at `dist` along `wi`, and how
     /// far it must be free.
     fn shadow_ray(&self, wi: Vec3, dist: f32, time: f32) -> (Ray, f32) {
@@ -115,7 +102,10 @@ fn direct_light(
         return Vec3::ZERO;
     }
     let (shadow, t_max) = vertex.shadow_ray(ls.wi, ls.dist, time);
-    let media = vertex.media_towards(scene, media, wo, ls.wi);
+    let media = match vertex {
+        Vertex::Surface(hit, m) => media.towards(scene, (hit, m), wo, ls.wi),
+        Vertex::Medium(..) => media,
+    };
     let tr = scene.transmittance(&shadow, t_max, media);
     if tr == Vec3::ZERO {
         return Vec3::ZERO;
@@ -239,9 +229,7 @@ pub fn volpath_li(scene: &Scene, mut ray: Ray, sampler: &mut Sampler, nee: bool)
         st.prev_pdf = bs.pdf;
         st.prev_p = hit.p;
         st.prev_n = hit.n_shading;
-        if (bs.wi.dot(hit.n_geo) > 0.0) != (wo.dot(hit.n_geo) > 0.0) {
-            st.media.cross(scene, bs.wi, hit, material);
-        }
+        st.media = st.media.towards(scene, (hit, material), wo, bs.wi);
         if !roulette(&mut st.beta, segments, s.rr_depth, bounce, sampler) {
             break;
         }

@@ -129,10 +129,7 @@ fn shade(
             return Vec3::ZERO;
         }
         let r = Ray::new(offset_origin(hit.p, hit.n_geo, dir), dir, ray.time);
-        let mut inside = media;
-        if (dir.dot(hit.n_geo) > 0.0) != outside {
-            inside.cross(scene, dir, &hit, m);
-        }
+        let inside = media.towards(scene, (&hit, m), wo, dir);
         let l = trace_in(scene, r, sampler, (segment + 1, w), inside);
         sampler.pad();
         l
@@ -224,11 +221,7 @@ fn light_sample(
     }
     let (shadow, t_max) = super::shadow_ray(hit, ls.wi, ls.dist, time);
     let tr = if scene.volumetric {
-        // Through a surface that refracts towards the light, from across it.
-        let mut media = media;
-        if (ls.wi.dot(hit.n_geo) > 0.0) != (wo.dot(hit.n_geo) > 0.0) {
-            media.cross(scene, ls.wi, hit, m);
-        }
+        let media = media.towards(scene, (hit, m), wo, ls.wi);
         scene.transmittance(&shadow, t_max, media)
     } else if scene.occluded(&shadow, T_MIN, t_max) {
         Vec3::ZERO

@@ -123,6 +123,24 @@ impl MediumStack {
         }
     }
 
+    /// The media a ray leaving `hit` along `wi` starts among, for a path
+    /// that arrived along `-wo` among these: these, or, where `wi` goes
+    /// through the surface (a refraction, a light sampled through rough
+    /// glass), those across it.
+    #[inline]
+    pub fn towards(
+        mut self,
+        scene: &Scene,
+        (hit, material): (&Hit, &Material),
+        wo: Vec3,
+        wi: Vec3,
+    ) -> MediumStack {
+        if (wi.dot(hit.n_geo) > 0.0) != (wo.dot(hit.n_geo) > 0.0) {
+            self.cross(scene, wi, hit, material);
+        }
+        self
+    }
+
     fn push(&mut self, key: u64, m: Option<Medium>) {
         if self.len as usize == NESTING {
             self.items.copy_within(1.., 0);
@@ -182,9 +200,8 @@ impl Scene {
         let mut ray = *ray;
         let mut left = t_max;
         for _ in 0..MAX_CROSSINGS {
-            let found = self.intersect(&ray, crate::geometry::T_MIN, left);
-            crate::accel::ray_count::closest_was_shadow();
-            let Some(mut hit) = found else {
+            crate::accel::ray_count::shadow();
+            let Some(mut hit) = self.closest_hit(&ray, crate::geometry::T_MIN, left) else {
                 if let Some((m, t0, t1)) = self.medium_span(media.innermost(), &ray, left) {
                     tr *= m.transmittance(t1 - t0);
                 }

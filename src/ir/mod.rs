@@ -218,9 +218,18 @@ impl Scene {
     }
 
     /// The closest hit along `ray` beyond `t_min`: the scene's own
-    /// primitives, then the placements of groups (if any).
+    /// primitives, then the placements of groups (if any). Counted as a
+    /// closest-hit query.
     #[inline(always)]
     pub fn intersect(&self, ray: &Ray, t_min: f32, t_max: f32) -> Option<Hit> {
+        ray_count::closest();
+        self.closest_hit(ray, t_min, t_max)
+    }
+
+    /// [`Scene::intersect`] uncounted: a shadow ray's walk through media
+    /// (`media.rs`) finds its surfaces with it and counts as a shadow query.
+    #[inline(always)]
+    fn closest_hit(&self, ray: &Ray, t_min: f32, t_max: f32) -> Option<Hit> {
         // The flat path as before placements and cutouts existed, its hit
         // built in place; a scene with either goes out of line (choosing
         // between two hits here cost scenes without placements 1.4 % of
@@ -280,7 +289,6 @@ impl Scene {
         t_max: f32,
         passes: impl Fn(u32, &ShapeHit) -> bool,
     ) -> Option<Hit> {
-        ray_count::closest();
         let mut best = self.wide.closest(ray, t_min, t_max, |i, tmax| {
             let p = &self.prims[i as usize];
             cutout::first_kept(p, ray, (t_min, tmax), |h| passes(i, h))

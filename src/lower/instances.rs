@@ -384,13 +384,13 @@ pub fn build(gathered: Gathered, cache: &mut LowerCache) -> Instances {
         return Instances::default();
     }
     // The tree numbers placements in its leaves' order.
-    let mut bvh = Bvh::build(&boxes, &|_| false);
+    let mut bvh = Bvh::build(&boxes, &|_| None);
     placements = (bvh.order.iter())
         .map(|&i| placements[i as usize].clone())
         .collect();
     bvh.order = (0..placements.len() as u32).collect();
     let mut tree = Bvh4::from_binary(&bvh);
-    tree.pack_triangles(|_| None);
+    tree.pack(|_| None, |_| None);
     Instances {
         prototypes,
         placements,

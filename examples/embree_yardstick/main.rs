@@ -52,7 +52,6 @@ mod report;
 use glam::{Vec2, Vec3};
 use ptsc::accel::bvh::{BlockKind, Bvh};
 use ptsc::accel::bvh4::Bvh4;
-use ptsc::accel::sph4::Sph4;
 use ptsc::accel::tri4::{PackedTriangle, Tri4};
 use ptsc::compile::{compile_file, Options};
 use ptsc::geometry::shape::Shape;
@@ -379,9 +378,8 @@ fn dump(out: &Path, name: &str) -> Result<(), String> {
     ]);
 
     // The tree as the renderer holds it (blocks of four triangles and the
-    // count of plain lanes before each block, 4 bytes; blocks of four
-    // spheres; records of the primitives not in blocks, every sphere's
-    // too), and apart the 4-byte object
+    // count of plain lanes before each block, 4 bytes; records of the
+    // primitives not in blocks, the spheres'), and apart the 4-byte object
     // of every primitive, which has no counterpart in Embree's scene.
     let wide = &scene.wide;
     rows.row(&[
@@ -397,7 +395,7 @@ fn dump(out: &Path, name: &str) -> Result<(), String> {
     rows.row(&[
         &"bytes",
         &"spheres",
-        &(wide.spheres.len() * size_of::<Sph4>()),
+        &(wide.spheres.len() * size_of::<ptsc::accel::sph4::Sph4>()),
     ]);
     rows.row(&[
         &"bytes",
@@ -488,7 +486,10 @@ fn dump(out: &Path, name: &str) -> Result<(), String> {
 /// The wide tree over `shapes` built as lowering builds it.
 fn build_tree(shapes: &[Shape]) -> Bvh4 {
     let boxes: Vec<Aabb> = shapes.iter().map(Shape::bounds).collect();
-    let sphere = |i: u32| Sph4::of(&shapes[i as usize]);
+    let sphere = |i: u32| match shapes[i as usize] {
+        Shape::Sphere { center, radius } => Some((center, radius)),
+        _ => None,
+    };
     let bvh = Bvh::build(&boxes, &|i| {
         if PackedTriangle::of(&shapes[i as usize]).is_some() {
             Some(BlockKind::Triangle)

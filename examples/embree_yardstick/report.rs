@@ -304,9 +304,8 @@ pub fn report(outs: &[PathBuf]) -> Result<(), String> {
             } else {
                 &["bvh", "buffers"]
             };
-            // (Dumps from before sphere blocks have no row for them: 0.)
             let total: Option<f64> = (parts.iter())
-                .map(|k| number(p, &format!("bytes {k}")).or((*k == "spheres").then_some(0.0)))
+                .map(|k| number(p, &format!("bytes {k}")))
                 .sum();
             let peak = number(p, "bytes peak");
             let name = if *r == "ptsc" {
@@ -331,8 +330,8 @@ pub fn report(outs: &[PathBuf]) -> Result<(), String> {
     );
     println!("Agreement with ptsc's answers (t within {T_TOLERANCE:e} relative):\n\n{agree}");
     println!(
-        "Builds (one thread, CPU seconds, the median over the rounds of medians of 3) and memory (ptsc: wide nodes, triangle blocks with \
-         their 4-byte plain-lane counts, sphere blocks, records; Embree: its allocations after the build by its \
+        "Builds (one thread, CPU seconds, the median over the rounds of medians of 3) and memory (ptsc: wide nodes, blocks with their \
+         4-byte plain-lane counts, records; Embree: its allocations after the build by its \
          memory monitor, plus the vertex and index buffers it shares; per primitive: per \
          triangle or sphere):\n\n{builds}"
     );

@@ -35,8 +35,8 @@ pub struct Bvh {
 const BINS: usize = 16;
 const MAX_LEAF: usize = 4;
 
-/// Nodes of up to this many primitives of one block kind (static triangles
-/// and quads, or static spheres) stay leaves of up to [`MAX_BLOCKS`] blocks, whatever the SAH says (if small, see
+/// Nodes of up to this many static triangles or quads stay leaves of up to
+/// [`MAX_BLOCKS`] blocks, whatever the SAH says (if small, see
 /// [`SHARED_LEAF_AREA`]): on dense meshes traversal dominates, and a node
 /// visit costs more than its share of a triangle test; fewer, fuller leaves
 /// also mean fewer nodes and less memory. Measurements: docs/performance.md, "Why the BVH and traversal are as they are".
@@ -72,9 +72,8 @@ pub enum BlockKind {
 impl Bvh {
     /// Builds a BVH over the given primitive bounds. `block(i)` says which
     /// kind of block, if any, the wide tree tests primitive `i` in, four at
-    /// a time: nodes of up to four primitives of one kind stay leaves (for
-    /// spheres, if the node is small: [`SHARED_SPHERES_AREA`]), small nodes
-    /// of up to twelve too (three blocks).
+    /// a time: nodes of up to four primitives of one kind stay leaves, small
+    /// nodes of up to twelve too (three blocks).
     pub fn build(bounds: &[Aabb], block: &(dyn Fn(u32) -> Option<BlockKind> + Sync)) -> Bvh {
         if bounds.is_empty() {
             return Bvh::default();
@@ -358,7 +357,7 @@ struct AxisBins {
     lo: [[Vec3A; BINS]; 3],
     hi: [[Vec3A; BINS]; 3],
     count: [[u32; BINS]; 3],
-    /// How many of `count` are triangles (counted in blocks of four).
+    /// How many of `count` are packable.
     packed: [[u32; BINS]; 3],
 }
 
@@ -469,19 +468,18 @@ const NODE_COST: f32 = 0.85;
 
 /// Whether a node of at most [`MAX_LEAF`] primitives is better split (by the
 /// surface area heuristic, every split along the widest centroid axis
-/// tried): `mid`, with `order` sorted along that axis. Up to four static
-/// triangles and quads (the walls of a room share a block) always stay
-/// together, up to four static spheres when the node is small against the
-/// scene ([`SHARED_SPHERES_AREA`]); other scattered spheres end in leaves
-/// of one, small overlapping primitives that cannot be packed (moving
-/// triangles) in shared leaves. Measurements: docs/performance.md, "Why the BVH and traversal are as they are".
+/// tried): `mid`, with `order` sorted along that axis. Up to four packable
+/// primitives (static triangles and quads: the walls of a room share a
+/// block) always stay together; scattered spheres end in leaves of one,
+/// small overlapping primitives that cannot be packed (moving triangles) in
+/// shared leaves. Measurements: docs/performance.md, "Why the BVH and traversal are as they are".
 fn small_split(input: &Input, order: &mut [u32], node: &Aabb, cb: &Aabb) -> Option<usize> {
     let n = order.len();
+    // Four packable primitives cost one test: always cheaper than a node
+    // and a test on each side.
     if n < 2 {
         return None;
     }
-    // Four packable primitives cost one test: always cheaper than a node
-    // and a test on each side.
     match input.one_block_kind(order) {
         Some(BlockKind::Triangle) => return None,
         Some(BlockKind::Sphere) if node.area() <= input.shared_spheres_area => return None,

@@ -26,15 +26,12 @@ pub struct Node4 {
     pub min: [[f32; 4]; 3],
     /// Box maxima per axis, one lane per child.
     pub max: [[f32; 4]; 3],
-    /// Inner child: node index; triangle blocks: index into
-    /// [`Bvh4::tris`]; sphere blocks: index into [`Bvh4::spheres`]; other
+    /// Inner child: node index; block: index into [`Bvh4::tris`]; other
     /// leaf: first primitive; empty: unused.
     pub child: [u32; 4],
     /// 0 for an inner child, [`BLOCK`] for a leaf of triangles packed in
     /// a [`Tri4`] (`BLOCK - 1` for two consecutive blocks, and so on: see
-    /// [`blocks`]), the values below those for leaves of [`Sph4`] blocks
-    /// (see [`sphere_blocks`]), else the number of primitives of the leaf
-    /// (at most `bvh.rs`'s 16-bit counts).
+    /// [`blocks`]), else the number of primitives of the leaf.
     pub count: [u32; 4],
 }
 
@@ -53,8 +50,8 @@ const fn blocks_count(k: u32) -> u32 {
     BLOCK - (k - 1)
 }
 
-/// How many consecutive triangle blocks ([`Tri4`]) a lane of `count`
-/// holds (0: none); the inverse of `blocks_count`.
+/// How many consecutive blocks a lane of `count` holds (0: none); the
+/// inverse of `blocks_count`.
 #[inline(always)]
 pub fn blocks(count: u32) -> u32 {
     if count >= FIRST_BLOCKS {
@@ -72,10 +69,6 @@ const fn sphere_blocks_count(k: u32) -> u32 {
 
 /// The smallest `count` that stands for sphere blocks.
 const FIRST_SPHERES: u32 = sphere_blocks_count(MAX_BLOCKS);
-
-// A leaf of records counts its primitives in 16 bits: no such count can
-// stand for blocks.
-const _: () = assert!(FIRST_SPHERES > u16::MAX as u32);
 
 /// How many consecutive sphere blocks a lane of `count` holds (0: none).
 #[inline(always)]
@@ -173,10 +166,10 @@ impl Bvh4 {
                 let (first, count) = (n.child[lane], n.count[lane]);
                 if packable_count(count) {
                     let room = count.div_ceil(4) as usize;
-                    match sphere(first) {
-                        Some(_) if count > 1 => most_spheres += room,
-                        Some(_) => {}
-                        None => most_tris += room,
+                    if sphere(first).is_some() {
+                        most_spheres += room;
+                    } else {
+                        most_tris += room;
                     }
                 }
             }
@@ -197,6 +190,13 @@ impl Bvh4 {
         T: Fn(u32) -> Option<PackedTriangle>,
         S: Fn(u32) -> Option<(Vec3, f32)>,
     {
+        let triangle = &kinds.triangle;
+        let unused = PackedTriangle {
+            vertices: [Vec3::ZERO; 3],
+            plain: false,
+            quad: false,
+            swapped: false,
+        };
         for lane in 0..4 {
             let n = &self.nodes[node];
             let (first, count) = (n.child[lane], n.count[lane]);
@@ -210,28 +210,58 @@ impl Bvh4 {
             if !packable_count(count) || first + count >= MAX_PACKED {
                 continue;
             }
-            // A lone sphere keeps its record: a block of one gains nothing
-            // (measured equal on the spheres bench).
-            if let Some(spheres) = leaf_of(first, count, &kinds.sphere).filter(|l| l.len() > 1) {
-                let n = &mut self.nodes[node];
-                n.child[lane] = self.spheres.len() as u32;
-                n.count[lane] = sphere_blocks_count(count.div_ceil(4));
-                for block in spheres.chunks(4) {
-                    self.spheres.push(Sph4::new(block));
-                }
+            if self.pack_spheres(node, lane, &kinds.sphere) {
                 continue;
             }
+            let mut tris = [(0, unused); 4 * MAX_BLOCKS as usize];
+            let packed = (0..count).all(|k| {
+                let p = first + k;
+                triangle(p).map(|t| tris[k as usize] = (p, t)).is_some()
+            });
             // A lone quad is cheaper to test from its record.
-            let lone_quad = |l: &Leaf<PackedTriangle>| l.len() == 1 && l[0].1.quad;
-            if let Some(tris) = leaf_of(first, count, &kinds.triangle).filter(|l| !lone_quad(l)) {
+            let lone_quad = count == 1 && tris[0].1.quad;
+            if packed && !lone_quad {
                 let n = &mut self.nodes[node];
                 n.child[lane] = self.tris.len() as u32;
                 n.count[lane] = blocks_count(count.div_ceil(4));
-                for block in tris.chunks(4) {
+                for block in tris[..count as usize].chunks(4) {
                     self.tris.push(Tri4::new(block));
                 }
             }
         }
+    }
+
+    /// Packs the leaf in `lane` of `node` into sphere blocks if `sphere`
+    /// gives each of its primitives; says whether it did.
+    fn pack_spheres(
+        &mut self,
+        node: usize,
+        lane: usize,
+        sphere: &impl Fn(u32) -> Option<(Vec3, f32)>,
+    ) -> bool {
+        let (first, count) = (self.nodes[node].child[lane], self.nodes[node].count[lane]);
+        // A lone sphere keeps its record: a block of one gains nothing
+        // (measured equal on the spheres bench).
+        if count == 1 {
+            return false;
+        }
+        let mut spheres = [(0, Vec3::ZERO, 0.0); 4 * MAX_BLOCKS as usize];
+        let all = (0..count).all(|k| {
+            let p = first + k;
+            sphere(p)
+                .map(|(c, r)| spheres[k as usize] = (p, c, r))
+                .is_some()
+        });
+        if !all {
+            return false;
+        }
+        let n = &mut self.nodes[node];
+        n.child[lane] = self.spheres.len() as u32;
+        n.count[lane] = sphere_blocks_count(count.div_ceil(4));
+        for block in spheres[..count as usize].chunks(4) {
+            self.spheres.push(Sph4::new(block));
+        }
+        true
     }
 
     /// Gives every primitive its final number: `record(old)` for the
@@ -370,7 +400,7 @@ impl Bvh4 {
             }
             if count >= FIRST_SPHERES {
                 let blocks = &spheres[first as usize..(first + sphere_blocks(count)) as usize];
-                if let Some((prim, t)) = Sph4::closest_in(blocks, ray, t_min, t_max) {
+                if let Some((prim, t)) = closest_sphere(blocks, ray, t_min, t_max) {
                     t_max = t;
                     best = Some(TreeHit {
                         prim,
@@ -470,7 +500,7 @@ impl Bvh4 {
                     }
                     FIRST_BLOCKS..=BLOCK => (first..first + blocks(count))
                         .any(|b| tris[b as usize].any(ray.o, ray.d, t_min, t_max)),
-                    FIRST_SPHERES.. => Sph4::any_in(
+                    FIRST_SPHERES.. => any_sphere(
                         &spheres[first as usize..(first + sphere_blocks(count)) as usize],
                         ray,
                         t_min,
@@ -573,13 +603,27 @@ impl RayLanes {
     }
 }
 
-/// A leaf's primitives with what a block needs of each.
-type Leaf<X> = ArrayVec<(u32, X), { 4 * MAX_BLOCKS as usize }>;
+/// The closest hit among sphere blocks: primitive and distance. Out of line,
+/// so that the traversal of scenes without sphere blocks keeps its code as
+/// it was (inlined, it cost the Cornell box 1–2 %: docs/performance.md,
+/// "Sphere blocks").
+#[inline(never)]
+fn closest_sphere(blocks: &[Sph4], ray: &Ray, t_min: f32, mut t_max: f32) -> Option<(u32, f32)> {
+    let mut best = None;
+    for block in blocks {
+        if let Some((lane, t)) = block.closest(ray.o, ray.d, t_min, t_max) {
+            t_max = t;
+            best = Some((block.prim[lane], t));
+        }
+    }
+    best
+}
 
-/// The `count` primitives from `first` with `get`'s answer for each, if it
-/// has one for all of them.
-fn leaf_of<X>(first: u32, count: u32, get: impl Fn(u32) -> Option<X>) -> Option<Leaf<X>> {
-    (first..first + count).map(|p| Some((p, get(p)?))).collect()
+/// Whether a sphere block blocks the ray (out of line: see
+/// [`closest_sphere`]).
+#[inline(never)]
+fn any_sphere(blocks: &[Sph4], ray: &Ray, t_min: f32, t_max: f32) -> bool {
+    blocks.iter().any(|b| b.any(ray.o, ray.d, t_min, t_max))
 }
 
 /// What [`Bvh4::pack`] packs: a primitive as a triangle or as a sphere.
@@ -684,7 +728,10 @@ mod tests {
                 })
             },
             // Every third sphere stays a record: leaves of both kinds.
-            |p| Sph4::of(&shapes[p as usize]).filter(|_| p % 3 != 0),
+            |p| match shapes[p as usize] {
+                Shape::Sphere { center, radius } if p % 3 != 0 => Some((center, radius)),
+                _ => None,
+            },
         );
         w
     }
@@ -801,43 +848,6 @@ mod tests {
             assert_eq!(got.map(|g| g.prim), want.map(|w| w.0), "{ray:?}");
             let any = w.any(&ray, 1e-4, f32::INFINITY, |i, tmax| test(i, tmax).is_some());
             assert_eq!(any, want.is_some());
-        }
-    }
-
-    #[test]
-    fn renumbering_maps_sphere_lanes_and_keeps_their_blocks() {
-        let mut shapes: Vec<Shape> = (0..40)
-            .map(|i| Shape::Sphere {
-                center: Vec3::new((i % 8) as f32, 0.2, (i / 8) as f32),
-                radius: 0.2,
-            })
-            .collect();
-        shapes.push(Shape::Quad {
-            p: Vec3::new(-60.0, 0.0, -60.0),
-            e1: Vec3::new(0.0, 0.0, 120.0),
-            e2: Vec3::new(120.0, 0.0, 0.0),
-            swapped: false,
-        });
-        let before = wide(&mut shapes);
-        assert!(!before.spheres.is_empty());
-        let mut after = before.clone();
-        after.renumber(|p| p + 100, 1000, |_, _| {});
-        for (a, b) in before.spheres.iter().zip(after.spheres.iter()) {
-            for lane in 0..4 {
-                let want = if a.prim[lane] == u32::MAX {
-                    u32::MAX
-                } else {
-                    a.prim[lane] + 100
-                };
-                assert_eq!(b.prim[lane], want);
-            }
-        }
-        for (a, b) in before.nodes.iter().zip(after.nodes.iter()) {
-            for lane in 0..4 {
-                if sphere_blocks(a.count[lane]) > 0 {
-                    assert_eq!(a.child[lane], b.child[lane], "a sphere block's index moved");
-                }
-            }
         }
     }
 

@@ -9,8 +9,6 @@
 //! from the record, as before; the block only spares the traversal the last
 //! level of nodes and the records of the spheres a ray misses.
 
-use crate::geometry::shape::Shape;
-use crate::geometry::Ray;
 use glam::{Vec3, Vec4};
 
 /// Up to four spheres, one per lane; unused lanes have `prim` `u32::MAX`.
@@ -28,24 +26,15 @@ pub struct Sph4 {
 const _: () = assert!(std::mem::size_of::<Sph4>() == 80);
 
 impl Sph4 {
-    /// The centre and radius of `shape` if it is a sphere (`None` for
-    /// other shapes), as a block holds it.
-    pub fn of(shape: &Shape) -> Option<(Vec3, f32)> {
-        match *shape {
-            Shape::Sphere { center, radius } => Some((center, radius)),
-            _ => None,
-        }
-    }
-
-    /// Packs up to four `(prim, (centre, radius))` spheres.
-    pub fn new(spheres: &[(u32, (Vec3, f32))]) -> Sph4 {
+    /// Packs up to four `(prim, centre, radius)` spheres.
+    pub fn new(spheres: &[(u32, Vec3, f32)]) -> Sph4 {
         assert!(spheres.len() <= 4, "a Sph4 holds at most four spheres");
         let mut block = Sph4 {
             center: [[0.0; 4]; 3],
             radius: [0.0; 4],
             prim: [u32::MAX; 4],
         };
-        for (lane, &(prim, (center, radius))) in spheres.iter().enumerate() {
+        for (lane, &(prim, center, radius)) in spheres.iter().enumerate() {
             for axis in 0..3 {
                 block.center[axis][lane] = center[axis];
             }
@@ -125,40 +114,13 @@ impl Sph4 {
     pub fn any(&self, o: Vec3, d: Vec3, t_min: f32, t_max: f32) -> bool {
         self.test(o, d, t_min, t_max).1 != 0
     }
-
-    /// The closest hit among a leaf's `blocks`: primitive and distance. Out
-    /// of line, so that the traversal of scenes without sphere blocks keeps
-    /// its code as it was (inlined, it cost the Cornell box 1–2 %:
-    /// docs/performance.md, "Sphere blocks").
-    #[inline(never)]
-    pub fn closest_in(
-        blocks: &[Sph4],
-        ray: &Ray,
-        t_min: f32,
-        mut t_max: f32,
-    ) -> Option<(u32, f32)> {
-        let mut best = None;
-        for block in blocks {
-            if let Some((lane, t)) = block.closest(ray.o, ray.d, t_min, t_max) {
-                t_max = t;
-                best = Some((block.prim[lane], t));
-            }
-        }
-        best
-    }
-
-    /// Whether a leaf's `blocks` block the ray (out of line: see
-    /// [`Sph4::closest_in`]).
-    #[inline(never)]
-    pub fn any_in(blocks: &[Sph4], ray: &Ray, t_min: f32, t_max: f32) -> bool {
-        blocks.iter().any(|b| b.any(ray.o, ray.d, t_min, t_max))
-    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::geometry::sphere;
+    use crate::geometry::Ray;
     use proptest::prelude::*;
 
     proptest! {
@@ -178,14 +140,14 @@ mod tests {
             // Far origins exercise the careful discriminant.
             let scale = if far { 1e4 } else { 1.0 };
             let ray = Ray::new(Vec3::new(o.0, o.1, o.2) * scale, d.normalize(), 0.0);
-            let list: Vec<(u32, (Vec3, f32))> = spheres
+            let list: Vec<(u32, Vec3, f32)> = spheres
                 .iter()
                 .enumerate()
-                .map(|(k, s)| (k as u32 * 7, (Vec3::new(s.0, s.1, s.2), s.3)))
+                .map(|(k, s)| (k as u32 * 7, Vec3::new(s.0, s.1, s.2), s.3))
                 .collect();
             let block = Sph4::new(&list);
             let mut want: Option<(usize, f32)> = None;
-            for (lane, &(_, (c, r))) in list.iter().enumerate() {
+            for (lane, &(_, c, r)) in list.iter().enumerate() {
                 let one = sphere::intersect(c, r, &ray, t_min, t_max).map(|h| h.t);
                 let (t, mask) = block.test(ray.o, ray.d, t_min, t_max);
                 prop_assert_eq!(one.map(f32::to_bits), (mask & (1 << lane) != 0).then(|| t[lane].to_bits()));
@@ -203,7 +165,7 @@ mod tests {
 
     #[test]
     fn unused_lanes_never_hit() {
-        let block = Sph4::new(&[(3, (Vec3::new(0.0, 0.0, -5.0), 1.0))]);
+        let block = Sph4::new(&[(3, Vec3::new(0.0, 0.0, -5.0), 1.0)]);
         // A ray through the origin, where the unused lanes' zero spheres sit.
         let ray = Ray::new(Vec3::new(0.0, 0.0, 1.0), -Vec3::Z, 0.0);
         assert_eq!(

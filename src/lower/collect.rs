@@ -12,7 +12,6 @@
 //! triangles; planes are kept apart.
 
 use crate::accel::bvh::BlockKind;
-use crate::accel::sph4::Sph4;
 use crate::accel::tri4::PackedTriangle;
 use crate::geometry::shape::Shape;
 use crate::geometry::Aabb;
@@ -218,16 +217,19 @@ impl Objects {
 /// A record that the wide BVH can test four at a time in a block: a triangle
 /// or a parallelogram that does not move; plain when its vertices describe
 /// it completely (no vertex normals).
+/// A record's sphere, if it is a sphere that does not move.
+fn static_sphere(p: &Prim) -> Option<(Vec3, f32)> {
+    match p.shape {
+        Shape::Sphere { center, radius } if p.velocity == Vec3::ZERO => Some((center, radius)),
+        _ => None,
+    }
+}
+
 fn packed_record(p: &Prim) -> Option<PackedTriangle> {
     if p.velocity != Vec3::ZERO {
         return None;
     }
     PackedTriangle::of(&p.shape)
-}
-
-/// A record's sphere, if it is a sphere that does not move.
-fn static_sphere(p: &Prim) -> Option<(Vec3, f32)> {
-    Sph4::of(&p.shape).filter(|_| p.velocity == Vec3::ZERO)
 }
 
 #[cfg(test)]

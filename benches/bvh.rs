@@ -17,7 +17,7 @@
 
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use glam::Vec3;
-use ptsc::accel::bvh::{BlockKind, Bvh};
+use ptsc::accel::bvh::Bvh;
 use ptsc::compile::{compile_str, Options};
 use ptsc::geometry::{offset_origin, shape::Shape, Aabb, Ray};
 use ptsc::ir::Scene;
@@ -137,9 +137,7 @@ fn bench(c: &mut Criterion) {
     g.sample_size(10);
     g.throughput(Throughput::Elements(bounds.len() as u64));
     // Every primitive of the mesh is a static triangle, packed in blocks.
-    g.bench_function("build", |b| {
-        b.iter(|| Bvh::build(&bounds, &|_| Some(BlockKind::Triangle)))
-    });
+    g.bench_function("build", |b| b.iter(|| Bvh::build(&bounds, &|_| true)));
 
     let incoherent = incoherent_rays(&scene);
     let primary = primary_rays();

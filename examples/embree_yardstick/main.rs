@@ -50,7 +50,7 @@
 mod report;
 
 use glam::{Vec2, Vec3};
-use ptsc::accel::bvh::{BlockKind, Bvh};
+use ptsc::accel::bvh::Bvh;
 use ptsc::accel::bvh4::Bvh4;
 use ptsc::accel::tri4::{PackedTriangle, Tri4};
 use ptsc::compile::{compile_file, Options};
@@ -394,11 +394,6 @@ fn dump(out: &Path, name: &str) -> Result<(), String> {
     ]);
     rows.row(&[
         &"bytes",
-        &"spheres",
-        &(wide.spheres.len() * size_of::<ptsc::accel::sph4::Sph4>()),
-    ]);
-    rows.row(&[
-        &"bytes",
         &"records",
         &(scene.prims.len() * size_of::<Prim>()),
     ]);
@@ -486,23 +481,12 @@ fn dump(out: &Path, name: &str) -> Result<(), String> {
 /// The wide tree over `shapes` built as lowering builds it.
 fn build_tree(shapes: &[Shape]) -> Bvh4 {
     let boxes: Vec<Aabb> = shapes.iter().map(Shape::bounds).collect();
-    let sphere = |i: u32| match shapes[i as usize] {
-        Shape::Sphere { center, radius } => Some((center, radius)),
-        _ => None,
-    };
     let bvh = Bvh::build(&boxes, &|i| {
-        if PackedTriangle::of(&shapes[i as usize]).is_some() {
-            Some(BlockKind::Triangle)
-        } else {
-            sphere(i).map(|_| BlockKind::Sphere)
-        }
+        PackedTriangle::of(&shapes[i as usize]).is_some()
     });
     drop(boxes);
     let mut wide = Bvh4::from_binary(&bvh);
     let order = bvh.order;
-    wide.pack(
-        |place| PackedTriangle::of(&shapes[order[place as usize] as usize]),
-        |place| sphere(order[place as usize]),
-    );
+    wide.pack_triangles(|place| PackedTriangle::of(&shapes[order[place as usize] as usize]));
     wide
 }

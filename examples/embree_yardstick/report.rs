@@ -296,11 +296,11 @@ pub fn report(outs: &[PathBuf]) -> Result<(), String> {
                 .collect();
             build.sort_by(f64::total_cmp);
             let build = build.get(build.len().saturating_sub(1) / 2);
-            // ptsc: wide nodes, triangle and sphere blocks and records; Embree: its own
+            // ptsc: wide nodes, blocks and records; Embree: its own
             // allocations after the build (memory monitor) and the vertex
             // and index buffers it shares with the harness.
             let parts: &[&str] = if *r == "ptsc" {
-                &["nodes", "blocks", "spheres", "records"]
+                &["nodes", "blocks", "records"]
             } else {
                 &["bvh", "buffers"]
             };

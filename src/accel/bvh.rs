@@ -49,32 +49,15 @@ const SHARED_LEAF: usize = 4 * MAX_BLOCKS as usize;
 /// about 10⁻⁵ of its scene. Measurements: docs/performance.md, "Why the BVH and traversal are as they are".
 const SHARED_LEAF_AREA: f32 = 1e-4;
 
-/// Up to four spheres share a block only in a node whose surface area is at
-/// most this fraction of the scene's (about a tenth of its size): the small
-/// spheres of a large scene, not a room's balls. Rays that start on the
-/// floor between two balls of a Cornell box begin inside their joint box,
-/// so one block for both cost its render 4 % (measured, docs/performance.md,
-/// "Sphere blocks").
-const SHARED_SPHERES_AREA: f32 = 1e-2;
-
 const PARALLEL_THRESHOLD: usize = 16 * 1024;
 
-/// The kind of block of four the wide tree tests a primitive in (see
-/// `bvh4.rs`); only primitives of one kind share a block.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum BlockKind {
-    /// Static triangles and quads ([`super::tri4::Tri4`]).
-    Triangle,
-    /// Static spheres ([`super::sph4::Sph4`]).
-    Sphere,
-}
-
 impl Bvh {
-    /// Builds a BVH over the given primitive bounds. `block(i)` says which
-    /// kind of block, if any, the wide tree tests primitive `i` in, four at
-    /// a time: nodes of up to four primitives of one kind stay leaves, small
-    /// nodes of up to twelve too (three blocks).
-    pub fn build(bounds: &[Aabb], block: &(dyn Fn(u32) -> Option<BlockKind> + Sync)) -> Bvh {
+    /// Builds a BVH over the given primitive bounds. `packable(i)` says
+    /// whether primitive `i` is one the wide tree tests four at a time
+    /// (static triangles and quads, see `bvh4.rs`): nodes of up to four such
+    /// primitives stay leaves, small nodes of up to twelve too (three
+    /// blocks).
+    pub fn build(bounds: &[Aabb], packable: &(dyn Fn(u32) -> bool + Sync)) -> Bvh {
         if bounds.is_empty() {
             return Bvh::default();
         }
@@ -88,13 +71,12 @@ impl Bvh {
         let mut slots = vec![[0u32; 8]; 2 * bounds.len() - 1];
         let (root, below) = slots.split_at_mut(1);
         // Asked once per primitive here rather than at every level.
-        let blocks: Vec<Option<BlockKind>> = (0..bounds.len() as u32).map(block).collect();
+        let packable: Vec<bool> = (0..bounds.len() as u32).map(packable).collect();
         let scene = bounds.iter().fold(Aabb::EMPTY, |a, &b| a.union(b));
         let input = Input {
             bounds,
-            blocks: &blocks,
+            packable: &packable,
             shared_leaf_area: scene.area() * SHARED_LEAF_AREA,
-            shared_spheres_area: scene.area() * SHARED_SPHERES_AREA,
         };
         let (used, nodes) = build_node(&input, &mut order, 0, &mut root[0], below, 1);
         // Give back the room after the last node (freed pages, not a copy).
@@ -186,20 +168,16 @@ impl Node {
 /// What every step of the build reads.
 struct Input<'a> {
     bounds: &'a [Aabb],
-    blocks: &'a [Option<BlockKind>],
+    packable: &'a [bool],
     /// The largest surface area of a node that may become a shared leaf.
     shared_leaf_area: f32,
-    /// The largest surface area of a node whose spheres share a block.
-    shared_spheres_area: f32,
 }
 
 impl Input<'_> {
-    /// The kind of block the primitives of `part` all go in, if one.
-    fn one_block_kind(&self, part: &[u32]) -> Option<BlockKind> {
-        let kind = |i: &u32| self.blocks[*i as usize];
-        part.first()
-            .and_then(kind)
-            .filter(|&k| part.iter().all(|i| kind(i) == Some(k)))
+    /// Whether primitive `i` goes in a block.
+    #[inline]
+    fn packable(&self, i: u32) -> bool {
+        self.packable[i as usize]
     }
 
     /// The centroid of primitive `i`'s box, computed where needed: an array
@@ -235,7 +213,7 @@ fn build_node(
         small_split(input, order, &node_bounds, &cb)
     } else if n <= SHARED_LEAF
         && node_bounds.area() <= input.shared_leaf_area
-        && input.one_block_kind(order).is_some()
+        && order.iter().all(|&i| input.packable(i))
     {
         None
     } else {
@@ -399,9 +377,7 @@ impl AxisBins {
             let b = input.bounds[i as usize];
             let (lo, hi) = (Vec3A::from(b.min), Vec3A::from(b.max));
             let k = bins.bins_of(b.center());
-            // (Triangles only: counting spheres in fours moved the Cornell
-            // box's top split and cost it 2 %.)
-            let packed = (input.blocks[i as usize] == Some(BlockKind::Triangle)) as u32;
+            let packed = input.packable(i) as u32;
             for axis in 0..3 {
                 let k = k[axis];
                 bins.lo[axis][k] = bins.lo[axis][k].min(lo);
@@ -477,13 +453,8 @@ fn small_split(input: &Input, order: &mut [u32], node: &Aabb, cb: &Aabb) -> Opti
     let n = order.len();
     // Four packable primitives cost one test: always cheaper than a node
     // and a test on each side.
-    if n < 2 {
+    if n < 2 || order.iter().all(|&i| input.packable(i)) {
         return None;
-    }
-    match input.one_block_kind(order) {
-        Some(BlockKind::Triangle) => return None,
-        Some(BlockKind::Sphere) if node.area() <= input.shared_spheres_area => return None,
-        _ => {}
     }
     let axis = widest_axis(cb);
     let centroid = |i: u32| input.centroid(i)[axis];
@@ -554,11 +525,8 @@ pub(crate) mod tests {
             min: Vec3::from(lo),
             max: Vec3::from(hi),
         };
-        let leaves = |bounds: &[Aabb], packable: bool| {
-            leaf_sizes(&Bvh::build(bounds, &|_| {
-                packable.then_some(BlockKind::Triangle)
-            }))
-        };
+        let leaves =
+            |bounds: &[Aabb], packable: bool| leaf_sizes(&Bvh::build(bounds, &|_| packable));
         // Two walls of a room meeting in an edge, or two small spheres apart:
         // a ray rarely meets both boxes, so each is its own leaf.
         let walls = [
@@ -633,42 +601,10 @@ pub(crate) mod tests {
                 }
             })
             .collect();
-        let bvh = Bvh::build(&bounds, &|_| None);
+        let bvh = Bvh::build(&bounds, &|_| false);
         for c in [bvh.node(1), bvh.node(2)] {
             assert!(c.bounds.max.y - c.bounds.min.y < 1.0, "{:?}", c.bounds);
         }
-    }
-
-    #[test]
-    fn blocks_hold_one_kind_and_spheres_share_only_when_small() {
-        let b = |lo: Vec3, size: f32| Aabb {
-            min: lo,
-            max: lo + Vec3::splat(size),
-        };
-        let leaves = |bounds: &[Aabb], kinds: &[Option<BlockKind>]| {
-            let mut l = leaf_sizes(&Bvh::build(bounds, &|i| kinds[i as usize]));
-            l.sort();
-            l
-        };
-        let (tri, sph) = (Some(BlockKind::Triangle), Some(BlockKind::Sphere));
-        // Two balls of a room: apart, whatever their kind.
-        let room = [
-            b(Vec3::new(-0.7, -1.0, -0.7), 0.66),
-            b(Vec3::new(0.1, -1.0, 0.0), 0.66),
-        ];
-        assert_eq!(leaves(&room, &[sph, sph]), vec![1, 1]);
-        // Four small spheres in a large scene (a far box makes it large)
-        // share a block; with a triangle among them, nothing is shared.
-        let mut scene: Vec<Aabb> = (0..4)
-            .map(|i| b(Vec3::new(i as f32 * 0.6, 0.0, 0.0), 0.4))
-            .collect();
-        scene.push(b(Vec3::splat(500.0), 1.0));
-        assert_eq!(leaves(&scene, &[sph, sph, sph, sph, None]), vec![1, 4]);
-        let mixed = leaves(&scene, &[sph, tri, sph, sph, None]);
-        assert!(mixed.iter().all(|&n| n < 4), "{mixed:?}");
-        // Triangles share whatever their size, spheres of a small scene not.
-        assert_eq!(leaves(&scene[..4], &[tri; 4]), vec![4]);
-        assert!(leaves(&scene[..4], &[sph; 4]).len() > 1);
     }
 
     #[test]
@@ -689,7 +625,7 @@ pub(crate) mod tests {
             })
             .collect();
         // Measured: 3.56 per leaf in blocks, 3.02 counted one by one.
-        let leaves = leaf_sizes(&Bvh::build(&bounds, &|_| Some(BlockKind::Triangle))).len();
+        let leaves = leaf_sizes(&Bvh::build(&bounds, &|_| true)).len();
         assert!(4000.0 / leaves as f32 > 3.4, "{leaves} leaves");
     }
 
@@ -711,7 +647,7 @@ pub(crate) mod tests {
                 }
             })
             .collect();
-        let bvh = Bvh::build(&bounds, &|_| None);
+        let bvh = Bvh::build(&bounds, &|_| false);
         let mut seen = vec![0u8; bounds.len()];
         let mut stack = vec![0usize];
         let mut reached = 0;

@@ -10,7 +10,6 @@
 
 use super::bvh::Bvh;
 use super::pages::PagedVec;
-use super::sph4::Sph4;
 use super::tri4::{PackedTriangle, Tri4, FLAGS, MAX_PACKED, PLAIN};
 use crate::geometry::shape::Shape;
 use crate::geometry::shape::ShapeHit;
@@ -61,25 +60,6 @@ pub fn blocks(count: u32) -> u32 {
     }
 }
 
-/// The `count` of a leaf of `k` consecutive [`Sph4`] blocks (1 to
-/// [`MAX_BLOCKS`]): the values just below the triangle blocks'.
-const fn sphere_blocks_count(k: u32) -> u32 {
-    FIRST_BLOCKS - k
-}
-
-/// The smallest `count` that stands for sphere blocks.
-const FIRST_SPHERES: u32 = sphere_blocks_count(MAX_BLOCKS);
-
-/// How many consecutive sphere blocks a lane of `count` holds (0: none).
-#[inline(always)]
-pub fn sphere_blocks(count: u32) -> u32 {
-    if (FIRST_SPHERES..FIRST_BLOCKS).contains(&count) {
-        FIRST_BLOCKS - count
-    } else {
-        0
-    }
-}
-
 const EMPTY_NODE: Node4 = Node4 {
     min: [[f32::INFINITY; 4]; 3],
     max: [[f32::NEG_INFINITY; 4]; 3],
@@ -108,9 +88,6 @@ pub struct Bvh4 {
     /// Blocks of up to four static triangles or quads, tested together; a
     /// leaf holds up to [`MAX_BLOCKS`] consecutive ones.
     pub tris: PagedVec<Tri4>,
-    /// Blocks of up to four static spheres; a leaf holds up to
-    /// [`MAX_BLOCKS`] consecutive ones.
-    pub spheres: PagedVec<Sph4>,
     /// The first plain primitive's number: plain lanes are numbered from it
     /// in block order (see [`Bvh4::renumber`]).
     pub plain_from: u32,
@@ -123,7 +100,7 @@ pub struct Bvh4 {
 impl Bvh4 {
     /// Collapses a binary BVH. Leaves number their primitives by place in
     /// `bvh.order` (a leaf's are consecutive); [`Bvh4::renumber`] maps them
-    /// to other numbers. No leaf is a block yet: see [`Bvh4::pack`].
+    /// to other numbers. No leaf is a block yet: see [`Bvh4::pack_triangles`].
     pub fn from_binary(bvh: &Bvh) -> Bvh4 {
         let mut out = Bvh4::default();
         if bvh.is_empty() {
@@ -148,49 +125,27 @@ impl Bvh4 {
     }
 
     /// Turns every leaf of primitives that `triangle(prim)` packs (static
-    /// triangles and quads) into [`Tri4`] blocks, and every leaf of
-    /// primitives that `sphere(prim)` gives a centre and radius (static
-    /// spheres) into [`Sph4`] blocks, four primitives to a block. A pass of
-    /// its own after the collapse, so that lowering can drop the binary tree
-    /// before it reads the triangles (the load's peak memory is here).
-    pub fn pack(
-        &mut self,
-        triangle: impl Fn(u32) -> Option<PackedTriangle>,
-        sphere: impl Fn(u32) -> Option<(Vec3, f32)>,
-    ) {
-        // Room for the most blocks each kind can take, judged by a leaf's
-        // first primitive.
-        let (mut most_tris, mut most_spheres) = (0, 0);
-        for n in self.nodes.iter() {
-            for lane in 0..4 {
-                let (first, count) = (n.child[lane], n.count[lane]);
-                if packable_count(count) {
-                    let room = count.div_ceil(4) as usize;
-                    if sphere(first).is_some() {
-                        most_spheres += room;
-                    } else {
-                        most_tris += room;
-                    }
-                }
-            }
-        }
-        self.tris.reserve_exact(most_tris);
-        self.spheres.reserve_exact(most_spheres);
+    /// triangles and quads) into [`Tri4`] blocks, four primitives to a block. A pass of its own after the
+    /// collapse, so that lowering can drop the binary tree before it reads
+    /// the triangles (the load's peak memory is here).
+    pub fn pack_triangles(&mut self, triangle: impl Fn(u32) -> Option<PackedTriangle>) {
+        let most_blocks = self
+            .nodes
+            .iter()
+            .flat_map(|n| n.count)
+            .filter(|&c| packable_count(c))
+            .map(|c| c.div_ceil(4) as usize)
+            .sum();
+        self.tris.reserve_exact(most_blocks);
         if !self.nodes.is_empty() {
-            let kinds = Packers { triangle, sphere };
-            self.pack_below(0, &kinds);
+            self.pack_below(0, &triangle);
         }
     }
 
     /// Packs the leaves under `node`, depth first with lanes in order: the
     /// blocks lie in the order the collapse met them, as when the collapse
     /// made them.
-    fn pack_below<T, S>(&mut self, node: usize, kinds: &Packers<T, S>)
-    where
-        T: Fn(u32) -> Option<PackedTriangle>,
-        S: Fn(u32) -> Option<(Vec3, f32)>,
-    {
-        let triangle = &kinds.triangle;
+    fn pack_below(&mut self, node: usize, triangle: &impl Fn(u32) -> Option<PackedTriangle>) {
         let unused = PackedTriangle {
             vertices: [Vec3::ZERO; 3],
             plain: false,
@@ -202,15 +157,12 @@ impl Bvh4 {
             let (first, count) = (n.child[lane], n.count[lane]);
             if count == 0 {
                 if first != u32::MAX {
-                    self.pack_below(first as usize, kinds);
+                    self.pack_below(first as usize, triangle);
                 }
                 continue;
             }
             // (Primitive numbers from MAX_PACKED up cannot be packed.)
             if !packable_count(count) || first + count >= MAX_PACKED {
-                continue;
-            }
-            if self.pack_spheres(node, lane, &kinds.sphere) {
                 continue;
             }
             let mut tris = [(0, unused); 4 * MAX_BLOCKS as usize];
@@ -231,39 +183,6 @@ impl Bvh4 {
         }
     }
 
-    /// Packs the leaf in `lane` of `node` into sphere blocks if `sphere`
-    /// gives each of its primitives; says whether it did.
-    fn pack_spheres(
-        &mut self,
-        node: usize,
-        lane: usize,
-        sphere: &impl Fn(u32) -> Option<(Vec3, f32)>,
-    ) -> bool {
-        let (first, count) = (self.nodes[node].child[lane], self.nodes[node].count[lane]);
-        // A lone sphere keeps its record: a block of one gains nothing
-        // (measured equal on the spheres bench).
-        if count == 1 {
-            return false;
-        }
-        let mut spheres = [(0, Vec3::ZERO, 0.0); 4 * MAX_BLOCKS as usize];
-        let all = (0..count).all(|k| {
-            let p = first + k;
-            sphere(p)
-                .map(|(c, r)| spheres[k as usize] = (p, c, r))
-                .is_some()
-        });
-        if !all {
-            return false;
-        }
-        let n = &mut self.nodes[node];
-        n.child[lane] = self.spheres.len() as u32;
-        n.count[lane] = sphere_blocks_count(count.div_ceil(4));
-        for block in spheres[..count as usize].chunks(4) {
-            self.spheres.push(Sph4::new(block));
-        }
-        true
-    }
-
     /// Gives every primitive its final number: `record(old)` for the
     /// primitives with records (as the first primitive of a leaf, whose
     /// primitives must keep consecutive numbers: `record(old + k) ==
@@ -280,15 +199,9 @@ impl Bvh4 {
     ) {
         for n in self.nodes.iter_mut() {
             for lane in 0..4 {
-                let count = n.count[lane];
-                if count != 0 && blocks(count) == 0 && sphere_blocks(count) == 0 {
+                if n.count[lane] != 0 && blocks(n.count[lane]) == 0 {
                     n.child[lane] = record(n.child[lane]);
                 }
-            }
-        }
-        for block in self.spheres.iter_mut() {
-            for p in block.prim.iter_mut().filter(|p| **p != u32::MAX) {
-                *p = record(*p);
             }
         }
         self.plain_from = plain_from;
@@ -360,8 +273,7 @@ impl Bvh4 {
         mut hit: F,
     ) -> Option<TreeHit> {
         // The buffers once, not at every step (see `PagedVec`'s deref).
-        let (nodes, tris, spheres): (&[Node4], &[Tri4], &[Sph4]) =
-            (&self.nodes, &self.tris, &self.spheres);
+        let (nodes, tris): (&[Node4], &[Tri4]) = (&self.nodes, &self.tris);
         if nodes.is_empty() {
             return None;
         }
@@ -395,19 +307,6 @@ impl Bvh4 {
                         });
                         best_lane = Some((block, h.lane));
                     }
-                }
-                continue;
-            }
-            if count >= FIRST_SPHERES {
-                let blocks = &spheres[first as usize..(first + sphere_blocks(count)) as usize];
-                if let Some((prim, t)) = closest_sphere(blocks, ray, t_min, t_max) {
-                    t_max = t;
-                    best = Some(TreeHit {
-                        prim,
-                        hit: ShapeHit { t, uv: Vec2::ZERO },
-                        plain: None,
-                    });
-                    best_lane = None;
                 }
                 continue;
             }
@@ -475,8 +374,7 @@ impl Bvh4 {
         t_max: f32,
         mut hit: F,
     ) -> bool {
-        let (nodes, tris, spheres): (&[Node4], &[Tri4], &[Sph4]) =
-            (&self.nodes, &self.tris, &self.spheres);
+        let (nodes, tris): (&[Node4], &[Tri4]) = (&self.nodes, &self.tris);
         if nodes.is_empty() {
             return false;
         }
@@ -500,12 +398,6 @@ impl Bvh4 {
                     }
                     FIRST_BLOCKS..=BLOCK => (first..first + blocks(count))
                         .any(|b| tris[b as usize].any(ray.o, ray.d, t_min, t_max)),
-                    FIRST_SPHERES.. => any_sphere(
-                        &spheres[first as usize..(first + sphere_blocks(count)) as usize],
-                        ray,
-                        t_min,
-                        t_max,
-                    ),
                     _ => (first..first + count).any(|p| hit(p, t_max)),
                 };
                 if blocked {
@@ -603,35 +495,6 @@ impl RayLanes {
     }
 }
 
-/// The closest hit among sphere blocks: primitive and distance. Out of line,
-/// so that the traversal of scenes without sphere blocks keeps its code as
-/// it was (inlined, it cost the Cornell box 1–2 %: docs/performance.md,
-/// "Sphere blocks").
-#[inline(never)]
-fn closest_sphere(blocks: &[Sph4], ray: &Ray, t_min: f32, mut t_max: f32) -> Option<(u32, f32)> {
-    let mut best = None;
-    for block in blocks {
-        if let Some((lane, t)) = block.closest(ray.o, ray.d, t_min, t_max) {
-            t_max = t;
-            best = Some((block.prim[lane], t));
-        }
-    }
-    best
-}
-
-/// Whether a sphere block blocks the ray (out of line: see
-/// [`closest_sphere`]).
-#[inline(never)]
-fn any_sphere(blocks: &[Sph4], ray: &Ray, t_min: f32, t_max: f32) -> bool {
-    blocks.iter().any(|b| b.any(ray.o, ray.d, t_min, t_max))
-}
-
-/// What [`Bvh4::pack`] packs: a primitive as a triangle or as a sphere.
-struct Packers<T, S> {
-    triangle: T,
-    sphere: S,
-}
-
 /// Whether a leaf of `count` primitives fits in blocks.
 fn packable_count(count: u32) -> bool {
     (1..=4 * MAX_BLOCKS).contains(&count)
@@ -702,7 +565,6 @@ impl Collapse<'_> {
 mod tests {
     use super::*;
     use crate::accel::bvh::tests::{brute, shape_strategy};
-    use crate::accel::bvh::BlockKind;
     use crate::geometry::shape::Shape;
     use glam::Vec3;
     use proptest::prelude::*;
@@ -711,28 +573,22 @@ mod tests {
     /// lowering does.
     fn wide(shapes: &mut Vec<Shape>) -> Bvh4 {
         let bounds: Vec<Aabb> = shapes.iter().map(Shape::bounds).collect();
-        let packable = |i: u32| match shapes[i as usize] {
-            Shape::Triangle { .. } | Shape::Quad { .. } => Some(BlockKind::Triangle),
-            Shape::Sphere { .. } => Some(BlockKind::Sphere),
-            _ => None,
+        let packable = |i: u32| {
+            matches!(
+                shapes[i as usize],
+                Shape::Triangle { .. } | Shape::Quad { .. }
+            )
         };
         let mut bvh = Bvh::build(&bounds, &packable);
         *shapes = bvh.order.iter().map(|&i| shapes[i as usize]).collect();
         bvh.order = (0..shapes.len() as u32).collect();
         let mut w = Bvh4::from_binary(&bvh);
-        w.pack(
-            |p| {
-                PackedTriangle::of(&shapes[p as usize]).map(|t| PackedTriangle {
-                    plain: p % 2 == 0,
-                    ..t
-                })
-            },
-            // Every third sphere stays a record: leaves of both kinds.
-            |p| match shapes[p as usize] {
-                Shape::Sphere { center, radius } if p % 3 != 0 => Some((center, radius)),
-                _ => None,
-            },
-        );
+        w.pack_triangles(|p| {
+            PackedTriangle::of(&shapes[p as usize]).map(|t| PackedTriangle {
+                plain: p % 2 == 0,
+                ..t
+            })
+        });
         w
     }
 
@@ -806,48 +662,6 @@ mod tests {
                     prop_assert!(!blocked);
                 }
             }
-        }
-    }
-
-    #[test]
-    fn sphere_blocks_agree_with_brute_force() {
-        // Small spheres on a jittered grid under a large ground quad, as
-        // the spheres bench: they share blocks (every third stays a
-        // record in `wide`, so leaves of both kinds meet).
-        let mut sampler = crate::sampling::sampler::Sampler::new(7, 1, 2, 3);
-        let mut next = || sampler.next_f32();
-        let mut shapes: Vec<Shape> = (0..400)
-            .map(|i| Shape::Sphere {
-                center: Vec3::new(
-                    (i % 20) as f32 + next() * 0.5,
-                    0.2,
-                    (i / 20) as f32 + next() * 0.5,
-                ),
-                radius: 0.05 + 0.2 * next(),
-            })
-            .collect();
-        shapes.push(Shape::Quad {
-            p: Vec3::new(-60.0, 0.0, -60.0),
-            e1: Vec3::new(0.0, 0.0, 120.0),
-            e2: Vec3::new(120.0, 0.0, 0.0),
-            swapped: false,
-        });
-        let w = wide(&mut shapes);
-        assert!(w.spheres.len() > 10, "{} sphere blocks", w.spheres.len());
-        for _ in 0..3000 {
-            let o = Vec3::new(next() * 24.0 - 2.0, next() * 3.0, next() * 24.0 - 2.0);
-            let d = Vec3::new(next() - 0.5, next() - 0.6, next() - 0.5);
-            if d.length_squared() < 1e-4 {
-                continue;
-            }
-            let ray = Ray::new(o, d.normalize(), 0.0);
-            let test = |i: u32, tmax| shapes[i as usize].intersect(&ray, 1e-4, tmax);
-            let got = w.closest(&ray, 1e-4, f32::INFINITY, test);
-            let want = brute(&shapes, &ray);
-            assert_eq!(got.map(|g| g.hit.t), want.map(|w| w.1), "{ray:?}");
-            assert_eq!(got.map(|g| g.prim), want.map(|w| w.0), "{ray:?}");
-            let any = w.any(&ray, 1e-4, f32::INFINITY, |i, tmax| test(i, tmax).is_some());
-            assert_eq!(any, want.is_some());
         }
     }
 

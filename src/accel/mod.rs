@@ -1,6 +1,6 @@
 //! Acceleration structures: the binned-SAH BVH build, the 4-wide BVH that is
 //! traversed, the blocks of four triangles in its leaves (the one place that
-//! knows the "plain triangle" leaf format) and of four spheres, the buffers they live in (2 MiB
+//! knows the "plain triangle" leaf format), the buffers they live in (2 MiB
 //! pages for large trees) and the counters of rays traced.
 
 pub mod bvh;
@@ -8,5 +8,4 @@ pub mod bvh4;
 pub mod numbering;
 pub mod pages;
 pub mod ray_count;
-pub mod sph4;
 pub mod tri4;

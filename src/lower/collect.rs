@@ -11,7 +11,6 @@
 //! Bounded primitives are numbered records first, then the meshes'
 //! triangles; planes are kept apart.
 
-use crate::accel::bvh::BlockKind;
 use crate::accel::tri4::PackedTriangle;
 use crate::geometry::shape::Shape;
 use crate::geometry::Aabb;
@@ -116,39 +115,19 @@ impl Collected {
         }
     }
 
-    /// The kind of block that [`Collected::packed`] or [`Collected::sphere`]
-    /// gives primitive `i` a lane of, if any (without gathering a mesh
-    /// triangle's vertices, which the build does not need).
-    pub fn block(&self, i: u32) -> Option<BlockKind> {
+    /// Whether [`Collected::packed`] gives primitive `i` a block lane (without
+    /// gathering a mesh triangle's vertices, which the build does not need).
+    pub fn packable(&self, i: u32) -> bool {
         match self.records.get(i as usize) {
-            Some(p) => {
-                if self.is_cut(self.record_object[i as usize]) {
-                    None
-                } else if packed_record(p).is_some() {
-                    Some(BlockKind::Triangle)
-                } else {
-                    static_sphere(p).map(|_| BlockKind::Sphere)
-                }
-            }
-            None => (self.cut_objects.is_empty() || !self.is_cut(self.mesh_triangle(i).0.object))
-                .then_some(BlockKind::Triangle),
+            Some(p) => !self.is_cut(self.record_object[i as usize]) && packed_record(p).is_some(),
+            None => self.cut_objects.is_empty() || !self.is_cut(self.mesh_triangle(i).0.object),
         }
-    }
-
-    /// Primitive `i`'s centre and radius for a [`Sph4`](crate::accel::sph4::Sph4)
-    /// block, if it is a static sphere that is not cut out.
-    pub fn sphere(&self, i: u32) -> Option<(Vec3, f32)> {
-        let p = self.records.get(i as usize)?;
-        if self.is_cut(self.record_object[i as usize]) {
-            return None;
-        }
-        static_sphere(p)
     }
 
     /// Primitive `i` packed for a [`Tri4`](crate::accel::tri4::Tri4)
     /// block, if it is a static triangle or quad.
     pub fn packed(&self, i: u32) -> Option<PackedTriangle> {
-        if self.block(i) != Some(BlockKind::Triangle) {
+        if !self.packable(i) {
             return None;
         }
         match self.records.get(i as usize) {
@@ -217,14 +196,6 @@ impl Objects {
 /// A record that the wide BVH can test four at a time in a block: a triangle
 /// or a parallelogram that does not move; plain when its vertices describe
 /// it completely (no vertex normals).
-/// A record's sphere, if it is a sphere that does not move.
-fn static_sphere(p: &Prim) -> Option<(Vec3, f32)> {
-    match p.shape {
-        Shape::Sphere { center, radius } if p.velocity == Vec3::ZERO => Some((center, radius)),
-        _ => None,
-    }
-}
-
 fn packed_record(p: &Prim) -> Option<PackedTriangle> {
     if p.velocity != Vec3::ZERO {
         return None;
@@ -275,13 +246,8 @@ mod tests {
         // Records are numbered first even when pushed after a mesh.
         assert_eq!(c.len(), 6);
         assert_eq!(c.planes.len(), 1);
-        // The spheres (records 0 and 1) go in sphere blocks, not triangle
-        // blocks.
-        assert!(c.packed(0).is_none() && c.block(0) == Some(BlockKind::Sphere));
-        assert_eq!(c.sphere(0), Some((Vec3::ZERO, 1.0)));
-        assert_eq!(c.sphere(1), Some((Vec3::new(9.0, 0.0, 0.0), 1.0)));
-        assert!((2..6).all(|i| c.sphere(i).is_none()));
-        assert!((1..6).all(|i| (c.block(i) == Some(BlockKind::Triangle)) == c.packed(i).is_some()));
+        assert!(c.packed(0).is_none() && !c.packable(0));
+        assert!((1..6).all(|i| c.packable(i) == c.packed(i).is_some()));
         let t = c.packed(5).unwrap();
         assert!(t.plain);
         let p = Vec3::new(0.0, 0.0, 7.0);

@@ -52,7 +52,7 @@ pub fn build(gathered: Gathered) -> Geometry {
     } = gathered;
     let n = prims.len();
     let boxes: Vec<Aabb> = (0..n as u32).map(|i| prims.bounds(i, shutter)).collect();
-    let mut bvh = Bvh::build(&boxes, &|i| prims.block(i));
+    let mut bvh = Bvh::build(&boxes, &|i| prims.packable(i));
     drop(boxes);
     // The wide tree numbers primitives by their place in the binary tree's
     // order: a leaf's primitives are consecutive. The binary tree is dropped
@@ -64,10 +64,7 @@ pub fn build(gathered: Gathered) -> Geometry {
     // Blocks number their lanes below the flag bits: a scene of more
     // primitives keeps every one as a record.
     if n < MAX_PACKED as usize {
-        wide.pack(
-            |place| prims.packed(order[place as usize]),
-            |place| prims.sphere(order[place as usize]),
-        );
+        wide.pack_triangles(|place| prims.packed(order[place as usize]));
     }
     let planes = std::mem::take(&mut prims.planes);
     let numbering = Numbering::new(&wide, n, planes.len());

@@ -384,13 +384,13 @@ pub fn build(gathered: Gathered, cache: &mut LowerCache) -> Instances {
         return Instances::default();
     }
     // The tree numbers placements in its leaves' order.
-    let mut bvh = Bvh::build(&boxes, &|_| None);
+    let mut bvh = Bvh::build(&boxes, &|_| false);
     placements = (bvh.order.iter())
         .map(|&i| placements[i as usize].clone())
         .collect();
     bvh.order = (0..placements.len() as u32).collect();
     let mut tree = Bvh4::from_binary(&bvh);
-    tree.pack(|_| None, |_| None);
+    tree.pack_triangles(|_| None);
     Instances {
         prototypes,
         placements,

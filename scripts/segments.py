@@ -5,8 +5,8 @@
                               [--depths 1,2,3,8] [--runs 3] [SCENE...]
 
 For each bench scene (default cornell mesh spheres) renders ptsc's
-examples/bench/SCENE.pts with its `max_depth` replaced (a copy beside the
-original, so relative paths still hold; removed after) and Mitsuba's version
+examples/bench/SCENE.pts with its `max_depth` replaced (a copy in a
+temporary folder, the files it names made absolute) and Mitsuba's version
 of the scene (../shared/bench/mitsuba_scenes.py) at each depth, 2 threads.
 ptsc: the median of RUNS render times ("in T s"); Mitsuba: the median of
 RUNS renders after one warm-up render in the same process (its kernels are
@@ -33,20 +33,20 @@ def ptsc_time(binary, scene, depth, spp, res, runs):
     """Median render time of ptsc on `scene` with `max_depth` `depth`."""
     src = ROOT / "examples" / "bench" / f"{scene}.pts"
     text = re.sub(r"max_depth\s+\d+", f"max_depth {depth}", src.read_text())
-    with tempfile.NamedTemporaryFile("w", suffix=".pts", dir=src.parent, delete=False) as f:
-        f.write(text)
-    copy = Path(f.name)
+    # A string naming a file beside the scene (the mesh's PLY) is made
+    # absolute, so that the copy reads the same file from elsewhere.
+    text = re.sub(r'"([^"]+)"', lambda m: f'"{(src.parent / m.group(1)).resolve()}"'
+                  if (src.parent / m.group(1)).is_file() else m.group(0), text)
     times = []
-    try:
-        with tempfile.TemporaryDirectory() as out:
-            for _ in range(runs):
-                line = subprocess.run(
-                    [binary, "render", str(copy), "--spp", str(spp), "--resolution", f"{res}x{res}",
-                     "--threads", "2", "-o", f"{out}/s.exr"],
-                    check=True, capture_output=True, text=True).stderr.strip().splitlines()[-1]
-                times.append(float(re.search(r" in ([0-9.]+) s ", line).group(1)))
-    finally:
-        copy.unlink()
+    with tempfile.TemporaryDirectory() as tmp:
+        copy = Path(tmp) / f"{scene}.pts"
+        copy.write_text(text)
+        for _ in range(runs):
+            line = subprocess.run(
+                [binary, "render", str(copy), "--spp", str(spp), "--resolution", f"{res}x{res}",
+                 "--threads", "2", "-o", f"{tmp}/s.exr"],
+                check=True, capture_output=True, text=True).stderr.strip().splitlines()[-1]
+            times.append(float(re.search(r" in ([0-9.]+) s ", line).group(1)))
     return statistics.median(times)
 
 

@@ -16,7 +16,7 @@ use crate::accel::ray_count::{self, RayCounts};
 use crate::geometry::Ray;
 use crate::integrator::Integrator;
 use crate::ir::Scene;
-use crate::sampling::sampler::{PixelSampler, Sampler};
+use crate::sampling::sampler::{PixelSampler, Sampler, BATCH};
 use film::{Film, Halves};
 use glam::{DVec3, Vec2, Vec3};
 use rayon::prelude::*;
@@ -304,7 +304,7 @@ fn render_tile(pass: &TilePass, tile: &mut TileRows) -> (u64, bool) {
             }
             pixel.move_to((x, y));
             let odd = odd_row.as_mut().map(|r| &mut r[col]);
-            *count = render_pixel(pass, &pixel, (x, y), from, (sum, odd));
+            *count = render_pixel(pass, &mut pixel, (x, y), from, (sum, odd));
             samples += (*count - from) as u64;
             if *count < pass.end {
                 return (samples, true);
@@ -320,7 +320,7 @@ fn render_tile(pass: &TilePass, tile: &mut TileRows) -> (u64, bool) {
 #[inline]
 fn render_pixel(
     pass: &TilePass,
-    pixel: &PixelSampler,
+    pixel: &mut PixelSampler,
     (x, y): (u32, u32),
     from: u32,
     (sum, mut odd): (&mut DVec3, Option<&mut DVec3>),
@@ -329,6 +329,9 @@ fn render_pixel(
     for s in from..pass.end {
         if (s - from).is_multiple_of(CANCEL_POLL) && pass.cancel.load(Ordering::Relaxed) {
             return s;
+        }
+        if (s - from).is_multiple_of(BATCH) {
+            pixel.prepare(first + s, pass.end - s);
         }
         let l = sample(
             pass.scene,

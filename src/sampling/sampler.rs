@@ -71,8 +71,81 @@ const SOBOL_SLOTS: usize = (CAMERA_SLOTS + SOBOL_BOUNCES * BOUNCE_SLOTS) as usiz
 const LENS_SLOT: u32 = 1;
 const TIME_SLOT: u32 = 2;
 
+/// The most samples of a [`PointBatch`].
+pub const BATCH: u32 = 16;
+
+/// The Sobol points of a run of a pixel's samples, computed together
+/// ([`PixelSampler::prepare`]): one sample's scrambles are chains of
+/// multiplications, 50–100 instructions a draw, that the path then waits
+/// for; computed side by side for the run they cost a fraction of that,
+/// and a draw becomes a load. Values equal [`SlotSeeds::get2`]'s. (Every
+/// slot is computed, also for paths that leave the scene before they draw
+/// from a bounce's: filling a bounce's slots when the first path got there
+/// cost more in checks at every draw than it saved.)
+#[derive(Debug, Clone)]
+struct PointBatch {
+    /// The first sample's index.
+    first: u32,
+    /// How many samples from it have their points here.
+    len: u32,
+    /// Per slot and sample: the point's first coordinate.
+    x: [[u32; BATCH as usize]; SOBOL_SLOTS],
+    /// Per slot and sample: its second.
+    y: [[u32; BATCH as usize]; SOBOL_SLOTS],
+}
+
+impl PointBatch {
+    const EMPTY: PointBatch = PointBatch {
+        first: 0,
+        len: 0,
+        x: [[0; BATCH as usize]; SOBOL_SLOTS],
+        y: [[0; BATCH as usize]; SOBOL_SLOTS],
+    };
+
+    /// Fills the lanes of the Sobol slots (bits of `sobol`) for the `L`
+    /// samples from the run's first.
+    #[inline(always)]
+    fn fill<const L: usize>(&mut self, seeds: &[SlotSeeds; SOBOL_SLOTS], sobol: u32) {
+        let first = self.first;
+        for (slot, seeds) in seeds.iter().enumerate() {
+            if sobol & (1 << slot) != 0 {
+                let (xs, ys) = seeds.get2_lanes::<L>(first);
+                self.x[slot][..L].copy_from_slice(&xs);
+                self.y[slot][..L].copy_from_slice(&ys);
+            }
+        }
+    }
+}
+
+/// [`PointBatch::fill`] for `len` samples as a kernel for `pulp` to build
+/// for each instruction set (a closure is not inlined into it).
+struct Fill<'a> {
+    batch: &'a mut PointBatch,
+    seeds: &'a [SlotSeeds; SOBOL_SLOTS],
+    sobol: u32,
+}
+
+impl pulp::WithSimd for Fill<'_> {
+    type Output = ();
+
+    #[inline(always)]
+    fn with_simd<S: pulp::Simd>(self, _: S) {
+        let Fill {
+            batch,
+            seeds,
+            sobol,
+        } = self;
+        match batch.len {
+            0..=4 => batch.fill::<4>(seeds, sobol),
+            5..=8 => batch.fill::<8>(seeds, sobol),
+            _ => batch.fill::<{ BATCH as usize }>(seeds, sobol),
+        }
+    }
+}
+
 /// One pixel's sampling: for `sobol`, each slot's seeds (the same for all
-/// the pixel's samples, so computed once) and which slots draw Sobol points.
+/// the pixel's samples, so computed once), which slots draw Sobol points,
+/// and the points of the run of samples being drawn.
 #[derive(Debug, Clone)]
 pub struct PixelSampler {
     seed: u64,
@@ -81,6 +154,7 @@ pub struct PixelSampler {
     seeds: [SlotSeeds; SOBOL_SLOTS],
     /// Bit `s` set: slot `s` draws Sobol points (none for `independent`).
     sobol: u32,
+    batch: PointBatch,
 }
 
 impl PixelSampler {
@@ -94,6 +168,7 @@ impl PixelSampler {
             y,
             seeds: [SlotSeeds::default(); SOBOL_SLOTS],
             sobol: 0,
+            batch: PointBatch::EMPTY,
         };
         if kind == SamplerKind::Sobol {
             let mut sobol: u32 = (1 << SOBOL_SLOTS) - 1;
@@ -119,6 +194,7 @@ impl PixelSampler {
     #[inline]
     pub fn move_to(&mut self, (x, y): (u32, u32)) {
         (self.x, self.y) = (x, y);
+        self.batch.len = 0;
         if self.sobol != 0 {
             let pixel = ((y as u64) << 32) | x as u64;
             let key = mix(mix(self.seed ^ 0x5b0b_0150_b01a_5eed) ^ pixel);
@@ -128,15 +204,36 @@ impl PixelSampler {
         }
     }
 
+    /// Computes the Sobol points of the `len` samples from index `first`
+    /// (at most [`BATCH`]: the rest draw theirs one by one) at once, for the
+    /// [`PixelSampler::sample`]s that follow; the same numbers either way.
+    #[inline]
+    pub fn prepare(&mut self, first: u32, len: u32) {
+        if self.sobol == 0 {
+            return;
+        }
+        (self.batch.first, self.batch.len) = (first, len.min(BATCH));
+        // Built for the widest vectors the CPU has (AVX2 where there is,
+        // chosen at run time): the lanes' multiplications and bit
+        // reversals are single instructions there.
+        pulp::Arch::new().dispatch(Fill {
+            batch: &mut self.batch,
+            seeds: &self.seeds,
+            sobol: self.sobol,
+        });
+    }
+
     /// The numbers of the pixel's sample `index`; the first draws are the
     /// camera's: the film position, the lens, the time.
     #[inline]
     pub fn sample(&self, index: u32) -> Sampler<'_> {
         let mut s = Sampler::new(self.seed, self.x, self.y, index);
         if self.sobol != 0 {
-            s.pixel = Some(self);
+            let lane = index.wrapping_sub(self.batch.first);
+            s.lane = if lane < self.batch.len { lane } else { NO_LANE };
             s.index_reversed = index.reverse_bits();
             s.end = CAMERA_SLOTS;
+            s.pixel = Some(self);
         }
         s
     }
@@ -150,10 +247,15 @@ pub struct Sampler<'a> {
     inc: u64,
     pixel: Option<&'a PixelSampler>,
     index_reversed: u32,
+    /// The sample's lane in the pixel's batch of points, or [`NO_LANE`].
+    lane: u32,
     /// The next slot to draw from, while below `end`; then the PCG stream.
     slot: u32,
     end: u32,
 }
+
+/// A sample whose points are not in its pixel's batch.
+const NO_LANE: u32 = u32::MAX;
 
 /// The top 24 bits of `x` as a number in [0, 1).
 #[inline(always)]
@@ -173,6 +275,7 @@ impl Sampler<'_> {
             inc,
             pixel: None,
             index_reversed: 0,
+            lane: NO_LANE,
             slot: 0,
             end: 0,
         };
@@ -201,16 +304,42 @@ impl Sampler<'_> {
         self.end = 0;
     }
 
-    /// The seeds of the next slot, if the draw is a Sobol point.
+    /// The pixel and the next slot, if the draw is a Sobol point.
     #[inline(always)]
-    fn next_slot(&mut self) -> Option<SlotSeeds> {
+    fn next_slot(&mut self) -> Option<(&PixelSampler, usize)> {
         let pixel = self.pixel?;
         let slot = self.slot;
         if slot >= self.end || slot >= SOBOL_SLOTS as u32 {
             return None;
         }
         self.slot += 1;
-        (pixel.sobol & (1 << slot) != 0).then(|| pixel.seeds[slot as usize])
+        (pixel.sobol & (1 << slot) != 0).then_some((pixel, slot as usize))
+    }
+
+    /// The first coordinate of the next slot's point, if the draw is a
+    /// Sobol point: from the batch, or computed.
+    #[inline(always)]
+    fn next_point1(&mut self) -> Option<u32> {
+        let (lane, index_reversed) = (self.lane as usize, self.index_reversed);
+        let (pixel, slot) = self.next_slot()?;
+        Some(match pixel.batch.x[slot].get(lane) {
+            Some(&x) => x,
+            None => pixel.seeds[slot].get1(index_reversed),
+        })
+    }
+
+    /// Both coordinates of the next slot's point, if the draw is a Sobol
+    /// point.
+    #[inline(always)]
+    fn next_point2(&mut self) -> Option<(u32, u32)> {
+        let (lane, index_reversed) = (self.lane as usize, self.index_reversed);
+        let (pixel, slot) = self.next_slot()?;
+        Some(
+            match (pixel.batch.x[slot].get(lane), pixel.batch.y[slot].get(lane)) {
+                (Some(&x), Some(&y)) => (x, y),
+                _ => pixel.seeds[slot].get2(index_reversed),
+            },
+        )
     }
 
     /// The next 32 random bits of the PCG stream.
@@ -228,8 +357,8 @@ impl Sampler<'_> {
     /// A uniform number in [0, 1).
     #[inline]
     pub fn next_f32(&mut self) -> f32 {
-        if let Some(seeds) = self.next_slot() {
-            return unit_f32(seeds.get1(self.index_reversed));
+        if let Some(x) = self.next_point1() {
+            return unit_f32(x);
         }
         unit_f32(self.next_u32())
     }
@@ -238,8 +367,8 @@ impl Sampler<'_> {
     /// [`Sampler::next_f32`]): for choices among many (a light of a tree).
     #[inline]
     pub fn next_f64(&mut self) -> f64 {
-        let x = match self.next_slot() {
-            Some(seeds) => seeds.get1(self.index_reversed),
+        let x = match self.next_point1() {
+            Some(x) => x,
             None => self.next_u32(),
         };
         x as f64 * (1.0 / 4_294_967_296.0)
@@ -248,8 +377,7 @@ impl Sampler<'_> {
     /// A uniform point in [0, 1)².
     #[inline]
     pub fn next_2d(&mut self) -> Vec2 {
-        if let Some(seeds) = self.next_slot() {
-            let (x, y) = seeds.get2(self.index_reversed);
+        if let Some((x, y)) = self.next_point2() {
             return Vec2::new(unit_f32(x), unit_f32(y));
         }
         let x = unit_f32(self.next_u32());
@@ -340,6 +468,46 @@ mod tests {
         let mut pcg = Sampler::new(1, 0, 0, 4);
         let _film = camera.next_2d();
         assert_eq!(camera.next_2d(), pcg.next_2d());
+    }
+
+    /// Every draw of a sample's first bounces, from the camera's slots on.
+    fn all_draws(mut s: Sampler) -> Vec<u32> {
+        let bits = |x: f32| x.to_bits();
+        let mut v = vec![bits(s.next_2d().x), bits(s.next_2d().y), bits(s.next_f32())];
+        for bounce in 0..SOBOL_BOUNCES + 1 {
+            for draws in [Draws::Light, Draws::Bsdf, Draws::Roulette] {
+                s.start(bounce, draws);
+                let p = s.next_2d();
+                v.extend([s.next_f64().to_bits() as u32, bits(p.x), bits(p.y)]);
+                v.push(bits(s.next_f32()));
+            }
+        }
+        v
+    }
+
+    proptest::proptest! {
+        #[test]
+        fn a_batch_draws_what_single_samples_draw(
+            seed: u64,
+            x in 0u32..100_000,
+            y in 0u32..100_000,
+            first: u32,
+            len in 0u32..40,
+            lens: bool,
+        ) {
+            let single = PixelSampler::new(SamplerKind::Sobol, seed, (x, y), lens, true);
+            let mut batched = single.clone();
+            batched.prepare(first, len);
+            // The batch's samples, one beyond it, and one before it.
+            for k in (0..len.min(BATCH) + 1).chain([u32::MAX]) {
+                let index = first.wrapping_add(k);
+                proptest::prop_assert_eq!(
+                    all_draws(batched.sample(index)),
+                    all_draws(single.sample(index)),
+                    "sample {}", index
+                );
+            }
+        }
     }
 
     #[test]

@@ -17,44 +17,21 @@
 //! render's seed and the pixel —, whatever the number
 //! of samples per pixel.
 
-/// Direction numbers of Sobol's second dimension (primitive polynomial
-/// x + 1, m₁ = 1: the Pascal matrix mod 2), bit j of the index to the 32
-/// output bits, most significant first.
-const fn direction(j: u32) -> u32 {
-    let mut v = 1u32 << 31;
-    let mut i = 0;
-    while i < j {
-        v ^= v >> 1;
-        i += 1;
-    }
-    v
+/// Sobol's second dimension of the index `i`, bit-reversed. Its generator
+/// is the Pascal matrix mod 2: index bit j sets output bit 31 − k where
+/// C(j, k) is odd, which by Lucas' theorem is where k's bits are a subset
+/// of j's. So bit k of the reversed value is the XOR of the index bits at
+/// the positions j ⊇ k: a sum over supersets of the 5-bit positions, five
+/// shifted XORs. No table loads, so a batch's lanes compute it side by side.
+#[inline(always)]
+fn second_reversed(mut i: u32) -> u32 {
+    i ^= (i >> 1) & 0x5555_5555;
+    i ^= (i >> 2) & 0x3333_3333;
+    i ^= (i >> 4) & 0x0f0f_0f0f;
+    i ^= (i >> 8) & 0x00ff_00ff;
+    i ^= (i >> 16) & 0x0000_ffff;
+    i
 }
-
-/// The second dimension, bit-reversed, by index byte: entry `b` of table
-/// `k` is the XOR of the reversed direction numbers of the bits set in
-/// byte value `b` at byte `k` of the index. Four lookups replace a loop
-/// over 32 index bits (a shuffled index has all of them set at random).
-const REVERSED_SECOND: [[u32; 256]; 4] = {
-    let mut table = [[0u32; 256]; 4];
-    let mut k = 0;
-    while k < 4 {
-        let mut b = 0;
-        while b < 256 {
-            let mut x = 0u32;
-            let mut bit = 0;
-            while bit < 8 {
-                if b & (1 << bit) != 0 {
-                    x ^= direction(8 * k as u32 + bit).reverse_bits();
-                }
-                bit += 1;
-            }
-            table[k][b] = x;
-            b += 1;
-        }
-        k += 1;
-    }
-    table
-};
 
 /// Laine and Karras's hash as improved by Burley (2020, listing 2): a
 /// bijection of 32 bits in which each output bit depends on the same and
@@ -131,15 +108,24 @@ impl SlotSeeds {
     #[inline(always)]
     pub fn get2(self, index_reversed: u32) -> (u32, u32) {
         let i = self.shuffled(index_reversed);
-        let [b0, b1, b2, b3] = i.to_le_bytes();
-        let second_reversed = REVERSED_SECOND[0][b0 as usize]
-            ^ REVERSED_SECOND[1][b1 as usize]
-            ^ REVERSED_SECOND[2][b2 as usize]
-            ^ REVERSED_SECOND[3][b3 as usize];
         (
             owen_reversed(i, self.x),
-            owen_reversed(second_reversed, self.y),
+            owen_reversed(second_reversed(i), self.y),
         )
+    }
+
+    /// [`SlotSeeds::get2`] of the samples `first`, `first + 1`, … (`L` of
+    /// them, wrapping past `u32::MAX`), both coordinates apart: one pass over
+    /// the lanes with the same operations in each, which the compiler turns
+    /// into vector instructions.
+    #[inline(always)]
+    pub fn get2_lanes<const L: usize>(self, first: u32) -> ([u32; L], [u32; L]) {
+        let (mut xs, mut ys) = ([0; L], [0; L]);
+        for lane in 0..L {
+            let index = first.wrapping_add(lane as u32);
+            (xs[lane], ys[lane]) = self.get2(index.reverse_bits());
+        }
+        (xs, ys)
     }
 }
 

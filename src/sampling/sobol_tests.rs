@@ -2,6 +2,19 @@ use super::*;
 use crate::sampling::chi2::pearson_p_value;
 use proptest::prelude::*;
 
+/// Direction numbers of Sobol's second dimension (primitive polynomial
+/// x + 1, m₁ = 1: the Pascal matrix mod 2), bit j of the index to the 32
+/// output bits, most significant first.
+fn direction(j: u32) -> u32 {
+    let mut v = 1u32 << 31;
+    let mut i = 0;
+    while i < j {
+        v ^= v >> 1;
+        i += 1;
+    }
+    v
+}
+
 /// Sample `index` of a pixel's sequence keyed by `key`.
 struct SobolPoint {
     key: u64,
@@ -36,14 +49,28 @@ fn the_second_dimension_is_sobols() {
     assert_eq!(m, [1, 3, 5, 15, 17, 51]);
     let eighths: Vec<u32> = (0..8).map(|i| plain_second(i) >> 29).collect();
     assert_eq!(eighths, [0, 4, 6, 2, 5, 1, 3, 7]);
-    // The tables give the same values, bit-reversed.
-    for i in [0u32, 1, 7, 255, 256, 0x1234_5678, u32::MAX] {
-        let [b0, b1, b2, b3] = i.to_le_bytes();
-        let t = REVERSED_SECOND[0][b0 as usize]
-            ^ REVERSED_SECOND[1][b1 as usize]
-            ^ REVERSED_SECOND[2][b2 as usize]
-            ^ REVERSED_SECOND[3][b3 as usize];
-        assert_eq!(t.reverse_bits(), plain_second(i), "index {i}");
+    // The sum over supersets gives the same values, bit-reversed: every
+    // index bit alone (the matrix's columns), and mixtures.
+    let singles = (0..32).map(|j| 1u32 << j);
+    for i in singles.chain([0u32, 7, 255, 256, 0x1234_5678, 0xdead_beef, u32::MAX]) {
+        assert_eq!(
+            second_reversed(i).reverse_bits(),
+            plain_second(i),
+            "index {i:#x}"
+        );
+    }
+}
+
+proptest! {
+    #[test]
+    fn lanes_equal_single_draws(key: u64, slot in 0u32..16, first: u32) {
+        let seeds = SlotSeeds::new(key, slot);
+        let (xs, ys) = seeds.get2_lanes::<8>(first);
+        for lane in 0..8 {
+            let index = first.wrapping_add(lane as u32);
+            prop_assert_eq!((xs[lane], ys[lane]), seeds.get2(index.reverse_bits()));
+            prop_assert_eq!(xs[lane], seeds.get1(index.reverse_bits()));
+        }
     }
 }
 

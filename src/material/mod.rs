@@ -427,7 +427,10 @@ impl Material {
 
     /// Value (f) and mixture pdf of the non-delta lobes for `wo` → `wi` at a
     /// surface with normal `n` (either orientation).
-    #[inline]
+    // Inlined, its glossy lobe out of line: called out of line, a diffuse
+    // surface's evaluation (twice a bounce: light sample and BSDF sample)
+    // spent more on the call than on its few products.
+    #[inline(always)]
     pub fn eval(&self, wo: Vec3, wi: Vec3, n: Vec3) -> (Vec3, f32) {
         if !matches!(self.kind, Kind::Lobes) {
             return self.eval_model(wo, wi, n);
@@ -445,24 +448,33 @@ impl Material {
             pdf += self.lobe_pdf[0] * cosine_hemisphere_pdf(cos_i);
         }
         if self.lobe_pdf[1] > 0.0 && self.alpha > 0.0 {
-            let (t, b) = orthonormal_basis(nf);
-            let lo = Vec3::new(wo.dot(t), wo.dot(b), cos_o);
-            let li = Vec3::new(wi.dot(t), wi.dot(b), cos_i);
-            // Single scattering plus the multiple-scattering compensation,
-            // sampled as a mix: VNDF with probability E(μo), cosine otherwise.
-            let single = microfacet::reflection_brdf(lo, li, self.alpha);
-            let multi = if self.multiscatter {
-                multiscatter::brdf(cos_o, cos_i, self.alpha)
-            } else {
-                0.0
-            };
-            f += self.reflection * (single + multi);
-            let k = self.multiscatter_fraction(cos_o);
-            pdf += self.lobe_pdf[1]
-                * ((1.0 - k) * microfacet::reflection_pdf(lo, li, self.alpha)
-                    + k * cosine_hemisphere_pdf(cos_i));
+            let (glossy, glossy_pdf) = self.eval_glossy(wo, wi, nf, [cos_o, cos_i]);
+            f += glossy;
+            pdf += glossy_pdf;
         }
         (f, pdf)
+    }
+
+    /// The glossy reflection lobe's value and its share of the mixture pdf
+    /// (both cosines positive, `nf` on `wo`'s side).
+    #[inline(never)]
+    fn eval_glossy(&self, wo: Vec3, wi: Vec3, nf: Vec3, [cos_o, cos_i]: [f32; 2]) -> (Vec3, f32) {
+        let (t, b) = orthonormal_basis(nf);
+        let lo = Vec3::new(wo.dot(t), wo.dot(b), cos_o);
+        let li = Vec3::new(wi.dot(t), wi.dot(b), cos_i);
+        // Single scattering plus the multiple-scattering compensation,
+        // sampled as a mix: VNDF with probability E(μo), cosine otherwise.
+        let single = microfacet::reflection_brdf(lo, li, self.alpha);
+        let multi = if self.multiscatter {
+            multiscatter::brdf(cos_o, cos_i, self.alpha)
+        } else {
+            0.0
+        };
+        let k = self.multiscatter_fraction(cos_o);
+        let pdf = self.lobe_pdf[1]
+            * ((1.0 - k) * microfacet::reflection_pdf(lo, li, self.alpha)
+                + k * cosine_hemisphere_pdf(cos_i));
+        (self.reflection * (single + multi), pdf)
     }
 
     /// Samples an incident direction for `wo` at a surface whose outward

@@ -11,7 +11,8 @@ relMSE: mean over pixels and channels of (x - r)^2 / (r^2 + 0.01).
     python3 scripts/equal_time.py PTSC PTSC_DENOISE [--res 256] [--ref-spp 4096]
         [--scenes cornell,mesh,spheres] [--noise 0.01] [--seeds 3]
 
-PTSC_DENOISE runs with LD_LIBRARY_PATH set to target/oidn/lib. Needs numpy and
+PTSC_DENOISE runs with LD_LIBRARY_PATH set to target/oidn/lib; "-" leaves the
+denoised column out. Needs numpy and
 mitsuba (for EXR reading and the Mitsuba runs).
 """
 import argparse
@@ -83,11 +84,12 @@ def main():
         seconds = float(next(l for l in line.splitlines() if l.startswith(scene)).split()[2])
         m_err = rel_mse(read_exr(tmp / f"{scene}_mitsuba_llvm_ad_rgb_{a.res}_64spp.exr"), ref)
         results = {}
-        for name, binary, extra, env in [
+        runs = [
             ("sobol", a.ptsc, [], None),
             (f"sobol + --noise {a.noise}", a.ptsc, ["--noise", a.noise], None),
             ("sobol + --denoise", a.ptsc_denoise, ["--denoise"], oidn),
-        ]:
+        ]
+        for name, binary, extra, env in [r for r in runs if r[1] != "-"]:
             errs, spps = [], []
             for seed in range(a.seeds):
                 out = tmp / f"{scene}_{seed}.exr"

@@ -207,9 +207,13 @@ impl PixelSampler {
     /// Computes the Sobol points of the `len` samples from index `first`
     /// (at most [`BATCH`]: the rest draw theirs one by one) at once, for the
     /// [`PixelSampler::sample`]s that follow; the same numbers either way.
+    /// A run of one sample (a preview's, a first pass's) draws its own:
+    /// four lanes cost what one sample's every draw costs, and a path that
+    /// leaves the scene draws only its film position.
     #[inline]
     pub fn prepare(&mut self, first: u32, len: u32) {
-        if self.sobol == 0 {
+        self.batch.len = 0;
+        if self.sobol == 0 || len < 2 {
             return;
         }
         (self.batch.first, self.batch.len) = (first, len.min(BATCH));

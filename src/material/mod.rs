@@ -8,6 +8,7 @@
 
 pub mod conductor;
 pub mod fresnel;
+mod glossy;
 pub mod medium;
 pub mod microfacet;
 pub mod multiscatter;
@@ -455,28 +456,6 @@ impl Material {
         (f, pdf)
     }
 
-    /// The glossy reflection lobe's value and its share of the mixture pdf
-    /// (both cosines positive, `nf` on `wo`'s side).
-    #[inline(never)]
-    fn eval_glossy(&self, wo: Vec3, wi: Vec3, nf: Vec3, [cos_o, cos_i]: [f32; 2]) -> (Vec3, f32) {
-        let (t, b) = orthonormal_basis(nf);
-        let lo = Vec3::new(wo.dot(t), wo.dot(b), cos_o);
-        let li = Vec3::new(wi.dot(t), wi.dot(b), cos_i);
-        // Single scattering plus the multiple-scattering compensation,
-        // sampled as a mix: VNDF with probability E(μo), cosine otherwise.
-        let single = microfacet::reflection_brdf(lo, li, self.alpha);
-        let multi = if self.multiscatter {
-            multiscatter::brdf(cos_o, cos_i, self.alpha)
-        } else {
-            0.0
-        };
-        let k = self.multiscatter_fraction(cos_o);
-        let pdf = self.lobe_pdf[1]
-            * ((1.0 - k) * microfacet::reflection_pdf(lo, li, self.alpha)
-                + k * cosine_hemisphere_pdf(cos_i));
-        (self.reflection * (single + multi), pdf)
-    }
-
     /// Samples an incident direction for `wo` at a surface whose outward
     /// geometric normal is `n`.
     #[inline(always)]
@@ -560,15 +539,6 @@ impl Material {
                 transmitted: true,
             })
         }
-    }
-
-    /// Probability of sampling the multiple-scattering lobe of glossy
-    /// reflection for a view at cosine `cos_o`: the energy it carries, 1 − E(μo).
-    fn multiscatter_fraction(&self, cos_o: f32) -> f32 {
-        if !self.multiscatter {
-            return 0.0;
-        }
-        (1.0 - multiscatter::directional_albedo(cos_o, self.alpha)).clamp(0.0, 1.0)
     }
 
     /// The albedo shown by the debug integrator.

@@ -81,7 +81,7 @@ pub const BATCH: u32 = 16;
 /// and a draw becomes a load. Values equal [`SlotSeeds::get2`]'s. (Every
 /// slot is computed, also for paths that leave the scene before they draw
 /// from a bounce's: filling a bounce's slots when the first path got there
-/// cost more in checks at every draw than it saved.)
+/// cost more instructions in checks at every draw than it saved.)
 #[derive(Debug, Clone)]
 struct PointBatch {
     /// The first sample's index.

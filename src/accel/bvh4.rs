@@ -42,7 +42,7 @@ pub const BLOCK: u32 = u32::MAX;
 pub const MAX_BLOCKS: u32 = 3;
 
 /// The smallest `count` that stands for blocks.
-const FIRST_BLOCKS: u32 = blocks_count(MAX_BLOCKS);
+pub(super) const FIRST_BLOCKS: u32 = blocks_count(MAX_BLOCKS);
 
 /// The `count` of a leaf of `k` consecutive blocks (1 to [`MAX_BLOCKS`]).
 const fn blocks_count(k: u32) -> u32 {

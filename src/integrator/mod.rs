@@ -20,6 +20,19 @@ use glam::Vec3;
 pub trait Integrator: Sync {
     /// Estimates the radiance arriving at the ray's origin from its direction.
     fn li(&self, scene: &Scene, ray: Ray, sampler: &mut Sampler) -> Vec3;
+
+    /// Whether [`Integrator::li_from`] uses a camera ray's first hit found
+    /// outside it (the pixel loop then traces a pixel's camera rays as a
+    /// packet).
+    fn takes_first_hit(&self, _scene: &Scene) -> bool {
+        false
+    }
+
+    /// [`Integrator::li`] for a ray whose first hit (`None`: it leaves the
+    /// scene) [`Scene::intersect`] has given already.
+    fn li_from(&self, scene: &Scene, ray: Ray, _first: Option<Hit>, sampler: &mut Sampler) -> Vec3 {
+        self.li(scene, ray, sampler)
+    }
 }
 
 /// The integrator a scene asks for.

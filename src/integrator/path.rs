@@ -9,7 +9,7 @@
 
 use super::{direct_light_mis, light_pdf, scaled_within, Integrator, T_MIN};
 use crate::geometry::{offset_origin, Ray};
-use crate::ir::Scene;
+use crate::ir::{Hit, Scene};
 use crate::sampling::sampler::{Draws, Sampler};
 use crate::sampling::warp::power_heuristic;
 use glam::Vec3;
@@ -21,13 +21,38 @@ impl Integrator for PathIntegrator {
     fn li(&self, scene: &Scene, ray: Ray, sampler: &mut Sampler) -> Vec3 {
         path_li(scene, ray, sampler, scene.settings.light_sampling)
     }
+
+    fn takes_first_hit(&self, scene: &Scene) -> bool {
+        !scene.volumetric
+    }
+
+    fn li_from(&self, scene: &Scene, ray: Ray, first: Option<Hit>, sampler: &mut Sampler) -> Vec3 {
+        let nee = scene.settings.light_sampling;
+        if scene.volumetric {
+            return super::volpath::volpath_li(scene, ray, sampler, nee);
+        }
+        surface_path_li(scene, ray, Some(first), sampler, nee)
+    }
 }
 
 /// The path-traced radiance along `ray`.
-pub fn path_li(scene: &Scene, mut ray: Ray, sampler: &mut Sampler, nee: bool) -> Vec3 {
+pub fn path_li(scene: &Scene, ray: Ray, sampler: &mut Sampler, nee: bool) -> Vec3 {
     if scene.volumetric {
         return super::volpath::volpath_li(scene, ray, sampler, nee);
     }
+    surface_path_li(scene, ray, None, sampler, nee)
+}
+
+/// [`path_li`] in a scene without media; `first`, when given, is the
+/// ray's first hit, found already (a packet's).
+#[inline(always)]
+fn surface_path_li(
+    scene: &Scene,
+    mut ray: Ray,
+    mut first: Option<Option<Hit>>,
+    sampler: &mut Sampler,
+    nee: bool,
+) -> Vec3 {
     let s = &scene.settings;
     let mut radiance = Vec3::ZERO;
     let mut beta = Vec3::ONE;
@@ -38,7 +63,11 @@ pub fn path_li(scene: &Scene, mut ray: Ray, sampler: &mut Sampler, nee: bool) ->
     let mut segments = 0u32;
     loop {
         segments += 1;
-        let Some(mut hit) = scene.intersect(&ray, T_MIN, f32::INFINITY) else {
+        let hit = match first.take() {
+            Some(hit) => hit,
+            None => scene.intersect(&ray, T_MIN, f32::INFINITY),
+        };
+        let Some(mut hit) = hit else {
             if let Some(env) = scene.env_light {
                 let light = &scene.lights[env as usize];
                 let w = if nee && prev_pdf > 0.0 {

@@ -6,6 +6,7 @@ pub mod cutout;
 pub mod instance;
 pub mod media;
 mod memory;
+mod packet;
 pub mod settings;
 mod surface;
 
@@ -304,11 +305,17 @@ impl Scene {
                 });
             }
         }
+        Some(self.finish_own(ray, best?))
+    }
+
+    /// The hit of the scene's own primitive the tree walk found for `ray`.
+    #[inline(always)]
+    fn finish_own(&self, ray: &Ray, best: TreeHit) -> Hit {
         let TreeHit {
             prim: i,
             hit,
             plain,
-        } = best?;
+        } = best;
         let t = hit.t;
         // A plain triangle's or quad's hit is finished from the block the
         // traversal just read: it has no record (and reading one cost a
@@ -342,7 +349,7 @@ impl Scene {
                 }
             }
         }
-        Some(Hit {
+        Hit {
             t,
             p: p_local + prim.velocity * ray.time,
             n_geo,
@@ -351,7 +358,7 @@ impl Scene {
             prim: i,
             instance: instance::NO_INSTANCE,
             uv,
-        })
+        }
     }
 
     /// Whether anything blocks the segment from `ray.o` to `ray.at(t_max)`.

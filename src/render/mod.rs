@@ -15,8 +15,10 @@ pub mod state;
 use crate::accel::ray_count::{self, RayCounts};
 use crate::geometry::Ray;
 use crate::integrator::Integrator;
+use crate::integrator::T_MIN;
 use crate::ir::Scene;
 use crate::sampling::sampler::{PixelSampler, Sampler, BATCH};
+use arrayvec::ArrayVec;
 use film::{Film, Halves};
 use glam::{DVec3, Vec2, Vec3};
 use rayon::prelude::*;
@@ -225,6 +227,7 @@ fn render_view(
             scale: view.scale as f32,
             width: view.width,
             stopped,
+            packets: integrator.takes_first_hit(scene) && scene.traces_packets(),
             cancel,
         };
         let results: Vec<(bool, RayCounts)> = tiles
@@ -280,6 +283,9 @@ struct TilePass<'a> {
     width: u32,
     /// Which pixels adaptive sampling stopped.
     stopped: Option<&'a [bool]>,
+    /// Whether a pixel's camera rays go as packets (the integrator takes
+    /// their hits, the scene traces packets).
+    packets: bool,
     cancel: &'a AtomicBool,
 }
 
@@ -317,6 +323,9 @@ fn render_tile(pass: &TilePass, tile: &mut TileRows) -> (u64, bool) {
 /// Adds pixel (x, y)'s samples from index `from` to the pass's end into
 /// its sum (and those of odd index into `odd`, for adaptive sampling);
 /// returns the count reached: the end, or less when the pass is cancelled.
+/// Runs of up to [`BATCH`] samples draw their Sobol points together and,
+/// where the integrator takes a first hit, trace their camera rays as a
+/// packet; either way each sample adds what it adds alone, in index order.
 #[inline]
 fn render_pixel(
     pass: &TilePass,
@@ -325,29 +334,77 @@ fn render_pixel(
     from: u32,
     (sum, mut odd): (&mut DVec3, Option<&mut DVec3>),
 ) -> u32 {
+    // Sample `s` of a pixel is the same wherever and whenever it is drawn:
+    // what lets a render stop, continue, and split across machines.
     let first = pass.first;
-    for s in from..pass.end {
-        if (s - from).is_multiple_of(CANCEL_POLL) && pass.cancel.load(Ordering::Relaxed) {
-            return s;
-        }
-        if (s - from).is_multiple_of(BATCH) {
-            pixel.prepare(first + s, pass.end - s);
-        }
-        let l = sample(
-            pass.scene,
-            pass.integrator,
-            pixel,
-            x,
-            y,
-            first + s,
-            pass.scale,
-        );
+    let mut add = |s: u32, l: Vec3| {
         *sum += l.as_dvec3();
         if let Some(odd) = odd.as_deref_mut().filter(|_| (first + s) % 2 == 1) {
             *odd += l.as_dvec3();
         }
+    };
+    let mut s = from;
+    while s < pass.end {
+        pixel.prepare(first + s, pass.end - s);
+        let run_end = pass.end.min(s + BATCH);
+        if pass.packets && run_end - s >= 2 {
+            if let Err(stopped) = render_packet(pass, pixel, (x, y), s..run_end, &mut add) {
+                return stopped;
+            }
+            s = run_end;
+            continue;
+        }
+        for s in s..run_end {
+            if (s - from).is_multiple_of(CANCEL_POLL) && pass.cancel.load(Ordering::Relaxed) {
+                return s;
+            }
+            let mut sampler = pixel.sample(first + s);
+            let ray = camera_ray(pass.scene, &mut sampler, (x, y), pass.scale);
+            add(
+                s,
+                limit_sample(pass.integrator.li(pass.scene, ray, &mut sampler)),
+            );
+        }
+        s = run_end;
     }
     pass.end
+}
+
+/// The samples `run` of pixel (x, y) with their camera rays traced as one
+/// packet (one by one where they do not go together), each added by
+/// `add(s, l)` in order; `Err(s)` when the pass is cancelled before sample
+/// `s`.
+#[inline]
+fn render_packet(
+    pass: &TilePass,
+    pixel: &PixelSampler,
+    (x, y): (u32, u32),
+    run: std::ops::Range<u32>,
+    add: &mut impl FnMut(u32, Vec3),
+) -> Result<(), u32> {
+    if pass.cancel.load(Ordering::Relaxed) {
+        return Err(run.start);
+    }
+    let (scene, integrator) = (pass.scene, pass.integrator);
+    let mut samplers: ArrayVec<Sampler, { BATCH as usize }> = ArrayVec::new();
+    let mut rays: ArrayVec<Ray, { BATCH as usize }> = ArrayVec::new();
+    for s in run.clone() {
+        let mut sampler = pixel.sample(pass.first + s);
+        rays.push(camera_ray(scene, &mut sampler, (x, y), pass.scale));
+        samplers.push(sampler);
+    }
+    let hits = scene.intersect_packet(&rays, T_MIN);
+    for (i, (s, mut sampler)) in run.clone().zip(samplers).enumerate() {
+        if i > 0 && (i as u32).is_multiple_of(CANCEL_POLL) && pass.cancel.load(Ordering::Relaxed) {
+            return Err(s);
+        }
+        let l = match &hits {
+            Some(hits) => integrator.li_from(scene, rays[i], hits.get(i), &mut sampler),
+            None => integrator.li(scene, rays[i], &mut sampler),
+        };
+        add(s, limit_sample(l));
+    }
+    Ok(())
 }
 
 /// The sampling of pixel (x, y) of the scene's render.
@@ -360,26 +417,6 @@ pub(crate) fn pixel_sampler(scene: &Scene, x: u32, y: u32) -> PixelSampler {
         camera.uses_lens(),
         camera.uses_time(),
     )
-}
-
-/// One sample of pixel (x, y): a jittered position (box filter), lens and
-/// time; `scale` > 1 for the pixels of a smaller preview image.
-#[inline]
-fn sample(
-    scene: &Scene,
-    integrator: &dyn Integrator,
-    pixel: &PixelSampler,
-    x: u32,
-    y: u32,
-    s: u32,
-    scale: f32,
-) -> Vec3 {
-    // Sample `s` of a pixel is the same wherever and whenever it is drawn:
-    // what lets a render stop, continue, and split across machines.
-    let mut sampler = pixel.sample(s);
-    let ray = camera_ray(scene, &mut sampler, (x, y), scale);
-    let l = integrator.li(scene, ray, &mut sampler);
-    limit_sample(l)
 }
 
 /// A sample's camera ray through pixel (x, y): the first draws of its

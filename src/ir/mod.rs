@@ -6,7 +6,7 @@ pub mod cutout;
 pub mod instance;
 pub mod media;
 mod memory;
-mod packet;
+pub mod packet;
 pub mod settings;
 mod surface;
 

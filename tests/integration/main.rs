@@ -32,6 +32,7 @@ mod nasty;
 mod noise_params;
 mod obj_materials;
 mod outputs;
+mod packets;
 mod principled;
 mod render;
 mod session;

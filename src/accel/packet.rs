@@ -120,6 +120,8 @@ impl Bounds {
 /// (`block · 4 + lane`) or a primitive outside blocks ([`RECORD`] set).
 /// After the walk, each ray's closest hit ([`Closest::get`]).
 pub struct Closest {
+    /// How many blocks and primitives the walk tested, each with every ray.
+    pub leaf_tests: u32,
     t: [f32; PACKET],
     u: [f32; PACKET],
     v: [f32; PACKET],
@@ -209,6 +211,7 @@ impl<F: FnMut(usize, u32, f32) -> Option<ShapeHit>> Walk<'_, F> {
         }
         let bounds = Bounds::new::<L>(&lanes)?;
         let mut best = Closest {
+            leaf_tests: 0,
             t: [f32::NEG_INFINITY; PACKET],
             u: [0.0; PACKET],
             v: [0.0; PACKET],
@@ -228,6 +231,7 @@ impl<F: FnMut(usize, u32, f32) -> Option<ShapeHit>> Walk<'_, F> {
                 continue;
             }
             if count >= FIRST_BLOCKS {
+                best.leaf_tests += blocks(count);
                 for b in first..first + blocks(count) {
                     let block = &tris[b as usize];
                     for (r, ray) in self.rays.iter().enumerate() {
@@ -241,6 +245,7 @@ impl<F: FnMut(usize, u32, f32) -> Option<ShapeHit>> Walk<'_, F> {
                 continue;
             }
             if count > 0 {
+                best.leaf_tests += count;
                 for p in first..first + count {
                     for r in 0..n {
                         if let Some(h) = (self.hit)(r, p, best.t[r]) {

@@ -20,6 +20,12 @@ pub struct PacketHits<'a> {
 }
 
 impl PacketHits<'_> {
+    /// How many blocks and primitives the packet's walk tested, each with
+    /// every ray of the packet.
+    pub fn leaf_tests(&self) -> u32 {
+        self.closest.leaf_tests
+    }
+
     /// Ray `r`'s closest hit, as [`Scene::intersect`] gives it (counted
     /// as a closest-hit query).
     #[inline(always)]

@@ -216,6 +216,12 @@ fn render_view(
     // (all of them when every pixel has stopped).
     let least = film.least_active().unwrap_or(u32::MAX);
     let ends = adaptive::pass_ends(view.samples, adaptive_sampling.as_ref());
+    // Per tile, whether its camera rays go as packets: on where they can,
+    // until a pass finds that they do not pay there ([`PacketGauge`]).
+    let packets = integrator.takes_first_hit(scene) && scene.traces_packets();
+    let tiles_across = view.width.div_ceil(TILE);
+    let tile_count = tiles_across as usize * view.height.div_ceil(TILE) as usize;
+    let packet_tiles: Vec<AtomicBool> = (0..tile_count).map(|_| AtomicBool::new(packets)).collect();
     for end in ends.into_iter().filter(|&e| e > least) {
         let first = film.first;
         let (mut tiles, stopped) = tile_rows(&mut film);
@@ -227,7 +233,8 @@ fn render_view(
             scale: view.scale as f32,
             width: view.width,
             stopped,
-            packets: integrator.takes_first_hit(scene) && scene.traces_packets(),
+            packet_tiles: &packet_tiles,
+            tiles_across,
             cancel,
         };
         let results: Vec<(bool, RayCounts)> = tiles
@@ -283,9 +290,12 @@ struct TilePass<'a> {
     width: u32,
     /// Which pixels adaptive sampling stopped.
     stopped: Option<&'a [bool]>,
-    /// Whether a pixel's camera rays go as packets (the integrator takes
-    /// their hits, the scene traces packets).
-    packets: bool,
+    /// Per tile, whether its pixels' camera rays go as packets (the
+    /// integrator takes their hits, the scene traces packets, and they
+    /// paid in the tile so far).
+    packet_tiles: &'a [AtomicBool],
+    /// Tiles in a row of the view.
+    tiles_across: u32,
     cancel: &'a AtomicBool,
 }
 
@@ -295,6 +305,8 @@ fn render_tile(pass: &TilePass, tile: &mut TileRows) -> (u64, bool) {
     let (x0, y0) = tile.corner;
     let mut samples = 0u64;
     let mut pixel = pixel_sampler(pass.scene, x0, y0);
+    let packets = &pass.packet_tiles[(y0 / TILE * pass.tiles_across + x0 / TILE) as usize];
+    let mut gauge = PacketGauge::new(packets.load(Ordering::Relaxed));
     let rows = tile.sums.iter_mut().zip(tile.counts.iter_mut());
     for (row, (y, (sums, counts))) in (y0..).zip(rows).enumerate() {
         let mut odd_row = tile.odd.as_mut().map(|rows| &mut *rows[row]);
@@ -310,14 +322,54 @@ fn render_tile(pass: &TilePass, tile: &mut TileRows) -> (u64, bool) {
             }
             pixel.move_to((x, y));
             let odd = odd_row.as_mut().map(|r| &mut r[col]);
-            *count = render_pixel(pass, &mut pixel, (x, y), from, (sum, odd));
+            let run = (&mut pixel, &mut gauge);
+            *count = render_pixel(pass, run, (x, y), from, (sum, odd));
             samples += (*count - from) as u64;
             if *count < pass.end {
+                packets.store(gauge.on, Ordering::Relaxed);
                 return (samples, true);
             }
         }
     }
+    packets.store(gauge.on, Ordering::Relaxed);
     (samples, false)
+}
+
+/// Whether a tile's camera rays still go as packets: they do while the
+/// packets' walks test few leaves. A pixel's rays share their leaves
+/// where the pixel is small against the scene's primitives (the mesh at
+/// 512²: 3.8 blocks a packet, about a single ray's); where it covers many
+/// primitives each ray tests the leaves of all (6.5 blocks at 256², 39 at
+/// 64²), more than the shared walk saves (docs/performance.md, "Camera-ray
+/// packets"). Which hits the rays get is the same either way.
+struct PacketGauge {
+    on: bool,
+    packets: u32,
+    leaf_tests: u32,
+}
+
+impl PacketGauge {
+    /// Packets measured before the gauge may turn them off.
+    const SETTLE: u32 = 8;
+    /// The most leaves a packet's walk tests on average for packets to go on.
+    const MOST_LEAF_TESTS: u32 = 10;
+
+    fn new(on: bool) -> PacketGauge {
+        PacketGauge {
+            on,
+            packets: 0,
+            leaf_tests: 0,
+        }
+    }
+
+    /// Counts a packet whose walk tested `leaf_tests` leaves.
+    fn add(&mut self, leaf_tests: u32) {
+        self.packets += 1;
+        self.leaf_tests = self.leaf_tests.saturating_add(leaf_tests);
+        if self.packets >= Self::SETTLE && self.leaf_tests > Self::MOST_LEAF_TESTS * self.packets {
+            self.on = false;
+        }
+    }
 }
 
 /// Adds pixel (x, y)'s samples from index `from` to the pass's end into
@@ -329,7 +381,7 @@ fn render_tile(pass: &TilePass, tile: &mut TileRows) -> (u64, bool) {
 #[inline]
 fn render_pixel(
     pass: &TilePass,
-    pixel: &mut PixelSampler,
+    (pixel, gauge): (&mut PixelSampler, &mut PacketGauge),
     (x, y): (u32, u32),
     from: u32,
     (sum, mut odd): (&mut DVec3, Option<&mut DVec3>),
@@ -347,8 +399,9 @@ fn render_pixel(
     while s < pass.end {
         pixel.prepare(first + s, pass.end - s);
         let run_end = pass.end.min(s + BATCH);
-        if pass.packets && run_end - s >= 2 {
-            if let Err(stopped) = render_packet(pass, pixel, (x, y), s..run_end, &mut add) {
+        if gauge.on && run_end - s >= 2 {
+            let run = (pixel as &PixelSampler, &mut *gauge);
+            if let Err(stopped) = render_packet(pass, run, (x, y), s..run_end, &mut add) {
                 return stopped;
             }
             s = run_end;
@@ -377,7 +430,7 @@ fn render_pixel(
 #[inline]
 fn render_packet(
     pass: &TilePass,
-    pixel: &PixelSampler,
+    (pixel, gauge): (&PixelSampler, &mut PacketGauge),
     (x, y): (u32, u32),
     run: std::ops::Range<u32>,
     add: &mut impl FnMut(u32, Vec3),
@@ -394,6 +447,9 @@ fn render_packet(
         samplers.push(sampler);
     }
     let hits = scene.intersect_packet(&rays, T_MIN);
+    if let Some(h) = &hits {
+        gauge.add(h.leaf_tests());
+    }
     for (i, (s, mut sampler)) in run.clone().zip(samplers).enumerate() {
         if i > 0 && (i as u32).is_multiple_of(CANCEL_POLL) && pass.cancel.load(Ordering::Relaxed) {
             return Err(s);

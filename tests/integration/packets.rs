@@ -6,8 +6,12 @@ use glam::Vec3;
 use proptest::prelude::*;
 use ptsc::compile::{compile_str, Options};
 use ptsc::geometry::{Ray, T_MIN};
+use ptsc::integrator::Integrator;
 use ptsc::ir::Scene;
+use ptsc::render::render;
+use ptsc::sampling::sampler::Sampler;
 use std::path::Path;
+use std::sync::atomic::AtomicBool;
 
 /// A scene of `n` small random triangles in the unit cube (several per
 /// leaf, so that blocks are full), spheres among them, a quad and an
@@ -114,4 +118,35 @@ fn a_small_tree_is_walked_ray_by_ray() {
     let o = Vec3::new(0.0, 0.0, 4.0);
     let rays = [Ray::new(o, Vec3::new(0.1, 0.1, -1.0).normalize(), 0.0); 2];
     assert!(scene.intersect_packet(&rays, 1e-4).is_none());
+}
+
+/// The path integrator with its camera rays traced one by one.
+struct Alone(Box<dyn Integrator>);
+
+impl Integrator for Alone {
+    fn li(&self, scene: &Scene, ray: Ray, sampler: &mut Sampler) -> Vec3 {
+        self.0.li(scene, ray, sampler)
+    }
+}
+
+#[test]
+fn packets_change_no_pixel_of_a_render() {
+    // Big pixels (tests per packet past the gauge's limit turn packets
+    // off in some tiles) and small ones (packets everywhere): the sums
+    // equal the single rays' bit for bit.
+    let mut ir = scene(11, 3000);
+    ir.settings.samples = 40;
+    let cancel = AtomicBool::new(false);
+    for size in [24, 96] {
+        (ir.settings.width, ir.settings.height) = (size, size);
+        let path = ptsc::integrator::make(ir.settings.integrator);
+        assert!(path.takes_first_hit(&ir) && ir.traces_packets());
+        let alone = Alone(ptsc::integrator::make(ir.settings.integrator));
+        let sums = |integ: &dyn Integrator| {
+            render(&ir, integ, &cancel, &|_| {}, &mut |_, _| {})
+                .film
+                .sum
+        };
+        assert_eq!(sums(path.as_ref()), sums(&alone), "{size}²");
+    }
 }

@@ -14,11 +14,10 @@
 //! eight or sixteen rays to a vector, ran fewer instructions and took
 //! longer: docs/performance.md, "Camera-ray packets".)
 
-use super::bvh4::{blocks, Bvh4, Node4, TreeHit, FIRST_BLOCKS};
+use super::bvh4::{blocks, far_to_near, Bvh4, Node4, Stack, TreeHit, FIRST_BLOCKS};
 use super::tri4::Tri4;
 use crate::geometry::shape::ShapeHit;
 use crate::geometry::Ray;
-use arrayvec::ArrayVec;
 use glam::Vec2;
 
 /// The most rays of a packet.
@@ -220,13 +219,13 @@ impl<F: FnMut(usize, u32, f32) -> Option<ShapeHit>> Walk<'_, F> {
         best.t[..n].fill(self.t_max);
         // As the single ray's walk: `(child, count, t_enter)` entries, the
         // nearest child of a node taken next without the stack.
-        let mut stack: ArrayVec<(u32, u32, f32), 64> = ArrayVec::new();
-        let mut spill = Vec::new();
-        let mut next = (!nodes.is_empty()).then_some((0u32, 0u32, 0.0f32));
+        if nodes.is_empty() {
+            return Some(best);
+        }
+        let mut stack = Stack::new((0u32, 0u32, 0.0f32));
+        let mut next = None;
         let mut reach = self.t_max;
-        while let Some((first, count, t_enter)) =
-            next.take().or_else(|| spill.pop().or_else(|| stack.pop()))
-        {
+        while let Some((first, count, t_enter)) = next.take().or_else(|| stack.pop()) {
             if t_enter > reach {
                 continue;
             }
@@ -266,24 +265,9 @@ impl<F: FnMut(usize, u32, f32) -> Option<ShapeHit>> Walk<'_, F> {
             if mask == 0 {
                 continue;
             }
-            let mut order = [0usize; 4];
-            let mut k = 0;
-            for lane in 0..4 {
-                if mask & (1 << lane) != 0 {
-                    let mut j = k;
-                    while j > 0 && t_near[order[j - 1]] < t_near[lane] {
-                        order[j] = order[j - 1];
-                        j -= 1;
-                    }
-                    order[j] = lane;
-                    k += 1;
-                }
-            }
+            let (order, k) = far_to_near(t_near, mask);
             for &lane in &order[..k - 1] {
-                let entry = (node.child[lane], node.count[lane], t_near[lane]);
-                if let Err(full) = stack.try_push(entry) {
-                    spill.push(full.element());
-                }
+                stack.push((node.child[lane], node.count[lane], t_near[lane]));
             }
             let nearest = order[k - 1];
             next = Some((node.child[nearest], node.count[nearest], t_near[nearest]));

@@ -34,6 +34,7 @@
 
 use super::film::{Film, Halves};
 use crate::ir::settings::Adaptive;
+use crate::sampling::sampler::BATCH;
 use glam::DVec3;
 
 /// The first decision: `min_samples`, made even so that the two halves
@@ -58,16 +59,36 @@ pub fn is_decision(count: u32, a: &Adaptive) -> bool {
     c == count
 }
 
-/// Sample counts at the end of each progressive pass up to `spp`: 1, 2, 4, …
-/// doubling (at most 33 passes), or for an adaptive render doubling up to
+/// How a render's progressive passes grow (before an adaptive render's
+/// decisions, which end passes of their own).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Progression {
+    /// 1, 2, 4, 8, …: an image to look at after every doubling (`watch`,
+    /// whose passes are what its user sees refine).
+    Doubling,
+    /// 1, then [`BATCH`], 2·[`BATCH`], 4·[`BATCH`], …: after a first sample
+    /// per pixel (a first image, and the time budget's first measure of
+    /// speed), passes of whole runs of samples, which share their Sobol
+    /// points' set-up and trace their camera rays as packets. Passes of 1,
+    /// 2, 4 and 8 samples cost a 16-spp render of the 1M-triangle mesh's
+    /// camera rays a fifth of its time (docs/performance.md, "Passes of
+    /// whole runs").
+    Runs,
+}
+
+/// Sample counts at the end of each progressive pass up to `spp`, growing
+/// by `progression` (at most 33 passes), or for an adaptive render so up to
 /// its first decision and then every decision up to `spp`.
-pub fn pass_ends(spp: u32, adaptive: Option<&Adaptive>) -> Vec<u32> {
+pub fn pass_ends(spp: u32, adaptive: Option<&Adaptive>, progression: Progression) -> Vec<u32> {
     let doubling_below = adaptive.map_or(u32::MAX, first_decision);
     let mut ends = Vec::new();
     let mut n = 1u32;
     while n < spp && n < doubling_below {
         ends.push(n);
-        n = n.saturating_mul(2);
+        n = match progression {
+            Progression::Runs if n < BATCH => BATCH,
+            _ => n.saturating_mul(2),
+        };
     }
     if adaptive.is_some() {
         let mut c = doubling_below;

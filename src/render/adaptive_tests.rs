@@ -9,20 +9,53 @@ fn adaptive(threshold: f32, min_samples: u32) -> Adaptive {
 
 #[test]
 fn uniform_passes_double_up_to_the_target() {
-    assert_eq!(pass_ends(1, None), vec![1]);
-    assert_eq!(pass_ends(6, None), vec![1, 2, 4, 6]);
-    assert_eq!(pass_ends(8, None), vec![1, 2, 4, 8]);
+    assert_eq!(pass_ends(1, None, Progression::Doubling), vec![1]);
+    assert_eq!(pass_ends(6, None, Progression::Doubling), vec![1, 2, 4, 6]);
+    assert_eq!(pass_ends(8, None, Progression::Doubling), vec![1, 2, 4, 8]);
     // The doubling saturates instead of wrapping to 0 and looping.
-    let ends = pass_ends(u32::MAX, None);
+    let ends = pass_ends(u32::MAX, None, Progression::Doubling);
     assert_eq!(ends.len(), 33);
     assert_eq!(*ends.last().unwrap(), u32::MAX);
-    assert_eq!(pass_ends(3_000_000_000, None).len(), 33);
+    assert_eq!(
+        pass_ends(3_000_000_000, None, Progression::Doubling).len(),
+        33
+    );
+}
+
+#[test]
+fn batch_passes_are_whole_runs_after_the_first_sample() {
+    let runs = Progression::Runs;
+    assert_eq!(pass_ends(1, None, runs), vec![1]);
+    assert_eq!(pass_ends(6, None, runs), vec![1, 6]);
+    assert_eq!(pass_ends(64, None, runs), vec![1, BATCH, 32, 64]);
+    assert_eq!(pass_ends(100, None, runs), vec![1, 16, 32, 64, 100]);
+    let ends = pass_ends(u32::MAX, None, runs);
+    assert_eq!(ends.len(), 30);
+    assert!(ends.windows(2).all(|w| w[0] < w[1]));
+    assert_eq!(*ends.last().unwrap(), u32::MAX);
+    // Every pass after the first starts on a run's boundary where the
+    // target allows it.
+    assert!(ends[1..ends.len() - 1].iter().all(|e| e % BATCH == 0));
+    // An adaptive render's decisions end passes as they do when doubling.
+    let a = adaptive(0.01, 16);
+    assert_eq!(
+        pass_ends(64, Some(&a), runs),
+        [
+            vec![1],
+            pass_ends(64, Some(&a), Progression::Doubling)[4..].to_vec()
+        ]
+        .concat()
+    );
+    assert_eq!(
+        pass_ends(12, Some(&adaptive(0.01, 5)), runs),
+        vec![1, 6, 10, 12]
+    );
 }
 
 #[test]
 fn adaptive_passes_double_to_the_first_decision_then_end_at_each() {
     let a = adaptive(0.01, 16);
-    let ends = pass_ends(64, Some(&a));
+    let ends = pass_ends(64, Some(&a), Progression::Doubling);
     assert_eq!(
         ends,
         vec![1, 2, 4, 8, 16, 20, 24, 28, 32, 36, 40, 44, 48, 54, 60, 64]
@@ -36,21 +69,33 @@ fn adaptive_passes_double_to_the_first_decision_then_end_at_each() {
     }
     // An odd minimum is made even; below it no pixel is decided on.
     let odd = adaptive(0.01, 5);
-    assert_eq!(pass_ends(12, Some(&odd)), vec![1, 2, 4, 6, 10, 12]);
+    assert_eq!(
+        pass_ends(12, Some(&odd), Progression::Doubling),
+        vec![1, 2, 4, 6, 10, 12]
+    );
     assert!(!is_decision(4, &odd) && is_decision(6, &odd));
     // Fewer samples than the first decision: the uniform passes.
-    assert_eq!(pass_ends(8, Some(&a)), pass_ends(8, None));
+    assert_eq!(
+        pass_ends(8, Some(&a), Progression::Doubling),
+        pass_ends(8, None, Progression::Doubling)
+    );
 }
 
 #[test]
 fn adaptive_passes_stay_few_at_the_largest_counts() {
-    for min in [2, 16, 1000, 999_999, 1_000_000] {
-        let ends = pass_ends(1_000_000, Some(&adaptive(0.01, min)));
+    let each = [Progression::Doubling, Progression::Runs];
+    let cases = [2, 16, 1000, 999_999, 1_000_000].map(|min| each.map(|p| (min, p)));
+    for (min, progression) in cases.into_iter().flatten() {
+        let ends = pass_ends(1_000_000, Some(&adaptive(0.01, min)), progression);
         assert!(ends.len() < 140, "{min}: {} passes", ends.len());
         assert!(ends.windows(2).all(|w| w[0] < w[1]), "{min}: increasing");
         assert_eq!(*ends.last().unwrap(), 1_000_000);
     }
-    let saturated = pass_ends(u32::MAX, Some(&adaptive(0.01, 1_000_000)));
+    let saturated = pass_ends(
+        u32::MAX,
+        Some(&adaptive(0.01, 1_000_000)),
+        Progression::Doubling,
+    );
     assert!(saturated.windows(2).all(|w| w[0] < w[1]));
 }
 

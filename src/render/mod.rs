@@ -18,6 +18,7 @@ use crate::integrator::Integrator;
 use crate::integrator::T_MIN;
 use crate::ir::Scene;
 use crate::sampling::sampler::{PixelSampler, Sampler, BATCH};
+pub use adaptive::Progression;
 use arrayvec::ArrayVec;
 use film::{Film, Halves};
 use glam::{DVec3, Vec2, Vec3};
@@ -129,20 +130,20 @@ pub fn render(
 ) -> Rendered {
     let s = &scene.settings;
     let film = Film::for_settings(s, 0);
-    render_from(
-        scene, integrator, film, s.samples, cancel, progress, on_pass,
-    )
+    let to = (s.samples, Progression::Runs);
+    render_from(scene, integrator, film, to, cancel, progress, on_pass)
 }
 
 /// Renders on from `film` (a render's saved state, or a new film whose runs
 /// start at another sample index) until every pixel has `samples` samples:
 /// pixel (x, y) gets sample indices `film.first + film.count[i] ..
-/// film.first + samples`. The film must have the scene's size.
+/// film.first + samples`, in passes that grow by `progression`. The film
+/// must have the scene's size.
 pub fn render_from(
     scene: &Scene,
     integrator: &dyn Integrator,
     film: Film,
-    samples: u32,
+    (samples, progression): (u32, Progression),
     cancel: &AtomicBool,
     progress: &(dyn Fn(u64) + Sync),
     on_pass: &mut dyn FnMut(&Film, u32),
@@ -151,6 +152,7 @@ pub fn render_from(
         width: film.width,
         height: film.height,
         samples,
+        progression,
         scale: 1,
     };
     render_view(scene, integrator, film, view, cancel, progress, on_pass)
@@ -169,6 +171,7 @@ pub fn render_preview(
         width: (scene.settings.width / divisor).max(1),
         height: (scene.settings.height / divisor).max(1),
         samples: 1,
+        progression: Progression::Runs,
         scale: divisor,
     };
     let film = Film::new(view.width, view.height, 0);
@@ -191,6 +194,8 @@ struct View {
     width: u32,
     height: u32,
     samples: u32,
+    /// How its passes grow.
+    progression: Progression,
     scale: u32,
 }
 
@@ -215,7 +220,7 @@ fn render_view(
     // A resumed film skips the passes its every sampling pixel has done
     // (all of them when every pixel has stopped).
     let least = film.least_active().unwrap_or(u32::MAX);
-    let ends = adaptive::pass_ends(view.samples, adaptive_sampling.as_ref());
+    let ends = adaptive::pass_ends(view.samples, adaptive_sampling.as_ref(), view.progression);
     // Per tile, whether its camera rays go as packets: on where they can,
     // until a pass finds that they do not pay there ([`PacketGauge`]).
     let packets = integrator.takes_first_hit(scene) && scene.traces_packets();

@@ -157,24 +157,25 @@ fn an_observer_sees_the_passes_in_order_then_the_end() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("a.exr");
     let log = Log::default();
-    let session = session(scene(8), batch(&out, policy())).unwrap();
+    let session = session(scene(40), batch(&out, policy())).unwrap();
     let (done, total) = (session.samples_done(), session.samples_total());
-    assert_eq!((done, total), (0, 48 * 40 * 8));
+    assert_eq!((done, total), (0, 48 * 40 * 40));
     let report = one_thread().install(|| session.run(&log, &Cancel::new()).unwrap());
+    // A batch render's passes: one sample per pixel, then whole runs.
     assert_eq!(
         log.events(),
         [
             "pass 1 to 1 spp None",
-            "pass 2 to 2 spp None",
-            "pass 3 to 4 spp None",
-            "pass 4 to 8 spp None",
+            "pass 2 to 16 spp None",
+            "pass 3 to 32 spp None",
+            "pass 4 to 40 spp None",
             "rendered"
         ]
     );
     assert_eq!(log.last_progress.load(Ordering::Relaxed), total);
     assert_eq!(report.outcome, Outcome::Complete);
     assert_eq!(report.samples, total);
-    assert_eq!(report.film.sample_counts().0, 8);
+    assert_eq!(report.film.sample_counts().0, 40);
     // A finished render keeps no state unless asked.
     assert!(report.image_written && report.state.is_none());
     assert!(out.is_file() && !dir.path().join("a.exr.state.exr").exists());
@@ -237,10 +238,10 @@ fn a_cancelled_render_leaves_a_state_that_resumes_to_the_uninterrupted_image() {
         &Quiet,
         &Cancel::new(),
     );
-    // Stopped in the middle of its third pass (4 spp), between tiles.
+    // Stopped in the middle of its second pass (1 to 8 spp), between tiles.
     let cancel = Cancel::new();
     let log = Log {
-        stop_after: Some((48 * 40 * 2 + 16 * 16 * 3, cancel.clone())),
+        stop_after: Some((48 * 40 + 16 * 16 * 7 * 3, cancel.clone())),
         ..Log::default()
     };
     let stopped = run(scene(8), batch(&out, policy()), &log, &cancel);
@@ -248,11 +249,11 @@ fn a_cancelled_render_leaves_a_state_that_resumes_to_the_uninterrupted_image() {
     let (least, most, _) = stopped.film.sample_counts();
     assert_eq!(
         (least, most),
-        (2, 4),
+        (1, 8),
         "the pass in flight stops where it is"
     );
     assert_eq!(log.events().last().map(String::as_str), Some("rendered"));
-    assert!(!log.events().iter().any(|e| e.contains("to 4 spp")));
+    assert!(!log.events().iter().any(|e| e.contains("to 8 spp")));
     let state = dir.path().join("a.exr.state.exr");
     assert_eq!(stopped.state.as_deref(), Some(state.as_path()));
     assert!(stopped.image_written && out.is_file());
@@ -298,14 +299,7 @@ fn checkpoints_save_the_state_and_change_no_sample() {
     let passes: Vec<String> = (log.events().into_iter())
         .filter(|e| e.starts_with("pass"))
         .collect();
-    assert_eq!(
-        passes,
-        [
-            "pass 1 to 1 spp None",
-            "pass 2 to 2 spp None",
-            "pass 3 to 4 spp None"
-        ]
-    );
+    assert_eq!(passes, ["pass 1 to 1 spp None", "pass 2 to 4 spp None"]);
     assert!(same_film(&report.film, &reference.film));
     // A checkpoint made a state: the finished render keeps it current.
     let state = dir.path().join("a.exr.state.exr");

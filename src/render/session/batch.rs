@@ -17,7 +17,7 @@ use crate::render::aov::Aov;
 use crate::render::film::Film;
 use crate::render::memory::{self, Need};
 use crate::render::state::{self, Pass, StateInfo};
-use crate::render::Outcome;
+use crate::render::{Outcome, Progression};
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
@@ -311,7 +311,7 @@ fn render_passes(
             scene,
             integrator.as_ref(),
             film,
-            run_target,
+            (run_target, Progression::Runs),
             cancel.polled(),
             &|done| {
                 observer.progress(offset + done);

@@ -1,12 +1,13 @@
 //! A batch render's time budget (`--time`, `render { time … }`): the
-//! passes go on doubling as usual while the next one fits in the time
+//! passes go on growing as usual (one sample per pixel, then runs of 16,
+//! doubling: [`Progression::Runs`]) while the next one fits in the time
 //! left, measured by the passes so far; the last one renders as many
 //! samples per pixel as fit, so that every pixel ends with the same count.
 //! A pass that runs later than foreseen is cut at a tenth of the budget
 //! past its end (its pixels then end with counts one pass apart).
 
 use crate::ir::settings::Adaptive;
-use crate::render::adaptive::pass_ends;
+use crate::render::adaptive::{pass_ends, Progression};
 use crate::render::film::Film;
 use std::time::{Duration, Instant};
 
@@ -39,7 +40,7 @@ impl Budget {
     }
 
     /// The samples per pixel the next pass should end at, on the way to
-    /// `target`: the usual doubling while it fits in the time left, else as
+    /// `target`: the usual growth while it fits in the time left, else as
     /// many as fit; `None` when the film has `target` (in every pixel
     /// still sampling) or not one more sample per pixel fits.
     pub(super) fn next_target(&self, film: &Film, target: u32) -> Option<u32> {
@@ -48,7 +49,8 @@ impl Budget {
         if least >= target || now >= self.end {
             return None;
         }
-        let next = (pass_ends(target, self.adaptive.as_ref()).into_iter()).find(|&e| e > least)?;
+        let next = (pass_ends(target, self.adaptive.as_ref(), Progression::Runs).into_iter())
+            .find(|&e| e > least)?;
         let done = film.total_samples().saturating_sub(self.samples_before);
         if done == 0 {
             // A resumed render has no measure of its speed yet, and its

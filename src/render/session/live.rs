@@ -11,7 +11,7 @@ use crate::ir::Scene;
 use crate::render::denoise::{denoise_as, Speed};
 use crate::render::film::Film;
 use crate::render::memory::{self, Need};
-use crate::render::Outcome;
+use crate::render::{Outcome, Progression};
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
@@ -123,7 +123,7 @@ pub(super) fn run(
         scene,
         integrator.as_ref(),
         Film::for_settings(s, 0),
-        s.samples,
+        (s.samples, Progression::Doubling),
         cancel.polled(),
         &|done| observer.progress(done),
         &mut |film, spp| {

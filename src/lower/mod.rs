@@ -397,21 +397,13 @@ fn finish(
     let mut lights: Vec<Light> = area_lights
         .iter()
         .map(|&prim| match prims.get(prim as usize) {
-            Some(p) => Light::Area {
-                prim,
-                shape: p.shape,
-                velocity: p.velocity,
-            },
+            Some(p) => Light::area(prim, p.shape, p.velocity),
             None => {
                 let (p, shape) = plain_lights
                     .next()
                     .expect("every plain primitive is in a block");
                 debug_assert_eq!(p, prim);
-                Light::Area {
-                    prim,
-                    shape,
-                    velocity: Vec3::ZERO,
-                }
+                Light::area(prim, shape, Vec3::ZERO)
             }
         })
         .collect();

@@ -91,12 +91,11 @@ fn adaptive_passes_stay_few_at_the_largest_counts() {
         assert!(ends.windows(2).all(|w| w[0] < w[1]), "{min}: increasing");
         assert_eq!(*ends.last().unwrap(), 1_000_000);
     }
-    let saturated = pass_ends(
-        u32::MAX,
-        Some(&adaptive(0.01, 1_000_000)),
-        Progression::Doubling,
-    );
-    assert!(saturated.windows(2).all(|w| w[0] < w[1]));
+    for progression in each {
+        let saturated = pass_ends(u32::MAX, Some(&adaptive(0.01, 1_000_000)), progression);
+        assert!(saturated.windows(2).all(|w| w[0] < w[1]));
+        assert_eq!(*saturated.last().unwrap(), u32::MAX);
+    }
 }
 
 #[test]

@@ -1,5 +1,6 @@
 //! The pixel loop — the only one in ptsc: rayon over tiles, progressive
-//! passes (1, 2, 4, … samples per pixel), a cancellation flag checked between
+//! passes (a batch render's 1, 16, 32, … samples per pixel, `watch`'s 1, 2,
+//! 4, …: [`Progression`]), a cancellation flag checked between
 //! tiles, a progress callback. Every sample draws from its own random stream
 //! (seed, pixel, sample index), so the image is the same for any thread count.
 

@@ -233,47 +233,49 @@ fn a_cancelled_render_leaves_a_state_that_resumes_to_the_uninterrupted_image() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("a.exr");
     let reference = run(
-        scene(8),
+        scene(40),
         batch(&dir.path().join("b.exr"), policy()),
         &Quiet,
         &Cancel::new(),
     );
-    // Stopped in the middle of its second pass (1 to 8 spp), between tiles.
+    // Stopped in the middle of its third pass (16 to 32 spp), between
+    // tiles: the resumed render skips the two passes done.
     let cancel = Cancel::new();
     let log = Log {
-        stop_after: Some((48 * 40 + 16 * 16 * 7 * 3, cancel.clone())),
+        stop_after: Some((48 * 40 * 16 + 16 * 16 * 16 * 3, cancel.clone())),
         ..Log::default()
     };
-    let stopped = run(scene(8), batch(&out, policy()), &log, &cancel);
+    let stopped = run(scene(40), batch(&out, policy()), &log, &cancel);
     assert_eq!(stopped.outcome, Outcome::Cancelled);
     let (least, most, _) = stopped.film.sample_counts();
     assert_eq!(
         (least, most),
-        (1, 8),
+        (16, 32),
         "the pass in flight stops where it is"
     );
     assert_eq!(log.events().last().map(String::as_str), Some("rendered"));
-    assert!(!log.events().iter().any(|e| e.contains("to 8 spp")));
+    assert!(log.events().iter().any(|e| e.contains("to 16 spp")));
+    assert!(!log.events().iter().any(|e| e.contains("to 32 spp")));
     let state = dir.path().join("a.exr.state.exr");
     assert_eq!(stopped.state.as_deref(), Some(state.as_path()));
     assert!(stopped.image_written && out.is_file());
     // The state is not replaced without a word.
-    let refused = session(scene(8), batch(&out, policy())).err().unwrap();
+    let refused = session(scene(40), batch(&out, policy())).err().unwrap();
     assert!(refused.to_string().contains("--resume"), "{refused}");
     let resume = StatePolicy {
         resume: true,
         ..policy()
     };
-    let resumed = session(scene(8), batch(&out, resume)).unwrap();
+    let resumed = session(scene(40), batch(&out, resume)).unwrap();
     assert!(
-        resumed.note().unwrap().starts_with("resuming from 8 spp"),
+        resumed.note().unwrap().starts_with("resuming from 40 spp"),
         "{:?}",
         resumed.note()
     );
     assert_eq!(resumed.samples_done(), stopped.samples);
     let resumed = one_thread().install(|| resumed.run(&Quiet, &Cancel::new()).unwrap());
     assert_eq!(resumed.outcome, Outcome::Complete);
-    assert_eq!(resumed.samples + stopped.samples, 48 * 40 * 8);
+    assert_eq!(resumed.samples + stopped.samples, 48 * 40 * 40);
     assert!(same_film(&resumed.film, &reference.film));
 }
 

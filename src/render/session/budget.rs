@@ -54,7 +54,8 @@ impl Budget {
         let done = film.total_samples().saturating_sub(self.samples_before);
         if done == 0 {
             // A resumed render has no measure of its speed yet, and its
-            // next doubling could take as long as all before it (it would
+            // next pass could take many times as long as all before it
+            // (1 to 16 spp: fifteen times; it would
             // be cut past the budget, its pixels a pass apart): one sample
             // per pixel measures it first.
             return Some(match self.samples_before {
@@ -84,25 +85,34 @@ mod tests {
     use super::*;
 
     #[test]
-    fn passes_double_while_they_fit_and_the_last_takes_what_fits() {
+    fn passes_grow_while_they_fit_and_the_last_takes_what_fits() {
         let mut film = Film::new(2, 2, 0);
         let mut budget = Budget::new(10.0, &film, None);
         // The first pass has nothing to go by: one sample per pixel.
         assert_eq!(budget.next_target(&film, 1000), Some(1));
+        // Then a run of 16 where it fits: 1 spp in 0.5 s, 9.5 s left → 19
+        // more fit; 1 spp in 2.2 s, 7.8 s left → 3 more, not the run.
+        film.count.fill(1);
+        budget.start = Instant::now() - Duration::from_millis(500);
+        budget.end = budget.start + Duration::from_secs(10);
+        assert_eq!(budget.next_target(&film, 1000), Some(16));
+        budget.start = Instant::now() - Duration::from_millis(2200);
+        budget.end = budget.start + Duration::from_secs(10);
+        assert_eq!(budget.next_target(&film, 1000), Some(4));
         // Pretend 8 spp took 2 s: 0.25 s per spp, 8 s left → 32 more fit.
         film.count.fill(8);
         budget.start = Instant::now() - Duration::from_secs(2);
         budget.end = budget.start + Duration::from_secs(10);
         assert_eq!(budget.next_target(&film, 1000), Some(16));
         film.count.fill(32);
-        // 32 spp in 2 s: 1/16 s per spp, 8 s left → 128 fit, the doubling
+        // 32 spp in 2 s: 1/16 s per spp, 8 s left → 128 fit, the growth
         // asks for 64.
         assert_eq!(budget.next_target(&film, 1000), Some(64));
         // The target caps it; a film at the target is done.
         assert_eq!(budget.next_target(&film, 40), Some(40));
         assert_eq!(budget.next_target(&film, 32), None);
         // 32 spp took 7.9 s of 10: 2.1 s left fits 8 more, not the 32 of
-        // the doubling.
+        // the growth.
         budget.start = Instant::now() - Duration::from_millis(7900);
         budget.end = budget.start + Duration::from_secs(10);
         assert_eq!(budget.next_target(&film, 1000), Some(40));
@@ -112,7 +122,7 @@ mod tests {
     }
 
     #[test]
-    fn a_resumed_render_measures_its_speed_before_it_doubles() {
+    fn a_resumed_render_measures_its_speed_before_its_next_pass() {
         let mut film = Film::new(2, 2, 0);
         film.count.fill(100);
         let budget = Budget::new(0.3, &film, None);

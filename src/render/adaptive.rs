@@ -36,6 +36,7 @@ use super::film::{Film, Halves};
 use crate::ir::settings::Adaptive;
 use crate::sampling::sampler::BATCH;
 use glam::DVec3;
+use std::time::Duration;
 
 /// The first decision: `min_samples`, made even so that the two halves
 /// hold as many samples each.
@@ -74,6 +75,25 @@ pub enum Progression {
     /// camera rays a fifth of its time (docs/performance.md, "Passes of
     /// whole runs").
     Runs,
+}
+
+/// A first pass slower than this turns [`Progression::Runs`] into
+/// [`Progression::Doubling`]: the run to 16 samples per pixel would keep
+/// the next image (and the progress a user watches) waiting fifteen
+/// times as long, half a minute or more.
+const SLOW_FIRST_PASS: Duration = Duration::from_secs(2);
+
+impl Progression {
+    /// How passes grow after one that ended at `end` samples per pixel and
+    /// took `took`: a slow render's passes double from its first sample,
+    /// so that its image refines in steps it can wait for. Only where the
+    /// passes end changes, never a sample.
+    pub fn after_pass(self, end: u32, took: Duration) -> Progression {
+        match self {
+            Progression::Runs if end == 1 && took > SLOW_FIRST_PASS => Progression::Doubling,
+            p => p,
+        }
+    }
 }
 
 /// Sample counts at the end of each progressive pass up to `spp`, growing

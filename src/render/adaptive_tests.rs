@@ -53,6 +53,18 @@ fn batch_passes_are_whole_runs_after_the_first_sample() {
 }
 
 #[test]
+fn a_slow_first_pass_turns_runs_into_doubling() {
+    let (fast, slow) = (Duration::from_millis(1900), Duration::from_millis(2100));
+    let runs = Progression::Runs;
+    assert_eq!(runs.after_pass(1, fast), runs);
+    assert_eq!(runs.after_pass(1, slow), Progression::Doubling);
+    // Only the first pass decides; a doubling render stays one.
+    assert_eq!(runs.after_pass(16, Duration::from_secs(100)), runs);
+    let doubling = Progression::Doubling;
+    assert_eq!(doubling.after_pass(1, fast), doubling);
+}
+
+#[test]
 fn adaptive_passes_double_to_the_first_decision_then_end_at_each() {
     let a = adaptive(0.01, 16);
     let ends = pass_ends(64, Some(&a), Progression::Doubling);

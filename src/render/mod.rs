@@ -220,15 +220,20 @@ fn render_view(
     let adaptive_sampling = (scene.settings.adaptive).filter(|_| film.halves.is_some());
     // A resumed film skips the passes its every sampling pixel has done
     // (all of them when every pixel has stopped).
-    let least = film.least_active().unwrap_or(u32::MAX);
-    let ends = adaptive::pass_ends(view.samples, adaptive_sampling.as_ref(), view.progression);
+    let mut reached = film.least_active().unwrap_or(u32::MAX);
+    let mut progression = view.progression;
+    let next_end = |reached: u32, progression| {
+        let ends = adaptive::pass_ends(view.samples, adaptive_sampling.as_ref(), progression);
+        ends.into_iter().find(|&e| e > reached)
+    };
     // Per tile, whether its camera rays go as packets: on where they can,
     // until a pass finds that they do not pay there ([`PacketGauge`]).
     let packets = integrator.takes_first_hit(scene) && scene.traces_packets();
     let tiles_across = view.width.div_ceil(TILE);
     let tile_count = tiles_across as usize * view.height.div_ceil(TILE) as usize;
     let packet_tiles: Vec<AtomicBool> = (0..tile_count).map(|_| AtomicBool::new(packets)).collect();
-    for end in ends.into_iter().filter(|&e| e > least) {
+    while let Some(end) = next_end(reached, progression) {
+        let started = std::time::Instant::now();
         let first = film.first;
         let (mut tiles, stopped) = tile_rows(&mut film);
         let pass = TilePass {
@@ -274,6 +279,7 @@ fn render_view(
         if all_stopped {
             break;
         }
+        (reached, progression) = (end, progression.after_pass(end, started.elapsed()));
     }
     Rendered {
         film,

@@ -377,3 +377,58 @@ fn a_live_session_writes_its_preview_then_every_pass() {
     assert!(!report.image_written);
     assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 2);
 }
+
+/// The path integrator, its first sample slowed down when `slow` is set:
+/// a render whose first pass takes seconds.
+struct SlowStart {
+    slow: std::sync::atomic::AtomicBool,
+    path: Box<dyn ptsc::integrator::Integrator>,
+}
+
+impl ptsc::integrator::Integrator for SlowStart {
+    fn li(
+        &self,
+        scene: &Scene,
+        ray: ptsc::geometry::Ray,
+        sampler: &mut ptsc::sampling::sampler::Sampler,
+    ) -> glam::Vec3 {
+        if self.slow.swap(false, Ordering::Relaxed) {
+            std::thread::sleep(Duration::from_millis(2200));
+        }
+        self.path.li(scene, ray, sampler)
+    }
+}
+
+#[test]
+fn a_slow_render_doubles_its_passes_from_the_first_sample() {
+    let mut ir = scene(8);
+    (ir.settings.width, ir.settings.height) = (2, 2);
+    let ends = |slow: bool| {
+        let integrator = SlowStart {
+            slow: std::sync::atomic::AtomicBool::new(slow),
+            path: ptsc::integrator::make(ir.settings.integrator),
+        };
+        let mut ends = Vec::new();
+        let film = Film::for_settings(&ir.settings, 0);
+        let to = (8, ptsc::render::Progression::Runs);
+        let cancel = std::sync::atomic::AtomicBool::new(false);
+        let r = ptsc::render::render_from(
+            &ir,
+            &integrator,
+            film,
+            to,
+            &cancel,
+            &|_| {},
+            &mut |_, spp| ends.push(spp),
+        );
+        (ends, r.film)
+    };
+    let (fast, fast_film) = ends(false);
+    assert_eq!(fast, [1, 8]);
+    // The first pass took more than 2 s: the runs' 15 more samples per
+    // pixel would keep the next image waiting half a minute; the passes
+    // double instead, and the samples are the same.
+    let (slow, slow_film) = ends(true);
+    assert_eq!(slow, [1, 2, 4, 8]);
+    assert!(same_film(&fast_film, &slow_film));
+}

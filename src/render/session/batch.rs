@@ -293,12 +293,12 @@ fn render_passes(
     let mut keep_state = batch.policy.keep_state || batch.had_state;
     let mut rays = RayCounts::default();
     // With a time budget, one pass per run, each as long as fits.
-    let budget = s
+    let mut budget = s
         .time
         .map(|seconds| Budget::new(seconds, &film, s.adaptive));
     let cut = std::sync::atomic::AtomicBool::new(false);
     let interrupted = loop {
-        let run_target = match &budget {
+        let run_target = match &mut budget {
             Some(budget) => match budget.next_target(&film, target) {
                 Some(end) => end,
                 None => break false,

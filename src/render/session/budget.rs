@@ -22,6 +22,9 @@ pub(super) struct Budget {
     samples_before: u64,
     /// Adaptive sampling's settings: its passes end at its decisions.
     adaptive: Option<Adaptive>,
+    /// How the passes grow: runs, or doubling after a slow first pass
+    /// ([`Progression::after_pass`]), as a render without a budget.
+    progression: Progression,
 }
 
 impl Budget {
@@ -36,6 +39,7 @@ impl Budget {
             cut: start + length + length / 10,
             samples_before: film.total_samples(),
             adaptive,
+            progression: Progression::Runs,
         }
     }
 
@@ -43,15 +47,18 @@ impl Budget {
     /// `target`: the usual growth while it fits in the time left, else as
     /// many as fit; `None` when the film has `target` (in every pixel
     /// still sampling) or not one more sample per pixel fits.
-    pub(super) fn next_target(&self, film: &Film, target: u32) -> Option<u32> {
+    pub(super) fn next_target(&mut self, film: &Film, target: u32) -> Option<u32> {
         let least = film.least_active()?;
         let now = Instant::now();
         if least >= target || now >= self.end {
             return None;
         }
-        let next = (pass_ends(target, self.adaptive.as_ref(), Progression::Runs).into_iter())
-            .find(|&e| e > least)?;
         let done = film.total_samples().saturating_sub(self.samples_before);
+        if self.samples_before == 0 && least == 1 {
+            self.progression = self.progression.after_pass(1, now - self.start);
+        }
+        let next = (pass_ends(target, self.adaptive.as_ref(), self.progression).into_iter())
+            .find(|&e| e > least)?;
         if done == 0 {
             // A resumed render has no measure of its speed yet, and its
             // next pass could take many times as long as all before it
@@ -91,14 +98,14 @@ mod tests {
         // The first pass has nothing to go by: one sample per pixel.
         assert_eq!(budget.next_target(&film, 1000), Some(1));
         // Then a run of 16 where it fits: 1 spp in 0.5 s, 9.5 s left → 19
-        // more fit; 1 spp in 2.2 s, 7.8 s left → 3 more, not the run.
+        // more fit; 1 spp in 1.5 s, 8.5 s left → 5 more, not the run.
         film.count.fill(1);
         budget.start = Instant::now() - Duration::from_millis(500);
         budget.end = budget.start + Duration::from_secs(10);
         assert_eq!(budget.next_target(&film, 1000), Some(16));
-        budget.start = Instant::now() - Duration::from_millis(2200);
+        budget.start = Instant::now() - Duration::from_millis(1500);
         budget.end = budget.start + Duration::from_secs(10);
-        assert_eq!(budget.next_target(&film, 1000), Some(4));
+        assert_eq!(budget.next_target(&film, 1000), Some(6));
         // Pretend 8 spp took 2 s: 0.25 s per spp, 8 s left → 32 more fit.
         film.count.fill(8);
         budget.start = Instant::now() - Duration::from_secs(2);
@@ -122,10 +129,24 @@ mod tests {
     }
 
     #[test]
+    fn after_a_slow_first_pass_the_passes_double() {
+        let mut film = Film::new(2, 2, 0);
+        let mut budget = Budget::new(100.0, &film, None);
+        assert_eq!(budget.next_target(&film, 1000), Some(1));
+        // 1 spp took 2.5 s: 16 would fit, but 2 comes next, then 4.
+        film.count.fill(1);
+        budget.start = Instant::now() - Duration::from_millis(2500);
+        budget.end = budget.start + Duration::from_secs(100);
+        assert_eq!(budget.next_target(&film, 1000), Some(2));
+        film.count.fill(2);
+        assert_eq!(budget.next_target(&film, 1000), Some(4));
+    }
+
+    #[test]
     fn a_resumed_render_measures_its_speed_before_its_next_pass() {
         let mut film = Film::new(2, 2, 0);
         film.count.fill(100);
-        let budget = Budget::new(0.3, &film, None);
+        let mut budget = Budget::new(0.3, &film, None);
         // Not the doubling to 128, which may not fit: one sample first.
         assert_eq!(budget.next_target(&film, 1000), Some(101));
     }

@@ -91,6 +91,12 @@ impl Budget {
 mod tests {
     use super::*;
 
+    /// Pretends the budget of `length` seconds started `ago`.
+    fn spent(budget: &mut Budget, ago: Duration, length: u64) {
+        budget.start = Instant::now() - ago;
+        budget.end = budget.start + Duration::from_secs(length);
+    }
+
     #[test]
     fn passes_grow_while_they_fit_and_the_last_takes_what_fits() {
         let mut film = Film::new(2, 2, 0);
@@ -100,16 +106,13 @@ mod tests {
         // Then a run of 16 where it fits: 1 spp in 0.5 s, 9.5 s left → 19
         // more fit; 1 spp in 1.5 s, 8.5 s left → 5 more, not the run.
         film.count.fill(1);
-        budget.start = Instant::now() - Duration::from_millis(500);
-        budget.end = budget.start + Duration::from_secs(10);
+        spent(&mut budget, Duration::from_millis(500), 10);
         assert_eq!(budget.next_target(&film, 1000), Some(16));
-        budget.start = Instant::now() - Duration::from_millis(1500);
-        budget.end = budget.start + Duration::from_secs(10);
+        spent(&mut budget, Duration::from_millis(1500), 10);
         assert_eq!(budget.next_target(&film, 1000), Some(6));
         // Pretend 8 spp took 2 s: 0.25 s per spp, 8 s left → 32 more fit.
         film.count.fill(8);
-        budget.start = Instant::now() - Duration::from_secs(2);
-        budget.end = budget.start + Duration::from_secs(10);
+        spent(&mut budget, Duration::from_secs(2), 10);
         assert_eq!(budget.next_target(&film, 1000), Some(16));
         film.count.fill(32);
         // 32 spp in 2 s: 1/16 s per spp, 8 s left → 128 fit, the growth
@@ -120,8 +123,7 @@ mod tests {
         assert_eq!(budget.next_target(&film, 32), None);
         // 32 spp took 7.9 s of 10: 2.1 s left fits 8 more, not the 32 of
         // the growth.
-        budget.start = Instant::now() - Duration::from_millis(7900);
-        budget.end = budget.start + Duration::from_secs(10);
+        spent(&mut budget, Duration::from_millis(7900), 10);
         assert_eq!(budget.next_target(&film, 1000), Some(40));
         // Spent: nothing more.
         budget.end = Instant::now();
@@ -135,8 +137,7 @@ mod tests {
         assert_eq!(budget.next_target(&film, 1000), Some(1));
         // 1 spp took 2.5 s: 16 would fit, but 2 comes next, then 4.
         film.count.fill(1);
-        budget.start = Instant::now() - Duration::from_millis(2500);
-        budget.end = budget.start + Duration::from_secs(100);
+        spent(&mut budget, Duration::from_millis(2500), 100);
         assert_eq!(budget.next_target(&film, 1000), Some(2));
         film.count.fill(2);
         assert_eq!(budget.next_target(&film, 1000), Some(4));

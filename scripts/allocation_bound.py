@@ -1,0 +1,107 @@
+#!/usr/bin/env python3
+"""The most any per-pixel sample allocation could win on a scene, honestly.
+
+Renders SCENE uniformly with SEEDS seeds at SPP each, and estimates each
+pixel's per-sample variance, weighted as relMSE weighs it (over r^2 + 0.01,
+r the mean of all the renders). The relMSE-optimal allocation at a fixed
+total of samples gives pixel i a share proportional to sigma_i / sqrt(r_i^2
++ 0.01) (Lagrange: minimise sum s_i^2 / n_i with sum n_i fixed). Knowing
+s_i exactly is an oracle no renderer has; estimating it from the same
+samples that are then scored flatters the allocation (a pixel that drew a
+firefly is both given more samples and scored by that firefly). So the
+allocation is estimated from one half of the seeds and scored on the other
+(and the other way round): what the best possible adaptive sampler, one
+that saw twice the render's own samples, would win over uniform sampling.
+
+Printed per window (the estimate averaged over k x k pixels, as
+adaptive sampling's window mean) and floor (the least share, as a fraction
+of the mean, as min_samples): the gain, uniform relMSE over allocated
+relMSE at equal total samples (above 1: the allocation wins).
+
+    python3 scripts/allocation_bound.py PTSC SCENE [--size 256] [--spp 16]
+        [--seeds 24] [--work DIR]
+
+Needs numpy. docs/performance.md, "Where the Cornell box's error is".
+"""
+import argparse
+import subprocess
+import tempfile
+from pathlib import Path
+
+import numpy as np
+
+
+def read_pfm(path):
+    with open(path, "rb") as f:
+        assert f.readline().strip() == b"PF"
+        w, h = map(int, f.readline().split())
+        scale = float(f.readline())
+        data = np.frombuffer(f.read(), dtype="<f4" if scale < 0 else ">f4")
+    return data.reshape(h, w, 3)[::-1].astype(np.float64)
+
+
+def box_mean(a, k):
+    """Mean over the k x k window about each pixel (edges repeated)."""
+    r = k // 2
+    padded = np.pad(a, r, mode="edge")
+    out = np.zeros_like(a)
+    for dy in range(k):
+        for dx in range(k):
+            out += padded[dy:dy + a.shape[0], dx:dx + a.shape[1]]
+    return out / (k * k)
+
+
+def allocation(estimate, floor):
+    """Shares proportional to sqrt(estimate), at least `floor`, mean 1."""
+    root = np.sqrt(estimate)
+    lo, hi = 0.0, 1e9
+    for _ in range(200):
+        c = (lo + hi) / 2
+        if np.maximum(floor, c * root).mean() > 1:
+            hi = c
+        else:
+            lo = c
+    return np.maximum(floor, lo * root)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("ptsc")
+    ap.add_argument("scene")
+    ap.add_argument("--size", type=int, default=256)
+    ap.add_argument("--spp", type=int, default=16)
+    ap.add_argument("--seeds", type=int, default=24)
+    ap.add_argument("--work")
+    a = ap.parse_args()
+    work = Path(a.work or tempfile.mkdtemp())
+    work.mkdir(parents=True, exist_ok=True)
+    images = []
+    for seed in range(a.seeds):
+        out = work / f"seed_{seed}.pfm"
+        subprocess.run([a.ptsc, "render", a.scene, "-o", str(out), "--resolution",
+                        f"{a.size}x{a.size}", "--spp", str(a.spp), "--seed", str(500 + seed),
+                        "--noise", "off", "--force", "--restart"],
+                       check=True, capture_output=True)
+        images.append(read_pfm(out))
+    images = np.array(images)
+    weight = images.mean(0) ** 2 + 0.01
+    half = a.seeds // 2
+    # Per-sample variance over relMSE's weight, summed over the channels
+    # (a pixel's channels share its samples).
+    halves = [(images[h].var(0, ddof=1) * a.spp / weight).sum(-1)
+              for h in (slice(0, half), slice(half, None))]
+    print(f"{a.scene}: {a.size}², {a.seeds} seeds × {a.spp} spp; uniform relMSE at {a.spp} spp "
+          f"≈ {(halves[0].mean() + halves[1].mean()) / 6 / a.spp:.4g}")
+    print("| window | floor | gain (estimated on one half, scored on the other) |")
+    print("|---|---|---|")
+    for k in (1, 3, 5):
+        for floor in (0.25, 0.4):
+            gains = []
+            for est, score in ((halves[0], halves[1]), (halves[1], halves[0])):
+                n = allocation(box_mean(est, k), floor)
+                gains.append(score.mean() / (score / n).mean())
+            print(f"| {k}×{k} | {floor} | {np.mean(gains):.2f} ({gains[0]:.2f}, {gains[1]:.2f}) |")
+
+
+if __name__ == "__main__":
+    main()

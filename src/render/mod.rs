@@ -488,8 +488,11 @@ pub(crate) fn pixel_sampler(scene: &Scene, x: u32, y: u32) -> PixelSampler {
 }
 
 /// A sample's camera ray through pixel (x, y): the first draws of its
-/// sampler are the position in the pixel (box filter), the lens and the
-/// time; `scale` > 1 for the pixels of a smaller preview image.
+/// sampler are the position in the pixel (box filter), then the lens and
+/// the time where the camera uses them (a pinhole's ray is the same for
+/// any lens point, a closed shutter's for any time: three numbers of the
+/// PCG stream a path would draw and drop); `scale` > 1 for the pixels of a
+/// smaller preview image.
 #[inline]
 pub(crate) fn camera_ray(
     scene: &Scene,
@@ -497,10 +500,19 @@ pub(crate) fn camera_ray(
     (x, y): (u32, u32),
     scale: f32,
 ) -> Ray {
+    let camera = &scene.camera;
     let film = (Vec2::new(x as f32, y as f32) + sampler.next_2d()) * scale;
-    let lens = sampler.next_2d();
-    let t = sampler.next_f32();
-    scene.camera.ray(film, lens, t)
+    let lens = if camera.uses_lens() {
+        sampler.next_2d()
+    } else {
+        Vec2::ZERO
+    };
+    let t = if camera.uses_time() {
+        sampler.next_f32()
+    } else {
+        0.0
+    };
+    camera.ray(film, lens, t)
 }
 
 /// A sample as it enters a pixel's sum: a NaN or infinite one would poison

@@ -210,6 +210,76 @@ fn compressed_or_truncated_states_are_refused_by_resume_and_merge() {
     assert!(err.contains("too short"), "{err}");
 }
 
+#[test]
+fn a_state_whose_headers_are_damaged_is_kept_until_restart_or_force() {
+    let dir = temp_dir_with(&[("s.pts", SPECK)]);
+    let scene = dir.path().join("s.pts");
+    let render = |extra: &[&str]| {
+        let mut a = vec![
+            "render",
+            path_str(&scene),
+            "--resolution",
+            "8x8",
+            "--spp",
+            "2",
+            "-q",
+        ];
+        a.extend(extra);
+        ptsc_stderr(&a)
+    };
+    let part = dir.path().join("p.exr");
+    assert_eq!(render(&["--pass", "1/2", "-o", path_str(&part)]).0, 0);
+    // One attribute's text edited so that its declared size no longer
+    // matches: the headers cannot be read, the samples are all there.
+    let bytes = std::fs::read(&part).unwrap();
+    let at = (bytes.windows(12).position(|w| w == b"\"pass\":[1,2]"))
+        .expect("the description names the pass");
+    let mut damaged = bytes[..at].to_vec();
+    damaged.extend_from_slice(b"\"pass\":[1e9,]");
+    damaged.extend_from_slice(&bytes[at + 12..]);
+    std::fs::write(&part, &damaged).unwrap();
+    for extra in [&[][..], &["--resume"][..]] {
+        let (code, err) = render(&[&["--pass", "1/2", "-o", path_str(&part)], extra].concat());
+        assert_eq!(code, 2, "{err}");
+        assert!(err.contains("headers cannot be read"), "{err}");
+        assert_eq!(std::fs::read(&part).unwrap(), damaged, "{extra:?}: kept");
+    }
+    // As the image of a whole render: --force, not --restart, replaces it.
+    let (code, err) = render(&["-o", path_str(&part)]);
+    assert_eq!(code, 2, "{err}");
+    assert!(
+        err.contains("may hold a render's samples") && err.contains("--force"),
+        "{err}"
+    );
+    assert_eq!(std::fs::read(&part).unwrap(), damaged);
+    assert_eq!(
+        render(&["--pass", "1/2", "--restart", "-o", path_str(&part)]).0,
+        0
+    );
+    std::fs::write(&part, &damaged).unwrap();
+    assert_eq!(render(&["-o", path_str(&part), "--force"]).0, 0);
+    // A file at a whole render's state path that is no OpenEXR file holds
+    // no samples: --resume starts over and says why.
+    let image = dir.path().join("i.png");
+    std::fs::write(dir.path().join("i.png.state.exr"), b"garbage").unwrap();
+    let (code, err) = ptsc_stderr(&[
+        "render",
+        path_str(&scene),
+        "--resolution",
+        "8x8",
+        "--spp",
+        "2",
+        "--resume",
+        "-o",
+        path_str(&image),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(
+        err.contains("no saved state") && err.contains("not an OpenEXR file"),
+        "{err}"
+    );
+}
+
 /// Rewrites an EXR file with every part ZIP-compressed.
 fn recompress(from: &Path, to: &Path) {
     use exr::prelude::*;

@@ -5,7 +5,7 @@
 //! setting, pass or sample count is refused before its pixels are read.
 
 use crate::render::film::Film;
-use crate::render::state::{is_state_file, read_state, read_state_info, Pass, StateInfo};
+use crate::render::state::{held_state, read_state, read_state_info, HeldState, Pass, StateInfo};
 use std::path::{Path, PathBuf};
 use std::time::Duration;
 
@@ -84,33 +84,48 @@ pub(super) fn start(
         return Ok(fresh(state.is_file(), None));
     }
     // Only a state file counts (by its headers): an image at a part's path
-    // from elsewhere is replaced like any output. Its description is
-    // checked before its pixels are read.
-    let saved = is_state_file(state).then(|| read_state_info(state));
-    match saved {
-        None => Ok(fresh(
-            false,
-            policy.resume.then(|| {
-                format!(
-                    "no saved state at {}: starting from the first sample",
-                    state.display()
-                )
-            }),
-        )),
-        Some(Err(why)) if policy.resume => {
-            Err(format!("cannot resume from {}: {why}", state.display()))
-        }
-        Some(Err(why)) => Err(format!(
+    // from elsewhere is replaced like any output. An OpenEXR file whose
+    // headers cannot be read may be a damaged state: it is refused like an
+    // unreadable one. A description is checked before its pixels are read.
+    let saved = match held_state(state) {
+        HeldState::Absent => None,
+        HeldState::Other(why) => Some(why),
+        HeldState::Damaged(why) => return unreadable(state, why, policy.resume),
+        HeldState::State => match read_state_info(state) {
+            Ok(info) if policy.resume => return resumed(state, &info, now),
+            Ok(info) => {
+                return Err(format!(
+                    "{} holds the state of a render ({}); add --resume to continue it or --restart to start over",
+                    state.display(),
+                    info.describe()
+                ))
+            }
+            Err(why) => return unreadable(state, why, policy.resume),
+        },
+    };
+    let note = policy.resume.then(|| match saved {
+        None => format!(
+            "no saved state at {}: starting from the first sample",
+            state.display()
+        ),
+        Some(why) => format!(
+            "no saved state at {} ({why}): starting from the first sample",
+            state.display()
+        ),
+    });
+    Ok(fresh(false, note))
+}
+
+/// The refusal of a state file that cannot be read: it may still hold
+/// samples, so only `--restart` replaces it.
+fn unreadable(state: &Path, why: String, resume: bool) -> Result<Start, String> {
+    Err(match resume {
+        true => format!("cannot resume from {}: {why}", state.display()),
+        false => format!(
             "{} holds a render state that cannot be read ({why}); add --restart to replace it, or name another output",
             state.display()
-        )),
-        Some(Ok(info)) if policy.resume => resumed(state, &info, now),
-        Some(Ok(info)) => Err(format!(
-            "{} holds the state of a render ({}); add --resume to continue it or --restart to start over",
-            state.display(),
-            info.describe()
-        )),
-    }
+        ),
+    })
 }
 
 /// The saved film, if it can hold samples of the render `now`: its

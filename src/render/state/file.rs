@@ -151,22 +151,66 @@ where
     })
 }
 
+/// What a file says of render states, from its first bytes and headers
+/// only.
+#[derive(Debug, Clone, PartialEq)]
+pub enum HeldState {
+    /// No regular file there (or none that can be opened).
+    Absent,
+    /// A file that holds no state: not OpenEXR, or an image without the
+    /// state part; why, for messages.
+    Other(String),
+    /// An OpenEXR file whose headers cannot be read: a damaged state,
+    /// whose samples may still be recovered, as far as anyone can tell.
+    Damaged(String),
+    /// A render state (its headers name a state part).
+    State,
+}
+
+/// The four bytes that open every OpenEXR file.
+const EXR_MAGIC: [u8; 4] = [0x76, 0x2f, 0x31, 0x01];
+
+/// What the file at `path` holds ([`HeldState`]).
+pub fn held_state(path: &Path) -> HeldState {
+    use std::io::Read;
+    let Ok((mut file, _)) = open(path) else {
+        return HeldState::Absent;
+    };
+    let mut magic = [0u8; 4];
+    if file.read_exact(&mut magic).is_err() || magic != EXR_MAGIC {
+        return HeldState::Other("it is not an OpenEXR file".into());
+    }
+    let Ok((file, _)) = open(path) else {
+        return HeldState::Absent;
+    };
+    match exr::meta::MetaData::read_from_buffered(file, false) {
+        Err(e) => HeldState::Damaged(format!("its OpenEXR headers cannot be read: {e}")),
+        Ok(m) if m.headers.iter().any(|h| is_state_part(&h.own_attributes)) => HeldState::State,
+        Ok(_) => HeldState::Other("it is an image without the ptsc.state part".into()),
+    }
+}
+
 /// Whether the file at `path` holds a render state (its headers name a
 /// state part), read from its headers only.
 pub fn is_state_file(path: &Path) -> bool {
-    let Ok((file, _)) = open(path) else {
-        return false;
-    };
-    let meta = exr::meta::MetaData::read_from_buffered(file, false);
-    meta.is_ok_and(|m| m.headers.iter().any(|h| is_state_part(&h.own_attributes)))
+    held_state(path) == HeldState::State
 }
 
 /// Why an image must not be written at `output`: it holds a render's
 /// state (a part file, a saved state), whose samples the image would
 /// replace, and `force` (the command line's `--force`) was not given.
 pub fn refuse_to_replace(output: &Path, force: bool) -> Result<(), String> {
-    if force || !is_state_file(output) {
-        return Ok(());
+    let damaged = match held_state(output) {
+        _ if force => return Ok(()),
+        HeldState::Absent | HeldState::Other(_) => return Ok(()),
+        HeldState::Damaged(why) => Some(why),
+        HeldState::State => None,
+    };
+    if let Some(why) = damaged {
+        return Err(format!(
+            "{} is an OpenEXR file that may hold a render's samples, but {why}; name another output, or add --force to replace it",
+            output.display()
+        ));
     }
     let what = read_state_info(output).map_or_else(
         |_| "a render state".to_string(),

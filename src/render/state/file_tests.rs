@@ -174,3 +174,30 @@ fn only_regular_files_are_opened() {
         assert!(!is_state_file(&fifo));
     }
 }
+
+#[test]
+fn what_a_file_holds_is_told_from_its_first_bytes_and_headers() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("s.exr");
+    assert_eq!(held_state(&path), HeldState::Absent);
+    std::fs::write(&path, b"not an exr").unwrap();
+    assert!(matches!(held_state(&path), HeldState::Other(why) if why.contains("not an OpenEXR")));
+    assert!(refuse_to_replace(&path, false).is_ok());
+    crate::output::write_image(&path, (2, 2), |_| Vec3::ONE, 0.0).unwrap();
+    assert!(matches!(held_state(&path), HeldState::Other(why) if why.contains("without")));
+    let mut film = Film::new(4, 4, 2);
+    film.count.fill(2);
+    write_state(&path, &film, &info()).unwrap();
+    assert_eq!(held_state(&path), HeldState::State);
+    // The headers' first attribute declares a size past the file's end.
+    let mut bytes = std::fs::read(&path).unwrap();
+    let name_end = 8 + bytes[8..].iter().position(|&b| b == 0).unwrap();
+    let type_end = name_end + 1 + bytes[name_end + 1..].iter().position(|&b| b == 0).unwrap();
+    bytes[type_end + 1..type_end + 5].copy_from_slice(&u32::MAX.to_le_bytes());
+    std::fs::write(&path, &bytes).unwrap();
+    assert!(matches!(held_state(&path), HeldState::Damaged(_)));
+    assert!(!is_state_file(&path));
+    let why = refuse_to_replace(&path, false).unwrap_err();
+    assert!(why.contains("may hold a render's samples"), "{why}");
+    assert!(refuse_to_replace(&path, true).is_ok());
+}

@@ -476,7 +476,7 @@ fn render_packet(
 }
 
 /// The sampling of pixel (x, y) of the scene's render.
-pub(crate) fn pixel_sampler(scene: &Scene, x: u32, y: u32) -> PixelSampler {
+pub fn pixel_sampler(scene: &Scene, x: u32, y: u32) -> PixelSampler {
     let (s, camera) = (&scene.settings, &scene.camera);
     PixelSampler::new(
         s.sampler,
@@ -489,27 +489,25 @@ pub(crate) fn pixel_sampler(scene: &Scene, x: u32, y: u32) -> PixelSampler {
 
 /// A sample's camera ray through pixel (x, y): the first draws of its
 /// sampler are the position in the pixel (box filter), then the lens and
-/// the time where the camera uses them (a pinhole's ray is the same for
-/// any lens point, a closed shutter's for any time: three numbers of the
-/// PCG stream a path would draw and drop); `scale` > 1 for the pixels of a
-/// smaller preview image.
+/// the time where the camera uses them. A pinhole's ray is the same for
+/// any lens point, a closed shutter's for any time: their slots are
+/// skipped, not drawn (three numbers of the PCG stream a path drew and
+/// dropped), so that the time keeps its own stratified slot behind an
+/// unused lens. `scale` > 1 for the pixels of a smaller preview image.
 #[inline]
-pub(crate) fn camera_ray(
-    scene: &Scene,
-    sampler: &mut Sampler,
-    (x, y): (u32, u32),
-    scale: f32,
-) -> Ray {
+pub fn camera_ray(scene: &Scene, sampler: &mut Sampler, (x, y): (u32, u32), scale: f32) -> Ray {
     let camera = &scene.camera;
     let film = (Vec2::new(x as f32, y as f32) + sampler.next_2d()) * scale;
     let lens = if camera.uses_lens() {
         sampler.next_2d()
     } else {
+        sampler.skip();
         Vec2::ZERO
     };
     let t = if camera.uses_time() {
         sampler.next_f32()
     } else {
+        sampler.skip();
         0.0
     };
     camera.ray(film, lens, t)

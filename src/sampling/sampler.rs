@@ -308,6 +308,16 @@ impl Sampler<'_> {
         self.end = 0;
     }
 
+    /// Passes over the next slot without drawing from it (a camera's lens
+    /// draw, or its time, where the camera does not use them): the draws
+    /// after it keep their own slots, and the PCG stream is not touched.
+    #[inline(always)]
+    pub fn skip(&mut self) {
+        if self.slot < self.end {
+            self.slot += 1;
+        }
+    }
+
     /// The pixel and the next slot, if the draw is a Sobol point.
     #[inline(always)]
     fn next_slot(&mut self) -> Option<(&PixelSampler, usize)> {
@@ -472,6 +482,28 @@ mod tests {
         let mut pcg = Sampler::new(1, 0, 0, 4);
         let _film = camera.next_2d();
         assert_eq!(camera.next_2d(), pcg.next_2d());
+    }
+
+    #[test]
+    fn a_skipped_lens_slot_leaves_the_time_its_own_stratified_slot() {
+        // A pinhole with an open shutter: the camera skips the lens slot
+        // (`render::camera_ray`), and the times of a pixel's 16 samples
+        // still fill the 16 strata of the time's slot.
+        let pixel = PixelSampler::new(SamplerKind::Sobol, 9, (5, 2), false, true);
+        let mut strata = [false; 16];
+        for i in 0..16 {
+            let mut s = pixel.sample(i);
+            let _film = s.next_2d();
+            s.skip();
+            let cell = (s.next_f32() * 16.0) as usize;
+            assert!(!strata[cell], "sample {i}: stratum {cell} twice");
+            strata[cell] = true;
+        }
+        // Skipping draws nothing: the PCG stream is where it was.
+        let (mut skipped, mut pcg) = (pixel.sample(3), Sampler::new(9, 5, 2, 3));
+        skipped.skip();
+        skipped.pad();
+        assert_eq!(skipped.next_u32(), pcg.next_u32());
     }
 
     /// Every draw of a sample's first bounces, from the camera's slots on.

@@ -318,3 +318,30 @@ mesh {{ file \"light.obj\" smooth {smooth} material {{ diffuse rgb 0 emission rg
         );
     }
 }
+
+#[test]
+fn a_pinhole_with_an_open_shutter_stratifies_its_samples_times() {
+    // The lens slot a pinhole does not use is skipped, not drawn: the time
+    // keeps its own Sobol slot, so a pixel's 16 samples take one time in
+    // each sixteenth of the shutter (a time drawn from the lens slot would
+    // fall to the independent stream and leave strata empty).
+    let text = "render { resolution <8, 8> samples 16 }\n\
+        camera { position <0, 0, -5> look_at <0, 0, 0> shutter <0, 2> }\n\
+        sphere { center <0, 0, 0> radius 1 material { diffuse rgb 0.5 } velocity <1, 0, 0> }\n";
+    let c = compile_str(Path::new("shutter.pts"), text, Options::default());
+    let scene =
+        c.ir.unwrap_or_else(|| panic!("{}", c.diagnostics.render_human(&c.sources, false)));
+    for (x, y) in [(0, 0), (3, 5), (7, 7)] {
+        let pixel = ptsc::render::pixel_sampler(&scene, x, y);
+        let mut strata = [false; 16];
+        for i in 0..16 {
+            let ray = ptsc::render::camera_ray(&scene, &mut pixel.sample(i), (x, y), 1.0);
+            let cell = (ray.time / 2.0 * 16.0) as usize;
+            assert!(
+                !strata[cell],
+                "pixel ({x}, {y}), sample {i}: stratum {cell} twice"
+            );
+            strata[cell] = true;
+        }
+    }
+}

@@ -57,7 +57,7 @@ pub fn merge(request: &Request) -> Result<Merged, String> {
             part.display()
         ));
     }
-    refuse_to_replace(output, request.force)?;
+    refuse_to_replace(output, Some(request.force))?;
     crate::output::check_image_writable(output)
         .map_err(|why| format!("cannot write {}: {why}", output.display()))?;
     let (parts, size) = read_descriptions(request.parts)?;

@@ -63,7 +63,7 @@ pub(super) fn prepare(
     let s = &scene.settings;
     let state = state_path(output, policy.pass);
     if policy.pass.is_none() {
-        state::refuse_to_replace(output, policy.force).map_err(Error::Refused)?;
+        state::refuse_to_replace(output, Some(policy.force)).map_err(Error::Refused)?;
         crate::output::check_writable(&state).map_err(|why| {
             Error::Refused(format!(
                 "cannot write the render's state at {} (where checkpoints, Ctrl-C and --keep-state save it): {why}",

@@ -39,7 +39,7 @@ pub(super) fn prepare(
 ) -> Result<(), Error> {
     let s = &scene.settings;
     let need = Need::film((s.width, s.height)).with_halves(s.adaptive.is_some());
-    crate::render::state::refuse_to_replace(output, false)
+    crate::render::state::refuse_to_replace(output, None)
         .and_then(|()| memory::check(&need, memory_limit))
         .map_err(Error::Refused)
 }

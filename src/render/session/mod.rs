@@ -111,7 +111,7 @@ impl Plan {
         if let Mode::Live = self.mode {
             let path = preview_path(&self.output);
             match crate::output::check_output(&path, &self.inputs)
-                .and_then(|()| crate::render::state::refuse_to_replace(&path, false))
+                .and_then(|()| crate::render::state::refuse_to_replace(&path, None))
             {
                 Ok(()) => preview = Some(path),
                 Err(why) => no_preview = Some((path, why)),

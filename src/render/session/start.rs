@@ -90,7 +90,15 @@ pub(super) fn start(
     let saved = match held_state(state) {
         HeldState::Absent => None,
         HeldState::Other(why) => Some(why),
-        HeldState::Damaged(why) => return unreadable(state, why, policy.resume),
+        HeldState::Damaged(why) => {
+            return Err(match policy.resume {
+                true => format!("cannot resume from {}: {why}", state.display()),
+                false => format!(
+                    "{} may hold a render state, but {why}; add --restart to replace it, or name another output",
+                    state.display()
+                ),
+            })
+        }
         HeldState::State => match read_state_info(state) {
             Ok(info) if policy.resume => return resumed(state, &info, now),
             Ok(info) => {

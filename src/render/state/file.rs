@@ -155,13 +155,15 @@ where
 /// only.
 #[derive(Debug, Clone, PartialEq)]
 pub enum HeldState {
-    /// No regular file there (or none that can be opened).
+    /// No regular file there (a folder, a FIFO or a device is refused as
+    /// an output by the checks of paths, not here).
     Absent,
     /// A file that holds no state: not OpenEXR, or an image without the
     /// state part; why, for messages.
     Other(String),
-    /// An OpenEXR file whose headers cannot be read: a damaged state,
-    /// whose samples may still be recovered, as far as anyone can tell.
+    /// A regular file that cannot be opened, or an OpenEXR file whose
+    /// headers cannot be read: as far as anyone can tell, a state whose
+    /// samples may still be recovered; why ("it cannot be read: …").
     Damaged(String),
     /// A render state (its headers name a state part).
     State,
@@ -173,18 +175,26 @@ const EXR_MAGIC: [u8; 4] = [0x76, 0x2f, 0x31, 0x01];
 /// What the file at `path` holds ([`HeldState`]).
 pub fn held_state(path: &Path) -> HeldState {
     use std::io::Read;
-    let Ok((mut file, _)) = open(path) else {
-        return HeldState::Absent;
+    let opened = open(path);
+    let mut file = match opened {
+        Ok((file, _)) => file,
+        Err(why) if std::fs::metadata(path).is_ok_and(|m| m.is_file()) => {
+            return HeldState::Damaged(format!("it cannot be read: {why}"));
+        }
+        Err(_) => return HeldState::Absent,
     };
     let mut magic = [0u8; 4];
     if file.read_exact(&mut magic).is_err() || magic != EXR_MAGIC {
         return HeldState::Other("it is not an OpenEXR file".into());
     }
-    let Ok((file, _)) = open(path) else {
-        return HeldState::Absent;
+    let file = match open(path) {
+        Ok((file, _)) => file,
+        Err(why) => return HeldState::Damaged(format!("it cannot be read: {why}")),
     };
     match exr::meta::MetaData::read_from_buffered(file, false) {
-        Err(e) => HeldState::Damaged(format!("its OpenEXR headers cannot be read: {e}")),
+        Err(e) => HeldState::Damaged(format!(
+            "it is an OpenEXR file whose headers cannot be read: {e}"
+        )),
         Ok(m) if m.headers.iter().any(|h| is_state_part(&h.own_attributes)) => HeldState::State,
         Ok(_) => HeldState::Other("it is an image without the ptsc.state part".into()),
     }
@@ -197,18 +207,23 @@ pub fn is_state_file(path: &Path) -> bool {
 }
 
 /// Why an image must not be written at `output`: it holds a render's
-/// state (a part file, a saved state), whose samples the image would
-/// replace, and `force` (the command line's `--force`) was not given.
-pub fn refuse_to_replace(output: &Path, force: bool) -> Result<(), String> {
+/// state (a part file, a saved state) or may hold one ([`HeldState::Damaged`]),
+/// whose samples the image would replace. `force`: the command's
+/// `--force` (`None` for a command that has none, such as `watch`).
+pub fn refuse_to_replace(output: &Path, force: Option<bool>) -> Result<(), String> {
     let damaged = match held_state(output) {
-        _ if force => return Ok(()),
+        _ if force == Some(true) => return Ok(()),
         HeldState::Absent | HeldState::Other(_) => return Ok(()),
         HeldState::Damaged(why) => Some(why),
         HeldState::State => None,
     };
+    let advice = match force {
+        Some(_) => "name another output, or add --force to replace it",
+        None => "name another output",
+    };
     if let Some(why) = damaged {
         return Err(format!(
-            "{} is an OpenEXR file that may hold a render's samples, but {why}; name another output, or add --force to replace it",
+            "{} may hold a render's samples, but {why}; {advice}",
             output.display()
         ));
     }
@@ -223,7 +238,7 @@ pub fn refuse_to_replace(output: &Path, force: bool) -> Result<(), String> {
         },
     );
     Err(format!(
-        "{} holds {what}; writing an image there would lose them: name another output, or add --force to replace it",
+        "{} holds {what}; writing an image there would lose them: {advice}",
         output.display()
     ))
 }

@@ -182,7 +182,7 @@ fn what_a_file_holds_is_told_from_its_first_bytes_and_headers() {
     assert_eq!(held_state(&path), HeldState::Absent);
     std::fs::write(&path, b"not an exr").unwrap();
     assert!(matches!(held_state(&path), HeldState::Other(why) if why.contains("not an OpenEXR")));
-    assert!(refuse_to_replace(&path, false).is_ok());
+    assert!(refuse_to_replace(&path, Some(false)).is_ok());
     crate::output::write_image(&path, (2, 2), |_| Vec3::ONE, 0.0).unwrap();
     assert!(matches!(held_state(&path), HeldState::Other(why) if why.contains("without")));
     let mut film = Film::new(4, 4, 2);
@@ -197,7 +197,16 @@ fn what_a_file_holds_is_told_from_its_first_bytes_and_headers() {
     std::fs::write(&path, &bytes).unwrap();
     assert!(matches!(held_state(&path), HeldState::Damaged(_)));
     assert!(!is_state_file(&path));
-    let why = refuse_to_replace(&path, false).unwrap_err();
-    assert!(why.contains("may hold a render's samples"), "{why}");
-    assert!(refuse_to_replace(&path, true).is_ok());
+    let why = refuse_to_replace(&path, Some(false)).unwrap_err();
+    assert!(
+        why.contains("may hold a render's samples") && why.contains("--force"),
+        "{why}"
+    );
+    assert!(refuse_to_replace(&path, Some(true)).is_ok());
+    // A command without --force (watch) does not offer it.
+    let why = refuse_to_replace(&path, None).unwrap_err();
+    assert!(
+        why.contains("name another output") && !why.contains("--force"),
+        "{why}"
+    );
 }

@@ -1,17 +1,22 @@
 #!/usr/bin/env python3
-"""The most any per-pixel sample allocation could win on a scene, honestly.
+"""What a per-pixel sample allocation estimated from the renders could win.
 
-Renders SCENE uniformly with SEEDS seeds at SPP each, and estimates each
-pixel's per-sample variance, weighted as relMSE weighs it (over r^2 + 0.01,
-r the mean of all the renders). The relMSE-optimal allocation at a fixed
-total of samples gives pixel i a share proportional to sigma_i / sqrt(r_i^2
-+ 0.01) (Lagrange: minimise sum s_i^2 / n_i with sum n_i fixed). Knowing
-s_i exactly is an oracle no renderer has; estimating it from the same
-samples that are then scored flatters the allocation (a pixel that drew a
-firefly is both given more samples and scored by that firefly). So the
-allocation is estimated from one half of the seeds and scored on the other
-(and the other way round): what the best possible adaptive sampler, one
-that saw twice the render's own samples, would win over uniform sampling.
+Renders SCENE uniformly with SEEDS seeds at SPP each (independent sampling,
+so that a pixel's variance times its samples is its per-sample variance),
+and once at REF_SPP for each pixel's mean r (a separate render, so that a
+pixel's firefly does not both raise its own weight and hide its own
+variance). Each pixel's per-sample variance is weighted as relMSE weighs
+it (over r^2 + 0.01). The relMSE-optimal allocation at a fixed total of
+samples gives pixel i a share proportional to sigma_i / sqrt(r_i^2 + 0.01)
+(Lagrange: minimise sum s_i^2 / n_i with sum n_i fixed). The true sigma_i
+is an oracle no renderer has, and estimating it from the samples that are
+then scored flatters the allocation (a pixel that drew a firefly is both
+given more samples and scored by that firefly). So the allocation is
+estimated from one half of the seeds and scored on the other (and the
+other way round): what an adaptive sampler that saw half of these renders'
+samples would win over uniform sampling. It is not a bound on every
+allocation: the scoring half's own noise and the estimate's lower it
+(a perfect estimate of sigma would win more where sigma is heavy-tailed).
 
 Printed per window (the estimate averaged over k x k pixels, as
 adaptive sampling's window mean) and floor (the least share, as a fraction
@@ -19,7 +24,7 @@ of the mean, as min_samples): the gain, uniform relMSE over allocated
 relMSE at equal total samples (above 1: the allocation wins).
 
     python3 scripts/allocation_bound.py PTSC SCENE [--size 256] [--spp 16]
-        [--seeds 24] [--work DIR]
+        [--seeds 24] [--ref-spp 1024] [--work DIR]
 
 Needs numpy. docs/performance.md, "Where the Cornell box's error is".
 """
@@ -71,20 +76,22 @@ def main():
     ap.add_argument("--size", type=int, default=256)
     ap.add_argument("--spp", type=int, default=16)
     ap.add_argument("--seeds", type=int, default=24)
+    ap.add_argument("--ref-spp", type=int, default=1024)
     ap.add_argument("--work")
     a = ap.parse_args()
     work = Path(a.work or tempfile.mkdtemp())
     work.mkdir(parents=True, exist_ok=True)
-    images = []
-    for seed in range(a.seeds):
-        out = work / f"seed_{seed}.pfm"
+    def render(name, spp, seed, extra):
+        out = work / f"{name}.pfm"
         subprocess.run([a.ptsc, "render", a.scene, "-o", str(out), "--resolution",
-                        f"{a.size}x{a.size}", "--spp", str(a.spp), "--seed", str(500 + seed),
-                        "--noise", "off", "--force", "--restart"],
+                        f"{a.size}x{a.size}", "--spp", str(spp), "--seed", str(seed),
+                        "--noise", "off", "--force", "--restart"] + extra,
                        check=True, capture_output=True)
-        images.append(read_pfm(out))
-    images = np.array(images)
-    weight = images.mean(0) ** 2 + 0.01
+        return read_pfm(out)
+
+    images = np.array([render(f"seed_{seed}", a.spp, 500 + seed, ["--sampler", "independent"])
+                       for seed in range(a.seeds)])
+    weight = render("reference", a.ref_spp, 99, []) ** 2 + 0.01
     half = a.seeds // 2
     # Per-sample variance over relMSE's weight, summed over the channels
     # (a pixel's channels share its samples).

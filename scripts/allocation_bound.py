@@ -30,19 +30,14 @@ Needs numpy. docs/performance.md, "Where the Cornell box's error is".
 """
 import argparse
 import subprocess
+import sys
 import tempfile
 from pathlib import Path
 
 import numpy as np
 
-
-def read_pfm(path):
-    with open(path, "rb") as f:
-        assert f.readline().strip() == b"PF"
-        w, h = map(int, f.readline().split())
-        scale = float(f.readline())
-        data = np.frombuffer(f.read(), dtype="<f4" if scale < 0 else ">f4")
-    return data.reshape(h, w, 3)[::-1].astype(np.float64)
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from adaptive_savings import read_pfm  # noqa: E402 (the scripts' folder first)
 
 
 def box_mean(a, k):
@@ -87,7 +82,7 @@ def main():
                         f"{a.size}x{a.size}", "--spp", str(spp), "--seed", str(seed),
                         "--noise", "off", "--force", "--restart"] + extra,
                        check=True, capture_output=True)
-        return read_pfm(out)
+        return read_pfm(out).astype(np.float64)
 
     images = np.array([render(f"seed_{seed}", a.spp, 500 + seed, ["--sampler", "independent"])
                        for seed in range(a.seeds)])

@@ -167,24 +167,28 @@ fn every_path_a_render_writes_is_checked_before_the_first_sample() {
     assert!(err.contains("at most 255") && err.len() < 1000, "{err}");
 }
 
+/// `ptsc render SCENE --resolution SIZE --spp 2 -q EXTRA…`: exit code and
+/// stderr.
+fn render_quietly(scene: &Path, size: &str, extra: &[&str]) -> (i32, String) {
+    let mut args = vec![
+        "render",
+        path_str(scene),
+        "--resolution",
+        size,
+        "--spp",
+        "2",
+        "-q",
+    ];
+    args.extend(extra);
+    ptsc_stderr(&args)
+}
+
 #[test]
 fn compressed_or_truncated_states_are_refused_by_resume_and_merge() {
     let dir = temp_dir_with(&[("s.pts", SPECK)]);
     let scene = dir.path().join("s.pts");
     let part = dir.path().join("p.exr");
-    let render = |extra: &[&str]| {
-        let mut a = vec![
-            "render",
-            path_str(&scene),
-            "--resolution",
-            "64x48",
-            "--spp",
-            "2",
-            "-q",
-        ];
-        a.extend(extra);
-        ptsc_stderr(&a)
-    };
+    let render = |extra: &[&str]| render_quietly(&scene, "64x48", extra);
     assert_eq!(render(&["--pass", "1/1", "-o", path_str(&part)]).0, 0);
     // The same state, its parts rewritten ZIP-compressed (as a tool that
     // recompresses EXR files would).
@@ -214,19 +218,7 @@ fn compressed_or_truncated_states_are_refused_by_resume_and_merge() {
 fn a_state_whose_headers_are_damaged_is_kept_until_restart_or_force() {
     let dir = temp_dir_with(&[("s.pts", SPECK)]);
     let scene = dir.path().join("s.pts");
-    let render = |extra: &[&str]| {
-        let mut a = vec![
-            "render",
-            path_str(&scene),
-            "--resolution",
-            "8x8",
-            "--spp",
-            "2",
-            "-q",
-        ];
-        a.extend(extra);
-        ptsc_stderr(&a)
-    };
+    let render = |extra: &[&str]| render_quietly(&scene, "8x8", extra);
     let part = dir.path().join("p.exr");
     assert_eq!(render(&["--pass", "1/2", "-o", path_str(&part)]).0, 0);
     // One attribute's text edited so that its declared size no longer

@@ -5,6 +5,7 @@
 //! files of killed runs cleaned.
 
 use super::{ptsc_stderr, temp_dir_with};
+use ptsc::render::state::{held_state, HeldState};
 use std::path::Path;
 
 /// A scene that renders fast at any size: a camera and a speck.
@@ -135,7 +136,7 @@ fn an_output_holding_samples_is_not_replaced_without_force() {
     assert_eq!(std::fs::read(&p1).unwrap(), part, "the samples are kept");
     let (code, err) = render(&["-o", &p1, "--force"]);
     assert_eq!(code, 0, "{err}");
-    assert!(!ptsc::render::state::is_state_file(Path::new(&p1)));
+    assert_ne!(held_state(Path::new(&p1)), HeldState::State);
 }
 
 #[test]

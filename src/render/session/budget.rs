@@ -97,16 +97,23 @@ mod tests {
         budget.end = budget.start + Duration::from_secs(length);
     }
 
+    /// A budget of `length` seconds whose first pass (one sample per
+    /// pixel: it has nothing to go by) took `took`, and its film.
+    fn after_first_pass(length: u64, took: Duration) -> (Film, Budget) {
+        let mut film = Film::new(2, 2, 0);
+        let mut budget = Budget::new(length as f64, &film, None);
+        assert_eq!(budget.next_target(&film, 1000), Some(1));
+        film.count.fill(1);
+        spent(&mut budget, took, length);
+        (film, budget)
+    }
+
     #[test]
     fn passes_grow_while_they_fit_and_the_last_takes_what_fits() {
-        let mut film = Film::new(2, 2, 0);
-        let mut budget = Budget::new(10.0, &film, None);
-        // The first pass has nothing to go by: one sample per pixel.
-        assert_eq!(budget.next_target(&film, 1000), Some(1));
-        // Then a run of 16 where it fits: 1 spp in 0.5 s, 9.5 s left → 19
-        // more fit; 1 spp in 1.5 s, 8.5 s left → 5 more, not the run.
-        film.count.fill(1);
-        spent(&mut budget, Duration::from_millis(500), 10);
+        // After the first sample, a run of 16 where it fits: 1 spp in
+        // 0.5 s, 9.5 s left → 19 more fit; 1 spp in 1.5 s, 8.5 s left → 5
+        // more, not the run.
+        let (mut film, mut budget) = after_first_pass(10, Duration::from_millis(500));
         assert_eq!(budget.next_target(&film, 1000), Some(16));
         spent(&mut budget, Duration::from_millis(1500), 10);
         assert_eq!(budget.next_target(&film, 1000), Some(6));
@@ -132,12 +139,8 @@ mod tests {
 
     #[test]
     fn after_a_slow_first_pass_the_passes_double() {
-        let mut film = Film::new(2, 2, 0);
-        let mut budget = Budget::new(100.0, &film, None);
-        assert_eq!(budget.next_target(&film, 1000), Some(1));
         // 1 spp took 2.5 s: 16 would fit, but 2 comes next, then 4.
-        film.count.fill(1);
-        spent(&mut budget, Duration::from_millis(2500), 100);
+        let (mut film, mut budget) = after_first_pass(100, Duration::from_millis(2500));
         assert_eq!(budget.next_target(&film, 1000), Some(2));
         film.count.fill(2);
         assert_eq!(budget.next_target(&film, 1000), Some(4));

@@ -91,13 +91,7 @@ pub(super) fn start(
         HeldState::Absent => None,
         HeldState::Other(why) => Some(why),
         HeldState::Damaged(why) => {
-            return Err(match policy.resume {
-                true => format!("cannot resume from {}: {why}", state.display()),
-                false => format!(
-                    "{} may hold a render state, but {why}; add --restart to replace it, or name another output",
-                    state.display()
-                ),
-            })
+            return unreadable(state, format!("may hold a render state, but {why}"), why, policy.resume)
         }
         HeldState::State => match read_state_info(state) {
             Ok(info) if policy.resume => return resumed(state, &info, now),
@@ -108,7 +102,10 @@ pub(super) fn start(
                     info.describe()
                 ))
             }
-            Err(why) => return unreadable(state, why, policy.resume),
+            Err(why) => {
+                let claim = format!("holds a render state that cannot be read ({why})");
+                return unreadable(state, claim, why, policy.resume);
+            }
         },
     };
     let note = policy.resume.then(|| match saved {
@@ -124,13 +121,14 @@ pub(super) fn start(
     Ok(fresh(false, note))
 }
 
-/// The refusal of a state file that cannot be read: it may still hold
-/// samples, so only `--restart` replaces it.
-fn unreadable(state: &Path, why: String, resume: bool) -> Result<Start, String> {
+/// The refusal of a state file that cannot be read (`claim`: what the
+/// file is said to be, `why`: what failed): it may still hold samples, so
+/// only `--restart` replaces it.
+fn unreadable(state: &Path, claim: String, why: String, resume: bool) -> Result<Start, String> {
     Err(match resume {
         true => format!("cannot resume from {}: {why}", state.display()),
         false => format!(
-            "{} holds a render state that cannot be read ({why}); add --restart to replace it, or name another output",
+            "{} {claim}; add --restart to replace it, or name another output",
             state.display()
         ),
     })

@@ -174,9 +174,8 @@ const EXR_MAGIC: [u8; 4] = [0x76, 0x2f, 0x31, 0x01];
 
 /// What the file at `path` holds ([`HeldState`]).
 pub fn held_state(path: &Path) -> HeldState {
-    use std::io::Read;
-    let opened = open(path);
-    let mut file = match opened {
+    use std::io::{Read, Seek};
+    let mut file = match open(path) {
         Ok((file, _)) => file,
         Err(why) if std::fs::metadata(path).is_ok_and(|m| m.is_file()) => {
             return HeldState::Damaged(format!("it cannot be read: {why}"));
@@ -187,10 +186,9 @@ pub fn held_state(path: &Path) -> HeldState {
     if file.read_exact(&mut magic).is_err() || magic != EXR_MAGIC {
         return HeldState::Other("it is not an OpenEXR file".into());
     }
-    let file = match open(path) {
-        Ok((file, _)) => file,
-        Err(why) => return HeldState::Damaged(format!("it cannot be read: {why}")),
-    };
+    if let Err(why) = file.rewind() {
+        return HeldState::Damaged(format!("it cannot be read: {why}"));
+    }
     match exr::meta::MetaData::read_from_buffered(file, false) {
         Err(e) => HeldState::Damaged(format!(
             "it is an OpenEXR file whose headers cannot be read: {e}"
@@ -198,12 +196,6 @@ pub fn held_state(path: &Path) -> HeldState {
         Ok(m) if m.headers.iter().any(|h| is_state_part(&h.own_attributes)) => HeldState::State,
         Ok(_) => HeldState::Other("it is an image without the ptsc.state part".into()),
     }
-}
-
-/// Whether the file at `path` holds a render state (its headers name a
-/// state part), read from its headers only.
-pub fn is_state_file(path: &Path) -> bool {
-    held_state(path) == HeldState::State
 }
 
 /// Why an image must not be written at `output`: it holds a render's

@@ -133,7 +133,11 @@ fn compressed_or_truncated_states_are_refused_from_their_headers() {
         "{why}"
     );
     assert!(read_state_info(&path).is_err(), "the description alone too");
-    assert!(is_state_file(&path), "still named a state by its headers");
+    assert_eq!(
+        held_state(&path),
+        HeldState::State,
+        "still named a state by its headers"
+    );
 }
 
 #[test]
@@ -171,7 +175,7 @@ fn only_regular_files_are_opened() {
         assert!(read_state(&fifo)
             .unwrap_err()
             .contains("not a regular file"));
-        assert!(!is_state_file(&fifo));
+        assert_eq!(held_state(&fifo), HeldState::Absent);
     }
 }
 
@@ -196,7 +200,6 @@ fn what_a_file_holds_is_told_from_its_first_bytes_and_headers() {
     bytes[type_end + 1..type_end + 5].copy_from_slice(&u32::MAX.to_le_bytes());
     std::fs::write(&path, &bytes).unwrap();
     assert!(matches!(held_state(&path), HeldState::Damaged(_)));
-    assert!(!is_state_file(&path));
     let why = refuse_to_replace(&path, Some(false)).unwrap_err();
     assert!(
         why.contains("may hold a render's samples") && why.contains("--force"),

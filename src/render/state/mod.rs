@@ -19,7 +19,7 @@ mod file;
 mod info;
 
 pub use file::{
-    add_state, held_state, is_state_file, read_state, read_state_bytes, read_state_header,
-    read_state_info, refuse_to_replace, write_state, HeldState, STATE_PART,
+    add_state, held_state, read_state, read_state_bytes, read_state_header, read_state_info,
+    refuse_to_replace, write_state, HeldState, STATE_PART,
 };
 pub use info::{sample_settings, Pass, StateInfo};

@@ -68,6 +68,34 @@ impl Camera {
         self.shutter.0 != self.shutter.1
     }
 
+    /// Where a pinhole camera sees the point `p`: its image position
+    /// (pixels, y down, as [`Camera::ray`] takes it), the cosine between
+    /// the view axis and the direction towards `p`, and the density by
+    /// solid angle with which rays spread evenly over the image take that
+    /// direction, 1 / (A cos³θ) with A the image's area on the plane at
+    /// distance 1 (pbrt-v4 §5.4.1, `PDF_We`). `None` behind the camera,
+    /// outside the image, for a lens (light paths do not reach a thin
+    /// lens here) and with an open shutter (the ray's time is the path's).
+    pub fn project(&self, p: Vec3) -> Option<(Vec2, f32, f32)> {
+        if self.lens_radius > 0.0 {
+            return None;
+        }
+        let d = (p - self.position).normalize_or_zero();
+        let cos = d.dot(self.forward);
+        if cos <= 1e-6 {
+            return None;
+        }
+        let on_plane = d / cos;
+        let (sx, sy) = (on_plane.dot(self.right), on_plane.dot(self.up));
+        let fx = (sx / (self.tan_half * self.aspect) + 1.0) * 0.5 * self.width;
+        let fy = (1.0 - sy / self.tan_half) * 0.5 * self.height;
+        if !(0.0..self.width).contains(&fx) || !(0.0..self.height).contains(&fy) {
+            return None;
+        }
+        let area = 4.0 * self.tan_half * self.tan_half * self.aspect;
+        Some((Vec2::new(fx, fy), cos, 1.0 / (area * cos * cos * cos)))
+    }
+
     /// The ray through image position `film` (pixels, y down), lens sample
     /// `lens` and time sample `u_time`.
     pub fn ray(&self, film: Vec2, lens: Vec2, u_time: f32) -> Ray {

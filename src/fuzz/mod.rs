@@ -70,7 +70,7 @@ pub fn scene(bytes: &[u8]) -> bool {
     let Some(ir) = compiled.ir else {
         return parsed;
     };
-    let integrator = crate::integrator::make(ir.settings.integrator);
+    let integrator = crate::integrator::make(ir.settings.integrator, &ir);
     let cancel = AtomicBool::new(false);
     let film =
         crate::render::render(&ir, integrator.as_ref(), &cancel, &|_| {}, &mut |_, _| {}).film;

@@ -2,6 +2,7 @@
 //! The pixel loop (`render`) is theirs to share. Shared pieces live here: the
 //! direct-lighting estimate used by `path` (with MIS) and `whitted`.
 
+pub mod bdpt;
 pub mod debug;
 pub mod hybrid;
 pub mod path;
@@ -33,11 +34,45 @@ pub trait Integrator: Sync {
     fn li_from(&self, scene: &Scene, ray: Ray, _first: Option<Hit>, sampler: &mut Sampler) -> Vec3 {
         self.li(scene, ray, sampler)
     }
+
+    /// Whether a sample also adds light to other pixels than its own
+    /// ([`Integrator::li_splatting`]'s splats: light paths joined to the
+    /// camera).
+    fn splats(&self) -> bool {
+        false
+    }
+
+    /// [`Integrator::li`], with the light the sample adds to other pixels
+    /// pushed onto `splats`.
+    fn li_splatting(
+        &self,
+        scene: &Scene,
+        ray: Ray,
+        sampler: &mut Sampler,
+        _splats: &mut Vec<Splat>,
+    ) -> Vec3 {
+        self.li(scene, ray, sampler)
+    }
 }
 
-/// The integrator a scene asks for.
-pub fn make(kind: IntegratorKind) -> Box<dyn Integrator> {
+/// Light a sample adds to the pixel at image position `film` (pixels of
+/// the scene's image, y down), in the units of a pixel's mean times its
+/// samples per pixel: the image adds the splats' sum divided by the mean
+/// number of samples per pixel.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Splat {
+    /// Where on the image.
+    pub film: glam::Vec2,
+    /// How much.
+    pub value: Vec3,
+}
+
+/// The integrator a scene asks for (`bdpt` in a scene with media: the
+/// path integrator, which traces them).
+pub fn make(kind: IntegratorKind, scene: &Scene) -> Box<dyn Integrator> {
     match kind {
+        IntegratorKind::Bdpt if scene.volumetric => Box::new(path::PathIntegrator),
+        IntegratorKind::Bdpt => Box::new(bdpt::Bdpt::new(scene)),
         IntegratorKind::Path => Box::new(path::PathIntegrator),
         IntegratorKind::Whitted => Box::new(whitted::Whitted),
         IntegratorKind::Hybrid => Box::new(hybrid::Hybrid),

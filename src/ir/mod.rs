@@ -113,6 +113,9 @@ pub struct Scene {
     pub lights: Vec<Light>,
     /// How shadow rays choose among `lights`.
     pub light_sampler: LightSampler,
+    /// Each light's power, as light selection's `power` rule weighs it
+    /// (by index into `lights`): where light paths start.
+    pub light_powers: Vec<f64>,
     /// Background radiance.
     pub background: Vec3,
     /// Index of the environment light, if the background is not black.

@@ -13,6 +13,8 @@ pub use crate::sampling::sampler::SamplerKind;
 pub enum IntegratorKind {
     /// Unbiased path tracing with next-event estimation and MIS.
     Path,
+    /// Bidirectional path tracing: camera and light paths joined, with MIS.
+    Bdpt,
     /// Recursive ray tracing with shadow rays.
     Whitted,
     /// The paper's blend of Whitted and path tracing.
@@ -31,6 +33,7 @@ pub enum IntegratorKind {
 // editors' grammars follow.
 named_values!(IntegratorKind {
     "path" => Path,
+    "bdpt" => Bdpt,
     "whitted" => Whitted,
     "hybrid" => Hybrid,
     "normals" => Normals,

@@ -3,6 +3,7 @@
 //! which light a shadow ray goes to is [`selection`]'s choice.
 
 pub mod bounds;
+pub mod emission;
 pub mod environment;
 pub mod selection;
 pub mod sky;
@@ -86,6 +87,9 @@ pub struct LightSample {
     pub li: Vec3,
     /// Pdf in solid angle (not including the choice of the light); 0 for delta lights.
     pub pdf: f32,
+    /// The light's geometric normal at the point (an area light's; zero
+    /// for the others).
+    pub n: Vec3,
 }
 
 /// Luminance of linear sRGB.
@@ -302,7 +306,13 @@ impl Light {
                 }
                 let wi = to / dist;
                 let li = emitted(*prim, q, Vec2::ZERO, n, -wi);
-                (li != Vec3::ZERO).then_some(LightSample { wi, dist, li, pdf })
+                (li != Vec3::ZERO).then_some(LightSample {
+                    wi,
+                    dist,
+                    li,
+                    pdf,
+                    n,
+                })
             }
             Light::Area {
                 prim,
@@ -325,7 +335,13 @@ impl Light {
                     return None;
                 }
                 let pdf = d2 / (cos_l.abs() * area);
-                Some(LightSample { wi, dist, li, pdf })
+                Some(LightSample {
+                    wi,
+                    dist,
+                    li,
+                    pdf,
+                    n,
+                })
             }
             Light::Point {
                 position,
@@ -339,6 +355,7 @@ impl Light {
                     dist,
                     li: *intensity / d2,
                     pdf: 0.0,
+                    n: Vec3::ZERO,
                 })
             }
             Light::Spot {
@@ -358,6 +375,7 @@ impl Light {
                     dist,
                     li: *intensity * k / d2,
                     pdf: 0.0,
+                    n: Vec3::ZERO,
                 })
             }
             Light::Directional {
@@ -368,6 +386,7 @@ impl Light {
                 dist: f32::INFINITY,
                 li: *irradiance,
                 pdf: 0.0,
+                n: Vec3::ZERO,
             }),
             Light::Environment {
                 radiance,
@@ -379,6 +398,7 @@ impl Light {
                     dist: f32::INFINITY,
                     li: *radiance,
                     pdf: crate::sampling::warp::UNIFORM_SPHERE_PDF,
+                    n: Vec3::ZERO,
                 })
             }
             Light::Environment {
@@ -391,6 +411,7 @@ impl Light {
                     dist: f32::INFINITY,
                     li: *radiance * li,
                     pdf,
+                    n: Vec3::ZERO,
                 })
             }
             Light::Sky { sky } => {
@@ -400,6 +421,7 @@ impl Light {
                     dist: f32::INFINITY,
                     li,
                     pdf,
+                    n: Vec3::ZERO,
                 })
             }
         }

@@ -451,6 +451,7 @@ fn finish(
         area_lights,
         lights,
         light_sampler: LightSampler::default(),
+        light_powers: Vec::new(),
         background,
         env_light,
         bounds,
@@ -475,7 +476,10 @@ fn finish(
         .map(|(l, &e)| l.selectable(e, shutter))
         .collect();
     match LightSampler::new(ir.settings.light_selection, &selectable, &powers) {
-        Some(sampler) => ir.light_sampler = sampler,
+        Some(sampler) => {
+            ir.light_sampler = sampler;
+            ir.light_powers = powers;
+        }
         None => {
             // No light with power: none to sample, none to look up.
             ir.lights.clear();

@@ -29,6 +29,21 @@ pub struct Film {
     /// Adaptive sampling's half films and stopped pixels (`None`: every
     /// pixel samples to the end).
     pub halves: Option<Halves>,
+    /// The light that light paths joined to the camera brought (`None`:
+    /// the integrator traces none).
+    pub light: Option<LightFilm>,
+}
+
+/// The light of an integrator's splats ([`crate::integrator::Splat`]),
+/// per pixel: what the light paths of all pixels' samples brought to it.
+/// A pixel shows its samples' mean plus its splats' sum divided by the
+/// light paths traced per pixel.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LightFilm {
+    /// Sum of the splats per pixel, row-major.
+    pub sum: Vec<DVec3>,
+    /// Light paths traced, all pixels together (one per camera sample).
+    pub paths: u64,
 }
 
 /// What adaptive sampling keeps beside the sums, per pixel: the sum of its
@@ -53,6 +68,22 @@ impl Film {
             sum: vec![DVec3::ZERO; n],
             count: vec![0; n],
             halves: None,
+            light: None,
+        }
+    }
+
+    /// The film with an empty light film, for an integrator that splats:
+    /// its samples so far count as light paths traced, their splats folded
+    /// in the sums ([`Film::folded_sum`]).
+    pub fn with_light(self) -> Film {
+        let n = self.sum.len();
+        let paths = self.total_samples();
+        Film {
+            light: Some(LightFilm {
+                sum: vec![DVec3::ZERO; n],
+                paths,
+            }),
+            ..self
         }
     }
 
@@ -120,6 +151,7 @@ impl Film {
             count: vec![1; pixels.len()],
             sum: pixels.iter().map(Vec3::as_dvec3).collect(),
             halves: None,
+            light: None,
         }
     }
 
@@ -133,7 +165,30 @@ impl Film {
     /// 805 MB.
     #[inline]
     pub fn pixel(&self, i: usize) -> Vec3 {
-        (self.sum[i] / self.count[i].max(1) as f64).as_vec3()
+        let own = self.sum[i] / self.count[i].max(1) as f64;
+        match &self.light {
+            Some(l) if l.paths > 0 => {
+                let per_pixel = l.paths as f64 / self.sum.len() as f64;
+                (own + l.sum[i] / per_pixel).as_vec3()
+            }
+            _ => own.as_vec3(),
+        }
+    }
+
+    /// Pixel `i`'s sum with its splats folded in, as a state file keeps
+    /// it: the sum of samples whose mean is the pixel's value. A film read
+    /// back from it counts its light paths so far (one per sample) and
+    /// sums the splats that come after, so the pixel stays the same and
+    /// later splats are divided by all the light paths; exact where every
+    /// pixel has the same count (a finished pass).
+    pub fn folded_sum(&self, i: usize) -> DVec3 {
+        match &self.light {
+            Some(l) if l.paths > 0 => {
+                let per_pixel = l.paths as f64 / self.sum.len() as f64;
+                self.sum[i] + l.sum[i] * (self.count[i] as f64 / per_pixel)
+            }
+            _ => self.sum[i],
+        }
     }
 
     /// Samples in every pixel, the most in any pixel, and the mean.
@@ -162,6 +217,12 @@ impl Film {
         }
         for (n, o) in self.count.iter_mut().zip(&other.count) {
             *n = n.saturating_add(*o);
+        }
+        if let (Some(l), Some(o)) = (self.light.as_mut(), other.light.as_ref()) {
+            for (s, o) in l.sum.iter_mut().zip(&o.sum) {
+                *s += *o;
+            }
+            l.paths += o.paths;
         }
     }
 

@@ -15,8 +15,8 @@ pub mod state;
 
 use crate::accel::ray_count::{self, RayCounts};
 use crate::geometry::Ray;
-use crate::integrator::Integrator;
 use crate::integrator::T_MIN;
+use crate::integrator::{Integrator, Splat};
 use crate::ir::Scene;
 use crate::sampling::sampler::{PixelSampler, Sampler, BATCH};
 pub use adaptive::Progression;
@@ -215,9 +215,15 @@ fn render_view(
     on_pass: &mut dyn FnMut(&Film, u32),
 ) -> Rendered {
     debug_assert_eq!((film.width, film.height), (view.width, view.height));
+    if integrator.splats() && film.light.is_none() {
+        film = film.with_light();
+    }
     let done = AtomicU64::new(0);
     let mut rays = RayCounts::default();
-    let adaptive_sampling = (scene.settings.adaptive).filter(|_| film.halves.is_some());
+    // Splats land in any pixel: a pixel's own samples do not tell its
+    // error, so an integrator that splats samples every pixel to the end.
+    let adaptive_sampling =
+        (scene.settings.adaptive).filter(|_| film.halves.is_some() && !integrator.splats());
     // A resumed film skips the passes its every sampling pixel has done
     // (all of them when every pixel has stopped).
     let mut reached = film.least_active().unwrap_or(u32::MAX);
@@ -234,30 +240,17 @@ fn render_view(
     let packet_tiles: Vec<AtomicBool> = (0..tile_count).map(|_| AtomicBool::new(packets)).collect();
     while let Some(end) = next_end(reached, progression) {
         let started = std::time::Instant::now();
-        let first = film.first;
-        let (mut tiles, stopped) = tile_rows(&mut film);
-        let pass = TilePass {
+        let shared = PassShared {
             scene,
             integrator,
-            first,
-            end,
-            scale: view.scale as f32,
-            width: view.width,
-            stopped,
+            view: &view,
             packet_tiles: &packet_tiles,
             tiles_across,
             cancel,
+            progress,
+            done: &done,
         };
-        let results: Vec<(bool, RayCounts)> = tiles
-            .par_iter_mut()
-            .map(|tile| {
-                let rays_before = ray_count::this_thread();
-                let (samples, stopped) = render_tile(&pass, tile);
-                progress(done.fetch_add(samples, Ordering::Relaxed) + samples);
-                (stopped, ray_count::this_thread() - rays_before)
-            })
-            .collect();
-        drop(tiles);
+        let results = run_pass(&shared, &mut film, end);
         // A stopped pass keeps every sample done: each pixel counts its own.
         let stopped = results.iter().any(|t| t.0);
         for (_, tile_rays) in results {
@@ -288,6 +281,112 @@ fn render_view(
     }
 }
 
+/// What every pass of a render shares.
+struct PassShared<'a> {
+    scene: &'a Scene,
+    integrator: &'a dyn Integrator,
+    view: &'a View,
+    packet_tiles: &'a [AtomicBool],
+    tiles_across: u32,
+    cancel: &'a AtomicBool,
+    progress: &'a (dyn Fn(u64) + Sync),
+    done: &'a AtomicU64,
+}
+
+/// Splats a step of a splatting pass may hold at once, about: the pass
+/// goes in steps of fewer samples per pixel, and of fewer tiles, so that
+/// their splats (a few per sample, 20 bytes each) stay near 64 MB.
+const SPLAT_STEP_SAMPLES: u64 = 1 << 20;
+
+/// Brings every pixel's samples to `end`: each tile's result (cancelled,
+/// rays traced). An integrator that splats goes in steps of samples and
+/// of tiles, its splats added to the light film in tile order after each
+/// step, so that the film is the same on any number of threads.
+fn run_pass(shared: &PassShared, film: &mut Film, end: u32) -> Vec<(bool, RayCounts)> {
+    let first = film.first;
+    let mut light = film.light.take();
+    let (mut tiles, stopped) = tile_rows(film);
+    let pixels = shared.view.width as u64 * shared.view.height as u64;
+    let (step_samples, step_tiles) = match light {
+        Some(_) => {
+            let per_pixel = (SPLAT_STEP_SAMPLES / pixels.max(1)).max(1);
+            let tiles = SPLAT_STEP_SAMPLES / (per_pixel * (TILE * TILE) as u64);
+            (per_pixel.min(u32::MAX as u64) as u32, tiles.max(1) as usize)
+        }
+        None => (u32::MAX, usize::MAX),
+    };
+    let least = tiles
+        .iter()
+        .flat_map(|t| t.counts.iter().flat_map(|r| r.iter().copied()))
+        .min()
+        .unwrap_or(end);
+    let mut results: Vec<(bool, RayCounts)> = Vec::new();
+    let mut step_end = end.min(least.saturating_add(step_samples));
+    loop {
+        results.clear();
+        let pass = TilePass {
+            scene: shared.scene,
+            integrator: shared.integrator,
+            first,
+            end: step_end,
+            scale: shared.view.scale as f32,
+            width: shared.view.width,
+            stopped,
+            packet_tiles: shared.packet_tiles,
+            tiles_across: shared.tiles_across,
+            cancel: shared.cancel,
+        };
+        for group in tiles.chunks_mut(step_tiles) {
+            let done: Vec<(bool, RayCounts, u64, Vec<Splat>)> = group
+                .par_iter_mut()
+                .map(|tile| {
+                    let rays_before = ray_count::this_thread();
+                    let mut splats = Vec::new();
+                    let (samples, stopped) = render_tile(&pass, tile, &mut splats);
+                    (shared.progress)(shared.done.fetch_add(samples, Ordering::Relaxed) + samples);
+                    (
+                        stopped,
+                        ray_count::this_thread() - rays_before,
+                        samples,
+                        splats,
+                    )
+                })
+                .collect();
+            for (stopped, rays, samples, splats) in done {
+                if let Some(light) = light.as_mut() {
+                    add_splats(light, shared.view, &splats);
+                    light.paths += samples;
+                }
+                results.push((stopped, rays));
+            }
+            if results.iter().any(|r| r.0) {
+                break;
+            }
+        }
+        if step_end >= end || results.iter().any(|r| r.0) {
+            break;
+        }
+        step_end = end.min(step_end.saturating_add(step_samples));
+    }
+    drop(tiles);
+    film.light = light;
+    results
+}
+
+/// Adds a tile's splats to the light film, in order.
+fn add_splats(light: &mut film::LightFilm, view: &View, splats: &[Splat]) {
+    let scale = view.scale as f32;
+    for splat in splats {
+        let p = splat.film / scale;
+        let (x, y) = (p.x.floor(), p.y.floor());
+        if x < 0.0 || y < 0.0 || x >= view.width as f32 || y >= view.height as f32 {
+            continue;
+        }
+        let i = y as usize * view.width as usize + x as usize;
+        light.sum[i] += limit_sample(splat.value).as_dvec3();
+    }
+}
+
 /// What the tiles of a pass share.
 struct TilePass<'a> {
     scene: &'a Scene,
@@ -313,7 +412,7 @@ struct TilePass<'a> {
 
 /// Brings a tile's pixels to the pass's end, or stops when the pass is
 /// cancelled: the samples drawn, and whether it was cancelled.
-fn render_tile(pass: &TilePass, tile: &mut TileRows) -> (u64, bool) {
+fn render_tile(pass: &TilePass, tile: &mut TileRows, splats: &mut Vec<Splat>) -> (u64, bool) {
     let (x0, y0) = tile.corner;
     let mut samples = 0u64;
     let mut pixel = pixel_sampler(pass.scene, x0, y0);
@@ -335,7 +434,7 @@ fn render_tile(pass: &TilePass, tile: &mut TileRows) -> (u64, bool) {
             pixel.move_to((x, y));
             let odd = odd_row.as_mut().map(|r| &mut r[col]);
             let run = (&mut pixel, &mut gauge);
-            *count = render_pixel(pass, run, (x, y), from, (sum, odd));
+            *count = render_pixel(pass, run, (x, y), from, (sum, odd), splats);
             samples += (*count - from) as u64;
             if *count < pass.end {
                 packets.store(gauge.on, Ordering::Relaxed);
@@ -397,6 +496,7 @@ fn render_pixel(
     (x, y): (u32, u32),
     from: u32,
     (sum, mut odd): (&mut DVec3, Option<&mut DVec3>),
+    splats: &mut Vec<Splat>,
 ) -> u32 {
     // Sample `s` of a pixel is the same wherever and whenever it is drawn:
     // what lets a render stop, continue, and split across machines.
@@ -425,10 +525,8 @@ fn render_pixel(
             }
             let mut sampler = pixel.sample(first + s);
             let ray = camera_ray(pass.scene, &mut sampler, (x, y), pass.scale);
-            add(
-                s,
-                limit_sample(pass.integrator.li(pass.scene, ray, &mut sampler)),
-            );
+            let l = (pass.integrator).li_splatting(pass.scene, ray, &mut sampler, splats);
+            add(s, limit_sample(l));
         }
         s = run_end;
     }

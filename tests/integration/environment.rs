@@ -12,7 +12,7 @@ use std::sync::atomic::AtomicBool;
 use std::sync::Arc;
 
 fn pixels(ir: &Scene) -> Vec<Vec3> {
-    let integ = integrator::make(ir.settings.integrator);
+    let integ = integrator::make(ir.settings.integrator, ir);
     render(
         ir,
         integ.as_ref(),

@@ -31,7 +31,7 @@ fn render_file(path: &Path, kind: IntegratorKind, size: Option<(u32, u32, u32)>)
     let c = compile_file(path, options).unwrap();
     let ir =
         c.ir.unwrap_or_else(|| panic!("{}", c.diagnostics.render_human(&c.sources, false)));
-    let integ = integrator::make(kind);
+    let integ = integrator::make(kind, &ir);
     let cancel = AtomicBool::new(false);
     render(&ir, integ.as_ref(), &cancel, &|_| {}, &mut |_, _| {}).film
 }

@@ -1,6 +1,7 @@
 //! The single integration-test binary (one link step for all of them).
 
 mod adaptive;
+mod bdpt;
 mod catalogue;
 mod cli;
 mod cutouts;
@@ -107,7 +108,7 @@ pub fn relative(path: &Path) -> PathBuf {
 
 /// The pixels of a compiled scene rendered on one thread.
 pub fn render_pixels(ir: &ptsc::ir::Scene) -> Vec<[f32; 3]> {
-    let integ = ptsc::integrator::make(ir.settings.integrator);
+    let integ = ptsc::integrator::make(ir.settings.integrator, ir);
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(1)
         .build()

@@ -216,7 +216,7 @@ fn hostile_media_give_finite_images() {
 fn media_renders_are_the_same_on_one_and_two_threads() {
     let text = std::fs::read_to_string(crate::root().join("tests/mitsuba/media_fog.pts")).unwrap();
     let ir = compiled(&text.replace("samples 64", "samples 8"));
-    let integ = ptsc::integrator::make(ir.settings.integrator);
+    let integ = ptsc::integrator::make(ir.settings.integrator, &ir);
     let cancel = std::sync::atomic::AtomicBool::new(false);
     let on = |threads| {
         let pool = rayon::ThreadPoolBuilder::new()
@@ -243,7 +243,7 @@ fn aovs_look_through_null_boundaries() {
          quad { corner <-2, -2, 0> edge1 <4, 0, 0> edge2 <0, 4, 0> material { diffuse rgb <0.8, 0.1, 0.1> } }
          box { min <-1, -1, 1> max <1, 1, 3> material { type none density 0.2 } }",
     );
-    let integ = ptsc::integrator::make(ir.settings.integrator);
+    let integ = ptsc::integrator::make(ir.settings.integrator, &ir);
     let cancel = std::sync::atomic::AtomicBool::new(false);
     let film = ptsc::render::render(&ir, integ.as_ref(), &cancel, &|_| {}, &mut |_, _| {}).film;
     use ptsc::render::aov::{render_aovs, Aov};

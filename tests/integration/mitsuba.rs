@@ -137,7 +137,7 @@ fn measure_once(name: &str, rule: Option<LightSelection>) -> Measured {
     let c = compile_file(&path, options).unwrap();
     let mut ir =
         c.ir.unwrap_or_else(|| panic!("{}", c.diagnostics.render_human(&c.sources, false)));
-    let integ = integrator::make(ir.settings.integrator);
+    let integ = integrator::make(ir.settings.integrator, &ir);
     let cancel = AtomicBool::new(false);
 
     let ref_sum = sum(&reference);
@@ -405,7 +405,7 @@ fn mitsuba_reference_normal_map_region() {
         let c = ptsc::compile::compile_str(&path, scene, options);
         let ir =
             c.ir.unwrap_or_else(|| panic!("{}", c.diagnostics.render_human(&c.sources, false)));
-        let integ = integrator::make(ir.settings.integrator);
+        let integ = integrator::make(ir.settings.integrator, &ir);
         let px = render(
             &ir,
             integ.as_ref(),
@@ -527,7 +527,7 @@ fn mitsuba_envmap_emitter_sampling_is_brighter_than_its_own_bsdf_sampling() {
     let c = compile_file(&dir.join("env_direct.pts"), Options::default()).unwrap();
     let mut ir = c.ir.unwrap();
     ir.settings.samples = 1024;
-    let integ = integrator::make(ir.settings.integrator);
+    let integ = integrator::make(ir.settings.integrator, &ir);
     let cancel = AtomicBool::new(false);
     let px = render(&ir, integ.as_ref(), &cancel, &|_| {}, &mut |_, _| {})
         .film

@@ -139,9 +139,9 @@ fn packets_change_no_pixel_of_a_render() {
     let cancel = AtomicBool::new(false);
     for size in [24, 96] {
         (ir.settings.width, ir.settings.height) = (size, size);
-        let path = ptsc::integrator::make(ir.settings.integrator);
+        let path = ptsc::integrator::make(ir.settings.integrator, &ir);
         assert!(path.takes_first_hit(&ir) && ir.traces_packets());
-        let alone = Alone(ptsc::integrator::make(ir.settings.integrator));
+        let alone = Alone(ptsc::integrator::make(ir.settings.integrator, &ir));
         let sums = |integ: &dyn Integrator| {
             render(&ir, integ, &cancel, &|_| {}, &mut |_, _| {})
                 .film

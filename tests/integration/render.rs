@@ -21,7 +21,7 @@ fn rendered_at(path: &Path, text: &str, threads: usize) -> Rendered {
     let c = compile_str(path, text, Options::default());
     let ir =
         c.ir.unwrap_or_else(|| panic!("{}", c.diagnostics.render_human(&c.sources, false)));
-    let integ = integrator::make(ir.settings.integrator);
+    let integ = integrator::make(ir.settings.integrator, &ir);
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(threads)
         .build()

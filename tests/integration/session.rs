@@ -406,7 +406,7 @@ fn a_slow_render_doubles_its_passes_from_the_first_sample() {
     let ends = |slow: bool| {
         let integrator = SlowStart {
             slow: std::sync::atomic::AtomicBool::new(slow),
-            path: ptsc::integrator::make(ir.settings.integrator),
+            path: ptsc::integrator::make(ir.settings.integrator, &ir),
         };
         let mut ends = Vec::new();
         let film = Film::for_settings(&ir.settings, 0);

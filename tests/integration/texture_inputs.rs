@@ -134,7 +134,7 @@ fn half_means(text: &str, light_sampling: bool) -> [Vec3; 2] {
     let mut ir =
         c.ir.unwrap_or_else(|| panic!("{}", c.diagnostics.render_human(&c.sources, false)));
     ir.settings.light_sampling = light_sampling;
-    let integ = integrator::make(ir.settings.integrator);
+    let integ = integrator::make(ir.settings.integrator, &ir);
     let px = ptsc::render::render(
         &ir,
         integ.as_ref(),

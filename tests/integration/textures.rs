@@ -108,7 +108,7 @@ fn a_textured_colour_is_evaluated_at_each_hit() {
 
 /// The mean of each quarter of a 16 × 16 image.
 fn quarters(ir: &Scene) -> [f32; 4] {
-    let integ = integrator::make(ir.settings.integrator);
+    let integ = integrator::make(ir.settings.integrator, ir);
     let film = ptsc::render::render(
         ir,
         integ.as_ref(),

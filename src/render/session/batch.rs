@@ -257,7 +257,7 @@ fn render_passes(
 ) -> Result<Passes, Error> {
     let s = &scene.settings;
     let target = batch.target();
-    let integrator = crate::integrator::make(s.integrator);
+    let integrator = crate::integrator::make(s.integrator, scene);
     let t1 = Instant::now();
     let mut write_error = None;
     let mut last_write = Instant::now();

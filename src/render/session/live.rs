@@ -79,7 +79,7 @@ pub(super) fn run(
     cancel: &Cancel,
 ) -> Report {
     let s = &scene.settings;
-    let integrator = crate::integrator::make(s.integrator);
+    let integrator = crate::integrator::make(s.integrator, scene);
     let (w, h) = (s.width, s.height);
     let t0 = Instant::now();
     let wants_preview = w >= 4 * PREVIEW_DIVISOR && h >= 4 * PREVIEW_DIVISOR;

@@ -104,7 +104,7 @@ fn write_state_encoded(
     let Some(halves) = &film.halves else {
         let channels = sums.with_pixel_fn(|p: Vec2<usize>| {
             let i = p.y() * w + p.x();
-            let s = film.sum[i];
+            let s = film.folded_sum(i);
             let ((bh, bl), (gh, gl), (rh, rl)) = (bits(s.z), bits(s.y), bits(s.x));
             (film.count[i], bh, bl, gh, gl, rh, rl)
         });
@@ -122,7 +122,7 @@ fn write_state_encoded(
         .with_channel(d6)
         .with_pixel_fn(|p: Vec2<usize>| {
             let i = p.y() * w + p.x();
-            let (s, o) = (film.sum[i], halves.odd[i]);
+            let (s, o) = (film.folded_sum(i), halves.odd[i]);
             let ((bh, bl), (gh, gl), (rh, rl)) = (bits(s.z), bits(s.y), bits(s.x));
             let ((obh, obl), (ogh, ogl), (orh, orl)) = (bits(o.z), bits(o.y), bits(o.x));
             let stopped = halves.stopped[i] as u32;

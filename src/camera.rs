@@ -74,8 +74,8 @@ impl Camera {
     /// solid angle with which rays spread evenly over the image take that
     /// direction, 1 / (A cos³θ) with A the image's area on the plane at
     /// distance 1 (pbrt-v4 §5.4.1, `PDF_We`). `None` behind the camera,
-    /// outside the image, for a lens (light paths do not reach a thin
-    /// lens here) and with an open shutter (the ray's time is the path's).
+    /// outside the image, and for a lens (light paths do not reach a thin
+    /// lens here).
     pub fn project(&self, p: Vec3) -> Option<(Vec2, f32, f32)> {
         if self.lens_radius > 0.0 {
             return None;
@@ -111,5 +111,38 @@ impl Camera {
         let d = self.lens_radius * concentric_disk(lens);
         let origin = self.position + d.x * self.right + d.y * self.up;
         Ray::new(origin, (focus_point - origin).normalize(), time)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_point_projects_to_where_its_ray_leaves_and_the_density_covers_the_image() {
+        let frame = [Vec3::new(0.0, 0.0, 4.0), -Vec3::Z, Vec3::X, Vec3::Y];
+        let camera = Camera::new(frame, 0.8, (0.0, 1.0), (0.0, 0.0), (64, 48));
+        let mut rng = crate::light::test_rng(3);
+        let mut integral = 0.0f64;
+        let k = 200_000;
+        for _ in 0..k {
+            let film = Vec2::new(rng() * 64.0, rng() * 48.0);
+            let ray = camera.ray(film, Vec2::ZERO, 0.0);
+            let (back, _, _) = camera.project(ray.o + ray.d * 3.0).unwrap();
+            assert!((back - film).length() < 1e-3, "{back} vs {film}");
+            // Directions drawn uniformly on the sphere: the density
+            // integrates to 1 over the directions the image covers.
+            let d = crate::sampling::warp::uniform_sphere(Vec2::new(rng(), rng()));
+            if let Some((_, _, pdf)) = camera.project(camera.position() + d) {
+                integral += (pdf / crate::sampling::warp::UNIFORM_SPHERE_PDF) as f64;
+            }
+        }
+        let integral = integral / k as f64;
+        assert!((integral - 1.0).abs() < 0.02, "{integral}");
+        let lens = Camera::new(frame, 0.8, (0.1, 4.0), (0.0, 0.0), (64, 48));
+        assert!(
+            lens.project(Vec3::ZERO).is_none(),
+            "light paths skip a lens"
+        );
     }
 }

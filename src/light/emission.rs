@@ -237,3 +237,80 @@ impl EmissionSelection {
         self.pmf.get(light as usize).copied().unwrap_or(0.0)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn emission_carries_each_light_s_power_and_states_its_own_densities() {
+        // A one-sided quad of radiance 2 and area 0.5 sends π · 2 · 0.5;
+        // a point light of intensity 3 sends 4π · 3; a spot light of
+        // intensity 1 with a hard cone of cosine 0.5 sends 2π (1 − 0.5).
+        let quad = Shape::Quad {
+            p: Vec3::ZERO,
+            e1: Vec3::X,
+            e2: Vec3::new(0.0, 0.0, 0.5),
+            swapped: false,
+        };
+        let n_quad = quad.sample_area(Vec2::splat(0.5)).1;
+        let lights = [
+            (Light::area(0, quad, Vec3::ZERO), PI * 2.0 * 0.5),
+            (
+                Light::Point {
+                    position: Vec3::ONE,
+                    intensity: Vec3::splat(3.0),
+                },
+                4.0 * PI * 3.0,
+            ),
+            (
+                Light::Spot {
+                    position: Vec3::ZERO,
+                    direction: Vec3::Y,
+                    intensity: Vec3::ONE,
+                    cos_total: 0.5,
+                    cos_hotspot: 0.5,
+                },
+                2.0 * PI * 0.5,
+            ),
+        ];
+        let emitted = |_, _, _, n: Vec3, w: Vec3| {
+            if w.dot(n) > 0.0 {
+                Vec3::splat(2.0)
+            } else {
+                Vec3::ZERO
+            }
+        };
+        let mut rng = crate::light::test_rng(7);
+        for (light, power) in lights {
+            let k = 200_000;
+            let mut sum = 0.0f64;
+            for _ in 0..k {
+                let u = [rng(), rng(), rng(), rng()];
+                let u_pos = Vec2::new(u[0], u[1]);
+                let u_dir = Vec2::new(u[2], u[3]);
+                let Some(e) = light.sample_emission(emitted, 0.0, u_pos, u_dir) else {
+                    continue;
+                };
+                let cos = if e.n == Vec3::ZERO {
+                    1.0
+                } else {
+                    e.n.dot(e.dir).abs()
+                };
+                sum += (e.le.x * cos / (e.pdf_pos * e.pdf_dir)) as f64;
+                let (pos, dir) = light.emission_pdfs(n_quad, e.dir, false);
+                assert!((pos - e.pdf_pos).abs() < 1e-5 * pos.max(1.0));
+                assert!(
+                    (dir - e.pdf_dir).abs() < 1e-4 * dir.max(1.0),
+                    "{dir} vs {}",
+                    e.pdf_dir
+                );
+            }
+            let estimate = sum / k as f64;
+            assert!(
+                (estimate / power as f64 - 1.0).abs() < 0.01,
+                "{estimate} vs {power}"
+            );
+        }
+    }
+}

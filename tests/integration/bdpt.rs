@@ -148,3 +148,38 @@ sphere { center <0.4, -0.65, 0.3> radius 0.33 material glass }
         "light paths reach the camera"
     );
 }
+
+#[test]
+fn a_bdpt_render_resumed_from_its_state_equals_one_rendered_at_once() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = dir.path().join("box.pts");
+    let text = cornell(
+        r#"
+material lamp { diffuse rgb 0 emission rgb 12 }
+quad { corner <-0.25, 0.99, -0.25> edge1 <0.5, 0, 0> edge2 <0, 0, 0.5> material lamp }
+material glass { transmission 1 ior 1.5 }
+sphere { center <0.4, -0.65, 0.3> radius 0.33 material glass }
+"#,
+        8,
+    )
+    .replace("INTEGRATOR", "bdpt");
+    std::fs::write(&scene, text).unwrap();
+    let (scene, resumed, once) = (
+        scene.to_str().unwrap(),
+        dir.path().join("resumed.pfm"),
+        dir.path().join("once.pfm"),
+    );
+    let (resumed, once) = (resumed.to_str().unwrap(), once.to_str().unwrap());
+    let run = |args: &[&str]| {
+        let (code, _, err) = crate::ptsc(args);
+        assert_eq!(code, 0, "{err}");
+    };
+    run(&["render", scene, "-o", resumed, "--keep-state"]);
+    run(&["render", scene, "-o", resumed, "--spp", "16", "--resume"]);
+    run(&["render", scene, "-o", once, "--spp", "16"]);
+    // The splats of the first 8 samples live folded in the state's sums.
+    assert_eq!(
+        std::fs::read(resumed).unwrap(),
+        std::fs::read(once).unwrap()
+    );
+}

@@ -67,12 +67,15 @@ pub struct Splat {
     pub value: Vec3,
 }
 
-/// The integrator a scene asks for (`bdpt` in a scene with media: the
+/// The integrator a scene asks for (`bdpt` or `ptlt` in a scene with media: the
 /// path integrator, which traces them).
 pub fn make(kind: IntegratorKind, scene: &Scene) -> Box<dyn Integrator> {
     match kind {
-        IntegratorKind::Bdpt if scene.volumetric => Box::new(path::PathIntegrator),
-        IntegratorKind::Bdpt => Box::new(bdpt::Bdpt::new(scene)),
+        IntegratorKind::Bdpt | IntegratorKind::Ptlt if scene.volumetric => {
+            Box::new(path::PathIntegrator)
+        }
+        IntegratorKind::Bdpt => Box::new(bdpt::Bdpt::new(scene, true)),
+        IntegratorKind::Ptlt => Box::new(bdpt::Bdpt::new(scene, false)),
         IntegratorKind::Path => Box::new(path::PathIntegrator),
         IntegratorKind::Whitted => Box::new(whitted::Whitted),
         IntegratorKind::Hybrid => Box::new(hybrid::Hybrid),

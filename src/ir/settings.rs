@@ -15,6 +15,9 @@ pub enum IntegratorKind {
     Path,
     /// Bidirectional path tracing: camera and light paths joined, with MIS.
     Bdpt,
+    /// Path tracing and light tracing combined by MIS: `bdpt` without its
+    /// inner joins.
+    Ptlt,
     /// Recursive ray tracing with shadow rays.
     Whitted,
     /// The paper's blend of Whitted and path tracing.
@@ -34,6 +37,7 @@ pub enum IntegratorKind {
 named_values!(IntegratorKind {
     "path" => Path,
     "bdpt" => Bdpt,
+    "ptlt" => Ptlt,
     "whitted" => Whitted,
     "hybrid" => Hybrid,
     "normals" => Normals,

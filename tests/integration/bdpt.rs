@@ -129,7 +129,7 @@ sphere { center <-0.3, -0.4, 0> radius 0.6 material ball }
 }
 
 #[test]
-fn bdpt_gives_the_same_image_on_one_and_two_threads() {
+fn bdpt_and_ptlt_give_the_same_image_on_one_and_two_threads() {
     let scene = cornell(
         r#"
 material lamp { diffuse rgb 0 emission rgb 12 }

@@ -36,6 +36,8 @@ pub struct PathDensities {
     pub hittable: bool,
     /// Whether light paths connect to the camera (a pinhole).
     pub camera_connects: bool,
+    /// Whether inner connections (s ≥ 2 and t ≥ 2) are strategies.
+    pub inner: bool,
 }
 
 /// Zero (a delta's density) counts as 1: deltas cancel in the ratios.
@@ -49,6 +51,16 @@ fn remap0(p: f32) -> f32 {
 }
 
 impl PathDensities {
+    /// Room for paths of up to `n` vertices (no allocation per strategy).
+    pub fn with_capacity(n: usize) -> PathDensities {
+        PathDensities {
+            from_camera: Vec::with_capacity(n),
+            from_light: Vec::with_capacity(n),
+            delta: Vec::with_capacity(n),
+            ..Default::default()
+        }
+    }
+
     /// Clears it for a path of `n` vertices.
     pub fn reset(&mut self, n: usize) {
         self.from_camera.clear();
@@ -68,7 +80,7 @@ impl PathDensities {
     fn valid(&self, s: usize) -> bool {
         let k = self.k();
         let t = k + 1 - s;
-        if t == 0 || (s == 1 && t == 1) {
+        if t == 0 || (s == 1 && t == 1) || (!self.inner && s >= 2 && t >= 2) {
             return false;
         }
         let light_side_ok = match s {
@@ -150,6 +162,7 @@ mod tests {
         d.emission = if rng() < 0.8 { 0.1 + 4.0 * rng() } else { 0.0 };
         d.hittable = rng() < 0.8;
         d.camera_connects = rng() < 0.8;
+        d.inner = rng() < 0.7;
         d
     }
 
@@ -177,6 +190,7 @@ mod tests {
         d.emission = 11.0;
         d.hittable = true;
         d.camera_connects = true;
+        d.inner = true;
         let p = [2.0f32 * 3.0, 2.0 * 7.0, 11.0 * 5.0];
         let sq: f32 = p.iter().map(|x| x * x).sum();
         for (s, p) in p.iter().enumerate() {

@@ -30,15 +30,19 @@ use walk::{to_area, Role, Vertex};
 pub struct Bdpt {
     /// Where light paths start (`None`: no light starts one).
     emission: Option<EmissionSelection>,
+    /// Whether camera and light paths are also joined between their inner
+    /// vertices (`bdpt`), or only to the camera and to the lights (`ptlt`).
+    inner: bool,
 }
 
 impl Bdpt {
-    /// The integrator for `scene`: its lights' emission chosen by power.
-    pub fn new(scene: &Scene) -> Bdpt {
+    /// The integrator for `scene`: its lights' emission chosen by power;
+    /// `inner`: whether inner vertices are joined too (see [`Bdpt`]).
+    pub fn new(scene: &Scene, inner: bool) -> Bdpt {
         let emission = (scene.light_powers.len() == scene.lights.len())
             .then(|| EmissionSelection::new(&scene.lights, &scene.light_powers))
             .flatten();
-        Bdpt { emission }
+        Bdpt { emission, inner }
     }
 }
 
@@ -69,14 +73,25 @@ impl Integrator for Bdpt {
         if let Some(emission) = &self.emission {
             walk::light_path(scene, emission, ray.time, max_depth, &mut light, sampler);
         }
-        let joins = Joins {
+        let mut joins = Joins {
             scene,
             emission: self.emission.as_ref(),
             camera: &camera,
             light: &light,
             time: ray.time,
+            light_end: None,
+            inner: self.inner,
         };
-        let mut densities = PathDensities::default();
+        if let (Some(Role::Light { light: index }), Some(second)) =
+            (light.first().map(|v| v.role), light.get(1))
+        {
+            let end = joins.light_end(index, second, (light[0].p, light[0].n_geo));
+            joins.light_end = Some(LightEnd {
+                emission: light[0].from_light,
+                ..end
+            });
+        }
+        let mut densities = PathDensities::with_capacity(2 * max_depth + 2);
         let mut radiance = Vec3::ZERO;
         for t in 1..=camera.len() {
             for s in 0..=light.len().max(1) {
@@ -92,7 +107,8 @@ impl Integrator for Bdpt {
                         Vec3::ZERO
                     }
                     (1, _) => joins.next_event(t, d, sampler),
-                    _ => joins.connect(s, t, d),
+                    _ if self.inner => joins.connect(s, t, d),
+                    _ => Vec3::ZERO,
                 };
                 if l.is_finite() {
                     radiance += l;
@@ -110,6 +126,28 @@ struct Joins<'a, 's> {
     camera: &'a [Vertex<'s>],
     light: &'a [Vertex<'s>],
     time: f32,
+    /// The light path's end seen from its second vertex (`None` for a
+    /// light path of fewer than two vertices).
+    light_end: Option<LightEnd>,
+    /// Whether inner vertices are joined.
+    inner: bool,
+}
+
+/// What a path's light end is to the MIS weights.
+#[derive(Debug, Clone, Copy)]
+struct LightEnd {
+    hittable: bool,
+    nee: f32,
+    emission: f32,
+}
+
+impl LightEnd {
+    /// Sets `d`'s light-end densities.
+    fn apply(self, d: &mut PathDensities) {
+        d.hittable = self.hittable;
+        d.nee = self.nee;
+        d.emission = self.emission;
+    }
 }
 
 impl Joins<'_, '_> {
@@ -125,24 +163,17 @@ impl Joins<'_, '_> {
             d.delta[i] = v.delta;
         }
         d.camera_connects = !self.scene.camera.uses_lens();
+        d.inner = self.inner;
     }
 
     /// What the light at the path's end is to the other strategies: its
     /// next-event density seen from `from`, its emission density, and
     /// whether rays can hit it.
-    fn endpoint(
-        &self,
-        light: u32,
-        from: &Vertex,
-        at: (glam::Vec3, glam::Vec3),
-        d: &mut PathDensities,
-    ) {
+    fn light_end(&self, light: u32, from: &Vertex, (p, n): (Vec3, Vec3)) -> LightEnd {
         let scene = self.scene;
         let l = &scene.lights[light as usize];
-        let (p, n) = at;
         let pick = scene.light_sampler.pmf(from.p, from.n_shading, light);
-        d.hittable = !l.is_delta();
-        d.nee = match l {
+        let nee = match l {
             Light::Environment { .. } | Light::Sky { .. } => pick * l.direction_pdf(p),
             _ if l.is_delta() => pick,
             _ => {
@@ -150,10 +181,32 @@ impl Joins<'_, '_> {
                 to_area(pick * l.pdf_towards(from.p, dir, p, n), from.p, p, n)
             }
         };
-        d.emission = match (self.emission, l.starts_paths()) {
+        let emission = match (self.emission, l.starts_paths()) {
             (Some(e), true) => e.pmf(light) * l.emission_pdfs(n, Vec3::Z, false).0,
             _ => 0.0,
         };
+        LightEnd {
+            hittable: !l.is_delta(),
+            nee,
+            emission,
+        }
+    }
+
+    /// [`Joins::light_end`] into `d`.
+    fn endpoint(&self, light: u32, from: &Vertex, at: (Vec3, Vec3), d: &mut PathDensities) {
+        self.light_end(light, from, at).apply(d);
+    }
+
+    /// The light path's end as the joins with it see it (the same for
+    /// every join of a sample: found once).
+    fn light_path_end(&self, d: &mut PathDensities) -> bool {
+        match self.light_end {
+            Some(end) => {
+                end.apply(d);
+                true
+            }
+            None => false,
+        }
     }
 
     /// The density with which light `light` (at `p`, normal `n`) emits
@@ -245,12 +298,9 @@ impl Joins<'_, '_> {
             d.from_camera[2] = to_area(pdf_back, y.p, next.p, next.n_geo);
         }
         d.delta[1] = false;
-        let Role::Light { light } = self.light[0].role else {
+        if !self.light_path_end(d) {
             return;
-        };
-        let lv = &self.light[0];
-        self.endpoint(light, &self.light[1], (lv.p, lv.n_geo), d);
-        d.emission = lv.from_light;
+        }
         let w = d.weight(s);
         if w > 0.0 {
             splats.push(Splat {
@@ -358,12 +408,9 @@ impl Joins<'_, '_> {
         }
         d.delta[t - 1] = false;
         d.delta[t] = false;
-        let Role::Light { light } = self.light[0].role else {
+        if !self.light_path_end(d) {
             return Vec3::ZERO;
-        };
-        let lv = &self.light[0];
-        self.endpoint(light, &self.light[1], (lv.p, lv.n_geo), d);
-        d.emission = lv.from_light;
+        }
         value * d.weight(s)
     }
 }

@@ -10,6 +10,7 @@ relMSE: mean over pixels and channels of (x - r)^2 / (r^2 + 0.01).
 
     python3 scripts/equal_time.py PTSC PTSC_DENOISE [--res 256] [--ref-spp 4096]
         [--scenes cornell,mesh,spheres] [--noise 0.01] [--seeds 3]
+        [--integrators ptlt,bdpt]
 
 PTSC_DENOISE runs with LD_LIBRARY_PATH set to target/oidn/lib; "-" leaves the
 denoised column out. Needs numpy and
@@ -69,6 +70,8 @@ def main():
     p.add_argument("--noise", default="0.01")
     p.add_argument("--seeds", type=int, default=3)
     p.add_argument("--work", help="folder for the files (references kept there are reused)")
+    p.add_argument("--integrators", default="",
+                   help="comma-separated integrators (e.g. ptlt,bdpt) also run uniformly")
     a = p.parse_args()
     tmp = Path(a.work) if a.work else Path(tempfile.mkdtemp())
     tmp.mkdir(parents=True, exist_ok=True)
@@ -88,7 +91,8 @@ def main():
             ("sobol", a.ptsc, [], None),
             (f"sobol + --noise {a.noise}", a.ptsc, ["--noise", a.noise], None),
             ("sobol + --denoise", a.ptsc_denoise, ["--denoise"], oidn),
-        ]
+        ] + [(f"sobol, {i}", a.ptsc, ["--integrator", i], None)
+             for i in a.integrators.split(",") if i]
         for name, binary, extra, env in [r for r in runs if r[1] != "-"]:
             errs, spps = [], []
             for seed in range(a.seeds):

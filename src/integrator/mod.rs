@@ -142,6 +142,19 @@ pub fn continue_path(
     sampler: &mut Sampler,
 ) -> Option<crate::material::BsdfSample> {
     sampler.start(bounce, crate::sampling::sampler::Draws::Bsdf);
+    continue_path_drawing(hit, material, wo, sampler)
+}
+
+/// [`continue_path`] drawing the sampler's next numbers, wherever they
+/// point (a light path's: the PCG stream, so that it shares no slot with
+/// its sample's camera path).
+#[inline(always)]
+pub fn continue_path_drawing(
+    hit: &Hit,
+    material: &Material,
+    wo: Vec3,
+    sampler: &mut Sampler,
+) -> Option<crate::material::BsdfSample> {
     let bs = material.sample(wo, hit.n_shading, sampler.next_f32(), sampler.next_2d())?;
     let usable = bs.weight.is_finite()
         && bs.weight != Vec3::ZERO

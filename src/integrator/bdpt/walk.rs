@@ -10,7 +10,6 @@ use crate::light::emission::EmissionSelection;
 use crate::material::Material;
 use crate::sampling::sampler::{Draws, Sampler};
 use glam::Vec3;
-use std::borrow::Cow;
 
 /// What a vertex is.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -30,7 +29,7 @@ pub enum Role {
 
 /// One vertex of a subpath.
 #[derive(Debug, Clone)]
-pub struct Vertex<'s> {
+pub struct Vertex {
     /// What it is.
     pub role: Role,
     /// Where it is (for the background: the direction the path left in).
@@ -42,7 +41,9 @@ pub struct Vertex<'s> {
     /// The surface hit (surfaces only).
     pub hit: Option<Hit>,
     /// The material there (surfaces only).
-    pub material: Option<Cow<'s, Material>>,
+    pub material: Option<MaterialAt>,
+    /// Whether the material has a non-delta lobe (joins can be made here).
+    pub smooth: bool,
     /// Unit direction towards the subpath's previous vertex.
     pub wo: Vec3,
     /// The subpath's throughput up to and including arriving here.
@@ -55,12 +56,31 @@ pub struct Vertex<'s> {
     pub delta: bool,
 }
 
-impl Vertex<'_> {
+/// A surface vertex's material: the scene's (found again from the hit),
+/// or one its textures made for the hit (boxed: a vertex stays small).
+#[derive(Debug, Clone)]
+pub enum MaterialAt {
+    /// The scene's material of the hit's primitive.
+    Scene,
+    /// Made for the hit by its textures.
+    Made(Box<Material>),
+}
+
+impl Vertex {
+    /// The material of a surface vertex.
+    pub fn material<'a>(&'a self, scene: &'a Scene) -> Option<&'a Material> {
+        match (&self.material, &self.hit) {
+            (Some(MaterialAt::Made(m)), _) => Some(m),
+            (Some(MaterialAt::Scene), Some(hit)) => Some(scene.material_of_hit(hit)),
+            _ => None,
+        }
+    }
+
     /// Whether a connection can be made at it (a surface with a non-delta
     /// lobe).
     pub fn connectible(&self) -> bool {
         match self.role {
-            Role::Surface => self.material.as_ref().is_some_and(|m| m.has_smooth_lobe()),
+            Role::Surface => self.smooth,
             Role::Light { .. } | Role::Camera => true,
             Role::Background => false,
         }
@@ -70,8 +90,8 @@ impl Vertex<'_> {
     /// towards `wo`, as the camera's side sees it (radiance) or the
     /// light's (importance, with the shading-normal correction of Veach
     /// 1997 §5.3), and the densities of sampling `wi` from `wo` and back.
-    pub fn f(&self, wo: Vec3, wi: Vec3, importance: bool) -> (Vec3, f32, f32) {
-        let (Some(m), Some(hit)) = (&self.material, &self.hit) else {
+    pub fn f(&self, scene: &Scene, wo: Vec3, wi: Vec3, importance: bool) -> (Vec3, f32, f32) {
+        let (Some(m), Some(hit)) = (self.material(scene), &self.hit) else {
             return (Vec3::ZERO, 0.0, 0.0);
         };
         if crate::integrator::crosses_surface(hit, wo, wi) {
@@ -132,13 +152,13 @@ enum Side {
 /// vertices until `max_vertices`, a miss, a surface that does not scatter
 /// or Russian roulette. `bounce` numbers the first hit's draws.
 #[allow(clippy::too_many_arguments)]
-fn walk<'s>(
-    scene: &'s Scene,
+fn walk(
+    scene: &Scene,
     mut ray: Ray,
     mut beta: Vec3,
     mut pdf: f32,
     side: Side,
-    path: &mut Vec<Vertex<'s>>,
+    path: &mut Vec<Vertex>,
     max_vertices: usize,
     sampler: &mut Sampler,
 ) {
@@ -155,6 +175,7 @@ fn walk<'s>(
                     n_shading: Vec3::ZERO,
                     hit: None,
                     material: None,
+                    smooth: false,
                     wo: -ray.d,
                     beta,
                     from_camera: pdf,
@@ -169,9 +190,10 @@ fn walk<'s>(
         // bend its shading normal); a plain one is the scene's.
         let mut slot = None;
         let _ = scene.material_at(&mut hit, wo, ray.time, &mut slot);
-        let material: Cow<'s, Material> = match slot {
-            Some(m) => Cow::Owned(m),
-            None => Cow::Borrowed(scene.material_of_hit(&hit)),
+        let made = slot.map(Box::new);
+        let material: &Material = match &made {
+            Some(m) => m,
+            None => scene.material_of_hit(&hit),
         };
         // Leaving a surface with a medium inside means the ray crossed it.
         if let Some(medium) = material.interior() {
@@ -185,7 +207,11 @@ fn walk<'s>(
             Side::Camera => (density, 0.0),
             Side::Light => (0.0, density),
         };
-        let scatters = material.scatters();
+        let (scatters, smooth) = (material.scatters(), material.has_smooth_lobe());
+        let material = match made {
+            Some(m) => MaterialAt::Made(m),
+            None => MaterialAt::Scene,
+        };
         path.push(Vertex {
             role: Role::Surface,
             p: hit.p,
@@ -193,6 +219,7 @@ fn walk<'s>(
             n_shading: hit.n_shading,
             hit: Some(hit),
             material: Some(material),
+            smooth,
             wo,
             beta,
             from_camera,
@@ -205,8 +232,17 @@ fn walk<'s>(
         let bounce = segments - 1;
         let here = path.len() - 1;
         let v = &path[here];
-        let (m, hit) = (v.material.as_deref().unwrap(), v.hit.as_ref().unwrap());
-        let Some(bs) = crate::integrator::continue_path(hit, m, wo, bounce, sampler) else {
+        let (Some(m), Some(hit)) = (v.material(scene), v.hit.as_ref()) else {
+            return;
+        };
+        // The light path draws from the PCG stream alone: had it drawn its
+        // bounces' slots, its directions would repeat its camera path's,
+        // and the joins of two dependent subpaths would be biased.
+        let bs = match side {
+            Side::Camera => crate::integrator::continue_path(hit, m, wo, bounce, sampler),
+            Side::Light => crate::integrator::continue_path_drawing(hit, m, wo, sampler),
+        };
+        let Some(bs) = bs else {
             return;
         };
         let mut weight = bs.weight;
@@ -231,7 +267,10 @@ fn walk<'s>(
         pdf = if bs.delta { 0.0 } else { bs.pdf };
         if segments >= s.rr_depth {
             let q = beta.max_element().clamp(0.05, 0.95);
-            sampler.start(bounce, Draws::Roulette);
+            match side {
+                Side::Camera => sampler.start(bounce, Draws::Roulette),
+                Side::Light => sampler.pad(),
+            }
             if sampler.next_f32() >= q {
                 return;
             }
@@ -243,11 +282,11 @@ fn walk<'s>(
 
 /// The camera's subpath for `ray` (its first vertex the camera), at most
 /// `max_vertices` vertices.
-pub fn camera_path<'s>(
-    scene: &'s Scene,
+pub fn camera_path(
+    scene: &Scene,
     ray: Ray,
     max_vertices: usize,
-    path: &mut Vec<Vertex<'s>>,
+    path: &mut Vec<Vertex>,
     sampler: &mut Sampler,
 ) {
     path.clear();
@@ -263,6 +302,7 @@ pub fn camera_path<'s>(
         n_shading: Vec3::ZERO,
         hit: None,
         material: None,
+        smooth: false,
         wo: Vec3::ZERO,
         beta: Vec3::ONE,
         from_camera: 1.0,
@@ -284,12 +324,12 @@ pub fn camera_path<'s>(
 
 /// A light's subpath (its first vertex on the light), at most
 /// `max_vertices` vertices; empty when no light starts one.
-pub fn light_path<'s>(
-    scene: &'s Scene,
+pub fn light_path(
+    scene: &Scene,
     emission: &EmissionSelection,
     time: f32,
     max_vertices: usize,
-    path: &mut Vec<Vertex<'s>>,
+    path: &mut Vec<Vertex>,
     sampler: &mut Sampler,
 ) {
     path.clear();
@@ -311,6 +351,7 @@ pub fn light_path<'s>(
         n_shading: e.n,
         hit: None,
         material: None,
+        smooth: false,
         wo: Vec3::ZERO,
         beta: e.le / (pick * e.pdf_pos),
         from_camera: 0.0,

@@ -10,7 +10,7 @@ relMSE: mean over pixels and channels of (x - r)^2 / (r^2 + 0.01).
 
     python3 scripts/equal_time.py PTSC PTSC_DENOISE [--res 256] [--ref-spp 4096]
         [--scenes cornell,mesh,spheres] [--noise 0.01] [--seeds 3]
-        [--integrators ptlt,bdpt]
+        [--integrators ptlt,ptlt:0.05,ptlt:0.05:4,bdpt]
 
 PTSC_DENOISE runs with LD_LIBRARY_PATH set to target/oidn/lib; "-" leaves the
 denoised column out. Needs numpy and
@@ -60,6 +60,17 @@ def ptsc(binary, scene, out, res, seconds, seed, extra, env=None):
     return spp.group(0), secs
 
 
+def integrator_run(entry, binary):
+    """A run of another integrator: "ptlt" uniformly, "ptlt:0.05" with --noise
+    0.05, "ptlt:0.05:4" also with --min-samples 4."""
+    name, noise, least = (entry.split(":") + ["", ""])[:3]
+    extra = ["--integrator", name] + (["--noise", noise] if noise else [])
+    extra += ["--min-samples", least] if least else []
+    label = f"sobol, {name}" + (f" + --noise {noise}" if noise else "")
+    label += f" --min-samples {least}" if least else ""
+    return (label, binary, extra, None)
+
+
 def main():
     p = argparse.ArgumentParser()
     p.add_argument("ptsc")
@@ -71,7 +82,8 @@ def main():
     p.add_argument("--seeds", type=int, default=3)
     p.add_argument("--work", help="folder for the files (references kept there are reused)")
     p.add_argument("--integrators", default="",
-                   help="comma-separated integrators (e.g. ptlt,bdpt) also run uniformly")
+                   help="comma-separated integrators also run, each uniformly (ptlt) "
+                        "or adaptively with a noise threshold (ptlt:0.05)")
     a = p.parse_args()
     tmp = Path(a.work) if a.work else Path(tempfile.mkdtemp())
     tmp.mkdir(parents=True, exist_ok=True)
@@ -91,8 +103,7 @@ def main():
             ("sobol", a.ptsc, [], None),
             (f"sobol + --noise {a.noise}", a.ptsc, ["--noise", a.noise], None),
             ("sobol + --denoise", a.ptsc_denoise, ["--denoise"], oidn),
-        ] + [(f"sobol, {i}", a.ptsc, ["--integrator", i], None)
-             for i in a.integrators.split(",") if i]
+        ] + [integrator_run(i, a.ptsc) for i in a.integrators.split(",") if i]
         for name, binary, extra, env in [r for r in runs if r[1] != "-"]:
             errs, spps = [], []
             for seed in range(a.seeds):

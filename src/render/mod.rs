@@ -220,10 +220,7 @@ fn render_view(
     }
     let done = AtomicU64::new(0);
     let mut rays = RayCounts::default();
-    // Splats land in any pixel: a pixel's own samples do not tell its
-    // error, so an integrator that splats samples every pixel to the end.
-    let adaptive_sampling =
-        (scene.settings.adaptive).filter(|_| film.halves.is_some() && !integrator.splats());
+    let adaptive_sampling = (scene.settings.adaptive).filter(|_| film.halves.is_some());
     // A resumed film skips the passes its every sampling pixel has done
     // (all of them when every pixel has stopped).
     let mut reached = film.least_active().unwrap_or(u32::MAX);

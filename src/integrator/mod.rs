@@ -67,6 +67,12 @@ pub struct Splat {
     pub value: Vec3,
 }
 
+/// Whether the integrator `kind` makes for `scene` splats (its film then
+/// keeps a light film: [`Integrator::splats`]).
+pub fn splats(kind: IntegratorKind, scene: &Scene) -> bool {
+    matches!(kind, IntegratorKind::Bdpt | IntegratorKind::Ptlt) && !scene.volumetric
+}
+
 /// The integrator a scene asks for (`bdpt` or `ptlt` in a scene with media: the
 /// path integrator, which traces them).
 pub fn make(kind: IntegratorKind, scene: &Scene) -> Box<dyn Integrator> {

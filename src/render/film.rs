@@ -72,9 +72,8 @@ impl Film {
         }
     }
 
-    /// The film with an empty light film, for an integrator that splats:
-    /// its samples so far count as light paths traced, their splats folded
-    /// in the sums ([`Film::folded_sum`]).
+    /// The film with an empty light film, for an integrator that splats
+    /// (its samples so far, if any, count as light paths traced).
     pub fn with_light(self) -> Film {
         let n = self.sum.len();
         let paths = self.total_samples();
@@ -172,22 +171,6 @@ impl Film {
                 (own + l.sum[i] / per_pixel).as_vec3()
             }
             _ => own.as_vec3(),
-        }
-    }
-
-    /// Pixel `i`'s sum with its splats folded in, as a state file keeps
-    /// it: the sum of samples whose mean is the pixel's value. A film read
-    /// back from it counts its light paths so far (one per sample) and
-    /// sums the splats that come after, so the pixel stays the same and
-    /// later splats are divided by all the light paths; exact where every
-    /// pixel has the same count (a finished pass).
-    pub fn folded_sum(&self, i: usize) -> DVec3 {
-        match &self.light {
-            Some(l) if l.paths > 0 => {
-                let per_pixel = l.paths as f64 / self.sum.len() as f64;
-                self.sum[i] + l.sum[i] * (self.count[i] as f64 / per_pixel)
-            }
-            _ => self.sum[i],
         }
     }
 

@@ -54,6 +54,16 @@ impl Need {
         }
     }
 
+    /// With the light film of an integrator that splats (`bdpt`, `ptlt`):
+    /// a sum per pixel, 24 bytes, if `light`.
+    pub fn with_light(self, light: bool) -> Need {
+        let pixels = self.size.0 as u64 * self.size.1 as u64;
+        Need {
+            film: self.film + if light { pixels * 24 } else { 0 },
+            ..self
+        }
+    }
+
     /// With AOVs of `channels` channels in all: per pixel the surface
     /// found (48 bytes), the colour copied for the writer (12) and each
     /// channel's plane twice (ours and the writer's, 4 bytes each).

@@ -149,8 +149,16 @@ sphere { center <0.4, -0.65, 0.3> radius 0.33 material glass }
     );
 }
 
+/// Renders `scene` to `out` with `args`, expecting success.
+fn run(scene: &str, out: &str, args: &[&str]) {
+    let mut all = vec!["render", scene, "-o", out];
+    all.extend_from_slice(args);
+    let (code, _, err) = crate::ptsc(&all);
+    assert_eq!(code, 0, "{err}");
+}
+
 #[test]
-fn a_bdpt_render_resumed_from_its_state_equals_one_rendered_at_once() {
+fn a_render_resumed_from_its_state_equals_one_rendered_at_once() {
     let dir = tempfile::tempdir().unwrap();
     let scene = dir.path().join("box.pts");
     let text = cornell(
@@ -161,25 +169,25 @@ material glass { transmission 1 ior 1.5 }
 sphere { center <0.4, -0.65, 0.3> radius 0.33 material glass }
 "#,
         8,
-    )
-    .replace("INTEGRATOR", "bdpt");
-    std::fs::write(&scene, text).unwrap();
-    let (scene, resumed, once) = (
-        scene.to_str().unwrap(),
-        dir.path().join("resumed.pfm"),
-        dir.path().join("once.pfm"),
     );
-    let (resumed, once) = (resumed.to_str().unwrap(), once.to_str().unwrap());
-    let run = |args: &[&str]| {
-        let (code, _, err) = crate::ptsc(args);
-        assert_eq!(code, 0, "{err}");
-    };
-    run(&["render", scene, "-o", resumed, "--keep-state"]);
-    run(&["render", scene, "-o", resumed, "--spp", "16", "--resume"]);
-    run(&["render", scene, "-o", once, "--spp", "16"]);
-    // The splats of the first 8 samples live folded in the state's sums.
-    assert_eq!(
-        std::fs::read(resumed).unwrap(),
-        std::fs::read(once).unwrap()
-    );
+    for (integrator, adaptive) in [
+        ("bdpt", &[][..]),
+        ("ptlt", &["--noise", "0.1", "--min-samples", "4"][..]),
+    ] {
+        std::fs::write(&scene, text.replace("INTEGRATOR", integrator)).unwrap();
+        let scene = scene.to_str().unwrap();
+        let resumed = dir.path().join(format!("{integrator}_resumed.pfm"));
+        let once = dir.path().join(format!("{integrator}_once.pfm"));
+        let (resumed, once) = (resumed.to_str().unwrap(), once.to_str().unwrap());
+        let with = |more: &[&'static str]| -> Vec<&'static str> { [adaptive, more].concat() };
+        run(scene, resumed, &with(&["--keep-state"]));
+        run(scene, resumed, &with(&["--spp", "24", "--resume"]));
+        run(scene, once, &with(&["--spp", "24", "--threads", "1"]));
+        // The state keeps the light film bit for bit, in its own part.
+        assert_eq!(
+            std::fs::read(resumed).unwrap(),
+            std::fs::read(once).unwrap(),
+            "{integrator}"
+        );
+    }
 }

@@ -77,7 +77,9 @@ pub(super) fn prepare(
     // The variance AOV is read from the half images: a whole render that
     // writes it keeps them (a pass writes no AOV).
     let halves = s.adaptive.is_some() || (aovs.contains(&Aov::Variance) && policy.pass.is_none());
+    let light = crate::integrator::splats(s.integrator, scene);
     let need = (Need::film((s.width, s.height)).with_halves(halves)).with_aovs(channels);
+    let need = need.with_light(light);
     memory::check(&need, memory_limit).map_err(Error::Refused)?;
     if let Some(pass) = policy.pass {
         if crate::output::ImageFormat::of(output) != Some(crate::output::ImageFormat::Exr) {
@@ -114,6 +116,9 @@ pub(super) fn prepare(
     };
     if halves {
         now = now.with_halves();
+    }
+    if light {
+        now = now.with_light();
     }
     let start = start::start(&state, &now, (s.width, s.height), &policy).map_err(Error::Refused)?;
     // Last: the viewer shows a new image only for a render that starts.

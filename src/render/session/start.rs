@@ -70,8 +70,12 @@ pub(super) fn start(
 ) -> Result<Start, String> {
     let new_film = || {
         let film = Film::new(width, height, now.pass.range(now.samples).start);
-        match now.keeps_halves() {
+        let film = match now.keeps_halves() {
             true => film.with_halves(),
+            false => film,
+        };
+        match now.keeps_light() {
+            true => film.with_light(),
             false => film,
         }
     };

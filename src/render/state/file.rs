@@ -4,6 +4,7 @@
 //! pixel is read.
 
 use super::info::StateInfo;
+use super::light;
 use crate::ir::settings::{MAX_PIXELS, MAX_SIDE};
 use crate::render::film::Film;
 use glam::DVec3;
@@ -36,7 +37,12 @@ fn channels_of(info: &StateInfo) -> Vec<&'static str> {
 /// Bytes a pixel takes in a state file: the image part's three float32,
 /// the state part's uint32 channels.
 fn bytes_per_pixel(info: &StateInfo) -> u64 {
-    12 + 4 * channels_of(info).len() as u64
+    let light = if info.keeps_light() {
+        light::LIGHT_BYTES_PER_PIXEL
+    } else {
+        0
+    };
+    12 + 4 * channels_of(info).len() as u64 + light
 }
 
 /// What takes the pixels a reader checked: (index, pixel).
@@ -69,6 +75,7 @@ fn write_state_encoded(
 ) -> std::io::Result<()> {
     use exr::prelude::*;
     debug_assert_eq!(film.halves.is_some(), info.keeps_halves());
+    debug_assert_eq!(film.light.is_some(), info.keeps_light());
     let (w, h) = (film.width as usize, film.height as usize);
     let size = Vec2(w, h);
     // Uncompressed, as the state: a state is written at checkpoints and
@@ -104,15 +111,19 @@ fn write_state_encoded(
     let Some(halves) = &film.halves else {
         let channels = sums.with_pixel_fn(|p: Vec2<usize>| {
             let i = p.y() * w + p.x();
-            let s = film.folded_sum(i);
+            let s = film.sum[i];
             let ((bh, bl), (gh, gl), (rh, rl)) = (bits(s.z), bits(s.y), bits(s.x));
             (film.count[i], bh, bl, gh, gl, rh, rl)
         });
         let state = Layer::new(size, attributes, encoding, channels);
-        return write_parts(
-            path,
-            &Image::empty(attrs).with_layer(image).with_layer(state),
-        );
+        let parts = Image::empty(attrs).with_layer(image).with_layer(state);
+        return match &film.light {
+            None => write_parts(path, &parts),
+            Some(l) => {
+                let parts = parts.with_layer(light::light_layer!(l, (w, h), encoding));
+                write_parts(path, &parts)
+            }
+        };
     };
     let [d0, d1, d2, d3, d4, d5, d6] = HALVES_CHANNELS;
     let channels = (sums.with_channel(d0).with_channel(d1).with_channel(d2))
@@ -122,7 +133,7 @@ fn write_state_encoded(
         .with_channel(d6)
         .with_pixel_fn(|p: Vec2<usize>| {
             let i = p.y() * w + p.x();
-            let (s, o) = (film.folded_sum(i), halves.odd[i]);
+            let (s, o) = (film.sum[i], halves.odd[i]);
             let ((bh, bl), (gh, gl), (rh, rl)) = (bits(s.z), bits(s.y), bits(s.x));
             let ((obh, obl), (ogh, ogl), (orh, orl)) = (bits(o.z), bits(o.y), bits(o.x));
             let stopped = halves.stopped[i] as u32;
@@ -132,10 +143,14 @@ fn write_state_encoded(
             )
         });
     let state = Layer::new(size, attributes, encoding, channels);
-    write_parts(
-        path,
-        &Image::empty(attrs).with_layer(image).with_layer(state),
-    )
+    let parts = Image::empty(attrs).with_layer(image).with_layer(state);
+    match &film.light {
+        None => write_parts(path, &parts),
+        Some(l) => {
+            let parts = parts.with_layer(light::light_layer!(l, (w, h), encoding));
+            write_parts(path, &parts)
+        }
+    }
 }
 
 /// Writes the image and state parts of a state file, atomically, one
@@ -297,10 +312,25 @@ fn read_header(source: impl Read, len: u64) -> Result<(StateInfo, (usize, usize)
     let names: Vec<String> = (state_header.channels.list.iter())
         .map(|c| c.name.to_string())
         .collect();
-    // Two parts of the same size (the image and the state), nothing else.
+    // Two parts of the same size (the image and the state), and a
+    // splatting render's light part, nothing else.
     let expected = channels_of(&info);
+    let parts = 2 + info.keeps_light() as usize;
+    let light_ok = !info.keeps_light()
+        || (meta.headers.iter()).any(|h| {
+            let named =
+                (h.own_attributes.layer_name.as_ref()).is_some_and(|n| n.eq(light::LIGHT_PART));
+            let names: Vec<String> = h.channels.list.iter().map(|c| c.name.to_string()).collect();
+            named
+                && names == light::LIGHT_CHANNELS
+                && h.channels
+                    .list
+                    .iter()
+                    .all(|c| c.sample_type == SampleType::U32)
+        });
     if names != expected
-        || meta.headers.len() != 2
+        || !light_ok
+        || meta.headers.len() != parts
         || (meta.headers.iter())
             .any(|h| h.layer_size != size || h.deep || h.channels.list.len() > expected.len())
         || (state_header.channels.list.iter()).any(|c| c.sample_type != SampleType::U32)
@@ -348,6 +378,16 @@ pub fn add_state(path: &Path, total: &mut Film) -> Result<(StateInfo, u32), Stri
         total.count[i] = total.count[i].saturating_add(p.count);
         least = least.min(p.count);
     })?;
+    if info.keeps_light() {
+        if total.light.is_none() {
+            *total = std::mem::replace(total, Film::new(0, 0, 0)).with_light();
+        }
+        let light = total.light.as_mut().expect("just made");
+        light::read(open(path)?.0, (w, h), &mut |i, sum| light.sum[i] += sum)?;
+    }
+    if let Some(light) = total.light.as_mut() {
+        light.paths = total.count.iter().map(|&n| n as u64).sum();
+    }
     Ok((info, least))
 }
 
@@ -362,7 +402,8 @@ fn read_film(
     if info.keeps_halves() {
         film = film.with_halves();
     }
-    read_pixels(source, &info, (w, h), &mut |i, p| {
+    let mut source = source;
+    read_pixels(&mut source, &info, (w, h), &mut |i, p| {
         film.sum[i] = p.sum;
         film.count[i] = p.count;
         if let Some(halves) = film.halves.as_mut() {
@@ -370,6 +411,12 @@ fn read_film(
             halves.stopped[i] = p.stopped;
         }
     })?;
+    if info.keeps_light() {
+        film = film.with_light();
+        let sums = &mut film.light.as_mut().expect("just made").sum;
+        source.rewind().map_err(|e| e.to_string())?;
+        light::read(source, (w, h), &mut |i, sum| sums[i] = sum)?;
+    }
     Ok((film, info))
 }
 

@@ -213,3 +213,46 @@ fn what_a_file_holds_is_told_from_its_first_bytes_and_headers() {
         "{why}"
     );
 }
+
+#[test]
+fn a_splatting_render_s_light_film_round_trips_and_adds_up() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("s.exr");
+    let mut film = Film::new(3, 2, 3);
+    for (i, (s, n)) in film.sum.iter_mut().zip(&mut film.count).enumerate() {
+        *n = 1 + i as u32 % 3;
+        *s = DVec3::new(0.1 * i as f64, 1.0 / 3.0, 7.0);
+    }
+    let mut film = film.with_light();
+    for (i, l) in film.light.as_mut().unwrap().sum.iter_mut().enumerate() {
+        *l = DVec3::new(1.0 / (i + 1) as f64, 0.25, 1e-9 * i as f64);
+    }
+    let light_info = info().with_light();
+    assert!(light_info.keeps_light() && !info().keeps_light());
+    write_state(&path, &film, &light_info).unwrap();
+    let (back, back_info) = read_state(&path).unwrap();
+    assert_eq!(back, film, "sums, counts and the light film bit for bit");
+    assert_eq!(back_info, light_info);
+    assert_eq!(bytes_per_pixel(&light_info), bytes_per_pixel(&info()) + 24);
+    // The image part shows the pixel with its splats.
+    let (_, _, px) = crate::output::read_exr(&path).unwrap();
+    assert_eq!(px[4], film.pixel(4));
+    // Parts add up: light sums too, and the light paths are all samples.
+    let mut total = Film::new(3, 2, 0);
+    add_state(&path, &mut total).unwrap();
+    add_state(&path, &mut total).unwrap();
+    let light = total.light.as_ref().unwrap();
+    assert_eq!(light.sum[1], film.light.as_ref().unwrap().sum[1] * 2.0);
+    assert_eq!(light.paths, 2 * film.total_samples());
+    // A light part whose sums no render makes is refused.
+    film.light.as_mut().unwrap().sum[0] = DVec3::new(-1.0, 0.0, 0.0);
+    write_state(&path, &film, &light_info).unwrap();
+    assert!(read_state(&path).unwrap_err().contains("light part"));
+    // A state said to keep a light film that has none is no state of it.
+    let plain = dir.path().join("plain.exr");
+    let mut without = film.clone();
+    without.light = None;
+    write_state(&plain, &without, &info()).unwrap();
+    let bytes = std::fs::read(&plain).unwrap();
+    assert!(read_state_bytes(&bytes).is_ok());
+}

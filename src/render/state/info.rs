@@ -36,6 +36,8 @@ const ADAPTIVE_KEY: &str = "noise_threshold";
 /// The setting a state names whose uniform render keeps its half images
 /// (for the variance AOV): a resume must keep them too.
 const HALVES_KEY: &str = "half_images";
+/// The setting that says a state keeps a light film (`bdpt`, `ptlt`).
+const LIGHT_KEY: &str = "light_film";
 
 /// The K-th of N disjoint parts of a render's samples.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -181,6 +183,21 @@ impl StateInfo {
     pub fn with_halves(mut self) -> StateInfo {
         if !self.keeps_halves() {
             self.settings.push((HALVES_KEY.into(), "kept".into()));
+            self.settings.sort();
+        }
+        self
+    }
+
+    /// Whether its film keeps a light film (the splats of `bdpt` and
+    /// `ptlt`), in a part of its own.
+    pub fn keeps_light(&self) -> bool {
+        self.settings.iter().any(|(k, _)| k == LIGHT_KEY)
+    }
+
+    /// The description of the same render keeping its light film.
+    pub fn with_light(mut self) -> StateInfo {
+        if !self.keeps_light() {
+            self.settings.push((LIGHT_KEY.into(), "kept".into()));
             self.settings.sort();
         }
         self

@@ -1,8 +1,10 @@
 //! A render's state file: what a stopped render continues from, and what
-//! `ptsc merge` adds up. An OpenEXR file of two parts (docs/farm.md):
+//! `ptsc merge` adds up. An OpenEXR file of two parts, or three (docs/farm.md):
 //!
 //! - `image`: R, G, B as float32, the mean so far, so any EXR viewer
 //!   shows how far the render got;
+//! - `ptsc.light` (a third part, for `bdpt` and `ptlt` only): the light
+//!   film, per pixel the sum of the splats it received (see `light`);
 //! - `ptsc.state`: per pixel the sum of its samples as the bits of three
 //!   f64 (channels `sum.R.hi`, `sum.R.lo`, … as uint32, the high and low
 //!   halves) and its sample count (`count`, uint32), uncompressed; its
@@ -17,6 +19,7 @@
 
 mod file;
 mod info;
+mod light;
 
 pub use file::{
     add_state, held_state, read_state, read_state_bytes, read_state_header, read_state_info,

@@ -125,6 +125,7 @@ impl Checker<'_> {
                 }
                 self.ambient_span = p.get("ambient").map(|v| v.1);
                 self.light_samples_span = p.get("light_samples").map(|v| v.1);
+                self.integrator_span = p.get("integrator").map(|v| v.1);
                 self.render = Some((settings, kind_span));
             }
             kinds::Setting::Camera => {

@@ -71,6 +71,17 @@ impl Checker<'_> {
     /// The warnings about the scene's light: none at all, an ambient term
     /// under the path integrator, whitted shading that ignores the only
     /// lights.
+    /// Whether the scene has media, as lowering finds them (an atmosphere,
+    /// a null boundary, a transmissive material that scatters inside): the
+    /// scenes `bdpt` and `ptlt` leave to the path integrator.
+    fn has_media(&self) -> bool {
+        self.atmosphere.is_some()
+            || self.materials.iter().any(|m| {
+                m.kind == crate::check::scene::MaterialKind::None
+                    || (m.transmission > 0.0 && m.scattering.iter().any(|&c| c > 0.0))
+            })
+    }
+
     /// An atmosphere left to size itself around a scene with an infinite
     /// plane ends at a ball near the objects: the plane's far part, the
     /// horizon, shows no haze.
@@ -133,6 +144,18 @@ impl Checker<'_> {
                 Diagnostic::warning(codes::NO_LIGHT, "the scene has no light: the image will be black", at)
                     .with_label("nothing in this scene emits light")
                     .with_help("add a `point_light { … }`, a `background rgb …`, or an object with `emission` in its material"),
+            );
+        }
+        let bidirectional = matches!(
+            render.settings.integrator,
+            IntegratorKind::Bdpt | IntegratorKind::Ptlt
+        );
+        if bidirectional && self.has_media() {
+            let at = (self.integrator_span.or(self.camera_span)).unwrap_or(Span::new(root, 0, 0));
+            self.diags.push(
+                Diagnostic::warning(codes::INTEGRATOR_SETTING, "bdpt and ptlt do not trace media: this scene renders with the path integrator", at)
+                    .with_label("the scene has an atmosphere, a null boundary or a scattering inside")
+                    .with_help("use `integrator path` (it traces media), or leave the media out to trace light paths"),
             );
         }
         if render.settings.integrator == IntegratorKind::Path {

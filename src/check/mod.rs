@@ -309,6 +309,8 @@ struct Checker<'f> {
     ambient_span: Option<Span>,
     /// Where `light_samples` was set, for the Whitted warning.
     light_samples_span: Option<Span>,
+    /// Where `integrator` was set, for the bidirectional ones' warning.
+    integrator_span: Option<Span>,
     /// A file did not parse: whole-scene checks would only echo that.
     syntax_failed: bool,
 }
@@ -358,6 +360,7 @@ impl<'f> Checker<'f> {
             lights: Vec::new(),
             ambient_span: None,
             light_samples_span: None,
+            integrator_span: None,
             syntax_failed: false,
         }
     }

@@ -59,24 +59,32 @@ quad {{ corner <1, -1, -1>  edge1 <0, 0, 2> edge2 <0, 2, 0> material green }}
     )
 }
 
-/// Asserts that bdpt and path give the same quarter means within `tol`
+/// A lamp under the ceiling and a glass ball: caustics for light paths.
+const LAMP_AND_GLASS: &str = r#"
+material lamp { diffuse rgb 0 emission rgb 12 }
+quad { corner <-0.25, 0.99, -0.25> edge1 <0.5, 0, 0> edge2 <0, 0, 0.5> material lamp }
+material glass { transmission 1 ior 1.5 }
+sphere { center <0.4, -0.65, 0.3> radius 0.33 material glass }
+"#;
+
+/// Asserts that bdpt and ptlt give the quarter means path gives within `tol`
 /// (relative, on the sum of channels' means).
 fn agree(name: &str, scene: &str, tol: f64) {
     let path = quarters(&film(scene, "path", 2));
-    let bdpt = quarters(&film(scene, "bdpt", 2));
-    for (k, (p, b)) in path.iter().zip(&bdpt).enumerate() {
-        let (sp, sb): (f64, f64) = (p.iter().sum(), b.iter().sum());
-        assert!(sp > 1e-3, "{name}: quarter {k} is black");
-        let rel = (sb - sp).abs() / sp;
-        assert!(
-            rel < tol,
-            "{name}: quarter {k}: path {p:?}, bdpt {b:?} ({rel:.4})"
-        );
+    for integrator in ["bdpt", "ptlt"] {
+        let other = quarters(&film(scene, integrator, 2));
+        for (k, (p, b)) in path.iter().zip(&other).enumerate() {
+            let (sp, sb): (f64, f64) = (p.iter().sum(), b.iter().sum());
+            assert!(sp > 1e-3, "{name}: quarter {k} is black");
+            let rel = (sb - sp).abs() / sp;
+            let why = format!("{name}: quarter {k}: path {p:?}, {integrator} {b:?} ({rel:.4})");
+            assert!(rel < tol, "{why}");
+        }
     }
 }
 
 #[test]
-fn bdpt_matches_path_tracing_under_an_area_light() {
+fn bdpt_and_ptlt_match_path_tracing_under_an_area_light() {
     let light = r#"
 material lamp { diffuse rgb 0 emission rgb 12 }
 quad { corner <-0.25, 0.99, -0.25> edge1 <0.5, 0, 0> edge2 <0, 0, 0.5> material lamp }
@@ -88,7 +96,7 @@ sphere { center <0.45, -0.6, 0.2> radius 0.3 material white }
 }
 
 #[test]
-fn bdpt_matches_path_tracing_under_point_spot_and_two_sided_lights() {
+fn bdpt_and_ptlt_match_path_tracing_under_point_spot_and_two_sided_lights() {
     let lights = r#"
 point_light { position <0.5, 0.6, 0.3> intensity rgb 2 }
 spot_light { position <-0.5, 0.9, 0.5> look_at <-0.3, -1, -0.2> intensity rgb 6 angle 40 hotspot 25 }
@@ -99,7 +107,7 @@ quad { corner <-0.3, 0.2, -0.6> edge1 <0.4, 0, 0> edge2 <0, 0.3, 0.2> material p
 }
 
 #[test]
-fn bdpt_matches_path_tracing_with_glass_and_a_mirror() {
+fn bdpt_and_ptlt_match_path_tracing_with_glass_and_a_mirror() {
     let scene = r#"
 material lamp { diffuse rgb 0 emission rgb 12 }
 quad { corner <-0.25, 0.99, -0.25> edge1 <0.5, 0, 0> edge2 <0, 0, 0.5> material lamp }
@@ -113,7 +121,7 @@ sphere { center <-0.4, -0.65, -0.35> radius 0.33 material mirror }
 }
 
 #[test]
-fn bdpt_matches_path_tracing_under_the_sky_and_a_sphere_lamp() {
+fn bdpt_and_ptlt_match_path_tracing_under_the_sky_and_a_sphere_lamp() {
     let scene = r#"
 render { resolution <16, 16>  samples 2048  max_depth 5  integrator INTEGRATOR }
 camera { position <0, 1, 4>  look_at <0, 0, 0>  fov 45 }
@@ -130,23 +138,15 @@ sphere { center <-0.3, -0.4, 0> radius 0.6 material ball }
 
 #[test]
 fn bdpt_and_ptlt_give_the_same_image_on_one_and_two_threads() {
-    let scene = cornell(
-        r#"
-material lamp { diffuse rgb 0 emission rgb 12 }
-quad { corner <-0.25, 0.99, -0.25> edge1 <0.5, 0, 0> edge2 <0, 0, 0.5> material lamp }
-material glass { transmission 1 ior 1.5 }
-sphere { center <0.4, -0.65, 0.3> radius 0.33 material glass }
-"#,
-        24,
-    );
-    let (a, b) = (film(&scene, "bdpt", 1), film(&scene, "bdpt", 2));
-    assert_eq!(a.pixels(), b.pixels());
-    let light = a.light.as_ref().expect("bdpt keeps a light film");
-    assert_eq!(light.paths, 16 * 16 * 24, "one light path per sample");
-    assert!(
-        light.sum.iter().any(|s| s.max_element() > 0.0),
-        "light paths reach the camera"
-    );
+    let scene = cornell(LAMP_AND_GLASS, 24);
+    for integrator in ["bdpt", "ptlt"] {
+        let (a, b) = (film(&scene, integrator, 1), film(&scene, integrator, 2));
+        assert_eq!(a.pixels(), b.pixels(), "{integrator}");
+        let light = a.light.as_ref().expect("a light film");
+        assert_eq!(light.paths, 16 * 16 * 24, "one light path per sample");
+        let reached = light.sum.iter().any(|s| s.max_element() > 0.0);
+        assert!(reached, "{integrator}: light paths reach the camera");
+    }
 }
 
 /// Renders `scene` to `out` with `args`, expecting success.
@@ -161,15 +161,7 @@ fn run(scene: &str, out: &str, args: &[&str]) {
 fn a_render_resumed_from_its_state_equals_one_rendered_at_once() {
     let dir = tempfile::tempdir().unwrap();
     let scene = dir.path().join("box.pts");
-    let text = cornell(
-        r#"
-material lamp { diffuse rgb 0 emission rgb 12 }
-quad { corner <-0.25, 0.99, -0.25> edge1 <0.5, 0, 0> edge2 <0, 0, 0.5> material lamp }
-material glass { transmission 1 ior 1.5 }
-sphere { center <0.4, -0.65, 0.3> radius 0.33 material glass }
-"#,
-        8,
-    );
+    let text = cornell(LAMP_AND_GLASS, 8);
     for (integrator, adaptive) in [
         ("bdpt", &[][..]),
         ("ptlt", &["--noise", "0.1", "--min-samples", "4"][..]),

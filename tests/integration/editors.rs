@@ -155,3 +155,33 @@ fn vscode_numbers_and_parameters_match_what_they_should() {
         ["min", "max"]
     );
 }
+
+#[test]
+fn both_editors_highlight_every_integrator_and_sampler_name() {
+    let root = crate::root();
+    let vim = std::fs::read_to_string(root.join("editors/vim/syntax/pts.vim")).unwrap();
+    let vim_words: BTreeSet<&str> = (vim.lines())
+        .filter_map(|l| l.strip_prefix("syn keyword ptsWord "))
+        .flat_map(str::split_whitespace)
+        .collect();
+    let json: serde_json::Value = serde_json::from_str(
+        &std::fs::read_to_string(root.join("editors/vscode/syntaxes/pts.tmLanguage.json")).unwrap(),
+    )
+    .unwrap();
+    let pattern = json["repository"]["words"]["match"].as_str().unwrap();
+    let inner = pattern
+        .trim_start_matches("\\b(")
+        .split(")\\b")
+        .next()
+        .unwrap();
+    let vscode_words: BTreeSet<&str> = inner.split('|').collect();
+    let names = (ptsc::ir::settings::IntegratorKind::WORDS.iter())
+        .chain(ptsc::sampling::sampler::SamplerKind::WORDS.iter());
+    for name in names {
+        assert!(vim_words.contains(name), "vim does not highlight `{name}`");
+        assert!(
+            vscode_words.contains(name),
+            "vscode does not highlight `{name}`"
+        );
+    }
+}

@@ -6,7 +6,6 @@
 //! on them are left to the camera's side (see `integrator::bdpt`).
 
 use super::Light;
-use crate::geometry::shape::Shape;
 use crate::sampling::distribution::Distribution1D;
 use crate::sampling::warp::{cosine_hemisphere, uniform_sphere, UNIFORM_SPHERE_PDF};
 use glam::{Vec2, Vec3};
@@ -42,11 +41,13 @@ impl Light {
 
     /// Samples where and in which direction light leaves it at `time`.
     /// `emitted(prim, q, uv, n, wo)` is an emissive primitive's radiance
-    /// (see [`Light::sample`]). `None` where nothing leaves.
+    /// (see [`Light::sample`]); `two_sided` whether an area light's
+    /// material emits on both sides (a side is then chosen evenly, as
+    /// [`Light::emission_pdfs`] counts it). `None` where nothing leaves.
     pub fn sample_emission(
         &self,
         emitted: impl Fn(u32, Vec3, Vec2, Vec3, Vec3) -> Vec3,
-        time: f32,
+        (time, two_sided): (f32, bool),
         u_pos: Vec2,
         u_dir: Vec2,
     ) -> Option<Emission> {
@@ -59,9 +60,10 @@ impl Light {
             } => {
                 let (q, n, uv) = shape.sample_area(u_pos);
                 let q = q + *velocity * time;
-                // A two-sided emitter (its back sends light too) picks a
-                // side with half of u_dir.x, the rest rescaled.
-                let two_sided = emitted(*prim, q, uv, n, -n) != Vec3::ZERO;
+                // A two-sided emitter picks a side with half of u_dir.x,
+                // the rest rescaled. (From its material, not from the light
+                // its back sends at this point: the densities the MIS
+                // weights read must be the ones sampled.)
                 let (n_side, u, sides) = match (two_sided, u_dir.x < 0.5) {
                     (false, _) => (n, u_dir, 1.0),
                     (true, true) => (n, Vec2::new(2.0 * u_dir.x, u_dir.y), 0.5),
@@ -154,19 +156,6 @@ impl Light {
             _ => (0.0, 0.0),
         }
     }
-
-    /// Whether the light is at a single point (point and spot lights).
-    pub fn is_at_point(&self) -> bool {
-        matches!(self, Light::Point { .. } | Light::Spot { .. })
-    }
-
-    /// The shape of an area light.
-    pub fn shape(&self) -> Option<&Shape> {
-        match self {
-            Light::Area { shape, .. } => Some(shape),
-            _ => None,
-        }
-    }
 }
 
 /// A direction uniform in the cone of half-angle cosine `cos_max` about +z.
@@ -241,6 +230,7 @@ impl EmissionSelection {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::geometry::shape::Shape;
 
     #[test]
     fn emission_carries_each_light_s_power_and_states_its_own_densities() {
@@ -289,7 +279,7 @@ mod tests {
                 let u = [rng(), rng(), rng(), rng()];
                 let u_pos = Vec2::new(u[0], u[1]);
                 let u_dir = Vec2::new(u[2], u[3]);
-                let Some(e) = light.sample_emission(emitted, 0.0, u_pos, u_dir) else {
+                let Some(e) = light.sample_emission(emitted, (0.0, false), u_pos, u_dir) else {
                     continue;
                 };
                 let cos = if e.n == Vec3::ZERO {
@@ -312,5 +302,40 @@ mod tests {
                 "{estimate} vs {power}"
             );
         }
+    }
+}
+
+#[cfg(test)]
+mod two_sided_tests {
+    use super::*;
+    use crate::geometry::shape::Shape;
+
+    #[test]
+    fn a_two_sided_emitter_sends_from_both_sides_with_the_densities_it_states() {
+        // Radiance 2 on both sides of a quad of area 0.5: 2 · π · 2 · 0.5.
+        let quad = Shape::Quad {
+            p: Vec3::ZERO,
+            e1: Vec3::X,
+            e2: Vec3::new(0.0, 0.0, 0.5),
+            swapped: false,
+        };
+        let light = Light::area(0, quad, Vec3::ZERO);
+        let emitted = |_, _, _, _, _| Vec3::splat(2.0);
+        let mut rng = crate::light::test_rng(11);
+        let (k, mut sum, mut back) = (200_000, 0.0f64, 0);
+        for _ in 0..k {
+            let (u_pos, u_dir) = (Vec2::new(rng(), rng()), Vec2::new(rng(), rng()));
+            let e = light
+                .sample_emission(emitted, (0.0, true), u_pos, u_dir)
+                .unwrap();
+            let cos = e.n.dot(e.dir);
+            back += (cos < 0.0) as u32;
+            sum += (e.le.x * cos.abs() / (e.pdf_pos * e.pdf_dir)) as f64;
+            let (_, dir) = light.emission_pdfs(e.n, e.dir, true);
+            assert!((dir - e.pdf_dir).abs() < 1e-4 * dir.max(1.0));
+        }
+        let power = 2.0 * PI as f64 * 2.0 * 0.5;
+        assert!((sum / k as f64 / power - 1.0).abs() < 0.01);
+        assert!((back as f64 / k as f64 - 0.5).abs() < 0.01, "{back}");
     }
 }

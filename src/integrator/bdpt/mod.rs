@@ -249,10 +249,7 @@ impl Joins<'_> {
     /// towards `to`, by area at `to`.
     fn emitted_towards(&self, light: u32, (p, n): (Vec3, Vec3), to: &Vertex) -> f32 {
         let l = &self.scene.lights[light as usize];
-        let two_sided = match l {
-            Light::Area { prim, .. } => self.scene.material_of(*prim).two_sided,
-            _ => false,
-        };
+        let two_sided = walk::two_sided(self.scene, light);
         let dir = (to.p - p).normalize_or_zero();
         to_area(l.emission_pdfs(n, dir, two_sided).1, p, to.p, to.n_geo)
     }

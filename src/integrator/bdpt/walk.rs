@@ -124,6 +124,16 @@ fn shading_correction(hit: &Hit, wo: Vec3, wi: Vec3) -> f32 {
     }
 }
 
+/// Whether light `light` emits on both sides (an area light whose
+/// material is two-sided): how its light paths choose a side, and the
+/// densities the MIS weights give them.
+pub fn two_sided(scene: &Scene, light: u32) -> bool {
+    match &scene.lights[light as usize] {
+        crate::light::Light::Area { prim, .. } => scene.material_of(*prim).two_sided,
+        _ => false,
+    }
+}
+
 /// A density by solid angle at `from` turned into one by area at `to`
 /// (normal `n_to`; none for a point or a direction at infinity).
 pub fn to_area(pdf: f32, from: Vec3, to: Vec3, n_to: Vec3) -> f32 {
@@ -336,7 +346,9 @@ pub fn light_path(
     let (light, pick) = emission.sample(sampler.next_f32());
     let (u_pos, u_dir) = (sampler.next_2d(), sampler.next_2d());
     let emitted = |prim, q, uv, n, w| scene.emitted_at(prim, q, uv, n, w, time);
-    let Some(e) = scene.lights[light as usize].sample_emission(emitted, time, u_pos, u_dir) else {
+    let l = &scene.lights[light as usize];
+    let two_sided = two_sided(scene, light);
+    let Some(e) = l.sample_emission(emitted, (time, two_sided), u_pos, u_dir) else {
         return;
     };
     let cos = if e.n == Vec3::ZERO {

@@ -201,7 +201,11 @@ impl Film {
         for (n, o) in self.count.iter_mut().zip(&other.count) {
             *n = n.saturating_add(*o);
         }
-        if let (Some(l), Some(o)) = (self.light.as_mut(), other.light.as_ref()) {
+        if let Some(o) = &other.light {
+            let l = self.light.get_or_insert_with(|| LightFilm {
+                sum: vec![DVec3::ZERO; o.sum.len()],
+                paths: 0,
+            });
             for (s, o) in l.sum.iter_mut().zip(&o.sum) {
                 *s += *o;
             }
@@ -239,5 +243,23 @@ mod tests {
         let b = Film::from_pixels(1, 1, vec![Vec3::splat(3.0)]);
         a.add(&b);
         assert_eq!((a.pixel(0), a.count[0]), (Vec3::splat(2.0), 2));
+    }
+
+    #[test]
+    fn a_film_with_splats_adds_them_and_shows_them_per_light_path() {
+        let mut a = Film::new(2, 1, 0);
+        let mut b = Film::from_pixels(2, 1, vec![Vec3::ONE, Vec3::ONE]).with_light();
+        b.light.as_mut().unwrap().sum[1] = DVec3::splat(4.0);
+        assert_eq!(
+            b.light.as_ref().unwrap().paths,
+            2,
+            "its samples were light paths"
+        );
+        // One light path per pixel: pixel 1 shows 1 + 4.
+        assert_eq!(b.pixel(1), Vec3::splat(5.0));
+        a.add(&b);
+        a.add(&b);
+        // Two samples a pixel, two light paths a pixel: 1 + 8 / 2.
+        assert_eq!((a.pixel(0), a.pixel(1)), (Vec3::ONE, Vec3::splat(5.0)));
     }
 }

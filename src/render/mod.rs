@@ -314,11 +314,15 @@ fn run_pass(shared: &PassShared, film: &mut Film, end: u32) -> Vec<(bool, RayCou
         }
         None => (u32::MAX, usize::MAX),
     };
-    let least = tiles
-        .iter()
-        .flat_map(|t| t.counts.iter().flat_map(|r| r.iter().copied()))
-        .min()
-        .unwrap_or(end);
+    // Steps start from the fewest samples a pixel has (a pass without
+    // splats is one step: its pixels' counts are not read).
+    let least = match light {
+        Some(_) => (tiles.iter())
+            .flat_map(|t| t.counts.iter().flat_map(|r| r.iter().copied()))
+            .min()
+            .unwrap_or(end),
+        None => 0,
+    };
     let mut results: Vec<(bool, RayCounts)> = Vec::new();
     let mut step_end = end.min(least.saturating_add(step_samples));
     loop {

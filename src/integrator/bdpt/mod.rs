@@ -47,8 +47,9 @@ impl Bdpt {
 }
 
 impl Integrator for Bdpt {
-    /// The camera's strategies alone: the light paths' joins to the camera
-    /// go to other pixels and need [`Integrator::li_splatting`].
+    /// The sample's own pixel's share only: the light paths' joins to the
+    /// camera (weighted to make up the rest) are dropped, so alone this is
+    /// not the radiance; the pixel loop calls [`Integrator::li_splatting`].
     fn li(&self, scene: &Scene, ray: crate::geometry::Ray, sampler: &mut Sampler) -> Vec3 {
         self.li_splatting(scene, ray, sampler, &mut Vec::new())
     }

@@ -208,6 +208,14 @@ pub fn state(bytes: &[u8]) -> bool {
     assert!(film.sum.iter().all(|s| s.is_finite()));
     assert!(film.pixels().iter().all(|p| p.is_finite()));
     assert_eq!(film.halves.is_some(), info.keeps_halves());
+    assert_eq!(film.light.is_some(), info.keeps_light());
+    if let Some(light) = &film.light {
+        assert!(light
+            .sum
+            .iter()
+            .all(|s| s.is_finite() && s.min_element() >= 0.0));
+        assert_eq!(light.paths, film.total_samples());
+    }
     let mut film = film;
     if let Some(halves) = &film.halves {
         assert!(halves.odd.iter().all(|o| o.is_finite()));

@@ -372,18 +372,22 @@ pub fn add_state(path: &Path, total: &mut Film) -> Result<(StateInfo, u32), Stri
     if info.adaptive() {
         return Err("it is an adaptive render's state, which is not a part".into());
     }
-    let mut least = u32::MAX;
+    let (mut least, mut samples) = (u32::MAX, 0u64);
     read_pixels(open(path)?.0, &info, (w, h), &mut |i, p| {
         total.sum[i] += p.sum;
         total.count[i] = total.count[i].saturating_add(p.count);
         least = least.min(p.count);
+        samples += p.count as u64;
     })?;
     if info.keeps_light() {
         if total.light.is_none() {
             *total = std::mem::replace(total, Film::new(0, 0, 0)).with_light();
         }
         let light = total.light.as_mut().expect("just made");
-        light::read(open(path)?.0, (w, h), &mut |i, sum| light.sum[i] += sum)?;
+        let most = light::most(samples, w * h);
+        light::read(open(path)?.0, (w, h), most, &mut |i, sum| {
+            light.sum[i] += sum
+        })?;
     }
     if let Some(light) = total.light.as_mut() {
         light.paths = total.count.iter().map(|&n| n as u64).sum();
@@ -413,9 +417,10 @@ fn read_film(
     })?;
     if info.keeps_light() {
         film = film.with_light();
+        let most = light::most(film.total_samples(), w * h);
         let sums = &mut film.light.as_mut().expect("just made").sum;
         source.rewind().map_err(|e| e.to_string())?;
-        light::read(source, (w, h), &mut |i, sum| sums[i] = sum)?;
+        light::read(source, (w, h), most, &mut |i, sum| sums[i] = sum)?;
     }
     Ok((film, info))
 }

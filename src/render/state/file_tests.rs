@@ -248,6 +248,18 @@ fn a_splatting_render_s_light_film_round_trips_and_adds_up() {
     film.light.as_mut().unwrap().sum[0] = DVec3::new(-1.0, 0.0, 0.0);
     write_state(&path, &film, &light_info).unwrap();
     assert!(read_state(&path).unwrap_err().contains("light part"));
+    // Nor one that would show a pixel past the largest sample (the fuzzer's
+    // find: an infinite f32 pixel).
+    film.light.as_mut().unwrap().sum[0] = DVec3::new(1e35, 0.0, 0.0);
+    write_state(&path, &film, &light_info).unwrap();
+    assert!(read_state(&path).unwrap_err().contains("light part"));
+    // Cut short in its light part: refused, whatever the cut.
+    film.light.as_mut().unwrap().sum[0] = DVec3::ZERO;
+    write_state(&path, &film, &light_info).unwrap();
+    let whole = std::fs::read(&path).unwrap();
+    for cut in [whole.len() - 8, whole.len() - 100, whole.len() * 3 / 4] {
+        assert!(read_state_bytes(&whole[..cut]).is_err(), "cut at {cut}");
+    }
     // A state said to keep a light film that has none is no state of it.
     let plain = dir.path().join("plain.exr");
     let mut without = film.clone();

@@ -54,12 +54,21 @@ macro_rules! light_layer {
 }
 pub(crate) use light_layer;
 
+/// The most a pixel's light sum may hold in a film of `samples` samples
+/// over `pixels` pixels: what keeps the pixel's share of it (the sum over
+/// the light paths per pixel) at most [`crate::render::MAX_SAMPLE`], so
+/// every pixel of a film read back is a finite f32.
+pub fn most(samples: u64, pixels: usize) -> f64 {
+    crate::render::MAX_SAMPLE as f64 * samples as f64 / pixels.max(1) as f64
+}
+
 /// Reads the light part of a file whose headers were checked, handing
 /// each pixel's sum to `visit(index, sum)` after checking it (finite, not
-/// negative).
+/// negative, at most `most`).
 pub fn read(
     source: impl Read + Seek,
     (w, h): (usize, usize),
+    most: f64,
     visit: &mut dyn FnMut(usize, DVec3),
 ) -> Result<(), String> {
     use exr::prelude::*;
@@ -88,7 +97,7 @@ pub fn read(
                 rows: vec![0; h],
                 error: None,
             },
-            |sink: &mut Sink, p: Vec2<usize>, (bh, bl, gh, gl, rh, rl)| {
+            move |sink: &mut Sink, p: Vec2<usize>, (bh, bl, gh, gl, rh, rl)| {
                 if sink.error.is_some() {
                     return;
                 }
@@ -97,7 +106,7 @@ pub fn read(
                 sink.rows[p.y()] += 1;
                 if sink.rows[p.y()] as usize > sink.width {
                     sink.error = Some("its light part holds a row of pixels twice".into());
-                } else if !sum.is_finite() || sum.min_element() < 0.0 {
+                } else if !sum.is_finite() || sum.min_element() < 0.0 || sum.max_element() > most {
                     sink.error = Some("its light part has a sum no render makes".into());
                 } else {
                     (sink.visit)(p.y() * sink.width + p.x(), sum);

@@ -54,18 +54,18 @@ pub struct RenderArgs {
     /// Image size as WxH, e.g. 640x480.
     #[arg(long, value_parser = parse_resolution)]
     pub resolution: Option<(u32, u32)>,
-    /// Sampler: sobol (the default) or independent.
-    #[arg(long, value_parser = parse_sampler)]
+    /// Sampler (the first is the default); the list comes from the sampler table.
+    #[arg(long, value_parser = parse_sampler, help = one_of("Sampler", &SamplerKind::WORDS, " (the first is the default)"))]
     pub sampler: Option<SamplerKind>,
-    /// Integrator: path, whitted, hybrid, normals, albedo, depth or uv.
-    #[arg(long, value_parser = parse_integrator)]
+    /// Integrator; the list comes from the integrator table.
+    #[arg(long, value_parser = parse_integrator, help = one_of("Integrator", &IntegratorKind::WORDS, ""))]
     pub integrator: Option<IntegratorKind>,
     /// Clamp indirect light: each contribution's largest RGB component at
     /// most X (as the scene's `clamp`; biased, fights fireflies).
     #[arg(long, value_name = "X", value_parser = parse_clamp)]
     pub clamp: Option<f32>,
-    /// How shadow rays choose their light: auto, bvh, exhaustive, power or uniform.
-    #[arg(long, value_parser = parse_light_selection)]
+    /// How shadow rays choose their light; the list comes from its table.
+    #[arg(long, value_parser = parse_light_selection, help = one_of("How shadow rays choose their light", &LightSelection::WORDS, ""))]
     pub light_selection: Option<LightSelection>,
     /// Render only this frame of an animation (`frame` in the scene; with
     /// --frames, `clock` runs from 0 at its first frame to 1 at its last).
@@ -281,6 +281,13 @@ fn parse_sampler(s: &str) -> Result<SamplerKind, String> {
 
 fn parse_light_selection(s: &str) -> Result<LightSelection, String> {
     LightSelection::from_name(s).ok_or_else(|| expected_one_of(&LightSelection::WORDS))
+}
+
+/// A flag's help, "WHAT: a, b or c", from its vocabulary's table, so that
+/// a new word shows in `--help` without an edit here.
+fn one_of(what: &str, words: &[&str], tail: &str) -> String {
+    let list = expected_one_of(words);
+    format!("{what}: {}{tail}", list.trim_start_matches("expected "))
 }
 
 /// "expected a, b or c".

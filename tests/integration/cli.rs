@@ -331,3 +331,29 @@ fn a_time_budget_stops_the_render_with_even_counts_and_resumes() {
     assert!(o.status.success());
     assert!(!dir.path().join("bounded.exr.state.exr").exists());
 }
+
+#[test]
+fn render_help_names_every_integrator_sampler_and_light_selection() {
+    // The help of these flags comes from the vocabularies' tables: `bdpt`
+    // and `ptlt` were missing from a help written by hand.
+    use ptsc::ir::settings::{IntegratorKind, LightSelection, SamplerKind};
+    let (code, help, _) = ptsc(&["render", "--help"]);
+    assert_eq!(code, 0);
+    let line_after = |flag: &str| {
+        let at = help
+            .find(flag)
+            .unwrap_or_else(|| panic!("no {flag} in\n{help}"));
+        help[at..].lines().take(3).collect::<Vec<_>>().join(" ")
+    };
+    let words: [(&str, &[&str]); 3] = [
+        ("--integrator", &IntegratorKind::WORDS),
+        ("--sampler", &SamplerKind::WORDS),
+        ("--light-selection", &LightSelection::WORDS),
+    ];
+    for (flag, words) in words {
+        let text = line_after(flag);
+        for word in words {
+            assert!(text.contains(word), "{flag}'s help lacks {word}: {text}");
+        }
+    }
+}

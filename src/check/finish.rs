@@ -75,10 +75,17 @@ impl Checker<'_> {
     /// a null boundary, a transmissive material that scatters inside): the
     /// scenes `bdpt` and `ptlt` leave to the path integrator.
     fn has_media(&self) -> bool {
-        self.atmosphere.is_some()
+        // In f32, as lowering holds them: a coefficient too small for an
+        // f32 is no medium there, nor here.
+        let positive = |c: &[f64; 3]| c.iter().any(|&c| c as f32 > 0.0);
+        let atmosphere = self.atmosphere.as_ref().is_some_and(|a| {
+            let m = &a.medium;
+            (0..3).any(|i| m.absorption[i] as f32 + m.scattering[i] as f32 != 0.0)
+        });
+        atmosphere
             || self.materials.iter().any(|m| {
                 m.kind == crate::check::scene::MaterialKind::None
-                    || (m.transmission > 0.0 && m.scattering.iter().any(|&c| c > 0.0))
+                    || (m.transmission as f32 > 0.0 && positive(&m.scattering))
             })
     }
 

@@ -3,6 +3,7 @@
 //! camera's side), and the same image on any thread count.
 
 use ptsc::compile::{compile_str, Options};
+use ptsc::diag::codes::INTEGRATOR_SETTING;
 use ptsc::render::{film::Film, render};
 use std::path::Path;
 use std::sync::atomic::AtomicBool;
@@ -182,4 +183,71 @@ fn a_render_resumed_from_its_state_equals_one_rendered_at_once() {
             "{integrator}"
         );
     }
+}
+
+#[test]
+fn check_warns_of_media_exactly_where_bdpt_falls_back_to_path() {
+    // One verdict: the warning `check` (and so `watch` and the language
+    // server) gives at `integrator bdpt` must name exactly the scenes that
+    // lowering finds volumetric and the renderer hands to `path`.
+    let head = "render { integrator bdpt }
+        camera { position <0, 1, 4> look_at <0, 0, 0> }
+        sphere { center <0, 3, 0> radius 0.5 material { emission rgb 5 } }\n";
+    let ball = |m: &str| format!("sphere {{ center <0, 0, 0> radius 1 material {{ {m} }} }}\n");
+    let cases = [
+        ball("diffuse rgb 0.5"),
+        ball("transmission 1 absorption rgb 0.5"),
+        ball("transmission 1 scattering rgb 0.5"),
+        ball("transmission 1 density 2 medium_color rgb 0.5"),
+        ball("transmission 1 density 2 medium_color rgb 0"),
+        ball("transmission 0 scattering rgb 0.5"),
+        ball("type none density 1 medium_color rgb 0.5"),
+        ball("type none"),
+        ball("type principled transmission 1 scattering rgb 0.5"),
+        ball("type principled transmission 1"),
+        ball("transmission 1 scattering rgb 0.5 diffuse rgb 0.2"),
+        format!(
+            "{}atmosphere {{ density 0.05 medium_color rgb 1 }}\n",
+            ball("diffuse rgb 0.5")
+        ),
+        format!("{}atmosphere {{ density 0 }}\n", ball("diffuse rgb 0.5")),
+        format!(
+            "{}atmosphere {{ absorption rgb 0 scattering rgb 0 }}\n",
+            ball("diffuse rgb 0.5")
+        ),
+        format!(
+            "material fog {{ transmission 1 scattering rgb 1 }}\n{}",
+            ball("diffuse rgb 0.5")
+        ),
+        // Below what an f32 holds: no medium once lowered.
+        ball("transmission 1e-50 scattering rgb 0.5"),
+        ball("transmission 1 scattering rgb 1e-50"),
+        format!(
+            "{}atmosphere {{ absorption rgb 1e-50 }}\n",
+            ball("diffuse rgb 0.5")
+        ),
+    ];
+    let mut wrong = Vec::new();
+    for case in &cases {
+        let text = format!("{head}{case}");
+        let c = compile_str(Path::new("media.pts"), &text, Options::default());
+        let Some(ir) = c.ir else {
+            wrong.push(format!(
+                "does not compile: {case}{}",
+                c.diagnostics.render_human(&c.sources, false)
+            ));
+            continue;
+        };
+        let warned = c
+            .diagnostics
+            .render_json(&c.sources)
+            .contains(INTEGRATOR_SETTING);
+        if warned != ir.volumetric {
+            wrong.push(format!(
+                "warned {warned}, volumetric {}: {case}",
+                ir.volumetric
+            ));
+        }
+    }
+    assert!(wrong.is_empty(), "{}", wrong.join("\n"));
 }

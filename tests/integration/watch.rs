@@ -446,3 +446,29 @@ fn watch_refuses_the_flags_of_a_batch_renders_end() {
         );
     }
 }
+
+#[test]
+fn light_paths_land_in_the_preview_as_in_the_render() {
+    // bdpt and ptlt splat their light paths' joins to the camera into other
+    // pixels; watch's passes (1, 2, 4 samples) must end on the image that
+    // `render` makes in its own passes.
+    for integrator in ["bdpt", "ptlt"] {
+        let (_dir, pts, png) = setup();
+        let lamp = "sphere { center <1, 2, 1> radius 0.2 material { emission rgb 20 } }\n\
+             sphere { center <-1, 0.5, 0> radius 0.5 material { transmission 1 ior 1.5 } }";
+        let text = scene(40, lamp).replace(
+            "samples 4 }",
+            &format!("samples 4 integrator {integrator} }}"),
+        );
+        assert!(text.contains(integrator));
+        std::fs::write(&pts, &text).unwrap();
+        let w = Watch::start(&pts);
+        w.wait_for("done:", 0);
+        assert_eq!(
+            std::fs::read(&png).unwrap(),
+            reference_render(&pts),
+            "{integrator}: {}",
+            w.output()
+        );
+    }
+}

@@ -124,6 +124,7 @@ impl Checker<'_> {
                     return;
                 }
                 self.ambient_span = p.get("ambient").map(|v| v.1);
+                self.clamp_span = p.get("clamp").map(|v| v.1);
                 self.light_samples_span = p.get("light_samples").map(|v| v.1);
                 self.integrator_span = p.get("integrator").map(|v| v.1);
                 self.render = Some((settings, kind_span));

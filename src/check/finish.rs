@@ -89,6 +89,35 @@ impl Checker<'_> {
             })
     }
 
+    /// `ambient` and `clamp` do nothing under `bdpt` and `ptlt` (their
+    /// strategies weigh each other; a term or a cap on one of them would
+    /// bias the sum).
+    fn bidirectional_warnings(&mut self) {
+        let settings = [
+            (
+                self.ambient_span,
+                "ambient",
+                "adds no light under bdpt and ptlt",
+            ),
+            (self.clamp_span, "clamp", "caps nothing under bdpt and ptlt"),
+        ];
+        for (span, word, label) in settings {
+            if let Some(at) = span {
+                self.diags.push(
+                    Diagnostic::warning(
+                        codes::INTEGRATOR_SETTING,
+                        format!("`{word}` has no effect with this integrator"),
+                        at,
+                    )
+                    .with_label(label)
+                    .with_help(format!(
+                        "remove `{word}`, or use `integrator path`, which applies it"
+                    )),
+                );
+            }
+        }
+    }
+
     /// An atmosphere left to size itself around a scene with an infinite
     /// plane ends at a ball near the objects: the plane's far part, the
     /// horizon, shows no haze.
@@ -164,6 +193,9 @@ impl Checker<'_> {
                     .with_label("the scene has an atmosphere, a null boundary or a scattering inside")
                     .with_help("use `integrator path` (it traces media), or leave the media out to trace light paths"),
             );
+        }
+        if bidirectional && !self.has_media() {
+            self.bidirectional_warnings();
         }
         if render.settings.integrator == IntegratorKind::Path {
             if let Some(s) = self.ambient_span {

@@ -307,6 +307,8 @@ struct Checker<'f> {
     placements_exhausted: bool,
     lights: Vec<(Light, Span)>,
     ambient_span: Option<Span>,
+    /// Where `render { clamp }` is set, if it is.
+    clamp_span: Option<Span>,
     /// Where `light_samples` was set, for the Whitted warning.
     light_samples_span: Option<Span>,
     /// Where `integrator` was set, for the bidirectional ones' warning.
@@ -359,6 +361,7 @@ impl<'f> Checker<'f> {
             placements_exhausted: false,
             lights: Vec::new(),
             ambient_span: None,
+            clamp_span: None,
             light_samples_span: None,
             integrator_span: None,
             syntax_failed: false,

@@ -504,7 +504,7 @@ pub const CATALOGUE: &[Entry] = &[
     Entry {
         code: INTEGRATOR_SETTING,
         title: "Warning: a setting that biases the image or has no effect with this integrator",
-        explanation: "Some settings do not suit the integrator chosen: `ambient` adds light that no source emits, which biases the `path` integrator (it is the paper's term for Whitted shading); `whitted` with `light_samples 0` sends no shadow ray to area lights, so a scene lit only by them renders without direct light.",
+        explanation: "Some settings do not suit the integrator chosen: `ambient` adds light that no source emits, which biases the `path` integrator (it is the paper's term for Whitted shading); `whitted` with `light_samples 0` sends no shadow ray to area lights, so a scene lit only by them renders without direct light; `bdpt` and `ptlt` apply neither `ambient` nor `clamp`, and leave a scene with media to the path integrator.",
         example: "render { integrator path ambient rgb 0.1 }",
     },
     Entry {

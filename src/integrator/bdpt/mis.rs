@@ -72,11 +72,13 @@ impl PathDensities {
     }
 
     /// The index of the light vertex.
+    #[inline(always)]
     fn k(&self) -> usize {
         self.from_camera.len() - 1
     }
 
     /// Whether strategy `s` can sample the path.
+    #[inline(always)]
     fn valid(&self, s: usize) -> bool {
         let k = self.k();
         let t = k + 1 - s;
@@ -96,6 +98,7 @@ impl PathDensities {
     }
 
     /// p(s + 1) / p(s).
+    #[inline(always)]
     fn ratio_up(&self, s: usize) -> f32 {
         let k = self.k();
         let t = k + 1 - s;

@@ -54,18 +54,21 @@ pub struct RenderArgs {
     /// Image size as WxH, e.g. 640x480.
     #[arg(long, value_parser = parse_resolution)]
     pub resolution: Option<(u32, u32)>,
-    /// Sampler (the first is the default); the list comes from the sampler table.
-    #[arg(long, value_parser = parse_sampler, help = one_of("Sampler", &SamplerKind::WORDS, " (the first is the default)"))]
+    /// Sampler; the list and the default come from the sampler table and
+    /// the default settings.
+    #[arg(long, value_parser = parse_sampler, help = one_of("Sampler", &SamplerKind::WORDS, Settings::default().sampler.name()))]
     pub sampler: Option<SamplerKind>,
-    /// Integrator; the list comes from the integrator table.
-    #[arg(long, value_parser = parse_integrator, help = one_of("Integrator", &IntegratorKind::WORDS, ""))]
+    /// Integrator; the list and the default come from the integrator table
+    /// and the default settings.
+    #[arg(long, value_parser = parse_integrator, help = one_of("Integrator", &IntegratorKind::WORDS, Settings::default().integrator.name()))]
     pub integrator: Option<IntegratorKind>,
     /// Clamp indirect light: each contribution's largest RGB component at
     /// most X (as the scene's `clamp`; biased, fights fireflies).
     #[arg(long, value_name = "X", value_parser = parse_clamp)]
     pub clamp: Option<f32>,
-    /// How shadow rays choose their light; the list comes from its table.
-    #[arg(long, value_parser = parse_light_selection, help = one_of("How shadow rays choose their light", &LightSelection::WORDS, ""))]
+    /// How shadow rays choose their light; the list and the default come
+    /// from its table and the default settings.
+    #[arg(long, value_parser = parse_light_selection, help = one_of("How shadow rays choose their light", &LightSelection::WORDS, Settings::default().light_selection.name()))]
     pub light_selection: Option<LightSelection>,
     /// Render only this frame of an animation (`frame` in the scene; with
     /// --frames, `clock` runs from 0 at its first frame to 1 at its last).
@@ -283,11 +286,13 @@ fn parse_light_selection(s: &str) -> Result<LightSelection, String> {
     LightSelection::from_name(s).ok_or_else(|| expected_one_of(&LightSelection::WORDS))
 }
 
-/// A flag's help, "WHAT: a, b or c", from its vocabulary's table, so that
-/// a new word shows in `--help` without an edit here.
-fn one_of(what: &str, words: &[&str], tail: &str) -> String {
+/// A flag's help, "WHAT: a, b or c (default: the scene's, else b)", from its vocabulary's
+/// table and the default settings, so that a new word or another default
+/// shows in `--help` without an edit here.
+fn one_of(what: &str, words: &[&str], default: &str) -> String {
     let list = expected_one_of(words);
-    format!("{what}: {}{tail}", list.trim_start_matches("expected "))
+    let list = list.trim_start_matches("expected ");
+    format!("{what}: {list} (default: the scene's, else {default})")
 }
 
 /// "expected a, b or c".

@@ -356,4 +356,14 @@ fn render_help_names_every_integrator_sampler_and_light_selection() {
             assert!(text.contains(word), "{flag}'s help lacks {word}: {text}");
         }
     }
+    // The defaults are the settings' own.
+    let defaults = ptsc::ir::settings::Settings::default();
+    for (flag, default) in [
+        ("--integrator", defaults.integrator.name()),
+        ("--sampler", defaults.sampler.name()),
+        ("--light-selection", defaults.light_selection.name()),
+    ] {
+        let text = line_after(flag);
+        assert!(text.contains(&format!("else {default})")), "{text}");
+    }
 }

@@ -348,6 +348,27 @@ pub fn apply_overrides(settings: &mut Settings, args: &RenderArgs) {
     }
 }
 
+/// Warnings about flags that the scene's check could not see: `check`
+/// warns of the same settings made in the scene, at their spans.
+pub fn flag_warnings(args: &RenderArgs, scene: &crate::ir::Scene) -> Vec<String> {
+    let integrator = scene.settings.integrator;
+    let bidirectional = matches!(integrator, IntegratorKind::Bdpt | IntegratorKind::Ptlt);
+    let mut warnings = Vec::new();
+    if bidirectional && scene.volumetric && args.integrator.is_some() {
+        warnings.push(format!(
+            "warning: --integrator {}: bdpt and ptlt do not trace media; this scene renders with the path integrator",
+            integrator.name()
+        ));
+    }
+    if bidirectional && !scene.volumetric && args.clamp.is_some() {
+        warnings.push(format!(
+            "warning: --clamp has no effect with the {} integrator",
+            integrator.name()
+        ));
+    }
+    warnings
+}
+
 /// The output image: `-o`, else the scene's `output`, else FILE with `.png`;
 /// each run of `#` in it becomes the frame's number, zero-padded to the
 /// run's length (`frame_####.png` → `frame_0012.png`).

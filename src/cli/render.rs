@@ -1,7 +1,7 @@
 //! `ptsc render FILE`: check, lower, render with progress (from a saved
 //! state where asked, with checkpoints), write atomically.
 
-use super::args::apply_overrides;
+use super::args::{apply_overrides, flag_warnings};
 pub use super::args::{output_path, RenderArgs};
 use super::farm::FarmArgs;
 use super::signals::Signals;
@@ -107,6 +107,11 @@ fn render_frame(
     let Some(ir) = compiled.ir else {
         return EXIT_SCENE_ERROR;
     };
+    if verbosity != Verbosity::Quiet {
+        for warning in flag_warnings(args, &ir) {
+            eprintln!("{warning}");
+        }
+    }
     let output = output_path(args, compiled.output.as_deref(), animation.frame);
     if let Some((other, _)) = written.iter().find(|(_, p)| *p == output) {
         eprintln!(

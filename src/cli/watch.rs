@@ -200,6 +200,9 @@ impl State {
             status(&self.keeping());
             return;
         };
+        for warning in super::args::flag_warnings(&self.args, &ir) {
+            eprintln!("{warning}");
+        }
         let output = output_path(&self.args, compiled.output.as_deref(), self.animation.frame);
         let plan = Plan {
             output,

@@ -367,3 +367,50 @@ fn render_help_names_every_integrator_sampler_and_light_selection() {
         assert!(text.contains(&format!("else {default})")), "{text}");
     }
 }
+
+#[test]
+fn flags_that_bdpt_ignores_are_warned_of() {
+    // The scene's check does not see the command line's flags: `render`
+    // says itself what `check` would say of the same settings in the scene.
+    let dir = crate::temp_dir_with(&[
+        (
+            "fog.pts",
+            "camera { position <0, 1, 5> look_at <0, 0, 0> }\n\
+            point_light { position <0, 5, 0> intensity rgb 10 }\n\
+            atmosphere { density 0.1 }\n\
+            render { resolution <8, 8> samples 1 }\n\
+            sphere { center <0, 0, 0> radius 1 material { diffuse rgb 0.5 } }\n",
+        ),
+        (
+            "clear.pts",
+            "camera { position <0, 1, 5> look_at <0, 0, 0> }\n\
+            point_light { position <0, 5, 0> intensity rgb 10 }\n\
+            render { resolution <8, 8> samples 1 }\n\
+            sphere { center <0, 0, 0> radius 1 material { diffuse rgb 0.5 } }\n",
+        ),
+    ]);
+    let run = |scene: &str, flags: &[&str]| {
+        let path = dir.path().join(scene);
+        let out = dir.path().join("out.exr");
+        let mut argv = vec![
+            "render",
+            path.to_str().unwrap(),
+            "-o",
+            out.to_str().unwrap(),
+            "--force",
+        ];
+        argv.extend_from_slice(flags);
+        let (code, _, stderr) = ptsc(&argv);
+        assert_eq!(code, 0, "{stderr}");
+        stderr
+    };
+    let media = "do not trace media";
+    let clamp = "--clamp has no effect";
+    assert!(run("fog.pts", &["--integrator", "bdpt"]).contains(media));
+    assert!(!run("fog.pts", &["--integrator", "path"]).contains(media));
+    assert!(!run("clear.pts", &["--integrator", "bdpt"]).contains(media));
+    assert!(run("clear.pts", &["--integrator", "ptlt", "--clamp", "4"]).contains(clamp));
+    assert!(!run("clear.pts", &["--clamp", "4"]).contains(clamp));
+    // With media bdpt falls back to path, which clamps.
+    assert!(!run("fog.pts", &["--integrator", "ptlt", "--clamp", "4"]).contains(clamp));
+}

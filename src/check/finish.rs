@@ -186,7 +186,8 @@ impl Checker<'_> {
             render.settings.integrator,
             IntegratorKind::Bdpt | IntegratorKind::Ptlt
         );
-        if bidirectional && self.has_media() {
+        let media = bidirectional && self.has_media();
+        if media {
             let at = (self.integrator_span.or(self.camera_span)).unwrap_or(Span::new(root, 0, 0));
             self.diags.push(
                 Diagnostic::warning(codes::INTEGRATOR_SETTING, "bdpt and ptlt do not trace media: this scene renders with the path integrator", at)
@@ -194,7 +195,7 @@ impl Checker<'_> {
                     .with_help("use `integrator path` (it traces media), or leave the media out to trace light paths"),
             );
         }
-        if bidirectional && !self.has_media() {
+        if bidirectional && !media {
             self.bidirectional_warnings();
         }
         if render.settings.integrator == IntegratorKind::Path {

@@ -290,16 +290,22 @@ fn parse_light_selection(s: &str) -> Result<LightSelection, String> {
 /// table and the default settings, so that a new word or another default
 /// shows in `--help` without an edit here.
 fn one_of(what: &str, words: &[&str], default: &str) -> String {
-    let list = expected_one_of(words);
-    let list = list.trim_start_matches("expected ");
-    format!("{what}: {list} (default: the scene's, else {default})")
+    format!(
+        "{what}: {} (default: the scene's, else {default})",
+        listed(words)
+    )
 }
 
 /// "expected a, b or c".
 fn expected_one_of(words: &[&str]) -> String {
+    format!("expected {}", listed(words))
+}
+
+/// "a, b or c".
+fn listed(words: &[&str]) -> String {
     match words.split_last() {
-        Some((last, rest)) if !rest.is_empty() => format!("expected {} or {last}", rest.join(", ")),
-        _ => format!("expected {}", words.join("")),
+        Some((last, rest)) if !rest.is_empty() => format!("{} or {last}", rest.join(", ")),
+        _ => words.join(""),
     }
 }
 

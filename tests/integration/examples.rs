@@ -38,6 +38,61 @@ fn the_generated_mesh_is_the_shared_one() {
     );
 }
 
+/// `.ci/run` runs the whole suite on a clone with nothing beside it, then,
+/// with `../shared` beside the clone, only the tests named for it
+/// (`cargo test --release shared`). So a test that reads `../shared` has
+/// `shared` in its function's name, and no scene or script under test
+/// reaches it. Comments do not count.
+#[test]
+fn the_readers_of_shared_are_named_for_it() {
+    let root = crate::root();
+    let mut sources = crate::files_below(&root.join("src"), "rs");
+    sources.extend(crate::files_below(&root.join("tests"), "rs"));
+    let mut wrong = Vec::new();
+    for f in &sources {
+        let text = std::fs::read_to_string(f).unwrap();
+        let mut function = "";
+        for (i, line) in text.lines().enumerate() {
+            let code = line.split("//").next().unwrap_or_default();
+            let mut words = code
+                .split_whitespace()
+                .skip_while(|w| matches!(*w, "pub" | "pub(crate)" | "pub(super)" | "const"));
+            if words.next() == Some("fn") {
+                let name = words.next().unwrap_or_default();
+                function = name.split(['(', '<']).next().unwrap_or_default();
+            }
+            let reads = code.contains("shared/") || code.contains("\"shared\"");
+            if reads && !function.contains("shared") {
+                wrong.push(format!(
+                    "{}:{} (in `{function}`)",
+                    crate::relative(f).display(),
+                    i + 1
+                ));
+            }
+        }
+    }
+    let mut scenes = crate::files_below(&root.join("examples"), "pts");
+    scenes.extend(crate::files_below(&root.join("tests"), "pts"));
+    for f in &scenes {
+        let text = std::fs::read_to_string(f).unwrap();
+        for (i, line) in text.lines().enumerate() {
+            if line
+                .split("//")
+                .next()
+                .unwrap_or_default()
+                .contains("shared/")
+            {
+                wrong.push(format!("{}:{}", crate::relative(f).display(), i + 1));
+            }
+        }
+    }
+    assert!(
+        wrong.is_empty(),
+        "these read ../shared outside a test named for it:\n{}",
+        wrong.join("\n")
+    );
+}
+
 /// The budgets bound runaway scenes, not real ones: every example and
 /// golden scene checks within a fortieth of them (the most demanding,
 /// `many_lights.pts`, takes about 590,000 steps of work and 61,000 loop

@@ -68,9 +68,6 @@ impl Checker<'_> {
         }
     }
 
-    /// The warnings about the scene's light: none at all, an ambient term
-    /// under the path integrator, whitted shading that ignores the only
-    /// lights.
     /// Whether the scene has media, as lowering finds them (an atmosphere,
     /// a null boundary, a transmissive material that scatters inside): the
     /// scenes `bdpt` and `ptlt` leave to the path integrator.
@@ -142,8 +139,15 @@ impl Checker<'_> {
         }
     }
 
+    /// The warnings about the scene's light and the integrator that
+    /// renders it: no light at all, media that `bdpt` and `ptlt` leave to
+    /// the path integrator, an ambient term under the path integrator,
+    /// whitted shading that ignores the only lights.
     fn light_warnings(&mut self, render: &RenderSettings, background: [f64; 3]) {
         let root = FileId(0);
+        let integrator = render.settings.integrator;
+        let renders_with =
+            integrator.renders_with(integrator.is_bidirectional() && self.has_media());
         // Objects of groups placed count (an instance's material makes
         // objects without one emissive too).
         let placed = |g: &usize| self.placed_groups.contains(g);
@@ -173,7 +177,9 @@ impl Checker<'_> {
                 .sky
                 .as_ref()
                 .is_some_and(|s| (s.intensity.iter().chain(&s.sun_intensity)).any(|c| *c > 0.0))
-            || render.settings.ambient.max_element() > 0.0;
+            // `ambient` adds light only where it is applied: not by the
+            // integrators that join light paths.
+            || (render.settings.ambient.max_element() > 0.0 && !renders_with.is_bidirectional());
         if !has_light && !render.settings.integrator.is_debug_view() {
             let at = self.camera_span.unwrap_or(Span::new(root, 0, 0));
             self.diags.push(
@@ -182,23 +188,18 @@ impl Checker<'_> {
                     .with_help("add a `point_light { … }`, a `background rgb …`, or an object with `emission` in its material"),
             );
         }
-        let bidirectional = matches!(
-            render.settings.integrator,
-            IntegratorKind::Bdpt | IntegratorKind::Ptlt
-        );
-        let media = bidirectional && self.has_media();
-        if media {
+        if renders_with != integrator {
             let at = (self.integrator_span.or(self.camera_span)).unwrap_or(Span::new(root, 0, 0));
             self.diags.push(
-                Diagnostic::warning(codes::INTEGRATOR_SETTING, "bdpt and ptlt do not trace media: this scene renders with the path integrator", at)
+                Diagnostic::warning(codes::INTEGRATOR_SETTING, IntegratorKind::MEDIA_LEFT_TO_PATH, at)
                     .with_label("the scene has an atmosphere, a null boundary or a scattering inside")
                     .with_help("use `integrator path` (it traces media), or leave the media out to trace light paths"),
             );
         }
-        if bidirectional && !media {
+        if renders_with.is_bidirectional() {
             self.bidirectional_warnings();
         }
-        if render.settings.integrator == IntegratorKind::Path {
+        if renders_with == IntegratorKind::Path {
             if let Some(s) = self.ambient_span {
                 self.diags.push(
                     Diagnostic::warning(codes::INTEGRATOR_SETTING, "the ambient term biases the path integrator", s)

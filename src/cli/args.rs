@@ -358,15 +358,16 @@ pub fn apply_overrides(settings: &mut Settings, args: &RenderArgs) {
 /// warns of the same settings made in the scene, at their spans.
 pub fn flag_warnings(args: &RenderArgs, scene: &crate::ir::Scene) -> Vec<String> {
     let integrator = scene.settings.integrator;
-    let bidirectional = matches!(integrator, IntegratorKind::Bdpt | IntegratorKind::Ptlt);
+    let renders_with = integrator.renders_with(scene.volumetric);
     let mut warnings = Vec::new();
-    if bidirectional && scene.volumetric && args.integrator.is_some() {
+    if renders_with != integrator && args.integrator.is_some() {
         warnings.push(format!(
-            "warning: --integrator {}: bdpt and ptlt do not trace media; this scene renders with the path integrator",
-            integrator.name()
+            "warning: --integrator {}: {}",
+            integrator.name(),
+            IntegratorKind::MEDIA_LEFT_TO_PATH
         ));
     }
-    if bidirectional && !scene.volumetric && args.clamp.is_some() {
+    if renders_with.is_bidirectional() && args.clamp.is_some() {
         warnings.push(format!(
             "warning: --clamp has no effect with the {} integrator",
             integrator.name()

@@ -70,16 +70,13 @@ pub struct Splat {
 /// Whether the integrator `kind` makes for `scene` splats (its film then
 /// keeps a light film: [`Integrator::splats`]).
 pub fn splats(kind: IntegratorKind, scene: &Scene) -> bool {
-    matches!(kind, IntegratorKind::Bdpt | IntegratorKind::Ptlt) && !scene.volumetric
+    kind.renders_with(scene.volumetric).is_bidirectional()
 }
 
 /// The integrator a scene asks for (`bdpt` or `ptlt` in a scene with media: the
 /// path integrator, which traces them).
 pub fn make(kind: IntegratorKind, scene: &Scene) -> Box<dyn Integrator> {
-    match kind {
-        IntegratorKind::Bdpt | IntegratorKind::Ptlt if scene.volumetric => {
-            Box::new(path::PathIntegrator)
-        }
+    match kind.renders_with(scene.volumetric) {
         IntegratorKind::Bdpt => Box::new(bdpt::Bdpt::new(scene, true)),
         IntegratorKind::Ptlt => Box::new(bdpt::Bdpt::new(scene, false)),
         IntegratorKind::Path => Box::new(path::PathIntegrator),

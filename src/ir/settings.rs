@@ -47,6 +47,26 @@ named_values!(IntegratorKind {
 });
 
 impl IntegratorKind {
+    /// What `check` and the command line say when [`Self::renders_with`]
+    /// leaves a scene to the path integrator.
+    pub const MEDIA_LEFT_TO_PATH: &'static str =
+        "bdpt and ptlt do not trace media: this scene renders with the path integrator";
+
+    /// Whether it joins camera paths with light paths (`bdpt`, `ptlt`).
+    pub fn is_bidirectional(self) -> bool {
+        matches!(self, IntegratorKind::Bdpt | IntegratorKind::Ptlt)
+    }
+
+    /// The integrator that renders a scene asking for this one: `bdpt` and
+    /// `ptlt` leave a scene with media to `path`, which traces them.
+    pub fn renders_with(self, has_media: bool) -> IntegratorKind {
+        if has_media && self.is_bidirectional() {
+            IntegratorKind::Path
+        } else {
+            self
+        }
+    }
+
     /// Whether it is a debug view (no light transport).
     pub fn is_debug_view(self) -> bool {
         matches!(

@@ -62,6 +62,10 @@ fn render_frames(args: &RenderArgs, farm: &FarmArgs) -> u8 {
             return EXIT_USAGE;
         }
     };
+    if let Some(why) = frames_share_an_image(args, &animations) {
+        eprintln!("error: {why}");
+        return EXIT_USAGE;
+    }
     // Ctrl-C or SIGTERM: stop within a few samples and write every sample
     // done, and the state; a second one ends the process at once.
     let signals = Signals::install();
@@ -76,6 +80,46 @@ fn render_frames(args: &RenderArgs, farm: &FarmArgs) -> u8 {
         }
     }
     EXIT_OK
+}
+
+/// Why the first and the last of several frames would write one image
+/// (`-o`, the scene's `output` or FILE's `.png` without a `#` run), found
+/// before any frame renders. The scene's `output` is read from a check of
+/// each of the two frames (it may be computed from the clock); a scene
+/// with errors is left to the render to report. Frames between them that
+/// clash are refused as each comes ([`render_frame`]).
+fn frames_share_an_image(args: &RenderArgs, animations: &[Animation]) -> Option<String> {
+    let (first, last) = (animations.first()?, animations.last()?);
+    if first.frame == last.frame {
+        return None;
+    }
+    let image = |animation: &Animation| -> Option<PathBuf> {
+        let scene_output = if args.output.is_some() {
+            None
+        } else {
+            let options = Options {
+                lower: false,
+                animation: *animation,
+                output_elsewhere: true,
+                ..Options::default()
+            };
+            let compiled = compile_file(&args.file, options).ok()?;
+            if compiled.diagnostics.has_errors() {
+                return None;
+            }
+            compiled.output
+        };
+        Some(output_path(args, scene_output.as_deref(), animation.frame))
+    };
+    let path = image(first)?;
+    (image(last)? == path).then(|| {
+        format!(
+            "frames {} and {} would both write {}: name the images with a # pattern (-o frame_####.png)",
+            first.frame,
+            last.frame,
+            path.display()
+        )
+    })
 }
 
 /// Renders one frame: compile, then drive a batch session (from nothing

@@ -422,7 +422,12 @@ fn frames_see_their_number_and_clock_and_number_their_images() {
     let (code, err) = ptsc(&["render", scene.to_str().unwrap(), "--frame", "7"]);
     assert_eq!(code, 0, "{err}");
     assert!(dir.path().join("f_007.png").is_file(), "{err}");
-    // Several frames into one file: refused before the second overwrites the first.
+    // The scene's own names, computed from the frame, for a range.
+    let (code, err) = ptsc(&["render", scene.to_str().unwrap(), "--frames", "8..9"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(dir.path().join("f_009.png").is_file(), "{err}");
+    // Several frames into one file: refused before any frame renders,
+    // whether the name is `-o`'s, the scene's or the scene file's.
     let same = dir.path().join("same.png");
     let (code, err) = ptsc(&[
         "render",
@@ -434,6 +439,21 @@ fn frames_see_their_number_and_clock_and_number_their_images() {
     ]);
     assert_eq!(code, 2);
     assert!(err.contains("# pattern"), "{err}");
+    assert!(!same.exists(), "nothing is rendered");
+    let still = moving.replace("\"f_\" + str(frame, 3) + \".png\"", "\"still.png\"");
+    let unnamed = moving.replace("output \"f_\" + str(frame, 3) + \".png\"", "");
+    std::fs::write(dir.path().join("still.pts"), still).unwrap();
+    std::fs::write(dir.path().join("unnamed.pts"), unnamed).unwrap();
+    for (file, image) in [("still.pts", "still.png"), ("unnamed.pts", "unnamed.png")] {
+        let scene = dir.path().join(file);
+        let (code, err) = ptsc(&["render", scene.to_str().unwrap(), "--frames", "1..3"]);
+        assert_eq!(code, 2, "{file}: {err}");
+        assert!(err.contains("frames 1 and 3 would both write"), "{err}");
+        assert!(
+            !dir.path().join(image).exists(),
+            "{file}: nothing is rendered"
+        );
+    }
     let (code, err) = ptsc(&[
         "render",
         scene.to_str().unwrap(),

@@ -36,8 +36,8 @@ impl Checker<'_> {
             (row.name, kind_span),
             block,
             (&row.schemas(), row.positional),
-            &mut self.env,
-            &mut self.diags,
+            row.is_shape(),
+            (&mut self.env, &mut self.diags),
         );
         let material_entries = material_entries(block);
         if !row.is_shape() {

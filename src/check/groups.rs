@@ -63,13 +63,12 @@ impl Checker<'_> {
         block: &crate::syntax::ast::Block,
         span: Span,
     ) {
-        let p = Params::collect(
-            "instance",
-            name.span,
+        let p = Params::collect_block(
+            ("instance", name.span),
             block,
-            &[schema::SHAPE_COMMON],
-            &mut self.env,
-            &mut self.diags,
+            (&[schema::SHAPE_COMMON], None),
+            true,
+            (&mut self.env, &mut self.diags),
         );
         let material_entries = material_entries(block);
         let transform = objects::transform(&p, &mut self.diags);

@@ -98,15 +98,18 @@ impl Params {
     /// [`Params::collect`] for a block statement whose kind has POV-Ray's
     /// `positional` order (its row in `check/kinds`), which the help for
     /// values without names writes out.
+    /// `takes_material`: the block is an object's or an instance's, whose
+    /// `material` the caller reads (named in the help for a misspelt word).
     pub fn collect_block(
         (what, head): (&'static str, Span),
         block: &Block,
         (schemas, positional): (&[&'static [ParamSpec]], Option<Positional>),
-        env: &mut Env,
-        diags: &mut Diagnostics,
+        takes_material: bool,
+        (env, diags): (&mut Env, &mut Diagnostics),
     ) -> Params {
         let mut collecting = Collecting::new(what.into(), head, schemas, None);
         collecting.positional = positional;
+        collecting.takes_material = takes_material;
         collecting.run(block, env, diags)
     }
 
@@ -179,6 +182,8 @@ struct Collecting<'s> {
     first_seen: Vec<(&'static str, Span)>,
     /// POV-Ray's order of the block's positional values, if it has one.
     positional: Option<Positional>,
+    /// Whether the block also takes a `material` (an object, an instance).
+    takes_material: bool,
 }
 
 impl<'s> Collecting<'s> {
@@ -201,14 +206,17 @@ impl<'s> Collecting<'s> {
             texture,
             first_seen: Vec::new(),
             positional: None,
+            takes_material: false,
         }
     }
 
-    /// Every parameter of the schemas that is not only a refused POV-Ray word.
+    /// Every parameter of the schemas that is not only a refused POV-Ray
+    /// word, and `material` where the block takes one.
     fn accepted(&self) -> Vec<&'static str> {
         (self.schemas.iter().flat_map(|s| s.iter()))
             .filter(|p| p.povray.is_none())
             .map(|p| p.name)
+            .chain(self.takes_material.then_some("material"))
             .collect()
     }
 
@@ -255,7 +263,7 @@ impl<'s> Collecting<'s> {
                     &what,
                     name,
                     *span,
-                    self.schemas,
+                    (self.schemas, self.takes_material),
                 ));
                 None
             }

@@ -11,17 +11,18 @@ use crate::span::Span;
 use crate::syntax::ast::{Expr, Ident};
 
 /// The error for `name { … }` inside the block `what` (with the
-/// parameters `schemas`), at `span`.
+/// parameters `schemas`, and a `material` where `takes_material`), at
+/// `span`.
 pub fn foreign_block(
     what: &str,
     name: &Ident,
     span: Span,
-    schemas: &[&'static [ParamSpec]],
+    (schemas, takes_material): (&[&'static [ParamSpec]], bool),
 ) -> Diagnostic {
     let word = name.name.as_str();
-    let all: Vec<&str> = schemas
-        .iter()
+    let all: Vec<&str> = (schemas.iter())
         .flat_map(|s| s.iter().map(|p| p.name))
+        .chain(takes_material.then_some("material"))
         .collect();
     let takes_materials = (schemas.iter().flat_map(|s| s.iter()))
         .any(|p| p.name == word && p.ty == super::schema::Ty::Materials);

@@ -268,7 +268,13 @@ impl<'s> Collecting<'s> {
                 None
             }
             Entry::Flag { name } => {
-                diags.push(super::povray::flag(&what, name));
+                let spec = (self.schemas.iter().flat_map(|s| s.iter()))
+                    .find(|p| p.name == name.name && p.povray.is_none());
+                diags.push(super::povray::flag(
+                    &what,
+                    name,
+                    (spec, self.takes_material),
+                ));
                 // A parameter written without its value is not missing too.
                 self.suggest(&name.name);
                 None

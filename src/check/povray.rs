@@ -144,8 +144,15 @@ fn rewrite(kind: &str, names: &[&str], values: &[Expr], env: &mut Env) -> Option
 }
 
 /// The error for a name alone before the `}` of the block `what`:
-/// POV-Ray's flag (`no_shadow`), or a parameter without its value.
-pub fn flag(what: &str, name: &Ident) -> Diagnostic {
+/// POV-Ray's flag (`no_shadow`), or a parameter without its value (its
+/// row `spec` where the block has it: the help writes its example; a word
+/// the block does not have may be a material's name where it
+/// `takes_material`).
+pub fn flag(
+    what: &str,
+    name: &Ident,
+    (spec, takes_material): (Option<&ParamSpec>, bool),
+) -> Diagnostic {
     let word = name.name.as_str();
     if let Some(hint) = crate::syntax::povray::flag(word) {
         return Diagnostic::error(
@@ -156,15 +163,20 @@ pub fn flag(what: &str, name: &Ident) -> Diagnostic {
         .with_label(format!("not a parameter of `{what}`"))
         .with_help(hint);
     }
+    let help = match (spec, takes_material) {
+        (Some(spec), _) => format!("write `{word} {}`", spec.example),
+        (None, true) => format!(
+            "a parameter is a name and a value (e.g. `radius 1`); a material is given as `material {word}`"
+        ),
+        (None, false) => "a parameter is a name and a value (e.g. `radius 1`)".to_string(),
+    };
     Diagnostic::error(
         codes::MISSING_VALUE,
         format!("`{word}` has no value"),
         name.span,
     )
     .with_label("a name without a value")
-    .with_help(format!(
-        "a parameter is a name and a value (e.g. `{word} 1`); a material is given as `material {word}`"
-    ))
+    .with_help(help)
 }
 
 /// The error for POV-Ray's directive `#name`, spanning the `#` and the

@@ -53,6 +53,12 @@ impl Checker<'_> {
             Ok(b) => b,
             Err(e) => {
                 let (reason, help) = match &e {
+                    // `colors.inc`, `textures.inc`: a POV-Ray scene's first lines.
+                    ReadError::NotFound if path.to_ascii_lowercase().ends_with(".inc") => (
+                        "not found".to_string(),
+                        "POV-Ray's own include files (colors.inc, textures.inc, …) have no ptsc version: write colours as `rgb <r, g, b>`"
+                            .to_string(),
+                    ),
                     ReadError::NotFound => (
                         "not found".to_string(),
                         "include paths are relative to the file that contains the `include`"

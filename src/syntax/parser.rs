@@ -529,5 +529,10 @@ fn help_for(expected: &[&str], found: &str) -> String {
     if expected.contains(&"`;`") {
         return "end a `let` with `;`".into();
     }
+    // POV-Ray compares with `=` (`#if (A = 1)`).
+    if found == "`=`" {
+        return "`=` only defines (`let a = 1;`): compare with `==`, as in `if a == 1 { … }`"
+            .into();
+    }
     "check the syntax near this point (see docs/language.md)".into()
 }

@@ -140,6 +140,11 @@ pub fn run() -> ExitCode {
         Ok(c) => c,
         Err(e) => {
             let _ = e.print();
+            if e.use_stderr() {
+                if let Some(hint) = std::env::args().skip(1).find_map(|a| povray_option(&a)) {
+                    eprintln!("note: {hint}");
+                }
+            }
             return ExitCode::from(if e.use_stderr() { EXIT_USAGE } else { EXIT_OK });
         }
     };
@@ -164,6 +169,33 @@ pub fn run() -> ExitCode {
         }
     };
     ExitCode::from(code)
+}
+
+/// What ptsc writes for the POV-Ray command-line option `arg` (`+W320`,
+/// `-H240`, `+A0.3`, `+Oout.png`), told after a command line that did not
+/// parse.
+fn povray_option(arg: &str) -> Option<String> {
+    let rest = arg
+        .strip_prefix(['+', '-'])
+        .filter(|r| !r.starts_with('-'))?;
+    let mut chars = rest.chars();
+    let letter = chars.next()?;
+    // ptsc's own short options are lower case (`-o`, `-v`, `-q`).
+    if arg.starts_with('-') && !letter.is_ascii_uppercase() {
+        return None;
+    }
+    let letter = letter.to_ascii_uppercase();
+    let value = chars.as_str();
+    let numeric = !value.is_empty() && value.parse::<f64>().is_ok();
+    let instead = match letter {
+        'W' | 'H' if numeric => "`--resolution WxH` (e.g. `--resolution 320x240`)",
+        'O' if !value.is_empty() => "`-o FILE`",
+        'I' if !value.is_empty() => "the scene's path after `render` (`ptsc render scene.pts`)",
+        'A' => "`--spp N`: every pixel is sampled N times, there is no anti-aliasing switch",
+        _ if arg.starts_with('+') => "ptsc's options, which start with `--` (`ptsc render --help`)",
+        _ => return None,
+    };
+    Some(format!("POV-Ray's `{arg}` is {instead} in ptsc"))
 }
 
 /// Runs `explain`; returns the exit code.
@@ -199,4 +231,39 @@ fn explain(code: Option<&str>, all: bool) -> u8 {
 pub fn stderr_is_terminal() -> bool {
     use std::io::IsTerminal;
     std::io::stderr().is_terminal()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::povray_option;
+
+    #[test]
+    fn povray_options_are_told_and_ptsc_options_are_not() {
+        for (arg, says) in [
+            ("+W320", "--resolution"),
+            ("-H240", "--resolution"),
+            ("+w640", "--resolution"),
+            ("+Oout.png", "-o FILE"),
+            ("+Iscene.pov", "after `render`"),
+            ("+A0.3", "--spp"),
+            ("+Q9", "start with `--`"),
+        ] {
+            let hint = povray_option(arg).unwrap_or_else(|| panic!("{arg}: no hint"));
+            assert!(hint.contains(says), "{arg}: {hint}");
+        }
+        for arg in [
+            "-o",
+            "-oout.png",
+            "-v",
+            "-q",
+            "--spp",
+            "-1",
+            "-w",
+            "scene.pts",
+            "+",
+            "-",
+        ] {
+            assert_eq!(povray_option(arg), None, "{arg}");
+        }
+    }
 }

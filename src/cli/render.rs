@@ -62,19 +62,17 @@ fn render_frames(args: &RenderArgs, farm: &FarmArgs) -> u8 {
             return EXIT_USAGE;
         }
     };
-    if let Some(why) = frames_share_an_image(args, &animations) {
-        eprintln!("error: {why}");
-        return EXIT_USAGE;
-    }
     // Ctrl-C or SIGTERM: stop within a few samples and write every sample
     // done, and the state; a second one ends the process at once.
     let signals = Signals::install();
     let mut written: Vec<(u32, PathBuf)> = Vec::new();
+    let last = animations.last().copied();
     for animation in animations {
         if signals.stopped() {
             return signals.exit_code();
         }
-        let code = render_frame(args, farm, animation, &signals, &mut written);
+        let frames = (animation, last.filter(|l| l.frame != animation.frame));
+        let code = render_frame(args, farm, frames, &signals, &mut written);
         if code != EXIT_OK {
             return code;
         }
@@ -82,54 +80,39 @@ fn render_frames(args: &RenderArgs, farm: &FarmArgs) -> u8 {
     EXIT_OK
 }
 
-/// Why the first and the last of several frames would write one image
-/// (`-o`, the scene's `output` or FILE's `.png` without a `#` run), found
-/// before any frame renders. The scene's `output` is read from a check of
-/// each of the two frames (it may be computed from the clock); a scene
-/// with errors is left to the render to report. Frames between them that
-/// clash are refused as each comes ([`render_frame`]).
-fn frames_share_an_image(args: &RenderArgs, animations: &[Animation]) -> Option<String> {
-    let (first, last) = (animations.first()?, animations.last()?);
-    if first.frame == last.frame {
-        return None;
-    }
-    let image = |animation: &Animation| -> Option<PathBuf> {
-        let scene_output = if args.output.is_some() {
-            None
-        } else {
-            let options = Options {
-                lower: false,
-                animation: *animation,
-                output_elsewhere: true,
-                ..Options::default()
-            };
-            let compiled = compile_file(&args.file, options).ok()?;
-            if compiled.diagnostics.has_errors() {
-                return None;
-            }
-            compiled.output
+/// Whether the `last` frame would write `first_image` too (`-o`, the
+/// scene's `output` or FILE's `.png` without a `#` run): asked once the
+/// first frame is compiled, before it renders. The last frame's `output`
+/// comes from a check of it (the scene may compute it from the clock; a
+/// check with errors is left to that frame's render). Frames between
+/// that clash are refused as each comes.
+fn last_frame_writes(args: &RenderArgs, first_image: &Path, last: Animation) -> bool {
+    let scene_output = if args.output.is_some() {
+        None
+    } else {
+        let options = Options {
+            lower: false,
+            animation: last,
+            output_elsewhere: true,
+            ..Options::default()
         };
-        Some(output_path(args, scene_output.as_deref(), animation.frame))
+        match compile_file(&args.file, options) {
+            Ok(c) if !c.diagnostics.has_errors() => c.output,
+            _ => return false,
+        }
     };
-    let path = image(first)?;
-    (image(last)? == path).then(|| {
-        format!(
-            "frames {} and {} would both write {}: name the images with a # pattern (-o frame_####.png)",
-            first.frame,
-            last.frame,
-            path.display()
-        )
-    })
+    output_path(args, scene_output.as_deref(), last.frame) == first_image
 }
 
 /// Renders one frame: compile, then drive a batch session (from nothing
 /// or from the saved state, with checkpoints; the image and the state
 /// where kept). `written` lists the frames rendered so far and their
-/// images.
+/// images; `last`, the animation's last frame when it is another, is
+/// checked against the first frame's image before anything renders.
 fn render_frame(
     args: &RenderArgs,
     farm: &FarmArgs,
-    animation: Animation,
+    (animation, last): (Animation, Option<Animation>),
     signals: &Signals,
     written: &mut Vec<(u32, PathBuf)>,
 ) -> u8 {
@@ -157,10 +140,15 @@ fn render_frame(
         }
     }
     let output = output_path(args, compiled.output.as_deref(), animation.frame);
-    if let Some((other, _)) = written.iter().find(|(_, p)| *p == output) {
+    let clash = match last {
+        Some(last) if written.is_empty() && last_frame_writes(args, &output, last) => {
+            Some((animation.frame, last.frame))
+        }
+        _ => (written.iter().find(|(_, p)| *p == output)).map(|(o, _)| (*o, animation.frame)),
+    };
+    if let Some((one, other)) = clash {
         eprintln!(
-            "error: frames {other} and {} would both write {}: name the images with a # pattern (-o frame_####.png)",
-            animation.frame,
+            "error: frames {one} and {other} would both write {}: name the images with a # pattern (-o frame_####.png)",
             output.display()
         );
         return EXIT_USAGE;

@@ -32,6 +32,7 @@ impl Checker<'_> {
             ));
             return;
         }
+        let errors_before = self.diags.errors_pushed();
         let p = Params::collect_block(
             (row.name, kind_span),
             block,
@@ -39,6 +40,7 @@ impl Checker<'_> {
             row.is_shape(),
             (&mut self.env, &mut self.diags),
         );
+        self.meant_materials.extend(p.meant_material.clone());
         let material_entries = material_entries(block);
         if !row.is_shape() {
             for (_, s) in &material_entries {
@@ -63,6 +65,7 @@ impl Checker<'_> {
                         None => self.lights.push((l, span)),
                     }
                 }
+                self.light_with_errors |= self.diags.errors_pushed() > errors_before;
             }
             kinds::Role::Shape(convert) => {
                 let material = self.object_material(&material_entries, span);

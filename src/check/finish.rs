@@ -16,6 +16,11 @@ impl Checker<'_> {
             return self.checked(None);
         }
         self.resolve_pending_materials();
+        for meant in std::mem::take(&mut self.meant_materials) {
+            if let Some(m) = self.material_names.get(&meant.name) {
+                self.env.symbols.excuse(m.def);
+            }
+        }
         self.report_unused();
         let background = self.background.map(|b| b.0).unwrap_or([0.0; 3]);
         self.light_warnings(&render, background);
@@ -180,7 +185,8 @@ impl Checker<'_> {
             // `ambient` adds light only where it is applied: not by the
             // integrators that join light paths.
             || (render.settings.ambient.max_element() > 0.0 && !renders_with.is_bidirectional());
-        if !has_light && !render.settings.integrator.is_debug_view() {
+        // (A light block with errors may be the light: its errors say so.)
+        if !has_light && !self.light_with_errors && !render.settings.integrator.is_debug_view() {
             let at = self.camera_span.unwrap_or(Span::new(root, 0, 0));
             self.diags.push(
                 Diagnostic::warning(codes::NO_LIGHT, "the scene has no light: the image will be black", at)

@@ -70,6 +70,7 @@ impl Checker<'_> {
             true,
             (&mut self.env, &mut self.diags),
         );
+        self.meant_materials.extend(p.meant_material.clone());
         let material_entries = material_entries(block);
         let transform = objects::transform(&p, &mut self.diags);
         let velocity = objects::velocity(&p);

@@ -278,6 +278,16 @@ fn mix_checks(p: &Params, m: &mut Material, diags: &mut Diagnostics) {
             );
         }
     }
+    if let Some((_, s)) = p.get("ior") {
+        if m.transmission == 0.0 {
+            diags.push(no_effect_without(
+                "ior",
+                "transmission",
+                *s,
+                "the mix's `reflection` is a mirror without Fresnel: give glass `transmission 1`; for a coat that reflects by `ior`, `type plastic` (or `type dielectric` for clear glass)",
+            ));
+        }
+    }
     if let Some((_, s)) = p.get("ior_outside") {
         if m.transmission == 0.0 {
             diags.push(no_effect(

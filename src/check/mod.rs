@@ -289,6 +289,12 @@ struct Checker<'f> {
     /// Objects whose material was named before its declaration: the
     /// object (its group, if any, and index) and the name as written.
     pending_materials: Vec<(ObjectRef, crate::syntax::ast::Ident)>,
+    /// Names given to a misspelt `material` (`materal red`, reported
+    /// there): the materials they name are not reported unused too.
+    meant_materials: Vec<crate::syntax::ast::Ident>,
+    /// A light block had errors: the scene's "no light" would be their
+    /// echo.
+    light_with_errors: bool,
     objects: Vec<Object>,
     /// Declared groups (the one being declared too, last).
     groups: Vec<Group>,
@@ -350,6 +356,8 @@ impl<'f> Checker<'f> {
             material_names: HashMap::new(),
             default_material: None,
             pending_materials: Vec::new(),
+            meant_materials: Vec::new(),
+            light_with_errors: false,
             included_from: HashMap::new(),
             objects: Vec::new(),
             groups: Vec::new(),

@@ -79,6 +79,9 @@ pub struct Params {
     given: Vec<&'static str>,
     /// Names an unknown parameter was probably meant to be: not reported missing again.
     suggested: Vec<&'static str>,
+    /// The name given to a word taken for a misspelt `material` (`materal
+    /// red`): the caller counts that material as meant, not unused.
+    pub meant_material: Option<crate::syntax::ast::Ident>,
 }
 
 impl Params {
@@ -201,6 +204,7 @@ impl<'s> Collecting<'s> {
                 ordered: Vec::new(),
                 given: Vec::new(),
                 suggested: Vec::new(),
+                meant_material: None,
             },
             schemas,
             texture,
@@ -290,7 +294,8 @@ impl<'s> Collecting<'s> {
                     }
                     None => {
                         let order = (what.as_ref(), self.positional);
-                        let (d, names) = super::povray::positional(order, values, *span, env);
+                        let (d, names) =
+                            super::povray::positional(order, (values, *span), self.schemas, env);
                         diags.push(d);
                         // Not reported missing too: the help names them.
                         self.params.suggested.extend_from_slice(names);
@@ -345,8 +350,21 @@ impl<'s> Collecting<'s> {
             return None;
         }
         let Some(spec) = found else {
-            let d = at_infinity(&what, &name.name, name.span)
-                .unwrap_or_else(|| self.unknown_parameter(name));
+            let d = match at_infinity(&what, &name.name, name.span) {
+                Some(d) => d,
+                None => {
+                    let (d, fix) = self.unknown_parameter(name);
+                    if let (Some("material"), Source::Value(v)) = (fix, value) {
+                        if let ExprKind::Name(meant) = &v.kind {
+                            self.params.meant_material = Some(Ident {
+                                name: meant.clone(),
+                                span: v.span,
+                            });
+                        }
+                    }
+                    d
+                }
+            };
             diags.push(d);
             return None;
         };
@@ -362,8 +380,9 @@ impl<'s> Collecting<'s> {
     }
 
     /// The error for the unknown parameter `name`: did-you-mean, or the
-    /// ptsc word for a POV-Ray one, and the parameters the block accepts.
-    fn unknown_parameter(&mut self, name: &Ident) -> Diagnostic {
+    /// ptsc word for a POV-Ray one, and the parameters the block accepts;
+    /// with the word it was probably meant to be.
+    fn unknown_parameter(&mut self, name: &Ident) -> (Diagnostic, Option<&'static str>) {
         let what = self.params.what.clone();
         let all = self.accepted();
         let mut fix = None;
@@ -395,8 +414,8 @@ impl<'s> Collecting<'s> {
         };
         let d = unknown_parameter(name, &what, help);
         match fix {
-            Some(word) => d.with_fix(name.span, word),
-            None => d,
+            Some(word) => (d.with_fix(name.span, word), fix),
+            None => (d, None),
         }
     }
 

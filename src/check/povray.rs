@@ -5,7 +5,7 @@
 //! of `params.rs` ([`super::schema::povray_positional`]).
 
 use super::eval::{eval, written, Env, Value};
-use super::schema::{ParamSpec, Positional};
+use super::schema::{ParamSpec, Positional, Ty};
 use crate::diag::{codes, did_you_mean, Diagnostic, Diagnostics};
 use crate::span::Span;
 use crate::syntax::ast::{Expr, Ident};
@@ -71,13 +71,13 @@ pub fn foreign_block(
 /// values evaluate; with the names of the parameters the values stand for.
 pub fn positional(
     (what, row): (&str, Option<Positional>),
-    values: &[Expr],
-    span: Span,
+    (values, span): (&[Expr], Span),
+    schemas: &[&'static [ParamSpec]],
     env: &mut Env,
 ) -> (Diagnostic, &'static [&'static str]) {
     let help = match row {
         Some((names, note)) => {
-            let rewritten = rewrite(what, names, values, env).unwrap_or_else(|| {
+            let rewritten = rewrite(what, names, values, (schemas, env)).unwrap_or_else(|| {
                 names
                     .iter()
                     .map(|n| format!("{n} …"))
@@ -104,9 +104,15 @@ pub fn positional(
 }
 
 /// `name value …` for `values` under `names`, from their evaluated values
-/// (a plane's distance becomes a point on it); `None` when a value does
-/// not evaluate or the counts differ.
-fn rewrite(kind: &str, names: &[&str], values: &[Expr], env: &mut Env) -> Option<String> {
+/// (a plane's distance becomes a point on it, a number where a vector goes
+/// the vector POV-Ray makes of it); `None` when a value does not evaluate
+/// or the counts differ.
+fn rewrite(
+    kind: &str,
+    names: &[&str],
+    values: &[Expr],
+    (schemas, env): (&[&'static [ParamSpec]], &mut Env),
+) -> Option<String> {
     if names.len() != values.len() {
         return None;
     }
@@ -124,7 +130,11 @@ fn rewrite(kind: &str, names: &[&str], values: &[Expr], env: &mut Env) -> Option
         if n.len() != 3 || length == 0.0 {
             return None;
         }
-        let point: Vec<f64> = n.iter().map(|x| x / length * d).collect();
+        // (Rounded to a millionth: the help is read, `<1.414214, …>`.)
+        let point: Vec<f64> = n
+            .iter()
+            .map(|x| (x / length * d * 1e6).round() / 1e6)
+            .collect();
         evaluated[1] = Value::Vector(point.into());
     }
     if kind == "box" {
@@ -135,12 +145,25 @@ fn rewrite(kind: &str, names: &[&str], values: &[Expr], env: &mut Env) -> Option
             evaluated = vec![Value::Vector(lo.into()), Value::Vector(hi.into())];
         }
     }
+    for (value, name) in evaluated.iter_mut().zip(names) {
+        // POV-Ray's `sphere { 0, 1 }`: the centre <0, 0, 0>.
+        if let Value::Num(n) = *value {
+            if takes_vector(schemas, name) {
+                *value = Value::Vector(vec![n; 3].into());
+            }
+        }
+    }
     let pairs: Vec<String> = names
         .iter()
         .zip(&evaluated)
         .map(|(n, v)| format!("{n} {}", written(v)))
         .collect();
     Some(pairs.join(" "))
+}
+
+/// Whether the parameter `name` of `schemas` takes only a vector of 3.
+fn takes_vector(schemas: &[&'static [ParamSpec]], name: &str) -> bool {
+    (schemas.iter().flat_map(|s| s.iter())).any(|p| p.name == name && p.ty == Ty::Vec3)
 }
 
 /// The error for a name alone before the `}` of the block `what`:

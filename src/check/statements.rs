@@ -65,12 +65,24 @@ impl Checker<'_> {
                 span,
             } => {
                 self.diags.push(povray::directive(name));
-                // `#declare R = 1;` binds `R` as `let` would: its uses are fine.
-                if let Some((bound, value)) = binding {
-                    let name = bound.clone();
-                    let value = value.clone();
-                    let span = *span;
-                    self.statement(&Statement::Let { name, value, span }, file);
+                // `#declare R = 1;` binds `R` as `let` would: its uses are
+                // fine. A name bound before is POV-Ray's redefinition (not
+                // an error there), a name without a value one whose uses
+                // stay silent (`#for (I, …)`).
+                match binding {
+                    Some((bound, _)) if self.name_taken(&bound.name).is_some() => {}
+                    Some((bound, Some(value))) => {
+                        let name = bound.clone();
+                        let value = value.clone();
+                        let span = *span;
+                        self.statement(&Statement::Let { name, value, span }, file);
+                    }
+                    Some((bound, None)) => {
+                        let named = (bound.name.as_str(), bound.span);
+                        let def = self.env.define(SymbolKind::Constant, named, *span, None);
+                        self.env.symbols.excuse(def);
+                    }
+                    None => {}
                 }
             }
         }

@@ -54,9 +54,12 @@ fn counts(errors: usize, warnings: usize) -> String {
     )
 }
 
+/// A scene to check, or what could not be read and why.
+type Scene = Result<PathBuf, (PathBuf, String)>;
+
 /// The scenes the arguments name: a file as it is, a folder as its `*.pts`
 /// files sorted by name (or the reason it holds none).
-fn scenes(args: &[PathBuf]) -> Vec<Result<PathBuf, (PathBuf, String)>> {
+fn scenes(args: &[PathBuf]) -> Vec<Scene> {
     let mut out = Vec::new();
     for arg in args {
         if !arg.is_dir() {
@@ -120,7 +123,9 @@ pub fn run(args: &[PathBuf], format: Format, verbosity: Verbosity) -> u8 {
             serde_json::to_string_pretty(&json).expect("JSON of plain values")
         ),
         Format::Human if several && (verbosity != Verbosity::Quiet || errors > 0) => {
-            let n = all.len();
+            // (A folder without scenes is an error, not a file checked.)
+            let is_folder = |s: &&Scene| matches!(s, Err((path, _)) if path.is_dir());
+            let n = scenes.iter().filter(|s| !is_folder(s)).count();
             let files = if n == 1 { "file" } else { "files" };
             eprintln!("{n} {files} checked: {}", counts(errors, warnings));
         }
@@ -178,13 +183,14 @@ fn check_one(
                 d.render_human(&compiled.sources, super::stderr_is_terminal())
             );
             let quiet = verbosity == Verbosity::Quiet;
-            match (several, errors + warnings > 0) {
-                (true, true) => eprintln!("{}: {}", file.display(), counts(errors, warnings)),
-                (false, true) => eprintln!("{}", counts(errors, warnings)),
-                _ => {}
-            }
-            if errors == 0 && !quiet && !(several && warnings > 0) {
-                eprintln!("{}: ok", file.display());
+            let name = file.display();
+            match (errors, warnings) {
+                (0, 0) if !quiet => eprintln!("{name}: ok"),
+                (0, 0) => {}
+                (0, 1) => eprintln!("{name}: ok, 1 warning"),
+                (0, n) => eprintln!("{name}: ok, {n} warnings"),
+                _ if several => eprintln!("{name}: {}", counts(errors, warnings)),
+                _ => eprintln!("{}", counts(errors, warnings)),
             }
         }
     }

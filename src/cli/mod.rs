@@ -141,7 +141,8 @@ pub fn run() -> ExitCode {
         Err(e) => {
             let _ = e.print();
             if e.use_stderr() {
-                if let Some(hint) = std::env::args().skip(1).find_map(|a| povray_option(&a)) {
+                let args: Vec<String> = std::env::args().skip(1).collect();
+                if let Some(hint) = usage_note(&args) {
                     eprintln!("note: {hint}");
                 }
             }
@@ -169,6 +170,31 @@ pub fn run() -> ExitCode {
         }
     };
     ExitCode::from(code)
+}
+
+/// A note after a command line that did not parse, where clap's own tip
+/// would mislead (`to pass '-1' as a value, use '-- -1'`): a POV-Ray
+/// option, a width or height of their own, a negative number after an
+/// option.
+fn usage_note(args: &[String]) -> Option<String> {
+    if let Some(hint) = args.iter().find_map(|a| povray_option(a)) {
+        return Some(hint);
+    }
+    let size_word = ["-w", "--width", "--height", "--size"];
+    if let Some(word) = args.iter().find(|a| size_word.contains(&a.as_str())) {
+        return Some(format!(
+            "ptsc has no `{word}`: the image's size is `--resolution WxH` (e.g. `--resolution 320x240`)"
+        ));
+    }
+    let command = args.first().filter(|a| !a.starts_with('-'));
+    let help = command.map_or("ptsc --help".to_string(), |c| format!("ptsc {c} --help"));
+    args.windows(2).find_map(|pair| {
+        let (option, value) = (&pair[0], &pair[1]);
+        let negative = value.starts_with('-') && value[1..].parse::<f64>().is_ok();
+        (option.starts_with("--") && negative).then(|| {
+            format!("`{option}` takes no negative number (`{value}`): `{help}` says what it takes")
+        })
+    })
 }
 
 /// What ptsc writes for the POV-Ray command-line option `arg` (`+W320`,
@@ -235,7 +261,21 @@ pub fn stderr_is_terminal() -> bool {
 
 #[cfg(test)]
 mod tests {
-    use super::povray_option;
+    use super::{povray_option, usage_note};
+
+    #[test]
+    fn a_width_of_its_own_and_a_negative_value_are_told() {
+        let note = |args: &[&str]| {
+            let args: Vec<String> = args.iter().map(|a| a.to_string()).collect();
+            usage_note(&args)
+        };
+        let said = note(&["render", "s.pts", "-w", "320"]).unwrap();
+        assert!(said.contains("--resolution"), "{said}");
+        let said = note(&["render", "s.pts", "--seed", "-1"]).unwrap();
+        assert!(said.contains("`--seed` takes no negative number"), "{said}");
+        assert_eq!(note(&["render", "s.pts", "--spp", "4", "-o"]), None);
+        assert!(note(&["render", "+W320"]).unwrap().contains("--resolution"));
+    }
 
     #[test]
     fn povray_options_are_told_and_ptsc_options_are_not() {

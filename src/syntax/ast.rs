@@ -134,8 +134,10 @@ pub enum Statement {
     Directive {
         /// The directive's word, without the `#`.
         name: Ident,
-        /// A `#declare`'s or `#local`'s name and value.
-        binding: Option<(Ident, Expr)>,
+        /// The name a `#declare` or `#local` binds, with its value where
+        /// the line reads as one (`#declare R = 1;`), or a `#for`'s variable
+        /// (no value).
+        binding: Option<(Ident, Option<Expr>)>,
         /// The whole line.
         span: Span,
     },

@@ -81,6 +81,7 @@ impl<'t> Builder<'t> {
     pub fn build_statement(&self, pair: Pair<Rule>) -> Statement {
         let span = self.span(&pair);
         let rule = pair.as_rule();
+        let pair_text = pair.as_str();
         let mut inner = pair.into_inner();
         match rule {
             // A `let` or `fn` without its `;` (after a syntax error) is
@@ -210,9 +211,16 @@ impl<'t> Builder<'t> {
             }
             Rule::directive_stmt => {
                 let name = self.build_ident(inner.next().unwrap());
+                let rest = &pair_text[(name.span.end - span.start) as usize..];
+                let binding = super::povray::bound_name(&name.name, rest).map(|(at, bound)| {
+                    let start = name.span.end as usize + at;
+                    let span = Span::new(self.file, start, start + bound.len());
+                    let name = bound.to_string();
+                    (Ident { name, span }, None)
+                });
                 Statement::Directive {
                     name,
-                    binding: None,
+                    binding,
                     span,
                 }
             }
@@ -231,7 +239,7 @@ impl<'t> Builder<'t> {
                 let value = self.build_expr(inner.next().unwrap());
                 Statement::Directive {
                     name,
-                    binding: Some((bound, value)),
+                    binding: Some((bound, Some(value))),
                     span,
                 }
             }

@@ -50,7 +50,7 @@ pub fn rule_name(rule: Rule) -> &'static str {
         Rule::block => "a block `{ … }`",
         Rule::entry | Rule::param => "a parameter name",
         Rule::foreign_block | Rule::opaque_block | Rule::opaque_text => "a block `{ … }`",
-        Rule::positional => "a value",
+        Rule::positional | Rule::axis_word => "a value",
         Rule::foreign_stmt | Rule::directive_stmt | Rule::directive_rest => "a statement",
         Rule::declare_stmt | Rule::declare_word => "`let`",
         Rule::flag => "a parameter name",
@@ -335,6 +335,34 @@ pub fn convert_error(
         )
         .with_label("not ptsc")
         .with_help(hint);
+    }
+    // `material { … }`, `texture { … }` at the top level: a declaration
+    // without its name.
+    if found == "`{`" && expected.contains(&"a name") {
+        let help = match previous.last().copied() {
+            Some("material") => Some("a material declared here needs a name: `material NAME { diffuse rgb 0.8 }`, given to objects as `material NAME`; a material for one object goes inside it: `sphere { … material { … } }`".to_string()),
+            Some("texture") => Some(format!(
+                "a texture declared here needs a name and a kind: `texture NAME checker {{ … }}`, given to a material's parameter as `diffuse NAME`; {}",
+                super::povray::block("texture").unwrap_or_default()
+            )),
+            _ => None,
+        };
+        if let Some(help) = help {
+            return Diagnostic::error(codes::UNEXPECTED_TOKEN, message, span)
+                .with_label(label)
+                .with_help(help);
+        }
+    }
+    // `let r = 1` and a statement on the next line: the `;` is missing at
+    // the end of the line, not at the next statement (rustc's placement).
+    let end = super::scan::code_end_before(text, pos);
+    if expected == ["`;`"] && found.starts_with('`') && text[end..pos].contains('\n') {
+        let at = Span::new(file, end, end);
+        return Diagnostic::error(codes::UNEXPECTED_TOKEN, message, at)
+            .with_label("add `;` here")
+            .with_secondary(span, format!("{found} starts a new statement"))
+            .with_help(help_for(&expected, &found))
+            .with_fix(at, ";");
     }
     let help = super::povray::hint(word)
         .map(str::to_string)

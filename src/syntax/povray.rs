@@ -185,6 +185,35 @@ pub fn block(word: &str) -> Option<&'static str> {
     find(BLOCKS, word).or_else(|| hint(word))
 }
 
+/// The name a POV-Ray directive's line binds, as its offset in `rest` (the
+/// line after the word) and its text: `#declare NAME =` and `#local NAME =`
+/// whose value did not read as one (no `;`), `#for (NAME, …)`.
+pub(super) fn bound_name<'t>(word: &str, rest: &'t str) -> Option<(usize, &'t str)> {
+    let after = |text: &'t str, at: usize| {
+        let skipped = text[at..].len() - text[at..].trim_start().len();
+        at + skipped
+    };
+    let mut at = after(rest, 0);
+    let closing = match word {
+        "declare" | "local" => '=',
+        "for" => {
+            rest[at..].strip_prefix('(')?;
+            at = after(rest, at + 1);
+            ','
+        }
+        _ => return None,
+    };
+    let len = rest[at..]
+        .find(|c: char| !(c.is_ascii_alphanumeric() || c == '_'))
+        .unwrap_or(rest.len() - at);
+    let name = &rest[at..at + len];
+    let first = name.chars().next()?;
+    let next = after(rest, at + len);
+    let is_name =
+        (first.is_ascii_alphabetic() || first == '_') && !super::words::KEYWORDS.contains(&name);
+    (is_name && rest[next..].starts_with(closing)).then_some((at, name))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -209,5 +238,21 @@ mod tests {
                 "{w} is a ptsc keyword"
             );
         }
+    }
+
+    #[test]
+    fn a_directive_line_gives_the_name_it_binds() {
+        let bound = |word, rest| bound_name(word, rest).map(|(_, n)| n);
+        assert_eq!(bound("declare", " V = <1, 2, 3>"), Some("V"));
+        assert_eq!(bound("local", "  Radius_2=1"), Some("Radius_2"));
+        assert_eq!(bound("for", " (I, 0, 4)"), Some("I"));
+        assert_eq!(bound("for", "(J,0,9)"), Some("J"));
+        assert_eq!(bound("declare", " V <1, 2, 3>"), None, "no `=`");
+        assert_eq!(bound("declare", " 2V = 1"), None);
+        assert_eq!(bound("while", " (I < 3)"), None);
+        assert_eq!(bound("for", " I, 0, 4"), None, "no bracket");
+        assert_eq!(bound("declare", ""), None);
+        // The offset is where the name starts in the line.
+        assert_eq!(bound_name("for", " ( K ,1,2)"), Some((3, "K")));
     }
 }

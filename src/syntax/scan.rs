@@ -90,3 +90,58 @@ pub(crate) fn for_each_code_mark(text: &str, mut f: impl FnMut(usize, u8) -> boo
         i += 1;
     }
 }
+
+/// Where the code before `pos` ends: past blanks and the comments at the
+/// ends of lines (`let r = 1 // radius`).
+pub(super) fn code_end_before(text: &str, pos: usize) -> usize {
+    let mut end = pos;
+    loop {
+        end = text[..end].trim_end().len();
+        let code = &text[..end];
+        if let Some(head) = code.strip_suffix("*/") {
+            match head.rfind("/*") {
+                Some(open) => end = open,
+                None => return end,
+            }
+            continue;
+        }
+        let line_start = code.rfind('\n').map_or(0, |i| i + 1);
+        match line_comment(&code[line_start..]) {
+            Some(c) => end = line_start + c,
+            None => return end,
+        }
+    }
+}
+
+/// Where a `//` comment starts in `line`, outside strings.
+fn line_comment(line: &str) -> Option<usize> {
+    let bytes = line.as_bytes();
+    let mut in_string = false;
+    let mut i = 0;
+    while i < bytes.len() {
+        match bytes[i] {
+            b'\\' if in_string => i += 1,
+            b'"' => in_string = !in_string,
+            b'/' if !in_string && bytes.get(i + 1) == Some(&b'/') => return Some(i),
+            _ => {}
+        }
+        i += 1;
+    }
+    None
+}
+
+#[cfg(test)]
+mod tests {
+    use super::code_end_before;
+
+    #[test]
+    fn code_ends_before_blanks_and_comments() {
+        let at = |text: &str| code_end_before(text, text.len());
+        assert_eq!(at("let r = 1\n\n"), 9);
+        assert_eq!(at("let r = 1 // radius\n// a ball\n"), 9);
+        assert_eq!(at("let r = 1 /* radius */\n"), 9);
+        assert_eq!(at("let s = \"a // b\"\n"), 16, "not a comment in a string");
+        assert_eq!(at("// only\n"), 0);
+        assert_eq!(at(""), 0);
+    }
+}

@@ -205,7 +205,7 @@ fn check_takes_several_scenes_and_folders_and_sums_them_up() {
     let (code, _, err) = ptsc(&["check", &p("a_fine.pts"), &p("b_warning.pts")]);
     assert_eq!(code, 0, "{err}");
     assert!(err.contains("a_fine.pts: ok"), "{err}");
-    assert!(err.contains("b_warning.pts: 0 errors, 1 warning"), "{err}");
+    assert!(err.contains("b_warning.pts: ok, 1 warning"), "{err}");
     assert!(
         err.ends_with("2 files checked: 0 errors, 1 warning\n"),
         "{err}"
@@ -215,7 +215,7 @@ fn check_takes_several_scenes_and_folders_and_sums_them_up() {
     assert_eq!(code, 1, "{err}");
     let (a, b, c) = (
         err.find("a_fine.pts: ok").unwrap(),
-        err.find("b_warning.pts: 0 errors, 1 warning").unwrap(),
+        err.find("b_warning.pts: ok, 1 warning").unwrap(),
         err.find("c_error.pts: 1 error, 0 warnings").unwrap(),
     );
     assert!(a < b && b < c, "{err}");
@@ -255,6 +255,16 @@ fn check_takes_several_scenes_and_folders_and_sums_them_up() {
     );
     assert!(err.contains("holds no .pts scene"), "{err}");
     assert!(err.contains("c_error.pts: 1 error"), "{err}");
+    // The folder is not a file checked: two files, three errors.
+    assert!(
+        err.ends_with("2 files checked: 3 errors, 0 warnings\n"),
+        "{err}"
+    );
+    // One scene with warnings only: its warnings and one line that says ok.
+    let (code, _, err) = ptsc(&["check", &p("b_warning.pts")]);
+    assert_eq!(code, 0, "{err}");
+    assert!(err.ends_with("b_warning.pts: ok, 1 warning\n"), "{err}");
+    assert!(!err.contains("0 errors"), "{err}");
 }
 
 #[test]

@@ -6,18 +6,30 @@
 
 use std::path::{Path, PathBuf};
 
-/// The diagnostics a command printed: its stderr up to and including the
-/// "N errors, M warnings" line (nothing when it printed none).
+/// The diagnostics a command printed: its stderr up to its summary line
+/// ("N errors, M warnings", or `check`'s "scene.pts: ok, M warnings"), with
+/// the counts (nothing when it printed none).
 fn diagnostics(stderr: &str) -> String {
     let lines: Vec<&str> = stderr.lines().collect();
     let summary = lines.iter().position(|l| {
         let words: Vec<&str> = l.split_whitespace().collect();
         matches!(words.as_slice(), [_, e, _, w] if e.starts_with("error") && w.starts_with("warning"))
+            || matches!(words.as_slice(), [_, "ok,", _, w] if w.starts_with("warning"))
     });
-    match summary {
-        Some(end) => lines[..=end].join("\n"),
-        None => String::new(),
-    }
+    let Some(end) = summary else {
+        return String::new();
+    };
+    let mut shown = lines[..end].join("\n");
+    let errors = lines[..end]
+        .iter()
+        .filter(|l| l.trim_start().starts_with('×'))
+        .count();
+    let warnings = lines[..end]
+        .iter()
+        .filter(|l| l.trim_start().starts_with('⚠'))
+        .count();
+    shown.push_str(&format!("\n{errors} errors, {warnings} warnings"));
+    shown
 }
 
 /// Every scene below the tests and the examples.

@@ -37,6 +37,10 @@ impl Checker<'_> {
                 .with_help("add `camera { position <0, 1, 5> look_at <0, 0, 0> }`"),
             );
         }
+        if self.diags.has_errors() {
+            // Lowering, which reads them, will not run: say now.
+            self.report_missing_images();
+        }
         let scene = match camera {
             Some(camera) if !self.diags.has_errors() => Some(Scene {
                 render,

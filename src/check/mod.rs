@@ -9,6 +9,7 @@ pub mod eval;
 mod finish;
 mod group_lights;
 mod groups;
+pub mod image_files;
 mod include;
 pub mod kinds;
 mod loops;

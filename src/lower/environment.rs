@@ -45,17 +45,13 @@ pub fn lower_environment(
             return None;
         }
         Err(why) => {
-            diags.push(
-                Diagnostic::error(
-                    codes::IMAGE_FILE,
-                    format!("cannot load image `{}`", e.path.display()),
-                    e.path_span,
-                )
-                .with_label(why)
-                .with_help(
-                    "an environment is an .hdr or .exr file (or .png, .jpg), relative to the scene",
-                ),
-            );
+            let help = crate::check::image_files::ENVIRONMENT_HELP;
+            diags.push(crate::check::image_files::unreadable(
+                &e.path,
+                e.path_span,
+                why,
+                help,
+            ));
             return None;
         }
     };

@@ -3,7 +3,7 @@
 
 use crate::check;
 use crate::check::scene::TextureInput;
-use crate::diag::{codes, Diagnostic, Diagnostics};
+use crate::diag::Diagnostics;
 use crate::ir::cutout::Opacity;
 use crate::lower::image::{Encoding, Images};
 use crate::material::conductor::Conductor;
@@ -298,17 +298,8 @@ fn lower_texture(
                     channel: *channel,
                 },
                 Err(e) => {
-                    diags.push(
-                        Diagnostic::error(
-                            codes::IMAGE_FILE,
-                            format!("cannot load image `{}`", path.display()),
-                            *path_span,
-                        )
-                        .with_label(e)
-                        .with_help(
-                            "textures read .png, .jpg, .hdr and .exr files, relative to the scene",
-                        ),
-                    );
+                    let help = check::image_files::TEXTURE_HELP;
+                    diags.push(check::image_files::unreadable(path, *path_span, e, help));
                     return None;
                 }
             }

@@ -1,0 +1,69 @@
+//! The image files a scene names, looked at by the checker when the scene
+//! has other errors: lowering reads them (and says what is wrong with each)
+//! only once the check is clean, so without this look a missing image
+//! would show only after every other mistake is fixed. Only the path's
+//! kind is asked (a `stat`): the reading and decoding stay lowering's.
+
+use super::scene::TextureKind;
+use super::Checker;
+use crate::diag::{codes, Diagnostic};
+use crate::span::Span;
+use std::path::Path;
+
+/// The help for an image texture that cannot be read.
+pub const TEXTURE_HELP: &str =
+    "textures read .png, .jpg, .hdr and .exr files, relative to the scene";
+
+/// The help for an environment map that cannot be read.
+pub const ENVIRONMENT_HELP: &str =
+    "an environment is an .hdr or .exr file (or .png, .jpg), relative to the scene";
+
+/// The error for the image at `path` (written at `span`) that cannot be
+/// read or decoded (`why`): the checker's and lowering's, word for word.
+pub fn unreadable(path: &Path, span: Span, why: String, help: &str) -> Diagnostic {
+    Diagnostic::error(
+        codes::IMAGE_FILE,
+        format!("cannot load image `{}`", path.display()),
+        span,
+    )
+    .with_label(why)
+    .with_help(help)
+}
+
+impl Checker<'_> {
+    /// Reports every image texture and environment map whose file cannot
+    /// be opened, as lowering would.
+    pub(super) fn report_missing_images(&mut self) {
+        let textures = (self.materials.iter()).flat_map(|m| m.textures.iter().map(|(_, t)| t));
+        let mut named: Vec<(&Path, Span, &str)> = textures
+            .filter_map(|t| match &t.kind {
+                TextureKind::Image {
+                    path,
+                    path_span,
+                    resolved: true,
+                    ..
+                } => Some((path.as_path(), *path_span, TEXTURE_HELP)),
+                _ => None,
+            })
+            .collect();
+        if let Some(e) = &self.environment {
+            named.push((e.path.as_path(), e.path_span, ENVIRONMENT_HELP));
+        }
+        named.sort_by_key(|(_, span, _)| (span.file.0, span.start));
+        named.dedup_by_key(|(_, span, _)| *span);
+        let missing: Vec<Diagnostic> = (named.into_iter())
+            .filter_map(|(path, span, help)| {
+                let why = self.files.exists(path).err()?;
+                Some(unreadable(
+                    path,
+                    span,
+                    format!("cannot read the file: {why}"),
+                    help,
+                ))
+            })
+            .collect();
+        for d in missing {
+            self.diags.push(d);
+        }
+    }
+}

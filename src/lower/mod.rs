@@ -23,6 +23,7 @@ pub mod mesh;
 mod mesh_data;
 pub mod mtl;
 mod obj;
+mod obj_faces;
 mod obj_materials;
 mod shapes;
 mod swaps;

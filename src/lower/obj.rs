@@ -57,7 +57,10 @@ pub(super) fn parse_obj(
         }
         tobj::load_mtl_buf(&mut std::io::Cursor::new(text)).inspect_err(|e| failed(e.to_string()))
     })
-    .map_err(|e| format!("cannot read the OBJ file: {e}"))?;
+    .map_err(|e| match super::obj_faces::locate(bytes, &e) {
+        Some(at) => format!("cannot read the OBJ file: {e} at {at}"),
+        None => format!("cannot read the OBJ file: {e}"),
+    })?;
     let (mut libraries, library_errors) = (libraries.into_inner(), library_errors.into_inner());
     libraries.retain(|p| !p.as_os_str().is_empty());
     let materials = materials.unwrap_or_default();

@@ -162,7 +162,8 @@ impl Params {
                     self.head,
                 )
                 .with_label(format!("`{spec_name}` is missing"))
-                .with_help(format!("add `{spec_name} {example}` inside the braces")),
+                .with_help(format!("add `{spec_name} {example}` inside the braces"))
+                .distinct_by(spec_name),
             );
         }
         None
@@ -278,6 +279,7 @@ impl<'s> Collecting<'s> {
                     &what,
                     name,
                     (spec, self.takes_material),
+                    self.schemas,
                 ));
                 // A parameter written without its value is not missing too.
                 self.suggest(&name.name);

@@ -175,6 +175,7 @@ pub fn flag(
     what: &str,
     name: &Ident,
     (spec, takes_material): (Option<&ParamSpec>, bool),
+    schemas: &[&'static [ParamSpec]],
 ) -> Diagnostic {
     let word = name.name.as_str();
     if let Some(hint) = crate::syntax::povray::flag(word) {
@@ -186,12 +187,17 @@ pub fn flag(
         .with_label(format!("not a parameter of `{what}`"))
         .with_help(hint);
     }
+    // The block's own first parameter as the example of a name and a value.
+    let first = (schemas.iter().flat_map(|s| s.iter())).find(|p| p.povray.is_none());
+    let example = first.map_or("radius 1".to_string(), |p| {
+        format!("{} {}", p.name, p.example)
+    });
     let help = match (spec, takes_material) {
         (Some(spec), _) => format!("write `{word} {}`", spec.example),
         (None, true) => format!(
-            "a parameter is a name and a value (e.g. `radius 1`); a material is given as `material {word}`"
+            "a parameter is a name and a value (e.g. `{example}`); a material is given as `material {word}`"
         ),
-        (None, false) => "a parameter is a name and a value (e.g. `radius 1`)".to_string(),
+        (None, false) => format!("a parameter is a name and a value (e.g. `{example}`)"),
     };
     Diagnostic::error(
         codes::MISSING_VALUE,

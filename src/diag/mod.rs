@@ -41,6 +41,10 @@ pub struct Diagnostic {
     /// POV-Ray one): the span's text becomes the string. Editors offer it
     /// as a quick fix.
     pub fix: Option<(Span, String)>,
+    /// What tells it apart from another diagnostic of its code and span
+    /// when repeats fold (see [`Diagnostics::folding`]): the parameter a
+    /// "missing" names, where a block misses two (empty: nothing).
+    pub distinct: &'static str,
 }
 
 impl Diagnostic {
@@ -55,6 +59,7 @@ impl Diagnostic {
             secondary: Vec::new(),
             help: None,
             fix: None,
+            distinct: "",
         }
     }
 
@@ -81,6 +86,13 @@ impl Diagnostic {
     /// Sets the replacement that fixes it ([`Diagnostic::fix`]).
     pub fn with_fix(mut self, span: Span, replacement: impl Into<String>) -> Self {
         self.fix = Some((span, replacement.into()));
+        self
+    }
+
+    /// Sets what tells it apart from diagnostics of its code and span
+    /// ([`Diagnostic::distinct`]).
+    pub fn distinct_by(mut self, what: &'static str) -> Self {
+        self.distinct = what;
         self
     }
 
@@ -118,8 +130,9 @@ pub struct Diagnostics {
 /// each code and span is, and how many times each came.
 #[derive(Debug, Clone, Default)]
 struct Folds {
-    /// The index in `items` of the first diagnostic of a code and span.
-    first: std::collections::HashMap<(&'static str, Option<Span>), usize>,
+    /// The index in `items` of the first diagnostic of a code and span (and
+    /// [`Diagnostic::distinct`]).
+    first: std::collections::HashMap<(&'static str, Option<Span>, &'static str), usize>,
     /// How many times the diagnostic at each index of `items` came.
     times: Vec<u64>,
 }
@@ -138,8 +151,8 @@ impl Diagnostics {
         Self::default()
     }
 
-    /// An empty collection that folds repeats: a diagnostic with the code
-    /// and span of an earlier one (its message may differ, by a loop
+    /// An empty collection that folds repeats: a diagnostic with the code,
+    /// span and [`Diagnostic::distinct`] of an earlier one (its message may differ, by a loop
     /// variable) is counted, not kept; [`Diagnostics::settle`] writes the
     /// counts into the messages.
     pub fn folding() -> Self {
@@ -155,7 +168,7 @@ impl Diagnostics {
             self.errors_pushed += 1;
         }
         if let Some(folds) = &mut self.folds {
-            match folds.first.entry((d.code, d.span)) {
+            match folds.first.entry((d.code, d.span, d.distinct)) {
                 std::collections::hash_map::Entry::Occupied(e) => {
                     folds.times[*e.get()] += 1;
                     return;
@@ -394,17 +407,26 @@ mod tests {
         d.push(Diagnostic::error("e", "error", at(2)));
         d.push(Diagnostic::error("e", "error again", at(2)));
         d.push(Diagnostic::error("e", "elsewhere", at(3)));
-        assert_eq!(d.items.len(), 3);
-        assert_eq!(d.errors_pushed(), 3);
+        // Told apart: two parameters missing from one block.
+        d.push(Diagnostic::error("m", "needs a `min`", at(4)).distinct_by("min"));
+        d.push(Diagnostic::error("m", "needs a `max`", at(4)).distinct_by("max"));
+        assert_eq!(d.items.len(), 5);
+        assert_eq!(d.errors_pushed(), 5);
         d.sort();
         let messages: Vec<&str> = d.items.iter().map(|d| d.message.as_str()).collect();
         assert_eq!(
             messages,
-            ["warning 0 (100,000 times)", "error (2 times)", "elsewhere"]
+            [
+                "warning 0 (100,000 times)",
+                "error (2 times)",
+                "elsewhere",
+                "needs a `min`",
+                "needs a `max`"
+            ]
         );
         // Settled: what comes later is kept as it comes.
         d.push(Diagnostic::error("e", "late", at(3)));
-        assert_eq!(d.items.len(), 4);
+        assert_eq!(d.items.len(), 6);
     }
 
     #[test]

@@ -333,10 +333,14 @@ impl<'t> Builder<'t> {
                 name: self.build_ident(inner.next().unwrap()),
             },
             Rule::positional => {
-                let values = inner
+                let values: Vec<Expr> = inner
                     .filter(|p| p.as_rule() == Rule::component)
                     .map(|p| self.build_expr(p))
                     .collect();
+                // The values alone: pest's pair also holds the blanks after
+                // them (to the next line's entry).
+                let end = values.last().map_or(span.end, |v| v.span.end);
+                let span = Span::new(self.file, span.start as usize, end as usize);
                 Entry::Positional { values, span }
             }
             Rule::material_entry => {

@@ -375,8 +375,15 @@ pub fn convert_error(
             })
         })
         .or_else(|| {
-            // `camera { orthographic location <…> }`: a POV-Ray word just before.
-            previous.iter().find_map(|w| super::povray::hint(w)).map(str::to_string)
+            // `camera { orthographic location <…> }`: a POV-Ray word just
+            // before (not a directive's: `#end` says its own).
+            let directive = |w: &&str| {
+                let before = &text[..pos];
+                before.rfind(*w).is_some_and(|i| before[..i].ends_with('#'))
+            };
+            (previous.iter().filter(|w| !directive(w)))
+                .find_map(|w| super::povray::hint(w))
+                .map(str::to_string)
         })
         .unwrap_or_else(|| help_for(&expected, &found));
     Diagnostic::error(codes::UNEXPECTED_TOKEN, message, span)
@@ -542,6 +549,12 @@ fn help_for(expected: &[&str], found: &str) -> String {
     if expected.iter().any(|e| e.starts_with("a value")) {
         return "a parameter is a name followed by a value, e.g. `radius 0.5` or `center <0, 1, 0>`"
             .into();
+    }
+    if found == "`}`" && expected == ["a statement"] {
+        return "this `}` closes no block: remove it, or open the block it ends above it".into();
+    }
+    if found == "`=`" && expected.contains(&"a name") {
+        return "a name goes before `=`: `let radius = 1;`".into();
     }
     if expected.contains(&"a statement") || expected.contains(&"`let`") {
         let word = found.trim_matches('`');

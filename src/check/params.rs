@@ -268,7 +268,7 @@ impl<'s> Collecting<'s> {
                     &what,
                     name,
                     *span,
-                    (self.schemas, self.takes_material),
+                    (self.schemas, &self.accepted()),
                 ));
                 None
             }

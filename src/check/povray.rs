@@ -11,19 +11,15 @@ use crate::span::Span;
 use crate::syntax::ast::{Expr, Ident};
 
 /// The error for `name { … }` inside the block `what` (with the
-/// parameters `schemas`, and a `material` where `takes_material`), at
-/// `span`.
+/// parameters `schemas`; `all`: the words it accepts, a `material` among
+/// them where it takes one), at `span`.
 pub fn foreign_block(
     what: &str,
     name: &Ident,
     span: Span,
-    (schemas, takes_material): (&[&'static [ParamSpec]], bool),
+    (schemas, all): (&[&'static [ParamSpec]], &[&'static str]),
 ) -> Diagnostic {
     let word = name.name.as_str();
-    let all: Vec<&str> = (schemas.iter())
-        .flat_map(|s| s.iter().map(|p| p.name))
-        .chain(takes_material.then_some("material"))
-        .collect();
     let takes_materials = (schemas.iter().flat_map(|s| s.iter()))
         .any(|p| p.name == word && p.ty == super::schema::Ty::Materials);
     if takes_materials {
@@ -37,7 +33,7 @@ pub fn foreign_block(
             "write the file's material names in quotes: `{word} {{ \"Leaf\" green  \"Bark\" material {{ diffuse rgb 0.3 }} }}`"
         ));
     }
-    if all.contains(&word) {
+    if (schemas.iter().flat_map(|s| s.iter())).any(|p| p.name == word) {
         return Diagnostic::error(
             codes::FOREIGN_BLOCK,
             format!("`{word}` takes a value, not a block"),

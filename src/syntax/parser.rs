@@ -550,6 +550,9 @@ fn help_for(expected: &[&str], found: &str) -> String {
         return "a parameter is a name followed by a value, e.g. `radius 0.5` or `center <0, 1, 0>`"
             .into();
     }
+    if found == "`{`" && expected.iter().any(|e| e.starts_with("an operator")) {
+        return "a parameter's value opens no block: a texture is its kind and a block (`diffuse checker { … }`), a material `material { … }`; remove these braces or name the kind".into();
+    }
     if found == "`}`" && expected == ["a statement"] {
         return "this `}` closes no block: remove it, or open the block it ends above it".into();
     }

@@ -615,5 +615,7 @@ pub fn collect(
     checking: (&mut Env, &mut Diagnostics),
 ) -> Params {
     let texture: CheckTexture = super::texture::check_texture;
-    Params::collect_textured(what, head, block, &[MATERIAL], checking, texture)
+    // A colour alone is POV-Ray's `pigment { rgb … }`: ptsc's `diffuse`.
+    let order = (&[MATERIAL][..], Some((&["diffuse"][..], "")));
+    Params::collect_textured(what, head, block, order, checking, texture)
 }

@@ -49,7 +49,7 @@ pub(super) fn texture_not_allowed(spec: &ParamSpec, what: &str, span: Span) -> D
     ))
 }
 
-/// The error for a POV-Ray word that a block's row refuses (`falloff` in
+/// The error for a POV-Ray (or Mitsuba) word that a block's row refuses (`falloff` in
 /// a `spot_light`), with its row's help line and the names it accepts.
 pub(super) fn refused_povray_word(
     name: &crate::syntax::ast::Ident,
@@ -62,7 +62,7 @@ pub(super) fn refused_povray_word(
         format!("unknown parameter `{}` in `{what}`", name.name),
         name.span,
     )
-    .with_label("a POV-Ray parameter this block does not take")
+    .with_label("another renderer's word for a parameter of this block")
     .with_help(format!("{help}; `{what}` accepts {}", accepted.join(", ")))
 }
 

@@ -122,11 +122,27 @@ impl Params {
         what: impl Into<Cow<'static, str>>,
         head: Span,
         block: &Block,
-        schemas: &[&'static [ParamSpec]],
+        (schemas, positional): (&[&'static [ParamSpec]], Option<Positional>),
         (env, diags): (&mut Env, &mut Diagnostics),
         texture: CheckTexture,
     ) -> Params {
-        Collecting::new(what.into(), head, schemas, Some(texture)).run(block, env, diags)
+        let mut collecting = Collecting::new(what.into(), head, schemas, Some(texture));
+        collecting.positional = positional;
+        collecting.run(block, env, diags)
+    }
+
+    /// [`Params::collect`] for a texture's block, whose kind may have
+    /// POV-Ray's `positional` order (a checker's two colours).
+    pub fn collect_texture(
+        what: impl Into<Cow<'static, str>>,
+        head: Span,
+        block: &Block,
+        (schemas, positional): (&[&'static [ParamSpec]], Option<Positional>),
+        (env, diags): (&mut Env, &mut Diagnostics),
+    ) -> Params {
+        let mut collecting = Collecting::new(what.into(), head, schemas, None);
+        collecting.positional = positional;
+        collecting.run(block, env, diags)
     }
 
     /// The value of an optional parameter.
@@ -305,12 +321,6 @@ impl<'s> Collecting<'s> {
                 }
                 None
             }
-            // `diffuse color rgb 1`: `rgb 1` after a word taken as a value.
-            Entry::Param { name, .. }
-                if name.name == "rgb" && took_next_word(&block.entries, i, env).is_some() =>
-            {
-                None
-            }
             Entry::Param { name, value, .. } => Some((name, Source::Value(value))),
             Entry::Texture {
                 name,
@@ -386,6 +396,14 @@ impl<'s> Collecting<'s> {
     /// with the word it was probably meant to be.
     fn unknown_parameter(&mut self, name: &Ident) -> (Diagnostic, Option<&'static str>) {
         let what = self.params.what.clone();
+        if let Some(instead) = self.povray_colour(&name.name) {
+            self.params.suggested.push(instead);
+            let help = format!(
+                "POV-Ray's colours of `{what}` come in order; ptsc names each: write `{instead} rgb …` here"
+            );
+            let d = unknown_parameter(name, &what, help).with_fix(name.span, instead);
+            return (d, Some(instead));
+        }
         let all = self.accepted();
         let mut fix = None;
         let help = match did_you_mean(&name.name, all.iter().copied()) {
@@ -419,6 +437,24 @@ impl<'s> Collecting<'s> {
             Some(word) => (d.with_fix(name.span, word), fix),
             None => (d, None),
         }
+    }
+
+    /// The parameter POV-Ray's `color` (or `colour`) stands for in a block
+    /// whose positional values are colours (a checker's `even`, then its
+    /// `odd`; a material's `diffuse`): the first of them not given or
+    /// named yet.
+    fn povray_colour(&self, word: &str) -> Option<&'static str> {
+        if !matches!(word, "color" | "colour") {
+            return None;
+        }
+        let (names, _) = self.positional?;
+        let colours = names.iter().filter(|&&n| {
+            (self.schemas.iter().flat_map(|s| s.iter())).any(|p| p.name == n && p.ty == Ty::Color)
+        });
+        let p = &self.params;
+        colours
+            .copied()
+            .find(|n| !p.given.contains(n) && !p.suggested.contains(n))
     }
 
     /// The value `source` gives the parameter `spec`: a value of its type

@@ -79,8 +79,8 @@ pub struct ParamSpec {
     pub quantity: Quantity,
     /// Whether it may be given a texture instead of a value.
     pub texture: bool,
-    /// For a POV-Ray word this block refuses because ptsc means something
-    /// else by it (or has it under another name): the ptsc parameter that
+    /// For a POV-Ray (or Mitsuba) word this block refuses because ptsc means
+    /// something else by it (or has it under another name): the ptsc parameter that
     /// does its job and a help line saying so. Not a parameter: refused
     /// with the line, left out of the lists of accepted names.
     pub povray: Option<(&'static str, &'static str)>,
@@ -470,6 +470,12 @@ pub const CHECKER: &[ParamSpec] = &[
     p("even", Ty::Color, "rgb 0.9").of(Magnitude),
     p("odd", Ty::Color, "rgb 0.1").of(Magnitude),
     p("space", Ty::Word(TEXTURE_SPACES), "object"),
+    povray(
+        "color0",
+        "even",
+        "Mitsuba's `color0` (the cell at the origin) is `even` in ptsc",
+    ),
+    povray("color1", "odd", "Mitsuba's `color1` is `odd` in ptsc"),
 ];
 
 /// The transforms a texture takes (its pattern moves, turns and scales).

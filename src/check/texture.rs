@@ -7,7 +7,7 @@ use super::params::{Params, Val};
 use super::reader::Reader;
 use super::scene::{ColorSpace, Rgb, Texture, TextureKind, TextureSpace};
 use super::schema::{
-    ParamSpec, BANDS, CHECKER, COLOR_MAP, GRADIENT, IMAGE, NOISE, TEXTURE_KINDS,
+    ParamSpec, Positional, BANDS, CHECKER, COLOR_MAP, GRADIENT, IMAGE, NOISE, TEXTURE_KINDS,
     TEXTURE_TRANSFORMS, UNBANDED,
 };
 use crate::diag::{codes, did_you_mean, Diagnostic, Diagnostics};
@@ -29,6 +29,16 @@ pub fn texture_schemas(name: &str) -> Option<&'static [&'static [ParamSpec]]> {
         "gradient" | "stripes" => &[GRADIENT, COLOR_MAP, TEXTURE_TRANSFORMS],
         _ => return None,
     })
+}
+
+/// POV-Ray's order of the texture `name`'s values written without names:
+/// a checker's two colours (`checker rgb 1, rgb 0`; POV-Ray's first colour
+/// fills the cell at the origin, as ptsc's `even`).
+fn povray_order(name: &str) -> Option<Positional> {
+    match name {
+        "checker" => Some((&["even", "odd"], "")),
+        _ => None,
+    }
 }
 
 /// The texture `kind { block }` written at `span`; `None` after reporting
@@ -58,7 +68,8 @@ pub fn check_texture(
     };
     let (schema, is_image) = (schemas[0], kind.name == "image");
     let noise = NoiseKind::from_name(&kind.name);
-    let p = Params::collect(kind.name.clone(), kind.span, block, schemas, env, diags);
+    let order = (schemas, povray_order(&kind.name));
+    let p = Params::collect_texture(kind.name.clone(), kind.span, block, order, (env, diags));
     let transform = super::objects::transform(&p, diags);
     let word = |name: &str| match p.get(name) {
         Some((Val::Word(w), _)) => Some(w.clone()),

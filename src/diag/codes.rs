@@ -252,7 +252,7 @@ pub const CATALOGUE: &[Entry] = &[
     Entry {
         code: POSITIONAL_VALUES,
         title: "Values without parameter names",
-        explanation: "ptsc names every parameter: POV-Ray's `sphere { <0, 1, 0>, 1 }` is `sphere { center <0, 1, 0> radius 1 }`. The help writes the block with the names the values stand for, in POV-Ray's order, and says where ptsc's meaning differs (a plane is given by a point on it rather than a distance, a box by its smaller and larger corners).",
+        explanation: "ptsc names every parameter: POV-Ray's `sphere { <0, 1, 0>, 1 }` is `sphere { center <0, 1, 0> radius 1 }`. The help writes the block with the names the values stand for, in POV-Ray's order, and says where ptsc's meaning differs (a plane is given by a point on it rather than a distance, a box by its smaller and larger corners). A checker's two colours are `even` and `odd`, a material's colour alone (POV-Ray's pigment) is its `diffuse`.",
         example: "sphere { <0, 1, 0>, 1 }",
     },
     Entry {

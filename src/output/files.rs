@@ -61,8 +61,13 @@ pub fn check_writable(path: &Path) -> Result<(), String> {
     }
     remove_stale_temporaries(path);
     let probe = temporary_beside(path).map_err(|e| e.to_string())?;
-    std::fs::File::create(&probe)
-        .map_err(|e| format!("the folder {} does not take new files: {e}", dir.display()))?;
+    std::fs::File::create(&probe).map_err(|e| {
+        let why = why_no_new_file(&e);
+        format!(
+            "the folder {} does not take new files: {why}",
+            dir.display()
+        )
+    })?;
     // Where nothing is at the path yet, the probe takes its place as the
     // real write will (a rename), then goes.
     let renamed = match std::fs::symlink_metadata(path) {
@@ -73,6 +78,24 @@ pub fn check_writable(path: &Path) -> Result<(), String> {
     match renamed {
         Err(e) => Err(format!("a file cannot take its place: {e}")),
         Ok(_) => Ok(()),
+    }
+}
+
+/// Why an existing folder refused a new file, in words: the system's own
+/// message ("No such file or directory") contradicts a folder that is there.
+fn why_no_new_file(e: &std::io::Error) -> String {
+    use std::io::ErrorKind;
+    match e.kind() {
+        ErrorKind::PermissionDenied => "you may not write in it (permission denied)".into(),
+        ErrorKind::ReadOnlyFilesystem => "it is on a read-only file system".into(),
+        ErrorKind::StorageFull => "the disk is full".into(),
+        ErrorKind::QuotaExceeded => "your disk quota is used up".into(),
+        // Creating a file in /proc or /sys: the folder exists but is the
+        // kernel's view, which holds no files of ours.
+        ErrorKind::NotFound => {
+            "it is a virtual folder of the system (as /proc and /sys are)".into()
+        }
+        _ => e.to_string(),
     }
 }
 

@@ -49,6 +49,21 @@ fn paths_that_name_folders_or_other_things_are_refused() {
 }
 
 #[test]
+fn a_folder_refusing_new_files_says_why_in_words() {
+    use std::io::{Error, ErrorKind};
+    let said = |kind: ErrorKind| why_no_new_file(&Error::from(kind));
+    assert!(said(ErrorKind::NotFound).contains("virtual folder"));
+    assert!(said(ErrorKind::PermissionDenied).contains("permission denied"));
+    assert!(said(ErrorKind::ReadOnlyFilesystem).contains("read-only"));
+    // The kernel's /proc takes no files (where this machine has one).
+    if Path::new("/proc/self").is_dir() {
+        let why = check_writable(Path::new("/proc/out.png")).unwrap_err();
+        assert!(why.contains("/proc does not take new files"), "{why}");
+        assert!(!why.contains("No such file"), "{why}");
+    }
+}
+
+#[test]
 fn long_names_write_through_a_temporary_file_that_fits() {
     let dir = tempfile::tempdir().unwrap();
     let path = dir

@@ -218,10 +218,10 @@ mod tests {
                 assert!(has || instead == "scale", "{}: {instead}", spec.name);
             }
         }
-        assert_eq!(refused, 9);
+        assert_eq!(refused, 11);
         // Editors highlight parameters only: no word that is only refused.
         let names = all_parameter_names();
-        for word in ["falloff", "tightness", "point_at"] {
+        for word in ["falloff", "tightness", "point_at", "color0"] {
             assert!(!names.contains(&word), "{word}");
         }
     }

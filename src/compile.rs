@@ -14,7 +14,8 @@ use crate::check::{self, Animation, Budgets, MAX_LOOP_STATEMENTS};
 use crate::diag::{codes, Diagnostic, Diagnostics};
 use crate::ir::settings::Settings;
 use crate::lower::cache::LowerCache;
-use crate::source::{Asked, Disk, Files, SourceMap};
+use crate::source::{Asked, Disk, FileId, Files, SourceMap};
+use crate::span::Span;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -181,13 +182,19 @@ fn compile_from(path: &Path, bytes: Vec<u8>, options: Options, start: Instant) -
         }
         if !options.output_elsewhere {
             let inputs = asked.paths();
-            let output = check_scene_output(&scene.render, options.animation.frame, &inputs);
+            let output = match scene.render.output {
+                Some(_) => check_scene_output(&scene.render, options.animation.frame, &inputs),
+                None => check_default_output(path, &scene, &inputs),
+            };
             if let Some(d) = output {
                 compiled.diagnostics.push(d);
                 // No image without the place to write it.
                 compiled.ir = None;
             }
         }
+        // Lowering reads images before meshes: its errors join the
+        // checker's in source order.
+        compiled.diagnostics.sort();
         // A group placed several times, or a mesh named in a loop, meets
         // the same problem more than once: it is one mistake.
         compiled.diagnostics.dedup();
@@ -195,6 +202,49 @@ fn compile_from(path: &Path, bytes: Vec<u8>, options: Options, start: Instant) -
     }
     compiled.dependencies = asked.paths();
     compiled
+}
+
+/// The error of a scene without `output` whose image would go where it
+/// reads a file: a render without `-o` writes FILE with `.png`, which
+/// would replace `poster.png` read by `poster.pts` as a texture. Only that
+/// clash, a property of the scene: a folder that takes no file is the
+/// render's to find, where `-o` may name another.
+fn check_default_output(
+    root: &Path,
+    scene: &check::Scene,
+    inputs: &[PathBuf],
+) -> Option<Diagnostic> {
+    let image = root.with_extension("png");
+    // (A scene itself named `.png` is the command line's to refuse.)
+    let clashes =
+        |i: &&PathBuf| crate::output::same_file(&image, i) && !crate::output::same_file(root, i);
+    let input = inputs.iter().find(clashes)?;
+    let images = check::image_files::named_images(&scene.materials, scene.environment.as_ref());
+    let named = images
+        .iter()
+        .find(|(p, ..)| crate::output::same_file(p, input));
+    // Where the file is named; else (an OBJ's texture) the scene's start.
+    let span = named.map_or(Span::new(FileId(0), 0, 0), |(_, span, _)| *span);
+    Some(
+        Diagnostic::error(
+            codes::OUTPUT_FILE,
+            format!("the image `{}` would replace a file this scene reads", image.display()),
+            span,
+        )
+        .with_label(format!("{} is read here", input.display()))
+        .with_help(format!(
+            "a render without `-o` writes the scene's name with .png: give it another with `render {{ output \"{}\" }}` or `-o`",
+            suggested_name(&image)
+        )),
+    )
+}
+
+/// Another name for the image `path` beside it: `poster_render.png`.
+fn suggested_name(path: &Path) -> String {
+    let stem = path
+        .file_stem()
+        .map_or("image".into(), |s| s.to_string_lossy());
+    format!("{stem}_render.png")
 }
 
 /// The error of an output image the scene names that a render could not

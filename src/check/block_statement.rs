@@ -16,6 +16,7 @@ impl Checker<'_> {
     ) {
         let Some(row) = kinds::find(&kind.name) else {
             self.diags.push(kinds::unknown_statement(kind, span));
+            self.light_with_errors |= kinds::may_be_a_light(&kind.name);
             return;
         };
         let kind_span = kind.span;
@@ -268,6 +269,7 @@ impl Checker<'_> {
             },
             Some((MaterialRef::Inline(block), s)) => {
                 let p = material::collect("material", *s, block, (&mut self.env, &mut self.diags));
+                self.light_with_errors |= p.refused("emission");
                 let mut m = material::material(&p, None, *s, &mut self.diags);
                 m.resolve_paths(folder_of(&self.sources, s.file));
                 self.materials.push(m);

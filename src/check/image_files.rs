@@ -4,7 +4,7 @@
 //! would show only after every other mistake is fixed. Only the path's
 //! kind is asked (a `stat`): the reading and decoding stay lowering's.
 
-use super::scene::TextureKind;
+use super::scene::{Environment, Material, TextureKind};
 use super::Checker;
 use crate::diag::{codes, Diagnostic};
 use crate::span::Span;
@@ -30,27 +30,37 @@ pub fn unreadable(path: &Path, span: Span, why: String, help: &str) -> Diagnosti
     .with_help(help)
 }
 
+/// The image files a scene's materials and environment name, each once, in
+/// source order: the path, where it is written and the help for it.
+pub fn named_images<'s>(
+    materials: &'s [Material],
+    environment: Option<&'s Environment>,
+) -> Vec<(&'s Path, Span, &'static str)> {
+    let textures = (materials.iter()).flat_map(|m| m.textures.iter().map(|(_, t)| t));
+    let mut named: Vec<(&Path, Span, &str)> = textures
+        .filter_map(|t| match &t.kind {
+            TextureKind::Image {
+                path,
+                path_span,
+                resolved: true,
+                ..
+            } => Some((path.as_path(), *path_span, TEXTURE_HELP)),
+            _ => None,
+        })
+        .collect();
+    if let Some(e) = environment {
+        named.push((e.path.as_path(), e.path_span, ENVIRONMENT_HELP));
+    }
+    named.sort_by_key(|(_, span, _)| (span.file.0, span.start));
+    named.dedup_by_key(|(_, span, _)| *span);
+    named
+}
+
 impl Checker<'_> {
     /// Reports every image texture and environment map whose file cannot
     /// be opened, as lowering would.
     pub(super) fn report_missing_images(&mut self) {
-        let textures = (self.materials.iter()).flat_map(|m| m.textures.iter().map(|(_, t)| t));
-        let mut named: Vec<(&Path, Span, &str)> = textures
-            .filter_map(|t| match &t.kind {
-                TextureKind::Image {
-                    path,
-                    path_span,
-                    resolved: true,
-                    ..
-                } => Some((path.as_path(), *path_span, TEXTURE_HELP)),
-                _ => None,
-            })
-            .collect();
-        if let Some(e) = &self.environment {
-            named.push((e.path.as_path(), e.path_span, ENVIRONMENT_HELP));
-        }
-        named.sort_by_key(|(_, span, _)| (span.file.0, span.start));
-        named.dedup_by_key(|(_, span, _)| *span);
+        let named = named_images(&self.materials, self.environment.as_ref());
         let missing: Vec<Diagnostic> = (named.into_iter())
             .filter_map(|(path, span, help)| {
                 let why = self.files.exists(path).err()?;

@@ -98,6 +98,14 @@ impl Checker<'_> {
                 return;
             }
         };
+        if let Some(kind) = super::foreign_file::not_a_scene(&target, &bytes) {
+            let d = super::foreign_file::not_a_scene_error(&target, kind, path_span);
+            self.diags.push(d);
+            // What the scene meant to include is missing: as after a
+            // syntax error, the whole-scene checks would be noise.
+            self.syntax_failed = true;
+            return;
+        }
         let (text, bad) = decode(bytes);
         let id = self.sources.add(target.clone(), text);
         self.included_from.insert(id, path_span);

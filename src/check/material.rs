@@ -120,7 +120,9 @@ fn medium_checks(p: &Params, m: &mut Material, diags: &mut Diagnostics) {
     let inside =
         m.transmission > 0.0 || matches!(m.kind, MaterialKind::Dielectric | MaterialKind::None);
     if !inside && !opaque_model(&m.kind) {
-        super::medium::warn_without_inside(p, diags);
+        if !p.given_nonzero("transmission") {
+            super::medium::warn_without_inside(p, diags);
+        }
         return;
     }
     let medium = super::medium::read(p, m.absorption, diags);
@@ -253,7 +255,7 @@ fn mix_checks(p: &Params, m: &mut Material, diags: &mut Diagnostics) {
         );
     }
     if let Some((_, s)) = p.get("gloss") {
-        if max(m.reflection) == 0.0 {
+        if max(m.reflection) == 0.0 && !p.given_nonzero("reflection") {
             diags.push(
                 Diagnostic::warning(
                     codes::NO_EFFECT,
@@ -266,7 +268,7 @@ fn mix_checks(p: &Params, m: &mut Material, diags: &mut Diagnostics) {
         }
     }
     if let Some((_, s)) = p.get("absorption") {
-        if m.transmission == 0.0 && !p.given("density") {
+        if m.transmission == 0.0 && !p.given("density") && !p.given_nonzero("transmission") {
             diags.push(
                 Diagnostic::warning(
                     codes::NO_EFFECT,
@@ -279,7 +281,7 @@ fn mix_checks(p: &Params, m: &mut Material, diags: &mut Diagnostics) {
         }
     }
     if let Some((_, s)) = p.get("ior") {
-        if m.transmission == 0.0 {
+        if m.transmission == 0.0 && !p.given_nonzero("transmission") {
             diags.push(no_effect_without(
                 "ior",
                 "transmission",
@@ -289,7 +291,7 @@ fn mix_checks(p: &Params, m: &mut Material, diags: &mut Diagnostics) {
         }
     }
     if let Some((_, s)) = p.get("ior_outside") {
-        if m.transmission == 0.0 {
+        if m.transmission == 0.0 && !p.given_nonzero("transmission") {
             diags.push(no_effect(
                 "ior_outside",
                 "a material without `transmission`",

@@ -7,6 +7,7 @@ mod blocks;
 pub mod domain;
 pub mod eval;
 mod finish;
+mod foreign_file;
 mod group_lights;
 mod groups;
 pub mod image_files;
@@ -183,6 +184,17 @@ pub fn check_bytes_within(
         (y, axis([0.0, 1.0, 0.0])),
         (z, axis([0.0, 0.0, 1.0])),
     ];
+    if let Some(kind) = foreign_file::not_a_scene(path, &bytes) {
+        let id = c.sources.add(path, String::new());
+        c.diags.push(foreign_file::not_a_scene_error(
+            path,
+            kind,
+            Span::new(id, 0, 0),
+        ));
+        // No statement was read: the whole-scene checks would be noise.
+        c.syntax_failed = true;
+        return c.finish();
+    }
     let (text, bad_utf8) = decode(bytes);
     let id = c.sources.add(path, text);
     if let Some(at) = bad_utf8 {

@@ -155,6 +155,26 @@ impl Params {
         self.given.contains(&name)
     }
 
+    /// Whether the parameter `name` was written but its value refused (and
+    /// reported): it is there for the warnings that ask for it, so that
+    /// "`gloss` has no effect without `reflection`" does not follow
+    /// `reflection 1`'s type error.
+    pub fn refused(&self, name: &str) -> bool {
+        self.given(name) && self.get(name).is_none()
+    }
+
+    /// Whether the parameter `name` was written with anything but zero:
+    /// also a value out of its range (`transmission 2`), which the reader
+    /// refuses after collection and replaces by its default.
+    pub fn given_nonzero(&self, name: &str) -> bool {
+        match self.get(name) {
+            Some((Val::Num(x), _)) => *x != 0.0,
+            Some((Val::Color(c), _)) => c.iter().any(|x| *x != 0.0),
+            Some(_) => true,
+            None => self.given(name),
+        }
+    }
+
     /// A required parameter; reports it missing (once) if absent.
     pub fn require(
         &self,
@@ -288,6 +308,9 @@ impl<'s> Collecting<'s> {
                 ));
                 None
             }
+            // `diffuse gradient y`: `y` after a word taken as a value is
+            // the rest of a POV-Ray form the word's error tells about.
+            Entry::Flag { .. } if took_next_word(&block.entries, i, env).is_some() => None,
             Entry::Flag { name } => {
                 let spec = (self.schemas.iter().flat_map(|s| s.iter()))
                     .find(|p| p.name == name.name && p.povray.is_none());
@@ -398,8 +421,12 @@ impl<'s> Collecting<'s> {
         let what = self.params.what.clone();
         if let Some(instead) = self.povray_colour(&name.name) {
             self.params.suggested.push(instead);
+            let note = match self.positional {
+                Some((_, note)) if !note.is_empty() => format!(" ({note})"),
+                _ => String::new(),
+            };
             let help = format!(
-                "POV-Ray's colours of `{what}` come in order; ptsc names each: write `{instead} rgb …` here"
+                "POV-Ray's colours of `{what}` come in order; ptsc names each: write `{instead} rgb …` here{note}"
             );
             let d = unknown_parameter(name, &what, help).with_fix(name.span, instead);
             return (d, Some(instead));

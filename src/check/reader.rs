@@ -46,8 +46,12 @@ impl WholeSetting {
             .trim()
             .parse()
             .map_err(|_| format!("`{text}` is not a number; {}", self.needs()))?;
+        let why = match x.fract() {
+            0.0 => "is out of range",
+            _ => "is not a whole number",
+        };
         self.check(x)
-            .map_err(|needs| format!("{text} is out of range: {needs}"))
+            .map_err(|needs| format!("{text} {why}: {needs}"))
     }
 
     /// "a whole number from 1 to 1000000".

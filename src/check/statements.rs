@@ -58,6 +58,7 @@ impl Checker<'_> {
             Statement::Foreign { name, .. } if kinds::find(&name.name).is_some() => {}
             Statement::Foreign { name, span } => {
                 self.diags.push(kinds::unknown_statement(name, *span));
+                self.light_with_errors |= kinds::may_be_a_light(&name.name);
             }
             Statement::Directive {
                 name,
@@ -260,6 +261,8 @@ impl Checker<'_> {
         let what = format!("material {}", name.name);
         let checking = (&mut self.env, &mut self.diags);
         let p = material::collect(what, name.span, block, checking);
+        // An emitter whose `emission` was refused may be the scene's light.
+        self.light_with_errors |= p.refused("emission");
         for e in &block.entries {
             if let Entry::Material { span, .. } = e {
                 self.diags.push(

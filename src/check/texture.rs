@@ -31,12 +31,15 @@ pub fn texture_schemas(name: &str) -> Option<&'static [&'static [ParamSpec]]> {
     })
 }
 
+/// Where POV-Ray's checker and ptsc's differ: the cells' space.
+const CHECKER_SPACE: &str = "POV-Ray's cells are unit cubes of the object's own space: add `space object`; ptsc's default reads the surface's texture coordinates";
+
 /// POV-Ray's order of the texture `name`'s values written without names:
 /// a checker's two colours (`checker rgb 1, rgb 0`; POV-Ray's first colour
 /// fills the cell at the origin, as ptsc's `even`).
 fn povray_order(name: &str) -> Option<Positional> {
     match name {
-        "checker" => Some((&["even", "odd"], "")),
+        "checker" => Some((&["even", "odd"], CHECKER_SPACE)),
         _ => None,
     }
 }

@@ -16,20 +16,20 @@ pub struct RenderArgs {
     #[arg(short, long)]
     pub output: Option<PathBuf>,
     /// Samples per pixel (1 to 1000000, as the scene's `samples`).
-    #[arg(long, value_parser = parse_spp)]
+    #[arg(long, value_parser = parse_spp, allow_negative_numbers = true)]
     pub spp: Option<u32>,
     /// A time budget, e.g. 90s, 5m or 1.5h: the render stops when it is
     /// spent (or at --spp, if given) and saves its state for --resume.
-    #[arg(long, value_name = "T", value_parser = parse_time)]
+    #[arg(long, value_name = "T", value_parser = parse_time, allow_negative_numbers = true)]
     pub time: Option<f64>,
     /// Adaptive sampling: a pixel stops once its noise is below T, e.g.
     /// 0.01 (as the scene's `noise_threshold`; 0 < T ≤ 1); `off`: every
     /// pixel takes the samples asked.
-    #[arg(long, value_name = "T", value_parser = parse_noise)]
+    #[arg(long, value_name = "T", value_parser = parse_noise, allow_negative_numbers = true)]
     pub noise: Option<Noise>,
     /// With --noise: samples every pixel takes before it may stop (2 to
     /// 1000000, as the scene's `min_samples`; default 16).
-    #[arg(long, value_name = "N", value_parser = parse_min_samples, requires = "noise")]
+    #[arg(long, value_name = "N", value_parser = parse_min_samples, allow_negative_numbers = true, requires = "noise")]
     pub min_samples: Option<u32>,
     /// Output variables written as channels of the EXR output, comma
     /// separated: albedo, normal, depth, position, object, samples,
@@ -46,10 +46,10 @@ pub struct RenderArgs {
     #[arg(long, value_name = "HOST:PORT", num_args = 0..=1, default_missing_value = crate::output::tev::DEFAULT_ADDRESS)]
     pub tev: Option<String>,
     /// Worker threads (default: all cores).
-    #[arg(long, value_parser = parse_threads)]
+    #[arg(long, value_parser = parse_threads, allow_negative_numbers = true)]
     pub threads: Option<usize>,
     /// Random seed (0 to 4294967295, as the scene's `seed`).
-    #[arg(long, value_parser = parse_seed)]
+    #[arg(long, value_parser = parse_seed, allow_negative_numbers = true)]
     pub seed: Option<u64>,
     /// Image size as WxH, e.g. 640x480.
     #[arg(long, value_parser = parse_resolution)]
@@ -64,7 +64,7 @@ pub struct RenderArgs {
     pub integrator: Option<IntegratorKind>,
     /// Clamp indirect light: each contribution's largest RGB component at
     /// most X (as the scene's `clamp`; biased, fights fireflies).
-    #[arg(long, value_name = "X", value_parser = parse_clamp)]
+    #[arg(long, value_name = "X", value_parser = parse_clamp, allow_negative_numbers = true)]
     pub clamp: Option<f32>,
     /// How shadow rays choose their light; the list and the default come
     /// from its table and the default settings.
@@ -72,7 +72,7 @@ pub struct RenderArgs {
     pub light_selection: Option<LightSelection>,
     /// Render only this frame of an animation (`frame` in the scene; with
     /// --frames, `clock` runs from 0 at its first frame to 1 at its last).
-    #[arg(long, value_name = "F", value_parser = parse_frame)]
+    #[arg(long, value_name = "F", value_parser = parse_frame, allow_negative_numbers = true)]
     pub frame: Option<u32>,
     /// The animation's frames, e.g. 1..240: each is rendered in turn (or
     /// only --frame's); name the images with a # pattern (frame_####.png).
@@ -80,7 +80,7 @@ pub struct RenderArgs {
     pub frames: Option<(u32, u32)>,
     /// The most memory the render may take, e.g. 16G or 512MiB (default:
     /// what the machine, its control group and `ulimit -v` leave free).
-    #[arg(long, value_name = "SIZE", value_parser = crate::render::memory::parse_size)]
+    #[arg(long, value_name = "SIZE", value_parser = crate::render::memory::parse_size, allow_negative_numbers = true)]
     pub memory_limit: Option<u64>,
     /// Only errors: no warnings, progress or figures.
     #[arg(short, long, conflicts_with = "verbose")]

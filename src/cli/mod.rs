@@ -142,7 +142,7 @@ pub fn run() -> ExitCode {
             let _ = e.print();
             if e.use_stderr() {
                 let args: Vec<String> = std::env::args().skip(1).collect();
-                if let Some(hint) = usage_note(&args) {
+                if let Some(hint) = usage_note(&args, e.kind()) {
                     eprintln!("note: {hint}");
                 }
             }
@@ -176,7 +176,7 @@ pub fn run() -> ExitCode {
 /// would mislead (`to pass '-1' as a value, use '-- -1'`): a POV-Ray
 /// option, a width or height of their own, a negative number after an
 /// option.
-fn usage_note(args: &[String]) -> Option<String> {
+fn usage_note(args: &[String], kind: clap::error::ErrorKind) -> Option<String> {
     if let Some(hint) = args.iter().find_map(|a| povray_option(a)) {
         return Some(hint);
     }
@@ -188,10 +188,15 @@ fn usage_note(args: &[String]) -> Option<String> {
     }
     let command = args.first().filter(|a| !a.starts_with('-'));
     let help = command.map_or("ptsc --help".to_string(), |c| format!("ptsc {c} --help"));
+    // (A numeric option takes a negative number and says why not itself.)
+    if kind != clap::error::ErrorKind::UnknownArgument {
+        return None;
+    }
     args.windows(2).find_map(|pair| {
         let (option, value) = (&pair[0], &pair[1]);
         let negative = value.starts_with('-') && value[1..].parse::<f64>().is_ok();
-        (option.starts_with("--") && negative).then(|| {
+        // (Not `--` itself: `--spp -- -1` ends the options.)
+        (option.starts_with("--") && option != "--" && negative).then(|| {
             format!("`{option}` takes no negative number (`{value}`): `{help}` says what it takes")
         })
     })
@@ -267,7 +272,7 @@ mod tests {
     fn a_width_of_its_own_and_a_negative_value_are_told() {
         let note = |args: &[&str]| {
             let args: Vec<String> = args.iter().map(|a| a.to_string()).collect();
-            usage_note(&args)
+            usage_note(&args, clap::error::ErrorKind::UnknownArgument)
         };
         let said = note(&["render", "s.pts", "-w", "320"]).unwrap();
         assert!(said.contains("--resolution"), "{said}");
@@ -275,6 +280,16 @@ mod tests {
         assert!(said.contains("`--seed` takes no negative number"), "{said}");
         assert_eq!(note(&["render", "s.pts", "--spp", "4", "-o"]), None);
         assert!(note(&["render", "+W320"]).unwrap().contains("--resolution"));
+        // `--` ends the options: it takes no value to be told about.
+        assert_eq!(note(&["render", "s.pts", "--spp", "--", "-1"]), None);
+        // A numeric option's own error says why a negative number is refused.
+        let args: Vec<String> = ["render", "s.pts", "--spp", "-1"]
+            .map(String::from)
+            .to_vec();
+        assert_eq!(
+            usage_note(&args, clap::error::ErrorKind::ValueValidation),
+            None
+        );
     }
 
     #[test]

@@ -112,6 +112,8 @@ pub const INCLUDE_NOT_FOUND: &str = "pts::check::include_not_found";
 pub const INCLUDE_CYCLE: &str = "pts::check::include_cycle";
 /// A file that is not valid UTF-8.
 pub const INVALID_UTF8: &str = "pts::check::invalid_utf8";
+/// A file that is not a scene (an image, a model, a binary file).
+pub const NOT_A_SCENE: &str = "pts::check::not_a_scene";
 /// A scene without a camera.
 pub const MISSING_CAMERA: &str = "pts::check::missing_camera";
 /// Loops that run too many statements.
@@ -198,7 +200,7 @@ pub const CATALOGUE: &[Entry] = &[
     Entry {
         code: OBJECT_AS_VALUE,
         title: "An object used as a value",
-        explanation: "Constants hold numbers, vectors, colours and booleans, not objects: `let ball = sphere { … };` is not a value. Write the object where it goes (a `for` loop places many).",
+        explanation: "Constants hold numbers, vectors, colours and booleans, not objects: `let ball = sphere { … };` is not a value. An object is named by a group, `group ball { sphere { … } }`, and placed (moved, turned, scaled) by each `instance ball { … }`; a `for` loop places many.",
         example: "let ball = sphere { center <0, 0, 0> radius 1 };",
     },
     Entry {
@@ -410,6 +412,12 @@ pub const CATALOGUE: &[Entry] = &[
         title: "A file that is not valid UTF-8",
         explanation: "Scene files are UTF-8 text. Each invalid byte is read as `?` so that every other diagnostic still points at the right place; re-save the file as UTF-8.",
         example: "(a file saved as Latin-1 with an accented letter in a comment)",
+    },
+    Entry {
+        code: NOT_A_SCENE,
+        title: "A file that is not a scene",
+        explanation: "An image, a model or another binary file was given where a scene goes (`ptsc render photo.png`) or included. It is told by its first bytes (the text formats of models by their extension) and not read as a scene, so that its bytes do not come back as a page of syntax errors. Scenes name images in textures (`diffuse image { file \"photo.png\" }`) and load models with `mesh { file \"model.obj\" }`.",
+        example: "(`ptsc render photo.png`: an image where a scene goes)",
     },
     Entry {
         code: MISSING_CAMERA,

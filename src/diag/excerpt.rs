@@ -142,7 +142,7 @@ impl Excerpt {
                 self.text.push(' ');
             }
             pieces.push((w.clone(), self.text.len()));
-            self.text.push_str(&file.text[w.clone()]);
+            push_printable(&mut self.text, &file.text[w.clone()]);
         }
         if windows.last().is_some_and(|w| w.end < range.end) {
             self.text.push_str(ELLIPSIS);
@@ -243,6 +243,20 @@ impl SourceCode for ExcerptSource {
             column,
             line_count,
         )))
+    }
+}
+
+/// Appends `piece` with each control character but the tab as `?`s of its
+/// length in bytes (so offsets into the excerpt stay right): an escape or a
+/// bell in a scene's bytes must not reach the terminal.
+fn push_printable(out: &mut String, piece: &str) {
+    for c in piece.chars() {
+        match c {
+            '\t' => out.push(c),
+            '\r' => out.push(' '),
+            c if c.is_control() => out.extend(std::iter::repeat_n('?', c.len_utf8())),
+            c => out.push(c),
+        }
     }
 }
 

@@ -75,7 +75,7 @@ pub fn rule_name(rule: Rule) -> &'static str {
         Rule::number => "a number",
         Rule::string | Rule::string_body => "a string",
         Rule::ident => "a name",
-        Rule::keyword => "a keyword",
+        Rule::keyword | Rule::entry_word => "a keyword",
         Rule::boundary => "the end of a word",
         Rule::bin_op => "an operator (`+`, `-`, `*`, `/`, `%`, `==`, `<`, `&&`, …)",
         Rule::neg => "`-`",
@@ -312,13 +312,19 @@ pub fn convert_error(
     // `let ball = sphere { … }`: an object where a value goes.
     if found == "`{`" && expected.contains(&"`;`") {
         if let Some(kind) = previous.last().filter(|w| !KEYWORDS.contains(w)) {
+            // `let ball = sphere {`: the constant's name, for the group's.
+            let (three, _) = words_before(text, pos, 3);
+            let name = match three.as_slice() {
+                ["let" | "fn", name, _] => *name,
+                _ => "name",
+            };
             return Diagnostic::error(
                 codes::OBJECT_AS_VALUE,
                 format!("a `{kind}` is not a value"),
                 span,
             )
             .with_label("an object's block")
-            .with_help("a constant holds a number, vector, colour or string; objects cannot be named yet (reusable objects are planned): write the object where it goes, in a `for` loop to repeat it");
+            .with_help(format!("a constant holds a number, vector, colour or string; an object is named by a group and placed by instances: `group {name} {{ {kind} {{ … }} }}`, then `instance {name} {{ translate <1, 0, 0> }}` where it goes"));
         }
     }
     // `sphere { … hollow }`: a POV-Ray flag right before.

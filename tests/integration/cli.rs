@@ -6,7 +6,7 @@ use std::path::Path;
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
-use crate::ptsc;
+use crate::{ptsc, ptsc_stderr};
 
 const SCENE: &str = "camera { position <0, 1, 4> look_at <0, 0.5, 0> }\n\
     background rgb 0.6\n\
@@ -423,4 +423,19 @@ fn flags_that_bdpt_ignores_are_warned_of() {
     assert!(!run("clear.pts", &["--clamp", "4"]).contains(clamp));
     // With media bdpt falls back to path, which clamps.
     assert!(!run("fog.pts", &["--integrator", "ptlt", "--clamp", "4"]).contains(clamp));
+}
+
+#[test]
+fn negative_and_fractional_counts_are_told_what_they_must_be() {
+    // clap's own tip ("to pass '-1' as a value, use '-- -1'") did not work:
+    // numeric options take the number and say why it is refused.
+    let (code, said) = ptsc_stderr(&["render", "s.pts", "--spp", "-1"]);
+    assert_eq!(code, 2, "{said}");
+    assert!(
+        said.contains("-1 is out of range: a whole number from 1"),
+        "{said}"
+    );
+    assert!(!said.contains("tip:"), "{said}");
+    let (_, said) = ptsc_stderr(&["render", "s.pts", "--threads", "2.5"]);
+    assert!(said.contains("2.5 is not a whole number"), "{said}");
 }

@@ -40,7 +40,7 @@ fn textured(file: &str) -> String {
 fn the_largest_image_decodes_once_within_a_small_memory() {
     let dir = tempfile::tempdir().unwrap();
     write_one_bit_png(&dir.path().join("bits.png"), 16_384);
-    let scene = dir.path().join("bits.pts");
+    let scene = dir.path().join("bits_scene.pts");
     std::fs::write(&scene, textured("bits.png")).unwrap();
     // 256 MiB of 8-bit grey texels, read as a colour and as a height
     // field from the one decode: within 768 MiB of address space for the
@@ -224,7 +224,7 @@ fn the_largest_alpha_plane_decodes_within_a_small_memory() {
     }
     // The file is complete (its buffer flushed) before ptsc reads it.
     drop(w);
-    let scene = dir.path().join("alpha.pts");
+    let scene = dir.path().join("alpha_scene.pts");
     std::fs::write(
         &scene,
         format!(

@@ -30,10 +30,25 @@ fn empty_file_needs_a_camera() {
 
 #[test]
 fn binary_bytes_and_invalid_utf8_are_diagnostics() {
-    let e = errors(&[0xff, 0xfe, 0x00, 0x80, b'{', 0x1b]);
+    let e = errors(&[0xff, 0xfe, 0x80, b'{', 0x1b]);
     assert!(e.contains(&"pts::check::invalid_utf8"), "{e:?}");
+    // A NUL or an image's signature: not a scene, one error, no parse.
     let e = errors(&[0, 1, 2, 3, 4, 5, 6, 7]);
-    assert!(!e.is_empty());
+    assert_eq!(e, vec!["pts::check::not_a_scene"]);
+    let png = b"\x89PNG\r\n\x1a\n\0\0\0\rIHDR\x1b[2J\x07";
+    assert_eq!(errors(png), vec!["pts::check::not_a_scene"]);
+}
+
+#[test]
+fn control_bytes_never_reach_the_terminal() {
+    // An escape in a scene (a slip, or a file that is not one) is shown as
+    // `?` in the excerpt: the terminal is not told to clear or recolour.
+    let text = "camera { position <0, 0, 5> look_at <0, 0, 0> }\nx\x1b[2J = 1;\x07\n";
+    let checked = ptsc::check::check_str(std::path::Path::new("esc.pts"), text);
+    let shown = checked.diagnostics.render_human(&checked.sources, false);
+    assert!(!shown.is_empty());
+    assert!(!shown.contains(['\x1b', '\x07']), "{shown:?}");
+    assert!(shown.contains("x?[2J = 1;?"), "{shown}");
 }
 
 #[test]

@@ -596,3 +596,48 @@ fn tev_is_sent_every_pass_and_refused_when_absent() {
     assert!(err.contains("cannot reach tev"), "{err}");
     assert!(!other.exists());
 }
+
+#[test]
+fn a_default_image_over_a_texture_is_refused_by_check_and_render_alike() {
+    // `poster.pts` reads `poster.png`: a render without `-o` would write
+    // its image there. Check, render and watch say so before any work;
+    // `-o` elsewhere renders.
+    let scene = "camera { position <0, 0, 5> look_at <0, 0, 0> }\n\
+        point_light { position <0, 5, 5> intensity rgb 10 }\n\
+        sphere { center <0, 0, 0> radius 1 material { diffuse image { file \"poster.png\" } } }\n";
+    let dir = temp_dir_with(&[("poster.pts", scene)]);
+    let texture = dir.path().join("poster.png");
+    let source = super::root().join("examples/images/cornell_128.png");
+    std::fs::copy(&source, &texture).unwrap();
+    let before = std::fs::read(&texture).unwrap();
+    let path = dir.path().join("poster.pts");
+    let path = path.to_str().unwrap();
+    let (code, said) = ptsc_stderr(&["check", path]);
+    assert_eq!(code, 1, "{said}");
+    assert!(
+        said.contains("would replace a file this scene reads"),
+        "{said}"
+    );
+    assert!(said.contains("poster.pts:3:"), "the texture's line: {said}");
+    let (code, said) = ptsc_stderr(&["render", path, "--resolution", "8x8", "--spp", "1"]);
+    assert_eq!(code, 1, "{said}");
+    assert!(
+        said.contains("would replace a file this scene reads"),
+        "{said}"
+    );
+    assert_eq!(std::fs::read(&texture).unwrap(), before);
+    let elsewhere = dir.path().join("out.png");
+    let elsewhere = elsewhere.to_str().unwrap();
+    let args = [
+        "render",
+        path,
+        "--resolution",
+        "8x8",
+        "--spp",
+        "1",
+        "-o",
+        elsewhere,
+    ];
+    let (code, said) = ptsc_stderr(&args);
+    assert_eq!(code, 0, "{said}");
+}

@@ -287,8 +287,11 @@ fn name_value(name: &str, span: Span, env: &mut Env, diags: &mut Diagnostics) ->
     }
     let mut d = Diagnostic::error(codes::UNKNOWN_NAME, format!("unknown name `{name}`"), span)
         .with_label("not defined");
+    let texture = crate::check::schema::TEXTURE_KINDS.contains(&name).then(|| {
+        format!("`{name}` is a texture, written with its block: `diffuse {name} {{ … }}` (POV-Ray's `pigment {{ {name} … }}`; docs/language.md, \"Textures\", lists its parameters)")
+    });
     d = match (
-        crate::syntax::povray::hint(name),
+        texture.or_else(|| crate::syntax::povray::hint(name).map(str::to_string)),
         env.suggest_name(name, &[]),
     ) {
         (Some(hint), _) => d.with_help(hint),

@@ -96,8 +96,10 @@ fn spot_light(p: &Params, diags: &mut Diagnostics) -> Option<Light> {
     let pos = r.vec3_req("position", schema);
     let at = r.vec3_req("look_at", schema);
     let i = need_color(&mut r, "intensity", schema);
+    let errors_before = r.diags.errors_pushed();
     let angle = r.num_in("angle", 0.0, 90.0, true, 30.0);
-    let hotspot = r.num_in("hotspot", 0.0, angle, false, angle);
+    let angle_refused = r.diags.errors_pushed() > errors_before;
+    let hotspot = spot_hotspot(&mut r, angle, angle_refused);
     let (pos, s) = pos?;
     let dir = at?.0 - pos;
     if dir.length_squared() == 0.0 {
@@ -119,6 +121,36 @@ fn spot_light(p: &Params, diags: &mut Diagnostics) -> Option<Light> {
         angle,
         hotspot,
     })
+}
+
+/// A spot light's `hotspot`, within its `angle` (`angle_refused`: the
+/// angle written had an error of its own, and the default stands in: the
+/// hotspot is then not measured against it).
+fn spot_hotspot(r: &mut Reader, angle: f64, angle_refused: bool) -> f64 {
+    let limit = if angle_refused { 90.0 } else { angle };
+    let hotspot = r.num_in("hotspot", 0.0, 90.0, false, angle);
+    let Some((x, span)) = r.num("hotspot") else {
+        return hotspot;
+    };
+    if x <= limit || hotspot != x {
+        return hotspot.min(angle);
+    }
+    let angle_said = match r.p.get("angle") {
+        Some(_) => format!("its `angle` is {angle}"),
+        None => format!("its `angle` is {angle}, the default"),
+    };
+    r.diags.push(
+        Diagnostic::error(
+            codes::OUT_OF_RANGE,
+            "`hotspot` of `spot_light` must be at most its `angle`",
+            span,
+        )
+        .with_label(format!("`hotspot` is {x} here; {angle_said}"))
+        .with_help(format!(
+            "the full-light cone lies inside the light's cone: give `angle {x}` or more, or a smaller `hotspot`"
+        )),
+    );
+    angle
 }
 
 /// `directional_light { }` → a directional light.

@@ -91,6 +91,25 @@ pub fn povray_hint(word: &str) -> Option<&'static str> {
         .map(|(_, help)| *help)
 }
 
+/// Whether the unknown statement `word { … }` stands for what lights a
+/// scene: a light's or a sky's POV-Ray word (`light_source`, `sky_sphere`)
+/// or misspelling (`point_ligth`), or POV-Ray's `background { … }`. Its
+/// error then says why the scene has no light, and "no light" would only
+/// repeat it.
+pub fn may_be_a_light(word: &str) -> bool {
+    if word == "background" {
+        return true;
+    }
+    let by_povray = KINDS
+        .iter()
+        .copied()
+        .find(|k| k.povray.iter().any(|(w, _)| *w == word));
+    let meant = by_povray.or_else(|| did_you_mean(word, names()).and_then(find));
+    meant.is_some_and(|k| {
+        k.is_light() || matches!(k.role, Role::Setting(Setting::Sky | Setting::Environment))
+    })
+}
+
 /// The error for `name { … }` where a statement goes, at `span`: the ptsc
 /// statement for POV-Ray's word, or the closest ptsc word.
 pub fn unknown_statement(name: &Ident, span: Span) -> Diagnostic {

@@ -54,9 +54,14 @@ pub fn check_texture(
     diags: &mut Diagnostics,
 ) -> Option<Texture> {
     let Some(schemas) = texture_schemas(&kind.name) else {
-        let help = match did_you_mean(&kind.name, TEXTURE_KINDS.iter().copied()) {
-            Some(s) => format!("did you mean `{s}`?"),
-            None => format!("the textures are: {}", TEXTURE_KINDS.join(", ")),
+        let povray = crate::syntax::povray::hint(&kind.name);
+        let help = match (
+            povray,
+            did_you_mean(&kind.name, TEXTURE_KINDS.iter().copied()),
+        ) {
+            (Some(hint), _) => hint.to_string(),
+            (None, Some(s)) => format!("did you mean `{s}`?"),
+            (None, None) => format!("the textures are: {}", TEXTURE_KINDS.join(", ")),
         };
         diags.push(
             Diagnostic::error(

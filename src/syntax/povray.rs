@@ -34,6 +34,13 @@ const WORDS: &[(&str, &str)] = &[
     ("phong_size", "ptsc's highlight size is `gloss` (0 a mirror, 1 very rough) with `type plastic`"),
     ("gradient", "in a material, `diffuse gradient { low rgb 0 high rgb 1 rotate <0, 0, 90> }` (a ramp along x)"),
     ("checker", "in a material, `diffuse checker { even rgb 1 odd rgb 0 }` (see \"Textures\" in docs/language.md)"),
+    ("text", "POV-Ray's `text { ttf … }`: ptsc has no text objects; model the letters in a 3D program and load them with `mesh { file \"…\" }`"),
+    ("blob", "ptsc has no blobs: spheres (`sphere { … }`), or a mesh of the shape from a 3D program (`mesh { file \"…\" }`)"),
+    ("isosurface", "ptsc has no isosurfaces: a mesh of the surface (`mesh { file \"…\" }`), or its `sphere`, `capsule` and `torus` shapes"),
+    ("bozo", "POV-Ray's `bozo` is ptsc's `noise { … }` texture: `diffuse noise { stop 0 rgb … stop 1 rgb … }`"),
+    ("bumps", "POV-Ray's `normal { bumps … }` is a material's `bump noise { … }` with `bump_height`"),
+    ("image_map", "POV-Ray's `image_map { png \"f.png\" }` is `diffuse image { file \"f.png\" }` in ptsc"),
+    ("granite", "ptsc's `turbulence { … }` texture is a close match for POV-Ray's `granite`"),
 ];
 
 /// POV-Ray's `#` directives, each with the ptsc statement that does its job.

@@ -268,7 +268,10 @@ fn a_cancelled_render_leaves_a_state_that_resumes_to_the_uninterrupted_image() {
     };
     let resumed = session(scene(40), batch(&out, resume)).unwrap();
     assert!(
-        resumed.note().unwrap().starts_with("resuming from 40 spp"),
+        resumed
+            .note()
+            .unwrap()
+            .starts_with("resuming a render of 40 spp"),
         "{:?}",
         resumed.note()
     );

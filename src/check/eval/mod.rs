@@ -291,7 +291,7 @@ fn name_value(name: &str, span: Span, env: &mut Env, diags: &mut Diagnostics) ->
         format!("`{name}` is a texture, written with its block: `diffuse {name} {{ … }}` (POV-Ray's `pigment {{ {name} … }}`; docs/language.md, \"Textures\", lists its parameters)")
     });
     d = match (
-        texture.or_else(|| crate::syntax::povray::hint(name).map(str::to_string)),
+        (crate::syntax::povray::hint(name).map(str::to_string)).or(texture),
         env.suggest_name(name, &[]),
     ) {
         (Some(hint), _) => d.with_help(hint),

@@ -178,7 +178,7 @@ fn resumed(state: &Path, saved: &StateInfo, now: &StateInfo) -> Result<Start, St
             now.samples
         ));
     }
-    let note = format!("resuming from {}", describe(&film, saved));
+    let note = format!("resuming {}", describe(&film, saved));
     Ok(Start {
         film,
         had_state: true,
@@ -197,15 +197,19 @@ fn size_of(info: &StateInfo) -> (u32, u32) {
     (get("width"), get("height"))
 }
 
-/// "pass 2/4 of 64 spp: 16 of 16 samples in every pixel".
+/// "pass 2/4 of 64 spp: 8 of its 16 samples done in every pixel", "a
+/// render of 1000 spp: 256 to 512 of its 1000 samples done per pixel".
 fn describe(film: &Film, info: &StateInfo) -> String {
     let (least, most, _) = film.sample_counts();
     let share = info.pass.range(info.samples).len();
-    let of = info.describe();
+    let of = match info.pass {
+        Pass::WHOLE => format!("a render of {}", info.describe()),
+        _ => info.describe(),
+    };
     if least == most {
-        format!("{of}: {least} of {share} samples in every pixel")
+        format!("{of}: {least} of its {share} samples done in every pixel")
     } else {
-        format!("{of}: {least} to {most} of {share} samples per pixel")
+        format!("{of}: {least} to {most} of its {share} samples done per pixel")
     }
 }
 

@@ -151,6 +151,22 @@ impl StateInfo {
                 self.scene
             ));
         }
+        // The image's size in one phrase: "its height is 128" alone hid
+        // that the widths differ too.
+        let size = |info: &StateInfo| {
+            let get = |name: &str| {
+                info.settings
+                    .iter()
+                    .find(|(n, _)| n == name)
+                    .map(|(_, v)| v.clone())
+            };
+            (get("width"), get("height"))
+        };
+        if let ((Some(w0), Some(h0)), (Some(w1), Some(h1))) = (size(self), size(now)) {
+            if (&w0, &h0) != (&w1, &h1) {
+                return Some(format!("its size is {w0}×{h0}, this render's is {w1}×{h1}"));
+            }
+        }
         for (name, value) in &now.settings {
             let saved = self.settings.iter().find(|(n, _)| n == name);
             match saved {

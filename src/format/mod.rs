@@ -56,7 +56,19 @@ pub fn format_text(text: &str) -> Result<String, FormatError> {
     let file = parse(text)?;
     let out = print(text, &file);
     verify::verify(text, &file, &out)?;
-    Ok(out)
+    Ok(with_line_ends_of(text, out))
+}
+
+/// `out` with the line ends `text` uses: a file whose first line ends in
+/// `\r\n` keeps them on every line (as rustfmt's `newline_style = "Auto"`),
+/// so that formatting a Windows file does not rewrite each of its lines.
+fn with_line_ends_of(text: &str, out: String) -> String {
+    let crlf = text.find('\n').is_some_and(|at| text[..at].ends_with('\r'));
+    if !crlf {
+        return out;
+    }
+    // A comment or a verbatim block may have kept its own `\r\n`s.
+    out.replace("\r\n", "\n").replace('\n', "\r\n")
 }
 
 /// Formats the top-level statements that overlap the bytes `start..end`
@@ -83,14 +95,19 @@ pub fn format_range(
         FormatError::Syntax(_) => FormatError::Bug("a statement does not parse alone".into()),
         bug => bug,
     })?;
-    Ok((range, out.trim_end_matches('\n').to_string()))
+    Ok((range, out.trim_end_matches(['\n', '\r']).to_string()))
 }
 
 /// Parses `text` as the formatter reads it: file 0, the kinds of the
 /// checker's table.
 fn parse(text: &str) -> Result<File, FormatError> {
-    crate::syntax::parse(FileId(0), text, &crate::check::kinds::NAMES)
-        .map_err(|d| FormatError::Syntax(vec![d]))
+    let kinds = &crate::check::kinds::NAMES;
+    crate::syntax::parse(FileId(0), text, kinds).map_err(|first| {
+        // Every syntax error, as `ptsc check` reports them (read again
+        // only when there is one).
+        let all = crate::syntax::parse_each(FileId(0), text, kinds, &mut |_| {});
+        FormatError::Syntax(if all.is_empty() { vec![first] } else { all })
+    })
 }
 
 /// The text of `file` (parsed from `text`) in the canonical layout.

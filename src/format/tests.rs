@@ -11,6 +11,22 @@ fn fmt(text: &str) -> String {
 }
 
 #[test]
+fn a_windows_file_keeps_its_line_ends() {
+    let text = "// a room\r\nsphere {center <0,1,0>\r\n radius 1}\r\n/* two\r\nlines */\r\nmaterial m {\r\n    diffuse rgb 1 // white\r\n}\r\n";
+    let out = fmt(text);
+    assert_eq!(
+        out.matches('\n').count(),
+        out.matches("\r\n").count(),
+        "{out:?}"
+    );
+    assert!(!out.contains("\r\r"), "{out:?}");
+    assert_eq!(fmt(&out.replace("\r\n", "\n")), out.replace("\r\n", "\n"));
+    // An editor's selection of a statement gets its line ends too.
+    let (_, part) = format_range(text, 15, 20).unwrap();
+    assert_eq!(part, "sphere { center <0, 1, 0> radius 1 }");
+}
+
+#[test]
 fn a_short_block_stays_on_its_line() {
     assert_eq!(
         fmt("sphere   {center <0,1,0>\n radius 1}"),
@@ -115,6 +131,11 @@ fn empty_text_and_a_byte_order_mark() {
 fn a_syntax_error_is_refused_with_its_diagnostic() {
     match format_text("sphere { radius 1 ") {
         Err(FormatError::Syntax(d)) => assert_eq!(d.len(), 1),
+        other => panic!("{other:?}"),
+    }
+    // Every syntax error of the file, as `ptsc check` reports them.
+    match format_text("let a = ;\nsphere { radius 1 }\nlet b = 2 +;\n") {
+        Err(FormatError::Syntax(d)) => assert_eq!(d.len(), 2, "{d:?}"),
         other => panic!("{other:?}"),
     }
 }

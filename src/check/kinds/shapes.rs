@@ -405,7 +405,12 @@ fn mesh(s: &mut ShapeInput) -> Option<Shape> {
     let (f, at) = (f.clone(), *at);
     let path = s.base_dir.join(&f);
     let ext = (path.extension().and_then(|e| e.to_str())).map(|e| e.to_ascii_lowercase());
-    if !matches!(ext.as_deref(), Some("obj" | "ply" | "gltf" | "glb")) {
+    // Only the path's kind (a `stat`, which never waits): lowering reads
+    // the file, bounded, and reports what else is wrong. A folder is said
+    // to be one, whatever its name.
+    let kind = s.files.exists(&path);
+    let known = matches!(ext.as_deref(), Some("obj" | "ply" | "gltf" | "glb"));
+    if !known && !matches!(kind, Err(ReadError::NotRegular(_))) {
         s.diags().push(
             Diagnostic::error(codes::MESH_FILE, format!("unknown mesh format `{f}`"), at)
                 .with_label("not an .obj, .ply, .gltf or .glb file")
@@ -413,9 +418,7 @@ fn mesh(s: &mut ShapeInput) -> Option<Shape> {
         );
         return None;
     }
-    // Only the path's kind (a `stat`, which never waits): lowering reads
-    // the file, bounded, and reports what else is wrong.
-    let missing = match s.files.exists(&path) {
+    let missing = match kind {
         Ok(()) => None,
         Err(ReadError::NotRegular(kind)) => Some(
             Diagnostic::error(

@@ -162,16 +162,22 @@ fn host() -> String {
 }
 
 /// The temporary file an atomic write of `path` goes through:
-/// `.NAME.HOST.PID.tmp` beside it.
+/// `.NAME.HOST.PID-N.tmp` beside it, N counting this process's writes and
+/// probes: two threads checking or writing one path at once (tests, an
+/// editor's compile beside a render) each have their own, where one name
+/// per process let one thread's rename take the other's file away.
 fn temporary_beside(path: &Path) -> std::io::Result<PathBuf> {
+    static NEXT: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
+    let n = NEXT.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
     let prefix = temporary_prefix(path)?;
-    let file = format!("{prefix}{}.{}.tmp", host(), std::process::id());
+    let file = format!("{prefix}{}.{}-{n}.tmp", host(), std::process::id());
     Ok(folder_of(path).join(file))
 }
 
 /// Removes the temporary files of writes to `path` whose process is gone
 /// (killed before it could clean up): those of this machine (`.NAME.HOST.
-/// PID.tmp`, and `.NAME.PID.tmp` of earlier versions) whose process no
+/// PID-N.tmp`, `.NAME.HOST.PID.tmp` and `.NAME.PID.tmp` of earlier
+/// versions) whose process no
 /// longer runs. Where processes cannot be seen (no /proc), nothing goes.
 fn remove_stale_temporaries(path: &Path) {
     let (Ok(prefix), true) = (temporary_prefix(path), Path::new("/proc/self").exists()) else {
@@ -190,6 +196,8 @@ fn remove_stale_temporaries(path: &Path) {
             Some((h, pid)) => (h, pid),
             None => (host.as_str(), middle),
         };
+        // `PID-N` (this version's) or `PID` (earlier ones').
+        let pid = pid.split_once('-').map_or(pid, |(pid, _)| pid);
         let Ok(pid) = pid.parse::<u32>() else {
             continue;
         };

@@ -49,6 +49,26 @@ fn paths_that_name_folders_or_other_things_are_refused() {
 }
 
 #[test]
+fn threads_checking_one_path_at_once_do_not_take_each_others_probe() {
+    // One temporary name per process let one thread's probe rename take
+    // the other's file away ("a file cannot take its place: No such file").
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out.png");
+    std::thread::scope(|s| {
+        let runs: Vec<_> = (0..8)
+            .map(|_| s.spawn(|| (0..50).map(|_| check_writable(&out)).collect::<Vec<_>>()))
+            .collect();
+        for run in runs {
+            for result in run.join().unwrap() {
+                assert_eq!(result, Ok(()));
+            }
+        }
+    });
+    let left: Vec<_> = std::fs::read_dir(dir.path()).unwrap().flatten().collect();
+    assert!(left.is_empty(), "{left:?}");
+}
+
+#[test]
 fn a_folder_refusing_new_files_says_why_in_words() {
     use std::io::{Error, ErrorKind};
     let said = |kind: ErrorKind| why_no_new_file(&Error::from(kind));
@@ -85,6 +105,7 @@ fn temporary_files_of_dead_runs_are_removed_by_the_next_run() {
     child.wait().unwrap();
     let host = host();
     let stale = [
+        format!(".out.png.{host}.{dead}-3.tmp"),
         format!(".out.png.{host}.{dead}.tmp"),
         format!(".out.png.{dead}.tmp"),
     ];

@@ -391,6 +391,7 @@ pub fn convert_error(
                 .find_map(|w| super::povray::hint(w))
                 .map(str::to_string)
         })
+        .or_else(|| range_habit(&text[..pos], &found))
         .unwrap_or_else(|| help_for(&expected, &found));
     Diagnostic::error(codes::UNEXPECTED_TOKEN, message, span)
         .with_label(label)
@@ -539,6 +540,24 @@ fn words_before(text: &str, pos: usize, n: usize) -> (Vec<&str>, bool) {
         .collect();
     words.reverse();
     (words, adjacent)
+}
+
+/// The help for another language's range (`before` the error, `found`
+/// at it): Rust's inclusive `0..=3`, a `step` after a loop's range.
+fn range_habit(before: &str, found: &str) -> Option<String> {
+    let before = before.trim_end();
+    if found == "`=`" && before.ends_with("..") {
+        return Some(
+            "a range leaves out its end: `0..4` is 0, 1, 2, 3 (write `0..=3` as `0..4`)".into(),
+        );
+    }
+    let in_for = before
+        .rfind("for ")
+        .is_some_and(|at| before[at..].contains(".."));
+    (found == "`step`" && in_for).then(|| {
+        "a range goes by 1: scale its number instead, `for i in 0..10 { let t = i * 0.1; … }`"
+            .into()
+    })
 }
 
 /// A hint that fits the usual causes of a parse error.

@@ -619,5 +619,5 @@ pub fn collect(
     let texture: CheckTexture = super::texture::check_texture;
     // A colour alone is POV-Ray's `pigment { rgb … }`: ptsc's `diffuse`.
     let order = (&[MATERIAL][..], Some((&["diffuse"][..], "")));
-    Params::collect_textured(what, head, block, order, checking, texture)
+    Params::collect_ordered(what, head, block, order, checking, Some(texture))
 }

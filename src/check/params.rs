@@ -116,31 +116,19 @@ impl Params {
         collecting.run(block, env, diags)
     }
 
-    /// [`Params::collect`] for a block whose parameters may be given
-    /// textures (a material's), each checked by `texture`.
-    pub fn collect_textured(
+    /// [`Params::collect`] for a block with POV-Ray's `positional` order
+    /// (a checker's two colours, a material's colour alone) whose
+    /// parameters may be given textures where `texture` checks them (a
+    /// material's; `None` for a texture's own block).
+    pub fn collect_ordered(
         what: impl Into<Cow<'static, str>>,
         head: Span,
         block: &Block,
         (schemas, positional): (&[&'static [ParamSpec]], Option<Positional>),
         (env, diags): (&mut Env, &mut Diagnostics),
-        texture: CheckTexture,
+        texture: Option<CheckTexture>,
     ) -> Params {
-        let mut collecting = Collecting::new(what.into(), head, schemas, Some(texture));
-        collecting.positional = positional;
-        collecting.run(block, env, diags)
-    }
-
-    /// [`Params::collect`] for a texture's block, whose kind may have
-    /// POV-Ray's `positional` order (a checker's two colours).
-    pub fn collect_texture(
-        what: impl Into<Cow<'static, str>>,
-        head: Span,
-        block: &Block,
-        (schemas, positional): (&[&'static [ParamSpec]], Option<Positional>),
-        (env, diags): (&mut Env, &mut Diagnostics),
-    ) -> Params {
-        let mut collecting = Collecting::new(what.into(), head, schemas, None);
+        let mut collecting = Collecting::new(what.into(), head, schemas, texture);
         collecting.positional = positional;
         collecting.run(block, env, diags)
     }

@@ -77,7 +77,14 @@ pub fn check_texture(
     let (schema, is_image) = (schemas[0], kind.name == "image");
     let noise = NoiseKind::from_name(&kind.name);
     let order = (schemas, povray_order(&kind.name));
-    let p = Params::collect_texture(kind.name.clone(), kind.span, block, order, (env, diags));
+    let p = Params::collect_ordered(
+        kind.name.clone(),
+        kind.span,
+        block,
+        order,
+        (env, diags),
+        None,
+    );
     let transform = super::objects::transform(&p, diags);
     let word = |name: &str| match p.get(name) {
         Some((Val::Word(w), _)) => Some(w.clone()),

@@ -215,14 +215,19 @@ fn check_default_output(
     inputs: &[PathBuf],
 ) -> Option<Diagnostic> {
     let image = root.with_extension("png");
-    // (A scene itself named `.png` is the command line's to refuse.)
-    let clashes =
-        |i: &&PathBuf| crate::output::same_file(&image, i) && !crate::output::same_file(root, i);
-    let input = inputs.iter().find(clashes)?;
+    // Nothing there yet, nothing to replace: one `stat` for most scenes.
+    // Else each input's real path once (not a pair per comparison).
+    let target = std::fs::canonicalize(&image).ok()?;
+    let real = |p: &Path| std::fs::canonicalize(p).ok();
+    if real(root).as_ref() == Some(&target) {
+        // (A scene itself named `.png` is the command line's to refuse.)
+        return None;
+    }
+    let input = inputs.iter().find(|i| real(i).as_ref() == Some(&target))?;
     let images = check::image_files::named_images(&scene.materials, scene.environment.as_ref());
     let named = images
         .iter()
-        .find(|(p, ..)| crate::output::same_file(p, input));
+        .find(|(p, ..)| real(p).as_ref() == Some(&target));
     // Where the file is named; else (an OBJ's texture) the scene's start.
     let span = named.map_or(Span::new(FileId(0), 0, 0), |(_, span, _)| *span);
     Some(

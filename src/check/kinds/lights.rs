@@ -127,30 +127,29 @@ fn spot_light(p: &Params, diags: &mut Diagnostics) -> Option<Light> {
 /// angle written had an error of its own, and the default stands in: the
 /// hotspot is then not measured against it).
 fn spot_hotspot(r: &mut Reader, angle: f64, angle_refused: bool) -> f64 {
-    let limit = if angle_refused { 90.0 } else { angle };
     let hotspot = r.num_in("hotspot", 0.0, 90.0, false, angle);
-    let Some((x, span)) = r.num("hotspot") else {
-        return hotspot;
-    };
-    if x <= limit || hotspot != x {
-        return hotspot.min(angle);
+    match r.num("hotspot") {
+        // Within 0..90 (else its range error is said) but past the angle.
+        Some((x, span)) if x == hotspot && x > angle && !angle_refused => {
+            let angle_said = match r.p.get("angle") {
+                Some(_) => format!("its `angle` is {angle}"),
+                None => format!("its `angle` is {angle}, the default"),
+            };
+            r.diags.push(
+                Diagnostic::error(
+                    codes::OUT_OF_RANGE,
+                    "`hotspot` of `spot_light` must be at most its `angle`",
+                    span,
+                )
+                .with_label(format!("`hotspot` is {x} here; {angle_said}"))
+                .with_help(format!(
+                    "the full-light cone lies inside the light's cone: give `angle {x}` or more, or a smaller `hotspot`"
+                )),
+            );
+            angle
+        }
+        _ => hotspot.min(angle),
     }
-    let angle_said = match r.p.get("angle") {
-        Some(_) => format!("its `angle` is {angle}"),
-        None => format!("its `angle` is {angle}, the default"),
-    };
-    r.diags.push(
-        Diagnostic::error(
-            codes::OUT_OF_RANGE,
-            "`hotspot` of `spot_light` must be at most its `angle`",
-            span,
-        )
-        .with_label(format!("`hotspot` is {x} here; {angle_said}"))
-        .with_help(format!(
-            "the full-light cone lies inside the light's cone: give `angle {x}` or more, or a smaller `hotspot`"
-        )),
-    );
-    angle
 }
 
 /// `directional_light { }` → a directional light.

@@ -84,11 +84,19 @@ pub fn names() -> impl Iterator<Item = &'static str> {
 /// What ptsc writes for POV-Ray's statement `word`, if a kind stands for
 /// it: the help line of its row.
 pub fn povray_hint(word: &str) -> Option<&'static str> {
-    KINDS
-        .iter()
-        .flat_map(|k| k.povray.iter())
+    let kind = povray_kind(word)?;
+    (kind.povray.iter())
         .find(|(w, _)| *w == word)
         .map(|(_, help)| *help)
+}
+
+/// The kind whose row lists POV-Ray's statement `word` (`light_source` →
+/// `point_light`).
+fn povray_kind(word: &str) -> Option<&'static Kind> {
+    KINDS
+        .iter()
+        .copied()
+        .find(|k| k.povray.iter().any(|(w, _)| *w == word))
 }
 
 /// Whether the unknown statement `word { … }` stands for what lights a
@@ -100,11 +108,7 @@ pub fn may_be_a_light(word: &str) -> bool {
     if word == "background" {
         return true;
     }
-    let by_povray = KINDS
-        .iter()
-        .copied()
-        .find(|k| k.povray.iter().any(|(w, _)| *w == word));
-    let meant = by_povray.or_else(|| did_you_mean(word, names()).and_then(find));
+    let meant = povray_kind(word).or_else(|| did_you_mean(word, names()).and_then(find));
     meant.is_some_and(|k| {
         k.is_light() || matches!(k.role, Role::Setting(Setting::Sky | Setting::Environment))
     })
@@ -132,10 +136,7 @@ pub fn unknown_statement(name: &Ident, span: Span) -> Diagnostic {
         .with_label("a statement ptsc does not have")
         .with_help(hint);
         // The kind that stands for the POV-Ray word: its name replaces it.
-        let kind = KINDS
-            .iter()
-            .find(|k| k.povray.iter().any(|(w, _)| *w == word));
-        return match kind {
+        return match povray_kind(word) {
             Some(k) => d.with_fix(name.span, k.name),
             None => d,
         };

@@ -9,7 +9,14 @@
 //! ```text
 //! cargo run --release --example embree_yardstick -- dump OUT [SCENE...]
 //! cargo run --release --example embree_yardstick -- report OUT...
+//! cargo run --release --example embree_yardstick -- trace OUT SCENE SET QUERY
 //! ```
+//!
+//! `trace` traces one set of a dump once more, untimed, through
+//! `trace_closest` or `trace_any` (never inlined): what a profiler such as
+//! `valgrind --tool=callgrind --toggle-collect='*trace_closest*'` counts.
+//! Its Embree counterpart: `yardstick DIR QUALITY 1 SET` under
+//! `--toggle-collect=rtcIntersect1`.
 //!
 //! `report` over several OUT folders (rounds of the same dump and runs)
 //! gives each cell the median over the rounds.
@@ -92,7 +99,11 @@ fn main() {
         Some("report") if args.len() >= 2 => {
             report::report(&args[1..].iter().map(PathBuf::from).collect::<Vec<_>>())
         }
-        _ => Err("usage: embree_yardstick dump OUT [SCENE...] | report OUT...".into()),
+        Some("trace") if args.len() == 5 => trace(Path::new(&args[1]), &args[2], &args[3], &args[4]),
+        _ => Err(
+            "usage: embree_yardstick dump OUT [SCENE...] | report OUT... | trace OUT SCENE SET closest|any"
+                .into(),
+        ),
     };
     if let Err(e) = result {
         eprintln!("error: {e}");
@@ -275,6 +286,60 @@ fn write_rays(path: &Path, rays: &[YRay]) -> std::io::Result<()> {
         b.extend(f.iter().flat_map(|x| x.to_le_bytes()));
     }
     std::fs::write(path, b)
+}
+
+/// Reads a set written by [`write_rays`].
+fn read_rays(path: &Path) -> Result<Vec<YRay>, String> {
+    let b = std::fs::read(path).map_err(|e| format!("{}: {e}", path.display()))?;
+    let body = b
+        .strip_prefix(b"PTSYRAY1".as_slice())
+        .filter(|body| body.len() >= 4)
+        .ok_or_else(|| format!("{}: not a ray set", path.display()))?;
+    let f: Vec<f32> = body[4..]
+        .chunks_exact(4)
+        .map(|c| f32::from_le_bytes([c[0], c[1], c[2], c[3]]))
+        .collect();
+    Ok(f.chunks_exact(8)
+        .map(|r| YRay {
+            o: Vec3::new(r[0], r[1], r[2]),
+            tnear: r[3],
+            d: Vec3::new(r[4], r[5], r[6]),
+            tfar: r[7],
+        })
+        .collect())
+}
+
+/// Traces one set of a dump of `scene` once (see the module's doc).
+fn trace(out: &Path, name: &str, set: &str, query: &str) -> Result<(), String> {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let path = root.join("examples/bench").join(format!("{name}.pts"));
+    let compiled =
+        compile_file(&path, Options::default()).map_err(|e| format!("{}: {e}", path.display()))?;
+    let scene = (compiled.ir).ok_or_else(|| format!("{}: does not compile", path.display()))?;
+    let rays = read_rays(&out.join(name).join(format!("{set}.rays")))?;
+    let hits = match query {
+        "closest" => trace_closest(&scene, &rays),
+        "any" => trace_any(&scene, &rays),
+        _ => return Err(format!("`{query}`: the query is `closest` or `any`")),
+    };
+    eprintln!("{name} {set} {query}: {} rays, {hits} hits", rays.len());
+    Ok(())
+}
+
+/// Closest hits of `rays`; how many hit.
+#[inline(never)]
+fn trace_closest(scene: &Scene, rays: &[YRay]) -> usize {
+    (rays.iter())
+        .filter(|r| (scene.intersect(&Ray::new(r.o, r.d, 0.0), r.tnear, r.tfar)).is_some())
+        .count()
+}
+
+/// Any hits of `rays`; how many are blocked.
+#[inline(never)]
+fn trace_any(scene: &Scene, rays: &[YRay]) -> usize {
+    (rays.iter())
+        .filter(|r| scene.occluded(&Ray::new(r.o, r.d, 0.0), r.tnear, r.tfar))
+        .count()
 }
 
 /// Rows of a `NAME.tsv` (tab-separated, the first field the kind):

@@ -283,18 +283,35 @@ impl Checker<'_> {
     /// Records the uses of materials named before their declaration, where
     /// the scene is not resolved (a file did not parse): the symbols are
     /// whole all the same.
+    /// On a file with a syntax error: records the uses of materials
+    /// declared after them, and reports the names that cannot be declared
+    /// anywhere, not even in the statements that did not parse, since the
+    /// scene's text holds them only where they are used (a typo would
+    /// otherwise hide behind a missing `}` elsewhere).
     fn pending_material_uses(&mut self) {
-        for (_, name) in &self.pending_materials {
-            if let Some(m) = self.material_names.get(&name.name) {
-                self.env.symbols.record_use(m.def, name.span, true);
+        let mut unknown = Vec::new();
+        for (_, name) in std::mem::take(&mut self.pending_materials) {
+            match self.material_names.get(&name.name) {
+                Some(m) => self.env.symbols.record_use(m.def, name.span, true),
+                None => unknown.push(name),
+            }
+        }
+        // A loop names its material at one place, once per iteration.
+        unknown.sort_by_key(|n| (n.span.file.0, n.span.start));
+        unknown.dedup_by_key(|n| n.span);
+        for name in &unknown {
+            let uses = unknown.iter().filter(|n| n.name == name.name).count();
+            let written = (self.sources.files().iter())
+                .map(|f| whole_words(&f.text, &name.name))
+                .sum::<usize>();
+            if written <= uses {
+                self.unknown_material(name);
             }
         }
     }
 
     /// Gives the objects that named a material before its declaration
-    /// their material, and reports the names never declared (with a
-    /// did-you-mean, whose material then does not count as unused: the
-    /// typo already explains it).
+    /// their material, and reports the names never declared.
     fn resolve_pending_materials(&mut self) {
         for (at, name) in std::mem::take(&mut self.pending_materials) {
             let objects = match at.group {
@@ -332,36 +349,43 @@ impl Checker<'_> {
                 Some(k) => swaps::set(object, k, material),
                 None => object.material = material,
             }
-            let names = self.material_names.keys().map(String::as_str);
-            let suggestion = (self.env)
-                .suggest(&name.name, self.material_names.len(), names)
-                .map(str::to_string);
-            let help = match &suggestion {
-                Some(s) => {
-                    // The typo already explains why it is not used.
-                    self.env.symbols.excuse(self.material_names[s].def);
-                    format!("did you mean `{s}`?")
-                }
-                None => format!(
-                    "declare it (anywhere in the scene): `material {} {{ diffuse rgb 0.8 }}`",
-                    name.name
-                ),
-            };
-            let mut d = Diagnostic::error(
-                codes::UNKNOWN_MATERIAL,
-                format!("unknown material `{}`", name.name),
-                name.span,
-            )
-            .with_label("no material with this name")
-            .with_help(help);
-            if let Some(s) = &suggestion {
-                d = d.with_secondary(
-                    self.material_names[s].span,
-                    format!("`{s}` is declared here"),
-                );
-            }
-            self.diags.push(d);
+            self.unknown_material(&name);
         }
+    }
+
+    /// The error for `name`, a material declared nowhere, with a
+    /// did-you-mean (whose material then does not count as unused: the
+    /// typo already explains it).
+    fn unknown_material(&mut self, name: &crate::syntax::ast::Ident) {
+        let names = self.material_names.keys().map(String::as_str);
+        let suggestion = (self.env)
+            .suggest(&name.name, self.material_names.len(), names)
+            .map(str::to_string);
+        let help = match &suggestion {
+            Some(s) => {
+                // The typo already explains why it is not used.
+                self.env.symbols.excuse(self.material_names[s].def);
+                format!("did you mean `{s}`?")
+            }
+            None => format!(
+                "declare it (anywhere in the scene): `material {} {{ diffuse rgb 0.8 }}`",
+                name.name
+            ),
+        };
+        let mut d = Diagnostic::error(
+            codes::UNKNOWN_MATERIAL,
+            format!("unknown material `{}`", name.name),
+            name.span,
+        )
+        .with_label("no material with this name")
+        .with_help(help);
+        if let Some(s) = &suggestion {
+            d = d.with_secondary(
+                self.material_names[s].span,
+                format!("`{s}` is declared here"),
+            );
+        }
+        self.diags.push(d);
     }
 }
 
@@ -385,4 +409,17 @@ impl Checker<'_> {
             }
         }
     }
+}
+
+/// How many times `word` stands in `text` as a whole name (not inside a
+/// longer one).
+fn whole_words(text: &str, word: &str) -> usize {
+    let name_char = |c: char| c.is_alphanumeric() || c == '_';
+    (text.match_indices(word))
+        .filter(|&(at, _)| {
+            let before = text[..at].chars().next_back();
+            let after = text[at + word.len()..].chars().next();
+            !before.is_some_and(name_char) && !after.is_some_and(name_char)
+        })
+        .count()
 }

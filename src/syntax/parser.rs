@@ -392,6 +392,7 @@ pub fn convert_error(
                 .map(str::to_string)
         })
         .or_else(|| range_habit(&text[..pos], &found))
+        .or_else(|| missing_constant_value(&text[..pos], &expected, &found))
         .unwrap_or_else(|| help_for(&expected, &found));
     Diagnostic::error(codes::UNEXPECTED_TOKEN, message, span)
         .with_label(label)
@@ -558,6 +559,22 @@ fn range_habit(before: &str, found: &str) -> Option<String> {
         "a range goes by 1: scale its number instead, `for i in 0..10 { let t = i * 0.1; … }`"
             .into()
     })
+}
+
+/// The help for `let x = ;`: a value was expected right after a `let`'s
+/// `=` (not after `==`, `<=`, `>=` or `!=`, nor at a second `=`).
+fn missing_constant_value(before: &str, expected: &[&str], found: &str) -> Option<String> {
+    if found == "`=`" {
+        return None;
+    }
+    let before = before.trim_end();
+    let after_let = before
+        .strip_suffix('=')
+        .filter(|b| !b.ends_with(['=', '<', '>', '!']))
+        .and_then(|b| b.trim_end().rsplit_once(|c: char| !(c.is_alphanumeric() || c == '_')))
+        .is_some_and(|(b, _)| b.trim_end().ends_with("let"));
+    (after_let && expected.iter().any(|e| e.starts_with("a value")))
+        .then(|| "a constant takes its value after `=`: `let radius = 0.5;`".into())
 }
 
 /// A hint that fits the usual causes of a parse error.

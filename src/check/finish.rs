@@ -10,6 +10,7 @@ impl Checker<'_> {
     pub(super) fn finish(mut self) -> Checked {
         let render = self.render.take().map(|r| r.0).unwrap_or_default();
         // Warnings about the whole scene; a file that did not parse makes them noise.
+        self.report_unknown_groups();
         if self.syntax_failed {
             // The symbols are still what an editor reads on a broken file.
             self.pending_material_uses();
@@ -296,18 +297,45 @@ impl Checker<'_> {
                 None => unknown.push(name),
             }
         }
-        // A loop names its material at one place, once per iteration.
-        unknown.sort_by_key(|n| (n.span.file.0, n.span.start));
-        unknown.dedup_by_key(|n| n.span);
         for name in &unknown {
-            let uses = unknown.iter().filter(|n| n.name == name.name).count();
-            let written = (self.sources.files().iter())
-                .map(|f| whole_words(&f.text, &name.name))
-                .sum::<usize>();
-            if written <= uses {
+            if self.written_only_at(name, &unknown) {
                 self.unknown_material(name);
             }
         }
+    }
+
+    /// Reports the instances of undeclared groups; on a file with a
+    /// syntax error only those of names that no statement that did not
+    /// parse can declare (`let ball = sphere { … }` already has its error,
+    /// which says to write `group ball { … }`).
+    fn report_unknown_groups(&mut self) {
+        let unknown = std::mem::take(&mut self.unknown_groups);
+        let names: Vec<_> = unknown.iter().map(|(n, _)| n.clone()).collect();
+        for (name, d) in unknown {
+            if !self.syntax_failed || self.written_only_at(&name, &names) {
+                self.diags.push(d);
+            }
+        }
+    }
+
+    /// Whether the scene's text holds `name` only at the places in `uses`
+    /// that write it (each place once): then no statement, parsed or
+    /// not, declares it.
+    fn written_only_at(
+        &self,
+        name: &crate::syntax::ast::Ident,
+        uses: &[crate::syntax::ast::Ident],
+    ) -> bool {
+        let mut spans: Vec<_> = (uses.iter())
+            .filter(|n| n.name == name.name)
+            .map(|n| (n.span.file.0, n.span.start))
+            .collect();
+        spans.sort_unstable();
+        spans.dedup();
+        let written = (self.sources.files().iter())
+            .map(|f| whole_words(&f.text, &name.name))
+            .sum::<usize>();
+        written <= spans.len()
     }
 
     /// Gives the objects that named a material before its declaration

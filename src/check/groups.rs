@@ -113,7 +113,7 @@ impl Checker<'_> {
                         name.name
                     )),
                 };
-                self.diags.push(d);
+                self.unknown_groups.push((name.clone(), d));
                 return;
             }
         };

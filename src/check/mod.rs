@@ -302,6 +302,10 @@ struct Checker<'f> {
     /// Objects whose material was named before its declaration: the
     /// object (its group, if any, and index) and the name as written.
     pending_materials: Vec<(ObjectRef, crate::syntax::ast::Ident)>,
+    /// Instances of groups not declared before them: the name and its
+    /// error, reported at the end unless a statement that did not parse
+    /// may have declared it.
+    unknown_groups: Vec<(crate::syntax::ast::Ident, Diagnostic)>,
     /// Names given to a misspelt `material` (`materal red`, reported
     /// there): the materials they name are not reported unused too.
     meant_materials: Vec<crate::syntax::ast::Ident>,
@@ -369,6 +373,7 @@ impl<'f> Checker<'f> {
             material_names: HashMap::new(),
             default_material: None,
             pending_materials: Vec::new(),
+            unknown_groups: Vec::new(),
             meant_materials: Vec::new(),
             light_with_errors: false,
             included_from: HashMap::new(),

@@ -571,7 +571,10 @@ fn missing_constant_value(before: &str, expected: &[&str], found: &str) -> Optio
     let after_let = before
         .strip_suffix('=')
         .filter(|b| !b.ends_with(['=', '<', '>', '!']))
-        .and_then(|b| b.trim_end().rsplit_once(|c: char| !(c.is_alphanumeric() || c == '_')))
+        .and_then(|b| {
+            b.trim_end()
+                .rsplit_once(|c: char| !(c.is_alphanumeric() || c == '_'))
+        })
         .is_some_and(|(b, _)| b.trim_end().ends_with("let"));
     (after_let && expected.iter().any(|e| e.starts_with("a value")))
         .then(|| "a constant takes its value after `=`: `let radius = 0.5;`".into())

@@ -195,6 +195,12 @@ impl Checker<'_> {
         let (Some(shape), Some(material)) = (shape, material) else {
             return None;
         };
+        if let Some(what) = shape.round_kind() {
+            if let Some(d) = objects::uneven_round(p, &transform, what, span) {
+                self.diags.push(d);
+                return None;
+            }
+        }
         if matches!(shape, Shape::Plane { .. })
             && material != PENDING_MATERIAL
             && self.materials[material].is_emissive()

@@ -31,6 +31,7 @@ pub mod texture;
 pub mod texture_input;
 
 pub use blocks::{MAX_NOISE, MAX_PIXELS, MAX_SIDE, MIN_SAMPLES, SAMPLES, SEED};
+pub use objects::non_uniform;
 pub use reader::WholeSetting;
 pub use scene::*;
 pub use symbols::{DefId, Definition, ParamUse, SymbolKind, Symbols};

@@ -4,6 +4,8 @@
 use super::params::{Params, Val};
 use crate::diag::codes;
 use crate::diag::{Diagnostic, Diagnostics};
+use crate::geometry::round::similarity_scale;
+use crate::span::Span;
 use glam::{DMat4, DVec3};
 
 /// The object-to-world transform from `translate`, `rotate`, `scale` and `matrix` in order.
@@ -74,4 +76,39 @@ pub fn velocity(p: &Params) -> DVec3 {
         Some((Val::Vector(v), _)) => DVec3::new(v[0], v[1], v[2]),
         _ => DVec3::ZERO,
     }
+}
+
+/// The error of a round shape (`what`) at `span` under an uneven scale or
+/// a shear; lowering gives it too, for a group's placement.
+pub fn non_uniform(span: Span, what: &str) -> Diagnostic {
+    Diagnostic::error(
+        codes::NON_UNIFORM_SCALE,
+        format!("a {what} takes only uniform scaling"),
+        span,
+    )
+    .with_label("this object is scaled unevenly or sheared")
+    .with_help(format!(
+        "scale the {what} by a single number, or use a mesh for ellipsoids"
+    ))
+}
+
+/// The error when `transform`, an object's own, scales the round shape
+/// `what` unevenly or shears it: at the first `scale` of unequal factors
+/// or `matrix` of the block, else at the object (`span`).
+pub fn uneven_round(p: &Params, transform: &DMat4, what: &str, span: Span) -> Option<Diagnostic> {
+    if similarity_scale(transform).is_some() {
+        return None;
+    }
+    let culprit = p.ordered.iter().find(|(name, val, _)| match (*name, val) {
+        ("scale", Val::Vector(v)) => v.iter().any(|x| x.abs() != v[0].abs()),
+        ("matrix", _) => true,
+        _ => false,
+    });
+    Some(match culprit {
+        Some((name, _, at)) => non_uniform(*at, what).with_label(match *name {
+            "scale" => format!("scales the {what} unevenly"),
+            _ => format!("this matrix shears or scales the {what} unevenly"),
+        }),
+        None => non_uniform(span, what),
+    })
 }

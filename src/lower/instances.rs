@@ -14,10 +14,11 @@
 //! placed a thousand times is refused by the primitive limit
 //! (`shapes::MAX_PRIMITIVES`), not built.
 
-use super::shapes::{self, non_uniform, within_domain};
+use super::shapes::{self, within_domain};
 use super::{geometry, LowerCache};
 use crate::accel::bvh::Bvh;
 use crate::accel::bvh4::Bvh4;
+use crate::check::non_uniform;
 use crate::check::{self, Instance, Object};
 use crate::diag::{codes, Diagnostic, Diagnostics};
 use crate::geometry::round::similarity_scale;

@@ -327,14 +327,14 @@ impl Gathering<'_> {
             }
             check::Shape::Round(round) => {
                 if round.place(&m, &mut shapes).is_err() {
-                    self.diags.push(non_uniform(obj.span, round.name()));
+                    self.diags.push(check::non_uniform(obj.span, round.name()));
                 }
             }
             round => match similarity_scale(&m) {
                 Some(s) => round_shapes(round, &m, s, &mut shapes),
                 None => {
                     let what = obj.shape.round_kind().unwrap_or("shape");
-                    self.diags.push(non_uniform(obj.span, what));
+                    self.diags.push(check::non_uniform(obj.span, what));
                 }
             },
         }
@@ -574,20 +574,6 @@ fn parallelogram(p: Vec3, e1: Vec3, e2: Vec3, flip: bool) -> Shape {
         e2,
         swapped: flip,
     }
-}
-
-/// The error of a round shape (`what`) at `span` under an uneven scale or
-/// a shear.
-pub(super) fn non_uniform(span: crate::span::Span, what: &str) -> Diagnostic {
-    Diagnostic::error(
-        codes::NON_UNIFORM_SCALE,
-        format!("a {what} takes only uniform scaling"),
-        span,
-    )
-    .with_label("this object is scaled unevenly or sheared")
-    .with_help(format!(
-        "scale the {what} by a single number, or use a mesh for ellipsoids"
-    ))
 }
 
 #[cfg(test)]

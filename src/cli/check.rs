@@ -1,5 +1,6 @@
-//! `ptsc check FILE|FOLDER…`: parse and check each scene, print its
-//! diagnostics, a summary, and set the exit code.
+//! `ptsc check FILE|FOLDER|-…`: parse and check each scene, print its
+//! diagnostics, a summary, and set the exit code. `-` reads a scene from
+//! stdin (its includes relative to the working folder).
 //!
 //! A folder stands for its `*.pts` files in name order; its subfolders are
 //! not entered and its `.ptsi` include fragments are not checked alone (a
@@ -7,7 +8,7 @@
 //! names mean something).
 
 use super::{Format, Verbosity, EXIT_OK, EXIT_SCENE_ERROR, EXIT_USAGE};
-use crate::compile::{compile_file, Options};
+use crate::compile::{compile_bytes, compile_file, Options};
 use crate::diag::{Diagnostics, Severity};
 use crate::source::SourceMap;
 use std::path::{Path, PathBuf};
@@ -104,6 +105,10 @@ struct Checked {
 /// 2 if one cannot be read, else 1 if one has errors, else 0. One scene
 /// prints as it always did; several add a line per scene and a summary.
 pub fn run(args: &[PathBuf], format: Format, verbosity: Verbosity) -> u8 {
+    if args.iter().filter(|a| *a == Path::new("-")).count() > 1 {
+        eprintln!("error: `-` (stdin) can be checked once");
+        return EXIT_USAGE;
+    }
     let scenes = scenes(args);
     let several = scenes.len() > 1 || args.iter().any(|a| a.is_dir());
     let mut json = Vec::new();
@@ -153,16 +158,23 @@ fn check_one(
         lower: false,
         ..Options::default()
     };
-    let compiled = match compile_file(file, options) {
-        Ok(c) => c,
-        Err(e) => {
-            return unreadable(
-                file,
-                &format!("cannot read {}: {e}", file.display()),
-                format,
-                json,
-            )
+    let compiled = if file == Path::new("-") {
+        match super::read_stdin() {
+            Ok(bytes) => compile_bytes(Path::new(super::STDIN_NAME), bytes, options),
+            Err(why) => return unreadable(file, &why, format, json),
         }
+    } else {
+        match compile_file(file, options) {
+            Ok(c) => c,
+            Err(e) => {
+                let why = format!("cannot read {}: {e}", file.display());
+                return unreadable(file, &why, format, json);
+            }
+        }
+    };
+    let file = match file == Path::new("-") {
+        true => Path::new(super::STDIN_NAME),
+        false => file,
     };
     let d = shown(&compiled.diagnostics, verbosity);
     let (errors, warnings) = (d.error_count(), d.warning_count());

@@ -16,7 +16,7 @@
 use super::{EXIT_OK, EXIT_SCENE_ERROR, EXIT_USAGE};
 use crate::format::{format_text, FormatError};
 use crate::source::SourceMap;
-use std::io::{Read, Write};
+use std::io::Write;
 use std::path::{Path, PathBuf};
 
 /// Runs `fmt`; returns the exit code.
@@ -74,7 +74,9 @@ fn expand(args: &[PathBuf]) -> Vec<Result<PathBuf, String>> {
 
 /// Formats one file in place (or checks it); returns its exit code.
 fn one_file(path: &Path, check: bool) -> u8 {
-    let text = match std::fs::read(path).map(String::from_utf8) {
+    // As `check` reads a scene: a regular file within the size limit.
+    let read = crate::check::read_scene_file(&crate::source::Disk, path);
+    let text = match read.map(String::from_utf8) {
         Ok(Ok(text)) => text,
         Ok(Err(_)) => {
             eprintln!("error: {} is not UTF-8 text", path.display());
@@ -134,12 +136,18 @@ fn refused(name: &Path, text: String, error: FormatError) -> u8 {
 /// whether it would change); returns the exit code. A refused text is
 /// written back unchanged.
 fn stdin(check: bool) -> u8 {
-    let mut text = String::new();
-    if let Err(e) = std::io::stdin().read_to_string(&mut text) {
-        eprintln!("error: cannot read stdin: {e}");
-        return EXIT_USAGE;
-    }
-    let name = Path::new("<stdin>");
+    let text = match super::read_stdin().map(String::from_utf8) {
+        Ok(Ok(text)) => text,
+        Ok(Err(_)) => {
+            eprintln!("error: stdin is not UTF-8 text");
+            return EXIT_USAGE;
+        }
+        Err(why) => {
+            eprintln!("error: {why}");
+            return EXIT_USAGE;
+        }
+    };
+    let name = Path::new(super::STDIN_NAME);
     let (out, code) = match format_text(&text) {
         Ok(f) if check && f != text => {
             println!("{}", name.display());

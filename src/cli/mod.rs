@@ -68,11 +68,12 @@ pub enum Command {
     ///
     /// A folder stands for its *.pts files, sorted by name (not its
     /// subfolders; .ptsi include fragments are checked with the scenes that
-    /// include them). Exit status: 0 fine (warnings allowed), 1 a scene has
-    /// errors, 2 a file or folder cannot be read.
+    /// include them); `-` reads a scene from stdin. Exit status: 0 fine
+    /// (warnings allowed), 1 a scene has errors, 2 a file or folder cannot
+    /// be read.
     Check {
-        /// The scene files and folders of scenes.
-        #[arg(required = true, value_name = "FILE|FOLDER")]
+        /// The scene files and folders of scenes (`-`: stdin).
+        #[arg(required = true, value_name = "FILE|FOLDER|-")]
         files: Vec<std::path::PathBuf>,
         /// Output format of the diagnostics.
         #[arg(long, value_enum, default_value = "human")]
@@ -256,6 +257,33 @@ fn explain(code: Option<&str>, all: bool) -> u8 {
             EXIT_USAGE
         }
     }
+}
+
+/// The name a scene read from stdin (`-`) goes by in messages; includes
+/// are found relative to the working folder.
+pub const STDIN_NAME: &str = "<stdin>";
+
+/// Reads a scene from stdin, refusing one larger than a scene file may
+/// be ([`crate::source::MAX_SCENE_BYTES`]) before holding more of it.
+pub fn read_stdin() -> Result<Vec<u8>, String> {
+    read_scene_from(std::io::stdin().lock())
+}
+
+/// [`read_stdin`] from any reader.
+fn read_scene_from(input: impl std::io::Read) -> Result<Vec<u8>, String> {
+    use std::io::Read;
+    let limit = crate::source::MAX_SCENE_BYTES;
+    let mut bytes = Vec::new();
+    (input.take(limit + 1))
+        .read_to_end(&mut bytes)
+        .map_err(|e| format!("cannot read stdin: {e}"))?;
+    if bytes.len() as u64 > limit {
+        return Err(format!(
+            "stdin holds more than {}, the most a scene may be",
+            crate::source::human_bytes(limit)
+        ));
+    }
+    Ok(bytes)
 }
 
 /// Whether stderr is a terminal (colours, progress bars).

@@ -116,7 +116,12 @@ fn a_scene_that_is_no_regular_file_is_refused_at_once() {
             continue;
         };
         let scene = dir.path().join(format!("{name}.pts"));
-        for command in ["check {scene}", "render {scene} -o {out}.png"] {
+        // `fmt` takes a folder for its scenes; the others it reads as
+        // `check` does (it read `/dev/zero` until memory ran out).
+        let fmt = ["fmt {scene}", "fmt --check {scene}"];
+        let fmt = if name == "folder" { &[][..] } else { &fmt[..] };
+        let commands = ["check {scene}", "render {scene} -o {out}.png"];
+        for command in commands.iter().chain(fmt) {
             let case = generated(
                 &format!("{name}.pts: {command}"),
                 &format!(

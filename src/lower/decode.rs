@@ -54,6 +54,23 @@ impl Format {
         }
     }
 
+    /// The format of the file `bytes` at `path`: by its first bytes when
+    /// they are one of the four formats' signatures (a `.jpg` that is
+    /// really a PNG decodes as the PNG it is, as image viewers open it),
+    /// else by the extension.
+    pub fn sniff(path: &Path, bytes: &[u8]) -> Result<Format, String> {
+        const SIGNATURES: [(&[u8], Format); 5] = [
+            (b"\x89PNG\r\n\x1a\n", Format::Png),
+            (b"\xff\xd8\xff", Format::Jpeg),
+            (b"#?RADIANCE", Format::Hdr),
+            (b"#?RGBE", Format::Hdr),
+            (b"\x76\x2f\x31\x01", Format::Exr),
+        ];
+        (SIGNATURES.iter())
+            .find(|(magic, _)| bytes.starts_with(magic))
+            .map_or_else(|| Format::of(path), |&(_, format)| Ok(format))
+    }
+
     /// The format of the file at `path`, by its extension.
     pub fn of(path: &Path) -> Result<Format, String> {
         let ext = path.extension().and_then(|e| e.to_str());

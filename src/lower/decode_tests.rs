@@ -236,6 +236,37 @@ fn broken_images_and_refused_admissions_are_errors_not_panics() {
 }
 
 #[test]
+fn a_file_is_decoded_as_its_first_bytes_say_whatever_its_extension() {
+    let png_bytes = png(1, 1, &[1, 2, 3], image::ExtendedColorType::Rgb8);
+    assert_eq!(
+        Format::sniff(Path::new("photo.jpg"), &png_bytes),
+        Ok(Format::Png)
+    );
+    assert!(decoded(
+        &png_bytes,
+        Format::sniff(Path::new("photo.jpg"), &png_bytes).unwrap()
+    )
+    .is_ok());
+    for (bytes, format) in [
+        (&b"\xff\xd8\xff\xe0 jfif"[..], Format::Jpeg),
+        (b"#?RADIANCE\n", Format::Hdr),
+        (b"#?RGBE\n", Format::Hdr),
+        (b"v/1\x01", Format::Exr),
+    ] {
+        assert_eq!(Format::sniff(Path::new("a.png"), bytes), Ok(format));
+    }
+    // No signature: the extension decides, and says what it expects.
+    assert_eq!(
+        Format::sniff(Path::new("a.png"), b"not a png"),
+        Ok(Format::Png)
+    );
+    assert!(Format::sniff(Path::new("a.gif"), b"GIF89a")
+        .unwrap_err()
+        .contains("unknown image format"));
+    assert!(Format::sniff(Path::new("a.jpg"), b"").is_ok());
+}
+
+#[test]
 fn exr_channels_are_read_by_name_and_absurd_headers_refused_before_allocation() {
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("t.exr");

@@ -196,7 +196,7 @@ impl Images {
     /// images stay within the limit with it; the cache then forgets the
     /// images the scene has not read (yet) if it would hold more.
     fn decode(&mut self, path: &Path, bytes: &[u8], alpha: bool) -> Result<Texels, String> {
-        let format = Format::of(path)?;
+        let format = Format::sniff(path, bytes)?;
         let limits = Limits {
             side: MAX_IMAGE_SIDE,
             texels: MAX_IMAGE_TEXELS,

@@ -193,6 +193,28 @@ fn an_image_texture_is_read_once_bilinear_and_a_dependency() {
             < 1e-5
     );
 
+    // A PNG saved under another image extension is read as the PNG it is.
+    std::fs::copy(
+        dir.path().join("maps/rgbw.png"),
+        dir.path().join("maps/rgbw.jpg"),
+    )
+    .unwrap();
+    let c = compile_str(
+        &scene,
+        &text.replace("rgbw.png", "rgbw.jpg"),
+        Options::default(),
+    );
+    let named_jpg =
+        c.ir.unwrap_or_else(|| panic!("{}", c.diagnostics.render_human(&c.sources, false)));
+    let ray = Ray::new(Vec3::new(0.25, 0.25, 1.0), -Vec3::Z, 0.0);
+    let mut hit = named_jpg
+        .intersect(&ray, 0.0, f32::INFINITY)
+        .expect("the quad");
+    let texel = named_jpg
+        .material_at(&mut hit, -ray.d, 0.0, &mut None)
+        .diffuse;
+    assert!((texel - Vec3::Z).abs().max_element() < 1e-5);
+
     // A missing image: a diagnostic on the file name, the scene not rendered.
     let text = text.replace("maps/rgbw.png", "maps/none.png");
     let c = compile_str(&scene, &text, Options::default());

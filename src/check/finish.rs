@@ -441,7 +441,7 @@ impl Checker<'_> {
 
 /// How many times `word` stands in `text` as a whole name (not inside a
 /// longer one).
-fn whole_words(text: &str, word: &str) -> usize {
+pub(super) fn whole_words(text: &str, word: &str) -> usize {
     let name_char = |c: char| c.is_alphanumeric() || c == '_';
     (text.match_indices(word))
         .filter(|&(at, _)| {

@@ -100,6 +100,9 @@ impl Checker<'_> {
             ));
             return;
         }
+        if !self.loops.is_empty() {
+            self.shadowed_in_loop(name, value);
+        }
         let v = eval(value, &mut self.env, &mut self.diags);
         let broken = v.is_none();
         let shown = v.clone();
@@ -112,6 +115,44 @@ impl Checker<'_> {
             // Uses of a broken constant stay silent; don't call it unused either.
             self.env.symbols.excuse(def);
         }
+    }
+
+    /// Warns of `let n = n + 1;` in a loop's body: a new constant that
+    /// reads the outer one of its name, as a counter would, where the
+    /// outer one never changes (once per statement, not per pass).
+    fn shadowed_in_loop(&mut self, name: &Ident, value: &Expr) {
+        let Some(outer) = self.env.visible_binding(&name.name) else {
+            return;
+        };
+        let text = &self.sources.get(value.span.file).text;
+        let written = text.get(value.span.start as usize..value.span.end as usize);
+        if !written.is_some_and(|w| finish::whole_words(w, &name.name) > 0)
+            || !self.shadow_warned.insert(name.span)
+        {
+            return;
+        }
+        let outer_at = self.env.symbols.get(outer.def).name_span;
+        let was = match &outer.value {
+            Some(v) => format!(
+                "the outer `{}` ({} here): the loop does not change it",
+                name.name,
+                eval::written(v)
+            ),
+            None => format!("the outer `{}`: the loop does not change it", name.name),
+        };
+        self.diags.push(
+            Diagnostic::warning(
+                codes::SHADOWED_IN_LOOP,
+                format!("`{}` is a new constant in each pass of the loop", name.name),
+                name.span,
+            )
+            .with_label("declared again for this pass, from the outer one")
+            .with_secondary(outer_at, was)
+            .with_help(format!(
+                "constants do not change: each pass computes its `{0}` from the outer `{0}`, not from the pass before, and the loop leaves the outer `{0}` as it was; compute it from the loop variable (`let {0} = start + i;`) or give it another name",
+                name.name
+            )),
+        );
     }
 
     /// `texture name kind { … }`: declares a texture.

@@ -138,6 +138,8 @@ pub const UNUSED_CONSTANT: &str = "pts::check::unused_constant";
 pub const NO_LIGHT: &str = "pts::check::no_light";
 /// Warning: a material that would reflect more than it receives.
 pub const ENERGY_GAIN: &str = "pts::check::energy_gain";
+/// Warning: `let n = n + 1;` in a loop, a new constant read as a counter.
+pub const SHADOWED_IN_LOOP: &str = "pts::check::shadowed_in_loop";
 /// Warning: a setting that biases the image or has no effect with this integrator.
 pub const INTEGRATOR_SETTING: &str = "pts::check::integrator_setting";
 /// Warning: a parameter that has no effect.
@@ -502,6 +504,12 @@ pub const CATALOGUE: &[Entry] = &[
         title: "Warning: nothing emits light",
         explanation: "The scene has no light, no emissive object and a black background: every integrator but the debug ones renders black.",
         example: "camera { position <0, 0, 5> look_at <0, 0, 0> }\nsphere { center <0, 0, 0> radius 1 }",
+    },
+    Entry {
+        code: SHADOWED_IN_LOOP,
+        title: "Warning: a loop's constant that reads the one it hides",
+        explanation: "Constants never change. `let n = n + 1;` in a loop's body declares a new `n` for that pass of the loop, computed from the outer `n`, which stays as it was: no pass sees the value of the pass before, and after the loop `n` is what it was before it. Compute the value from the loop variable instead (`let n = start + i;`), or give the new constant its own name.",
+        example: "let n = 0;\nfor i in 0..3 {\n    let n = n + 1;\n    sphere { center <n, 0, 0> radius 0.3 }\n}",
     },
     Entry {
         code: ENERGY_GAIN,

@@ -168,6 +168,12 @@ impl Env {
         inner.rev().chain(self.frames.first())
     }
 
+    /// The binding `name` resolves to, innermost first, without recording
+    /// a use.
+    pub fn visible_binding(&self, name: &str) -> Option<&Binding> {
+        self.visible().find_map(|f| f.get(name))
+    }
+
     /// Looks up the name written at `at`, innermost first, recording the
     /// use against the definition it resolves to.
     pub fn lookup(&mut self, name: &str, at: Span) -> Option<Option<Value>> {

@@ -219,6 +219,25 @@ fn principled_checks(r: &mut Reader, m: &mut Material) {
     }
 }
 
+/// The help for a reflectance `name` of colour `c` above 1: whole numbers
+/// up to 255 (one of 10 or more) are another program's 0–255 scale,
+/// given divided.
+fn above_one_help(name: &str, c: Rgb) -> String {
+    // `rgb 2` is more likely meant as it is than as 2/255.
+    let bytes = c
+        .iter()
+        .all(|x| x.fract() == 0.0 && (0.0..=255.0).contains(x))
+        && c.iter().any(|&x| x >= 10.0);
+    if !bytes {
+        return format!("keep every component of `{name}` at most 1");
+    }
+    let scaled = c.map(|x| crate::check::eval::shown((x / 255.0 * 1000.0).round() / 1000.0));
+    format!(
+        "colours go from 0 to 1, not to 255: divided by 255 this is `{name} rgb <{}>`",
+        scaled.join(", ")
+    )
+}
+
 /// The checks of the paper's mix of lobes: its default, its energy, and
 /// the parameters that need another lobe.
 fn mix_checks(p: &Params, m: &mut Material, diags: &mut Diagnostics) {
@@ -234,7 +253,7 @@ fn mix_checks(p: &Params, m: &mut Material, diags: &mut Diagnostics) {
             diags.push(
                 Diagnostic::warning(codes::ENERGY_GAIN, "diffuse albedo above 1", *s)
                     .with_label("a surface cannot reflect more light than it receives")
-                    .with_help("keep every component of `diffuse` at most 1"),
+                    .with_help(above_one_help("diffuse", m.diffuse)),
             );
         }
     }
@@ -545,7 +564,7 @@ fn model_checks(p: &Params, m: &mut Material, diags: &mut Diagnostics) {
                 diags.push(
                     Diagnostic::warning(codes::ENERGY_GAIN, format!("`{name}` above 1"), *s)
                         .with_label("a surface cannot reflect more light than it receives")
-                        .with_help(format!("keep every component of `{name}` at most 1")),
+                        .with_help(above_one_help(name, c)),
                 );
             }
         }

@@ -307,9 +307,9 @@ struct Checker<'f> {
     /// error, reported at the end unless a statement that did not parse
     /// may have declared it.
     unknown_groups: Vec<(crate::syntax::ast::Ident, Diagnostic)>,
-    /// The `let`s warned of as shadowing in a loop (each once, however
-    /// many passes run it).
-    shadow_warned: std::collections::HashSet<Span>,
+    /// The `let`s in loops that hide an outer name, looked at for
+    /// [`codes::SHADOWED_IN_LOOP`] (each once, however many passes run it).
+    shadow_examined: std::collections::HashSet<Span>,
     /// Names given to a misspelt `material` (`materal red`, reported
     /// there): the materials they name are not reported unused too.
     meant_materials: Vec<crate::syntax::ast::Ident>,
@@ -378,7 +378,7 @@ impl<'f> Checker<'f> {
             default_material: None,
             pending_materials: Vec::new(),
             unknown_groups: Vec::new(),
-            shadow_warned: Default::default(),
+            shadow_examined: Default::default(),
             meant_materials: Vec::new(),
             light_with_errors: false,
             included_from: HashMap::new(),

@@ -124,11 +124,13 @@ impl Checker<'_> {
         let Some(outer) = self.env.visible_binding(&name.name) else {
             return;
         };
+        // Each statement is looked at in its first pass only.
+        if !self.shadow_examined.insert(name.span) {
+            return;
+        }
         let text = &self.sources.get(value.span.file).text;
         let written = text.get(value.span.start as usize..value.span.end as usize);
-        if !written.is_some_and(|w| finish::whole_words(w, &name.name) > 0)
-            || !self.shadow_warned.insert(name.span)
-        {
+        if !written.is_some_and(|w| finish::whole_words(w, &name.name) > 0) {
             return;
         }
         let outer_at = self.env.symbols.get(outer.def).name_span;

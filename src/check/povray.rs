@@ -52,7 +52,8 @@ pub fn foreign_block(
         },
     };
     let message = if crate::syntax::povray::block(word).is_some() {
-        format!("POV-Ray's `{word} {{ … }}` is not ptsc")
+        let renderer = crate::syntax::povray::renderer(word);
+        format!("{renderer}'s `{word} {{ … }}` is not ptsc")
     } else {
         format!("unknown block `{word}` in `{what}`")
     };

@@ -43,6 +43,24 @@ const WORDS: &[(&str, &str)] = &[
     ("granite", "ptsc's `turbulence { … }` texture is a close match for POV-Ray's `granite`"),
 ];
 
+/// Mitsuba 3's words (its plugins' parameters and names), for its users.
+const MITSUBA: &[(&str, &str)] = &[
+    ("reflectance", "Mitsuba's `reflectance` (of its `diffuse` BSDF) is `diffuse rgb …` in ptsc"),
+    ("specular_reflectance", "Mitsuba's `specular_reflectance` is `reflection rgb …` in ptsc"),
+    ("specular_transmittance", "Mitsuba's `specular_transmittance` is `transmission` in ptsc (a weight, 0..1)"),
+    ("int_ior", "Mitsuba's `int_ior` is `ior` in ptsc"),
+    ("ext_ior", "Mitsuba's `ext_ior` is `ior_outside` in ptsc"),
+    ("alpha", "Mitsuba's `alpha` (GGX roughness) is `roughness` on a `type conductor` material in ptsc, or `gloss` (α = gloss²) on the others"),
+    ("alpha_u", "Mitsuba's `alpha_u` and `alpha_v` are `roughness <α along u, α along v>` in ptsc"),
+    ("alpha_v", "Mitsuba's `alpha_u` and `alpha_v` are `roughness <α along u, α along v>` in ptsc"),
+    ("radiance", "Mitsuba's area emitter `radiance` is a material's `emission rgb …` in ptsc"),
+    ("roughconductor", "Mitsuba's `roughconductor` is `material { type conductor preset gold roughness 0.1 }` in ptsc"),
+    ("roughdielectric", "Mitsuba's `roughdielectric` is `material { type dielectric ior 1.5 gloss 0.3 }` in ptsc"),
+    ("roughplastic", "Mitsuba's `roughplastic` is `material { type plastic diffuse rgb … gloss 0.3 }` in ptsc"),
+    ("bsdf", "a Mitsuba `bsdf` is a `material name { … }` in ptsc, given to objects as `material name`"),
+    ("to_world", "Mitsuba's `to_world` is an object's `translate`, `rotate`, `scale` or `matrix` in ptsc"),
+];
+
 /// POV-Ray's `#` directives, each with the ptsc statement that does its job.
 const DIRECTIVES: &[(&str, &str)] = &[
     ("declare", "POV-Ray's `#declare NAME = …;` is `let NAME = …;` in ptsc (numbers, vectors, colours, strings, lists); an object to reuse is a `group`"),
@@ -164,6 +182,14 @@ const PARAMETERS: &[(&str, &str)] = &[
     ("angle", "fov"),
     ("sky", "up"),
     ("focal_point", "focus_distance"),
+    ("reflectance", "diffuse"),
+    ("specular_reflectance", "reflection"),
+    ("specular_transmittance", "transmission"),
+    ("int_ior", "ior"),
+    ("ext_ior", "ior_outside"),
+    ("alpha", "roughness"),
+    ("alpha_u", "roughness"),
+    ("radiance", "emission"),
 ];
 
 /// The ptsc parameter that does the job of POV-Ray's parameter `word`
@@ -181,9 +207,18 @@ pub fn hint(word: &str) -> Option<&'static str> {
     if super::words::KEYWORDS.contains(&word) {
         return None;
     }
-    [WORDS, BLOCKS, FLAGS, DIRECTIVES, FUNCTIONS, NAMES]
+    [WORDS, BLOCKS, FLAGS, DIRECTIVES, FUNCTIONS, NAMES, MITSUBA]
         .iter()
         .find_map(|table| find(table, word))
+}
+
+/// The renderer whose word `word` is, for messages: "Mitsuba" for
+/// Mitsuba's, else "POV-Ray".
+pub fn renderer(word: &str) -> &'static str {
+    match find(MITSUBA, word) {
+        Some(_) => "Mitsuba",
+        None => "POV-Ray",
+    }
 }
 
 /// The hint for POV-Ray's block `word { … }` inside an object

@@ -130,7 +130,10 @@ pub fn unknown_statement(name: &Ident, span: Span) -> Diagnostic {
     if let Some(hint) = povray_hint(word).or_else(|| crate::syntax::povray::hint(word)) {
         let d = Diagnostic::error(
             codes::FOREIGN_BLOCK,
-            format!("POV-Ray's `{word} {{ … }}` is not ptsc"),
+            format!(
+                "{}'s `{word} {{ … }}` is not ptsc",
+                crate::syntax::povray::renderer(word)
+            ),
             span,
         )
         .with_label("a statement ptsc does not have")

@@ -440,47 +440,17 @@ fn negative_and_fractional_counts_are_told_what_they_must_be() {
     assert!(said.contains("2.5 is not a whole number"), "{said}");
 }
 
-/// Runs the ptsc binary in `dir` with `input` written to its stdin from
-/// another thread (a command that stops reading early breaks the pipe,
-/// which is not an error here); returns its exit code, stdout and stderr.
-fn ptsc_fed(
-    dir: &std::path::Path,
-    args: &[&str],
-    input: impl std::io::Read + Send + 'static,
-) -> (i32, String, String) {
-    let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_ptsc"))
-        .args(args)
-        .current_dir(dir)
-        .stdin(std::process::Stdio::piped())
-        .stdout(std::process::Stdio::piped())
-        .stderr(std::process::Stdio::piped())
-        .spawn()
-        .unwrap();
-    let mut stdin = child.stdin.take().unwrap();
-    let mut input = input;
-    let writer = std::thread::spawn(move || {
-        let _ = std::io::copy(&mut input, &mut stdin);
-    });
-    let out = child.wait_with_output().unwrap();
-    writer.join().unwrap();
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&out.stdout).into_owned(),
-        String::from_utf8_lossy(&out.stderr).into_owned(),
-    )
-}
-
 #[test]
 fn check_reads_a_scene_from_stdin_with_its_includes_beside_the_working_folder() {
     let dir = crate::temp_dir_with(&[("parts.ptsi", "material clay { diffuse rgb 0.5 }\n")]);
     let scene = "include \"parts.ptsi\"\ncamera { position <0, 1, 5> look_at <0, 0, 0> }\n\
                  point_light { position <0, 5, 0> intensity rgb 10 }\n\
                  sphere { center <0, 0, 0> radius 1 material clay }\n";
-    let (code, _, err) = ptsc_fed(dir.path(), &["check", "-"], std::io::Cursor::new(scene));
+    let (code, _, err) = crate::ptsc_fed(dir.path(), &["check", "-"], std::io::Cursor::new(scene));
     assert_eq!(code, 0, "{err}");
     assert!(err.contains("<stdin>: ok"), "{err}");
     let broken = scene.replace("material clay }", "material caly }");
-    let (code, _, err) = ptsc_fed(dir.path(), &["check", "-"], std::io::Cursor::new(broken));
+    let (code, _, err) = crate::ptsc_fed(dir.path(), &["check", "-"], std::io::Cursor::new(broken));
     assert_eq!(code, 1, "{err}");
     assert!(
         err.contains("<stdin>:4:") && err.contains("did you mean `clay`?"),
@@ -497,7 +467,7 @@ fn stdin_larger_than_a_scene_is_refused_before_it_is_held() {
     for args in [&["check", "-"][..], &["fmt", "-"], &["fmt", "--check", "-"]] {
         // One byte past the limit; the largest allowed size passes below.
         let past = std::io::repeat(b' ').take(ptsc::source::MAX_SCENE_BYTES + 1);
-        let (code, out, err) = ptsc_fed(dir.path(), args, past);
+        let (code, out, err) = crate::ptsc_fed(dir.path(), args, past);
         assert_eq!(code, 2, "{args:?}: {err}");
         assert!(out.is_empty(), "{args:?}");
         assert!(
@@ -506,7 +476,7 @@ fn stdin_larger_than_a_scene_is_refused_before_it_is_held() {
         );
     }
     let at_limit = std::io::repeat(b' ').take(ptsc::source::MAX_SCENE_BYTES);
-    let (code, _, err) = ptsc_fed(dir.path(), &["fmt", "--check", "-"], at_limit);
+    let (code, _, err) = crate::ptsc_fed(dir.path(), &["fmt", "--check", "-"], at_limit);
     assert_eq!(code, 1, "{err}");
     assert!(!err.contains("256 MiB"), "{err}");
 }

@@ -323,23 +323,10 @@ fn fmt_refuses_a_syntax_error_and_leaves_the_file() {
 
 #[test]
 fn fmt_reads_stdin_and_writes_stdout() {
-    use std::io::Write;
     let run = |args: &[&str], input: &str| {
-        let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_ptsc"))
-            .args(args)
-            .stdin(std::process::Stdio::piped())
-            .stdout(std::process::Stdio::piped())
-            .stderr(std::process::Stdio::piped())
-            .spawn()
-            .unwrap();
-        child
-            .stdin
-            .take()
-            .unwrap()
-            .write_all(input.as_bytes())
-            .unwrap();
-        let out = child.wait_with_output().unwrap();
-        (out.status.code(), String::from_utf8(out.stdout).unwrap())
+        let input = std::io::Cursor::new(input.to_string());
+        let (code, out, _) = crate::ptsc_fed(std::path::Path::new("."), args, input);
+        (Some(code), out)
     };
     assert_eq!(
         run(&["fmt", "-"], "let a=1; // one"),

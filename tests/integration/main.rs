@@ -49,6 +49,36 @@ mod watch;
 
 use std::path::{Path, PathBuf};
 
+/// Runs the ptsc binary in `dir` with `input` written to its stdin from
+/// another thread (a command that stops reading early breaks the pipe,
+/// which is not an error here); returns its exit code, stdout and stderr.
+pub fn ptsc_fed(
+    dir: &std::path::Path,
+    args: &[&str],
+    input: impl std::io::Read + Send + 'static,
+) -> (i32, String, String) {
+    let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_ptsc"))
+        .args(args)
+        .current_dir(dir)
+        .stdin(std::process::Stdio::piped())
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut stdin = child.stdin.take().unwrap();
+    let mut input = input;
+    let writer = std::thread::spawn(move || {
+        let _ = std::io::copy(&mut input, &mut stdin);
+    });
+    let out = child.wait_with_output().unwrap();
+    writer.join().unwrap();
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&out.stdout).into_owned(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
 /// Runs the ptsc binary; returns its exit code, stdout and stderr.
 pub fn ptsc(args: &[&str]) -> (i32, String, String) {
     let out = std::process::Command::new(env!("CARGO_BIN_EXE_ptsc"))

@@ -10,7 +10,6 @@ impl Checker<'_> {
     pub(super) fn finish(mut self) -> Checked {
         let render = self.render.take().map(|r| r.0).unwrap_or_default();
         // Warnings about the whole scene; a file that did not parse makes them noise.
-        self.report_unknown_groups();
         if self.syntax_failed {
             // The symbols are still what an editor reads on a broken file.
             self.pending_material_uses();
@@ -67,6 +66,7 @@ impl Checker<'_> {
     fn checked(mut self, scene: Option<Scene>) -> Checked {
         self.show_include_chains();
         self.diags.settle();
+        self.take_back_unknown_groups();
         self.diags.sort();
         let mut symbols = self.env.symbols;
         symbols.settle();
@@ -297,45 +297,53 @@ impl Checker<'_> {
                 None => unknown.push(name),
             }
         }
-        for name in &unknown {
-            if self.written_only_at(name, &unknown) {
-                self.unknown_material(name);
-            }
+        let nowhere = self.written_only_at(&unknown);
+        for name in unknown.iter().filter(|n| nowhere.contains(n.name.as_str())) {
+            self.unknown_material(name);
         }
     }
 
-    /// Reports the instances of undeclared groups; on a file with a
-    /// syntax error only those of names that no statement that did not
-    /// parse can declare (`let ball = sphere { … }` already has its error,
-    /// which says to write `group ball { … }`).
-    fn report_unknown_groups(&mut self) {
-        let unknown = std::mem::take(&mut self.unknown_groups);
-        let names: Vec<_> = unknown.iter().map(|(n, _)| n.clone()).collect();
-        for (name, d) in unknown {
-            if !self.syntax_failed || self.written_only_at(&name, &names) {
-                self.diags.push(d);
-            }
+    /// On a file with a syntax error, takes back the errors of instances
+    /// of undeclared groups that a statement which did not parse may
+    /// declare (`let ball = sphere { … }` already has its error, which
+    /// says to write `group ball { … }`). After the diagnostics settled:
+    /// their folding indexes them.
+    fn take_back_unknown_groups(&mut self) {
+        let names = std::mem::take(&mut self.unknown_groups);
+        if !self.syntax_failed || names.is_empty() {
+            return;
         }
-    }
-
-    /// Whether the scene's text holds `name` only at the places in `uses`
-    /// that write it (each place once): then no statement, parsed or
-    /// not, declares it.
-    fn written_only_at(
-        &self,
-        name: &crate::syntax::ast::Ident,
-        uses: &[crate::syntax::ast::Ident],
-    ) -> bool {
-        let mut spans: Vec<_> = (uses.iter())
-            .filter(|n| n.name == name.name)
-            .map(|n| (n.span.file.0, n.span.start))
+        let nowhere = self.written_only_at(&names);
+        let maybe_declared: HashSet<Span> = (names.iter())
+            .filter(|n| !nowhere.contains(n.name.as_str()))
+            .map(|n| n.span)
             .collect();
-        spans.sort_unstable();
-        spans.dedup();
-        let written = (self.sources.files().iter())
-            .map(|f| whole_words(&f.text, &name.name))
-            .sum::<usize>();
-        written <= spans.len()
+        (self.diags.items).retain(|d| {
+            d.code != codes::UNKNOWN_GROUP || !d.span.is_some_and(|s| maybe_declared.contains(&s))
+        });
+    }
+
+    /// The names of `uses` that the scene's text holds only at the places
+    /// that use them (each place once, however many loop passes): no
+    /// statement, parsed or not, declares them. One pass over the text.
+    fn written_only_at<'u>(&self, uses: &'u [crate::syntax::ast::Ident]) -> HashSet<&'u str> {
+        let mut places: HashMap<&str, HashSet<Span>> = HashMap::new();
+        for n in uses {
+            places.entry(n.name.as_str()).or_default().insert(n.span);
+        }
+        let mut written: HashMap<&str, usize> = HashMap::new();
+        for file in self.sources.files() {
+            let words = file
+                .text
+                .split(|c: char| !(c.is_alphanumeric() || c == '_'));
+            for word in words.filter(|w| places.contains_key(w)) {
+                *written.entry(word).or_default() += 1;
+            }
+        }
+        (places.into_iter())
+            .filter(|(name, at)| written.get(name).copied().unwrap_or(0) <= at.len())
+            .map(|(name, _)| name)
+            .collect()
     }
 
     /// Gives the objects that named a material before its declaration

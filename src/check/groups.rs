@@ -113,7 +113,8 @@ impl Checker<'_> {
                         name.name
                     )),
                 };
-                self.unknown_groups.push((name.clone(), d));
+                self.diags.push(d);
+                self.unknown_groups.push(name.clone());
                 return;
             }
         };

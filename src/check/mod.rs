@@ -303,10 +303,10 @@ struct Checker<'f> {
     /// Objects whose material was named before its declaration: the
     /// object (its group, if any, and index) and the name as written.
     pending_materials: Vec<(ObjectRef, crate::syntax::ast::Ident)>,
-    /// Instances of groups not declared before them: the name and its
-    /// error, reported at the end unless a statement that did not parse
-    /// may have declared it.
-    unknown_groups: Vec<(crate::syntax::ast::Ident, Diagnostic)>,
+    /// The names of instances' groups not declared before them (each
+    /// reported at once; taken back at the end where a statement that did
+    /// not parse may declare it).
+    unknown_groups: Vec<crate::syntax::ast::Ident>,
     /// The `let`s in loops that hide an outer name, looked at for
     /// [`codes::SHADOWED_IN_LOOP`] (each once, however many passes run it).
     shadow_examined: std::collections::HashSet<Span>,

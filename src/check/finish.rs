@@ -281,9 +281,6 @@ impl Checker<'_> {
 }
 
 impl Checker<'_> {
-    /// Records the uses of materials named before their declaration, where
-    /// the scene is not resolved (a file did not parse): the symbols are
-    /// whole all the same.
     /// On a file with a syntax error: records the uses of materials
     /// declared after them, and reports the names that cannot be declared
     /// anywhere, not even in the statements that did not parse, since the
@@ -333,10 +330,7 @@ impl Checker<'_> {
         }
         let mut written: HashMap<&str, usize> = HashMap::new();
         for file in self.sources.files() {
-            let words = file
-                .text
-                .split(|c: char| !(c.is_alphanumeric() || c == '_'));
-            for word in words.filter(|w| places.contains_key(w)) {
+            for word in words(&file.text).filter(|w| places.contains_key(w)) {
                 *written.entry(word).or_default() += 1;
             }
         }
@@ -447,15 +441,8 @@ impl Checker<'_> {
     }
 }
 
-/// How many times `word` stands in `text` as a whole name (not inside a
-/// longer one).
-pub(super) fn whole_words(text: &str, word: &str) -> usize {
-    let name_char = |c: char| c.is_alphanumeric() || c == '_';
-    (text.match_indices(word))
-        .filter(|&(at, _)| {
-            let before = text[..at].chars().next_back();
-            let after = text[at + word.len()..].chars().next();
-            !before.is_some_and(name_char) && !after.is_some_and(name_char)
-        })
-        .count()
+/// The names written in `text`, in order (with empty pieces between
+/// other characters): what a whole-name search compares.
+pub(super) fn words(text: &str) -> impl Iterator<Item = &str> {
+    text.split(|c: char| !(c.is_alphanumeric() || c == '_'))
 }

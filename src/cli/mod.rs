@@ -266,15 +266,10 @@ pub const STDIN_NAME: &str = "<stdin>";
 /// Reads a scene from stdin, refusing one larger than a scene file may
 /// be ([`crate::source::MAX_SCENE_BYTES`]) before holding more of it.
 pub fn read_stdin() -> Result<Vec<u8>, String> {
-    read_scene_from(std::io::stdin().lock())
-}
-
-/// [`read_stdin`] from any reader.
-fn read_scene_from(input: impl std::io::Read) -> Result<Vec<u8>, String> {
     use std::io::Read;
     let limit = crate::source::MAX_SCENE_BYTES;
     let mut bytes = Vec::new();
-    (input.take(limit + 1))
+    (std::io::stdin().lock().take(limit + 1))
         .read_to_end(&mut bytes)
         .map_err(|e| format!("cannot read stdin: {e}"))?;
     if bytes.len() as u64 > limit {

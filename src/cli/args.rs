@@ -10,7 +10,7 @@ use std::path::{Path, PathBuf};
 /// Command-line overrides of the scene's `render` block.
 #[derive(Debug, Clone, clap::Args)]
 pub struct RenderArgs {
-    /// The scene file.
+    /// The scene file (`render -` reads it from stdin: the image then needs -o or the scene's `output`).
     pub file: PathBuf,
     /// Output image (.png, .exr or .pfm); default: the scene's `output`, else FILE with .png.
     #[arg(short, long)]

@@ -7,7 +7,7 @@ use super::farm::FarmArgs;
 use super::signals::Signals;
 use super::{check::report, Format, Verbosity, EXIT_OK, EXIT_SCENE_ERROR, EXIT_USAGE};
 use crate::check::Animation;
-use crate::compile::{compile_file, Compiled, Options};
+use crate::compile::{compile_bytes, compile_file, Compiled, Options};
 use crate::lower::cache::LowerCache;
 use crate::render::session::{Mode, Observer, PassDone, Plan, Report, Session, StatePolicy};
 use crate::render::state::Pass;
@@ -15,24 +15,36 @@ use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
 /// Compiles the scene at a frame with the command line's overrides (and
-/// its fingerprint, for a render's state, when `fingerprint`).
+/// its fingerprint, for a render's state, when `fingerprint`); `stdin`
+/// holds the scene when FILE is `-`.
 pub fn compile(
     args: &RenderArgs,
+    stdin: Option<&[u8]>,
     cache: Option<&mut LowerCache>,
     animation: Animation,
     fingerprint: bool,
 ) -> std::io::Result<Compiled> {
-    compile_file(
-        &args.file,
-        Options {
-            adjust: &|s| apply_overrides(s, args),
-            cache,
-            animation,
-            fingerprint,
-            output_elsewhere: args.output.is_some(),
-            ..Options::default()
-        },
-    )
+    let options = Options {
+        adjust: &|s| apply_overrides(s, args),
+        cache,
+        animation,
+        fingerprint,
+        output_elsewhere: args.output.is_some(),
+        ..Options::default()
+    };
+    match stdin {
+        Some(bytes) => Ok(compile_bytes(
+            Path::new(super::STDIN_NAME),
+            bytes.to_vec(),
+            options,
+        )),
+        None => compile_file(&args.file, options),
+    }
+}
+
+/// Whether FILE is `-`: the scene comes from stdin.
+pub fn reads_stdin(args: &RenderArgs) -> bool {
+    args.file == Path::new("-")
 }
 
 /// Runs `render`; returns the exit code.
@@ -47,14 +59,23 @@ pub fn run(args: &RenderArgs, farm: &FarmArgs) -> u8 {
             return EXIT_USAGE;
         }
     };
+    // A scene on stdin is read once, for every frame, before anything else.
+    let stdin = match reads_stdin(args).then(super::read_stdin) {
+        None => None,
+        Some(Ok(bytes)) => Some(bytes),
+        Some(Err(why)) => {
+            eprintln!("error: {why}");
+            return EXIT_USAGE;
+        }
+    };
     // Every parallel stage (parsing, the BVH build, the render) keeps to
     // `--threads`.
-    pool.install(|| render_frames(args, farm))
+    pool.install(|| render_frames(args, stdin.as_deref(), farm))
 }
 
 /// Renders each frame asked for in turn; stops at the first that fails or
 /// is interrupted.
-fn render_frames(args: &RenderArgs, farm: &FarmArgs) -> u8 {
+fn render_frames(args: &RenderArgs, stdin: Option<&[u8]>, farm: &FarmArgs) -> u8 {
     let animations = match args.animations() {
         Ok(a) => a,
         Err(why) => {
@@ -72,7 +93,7 @@ fn render_frames(args: &RenderArgs, farm: &FarmArgs) -> u8 {
             return signals.exit_code();
         }
         let frames = (animation, last.filter(|l| l.frame != animation.frame));
-        let code = render_frame(args, farm, frames, &signals, &mut written);
+        let code = render_frame(args, stdin, farm, frames, &signals, &mut written);
         if code != EXIT_OK {
             return code;
         }
@@ -86,7 +107,12 @@ fn render_frames(args: &RenderArgs, farm: &FarmArgs) -> u8 {
 /// comes from a check of it (the scene may compute it from the clock; a
 /// check with errors is left to that frame's render). Frames between
 /// that clash are refused as each comes.
-fn last_frame_writes(args: &RenderArgs, first_image: &Path, last: Animation) -> bool {
+fn last_frame_writes(
+    args: &RenderArgs,
+    stdin: Option<&[u8]>,
+    first_image: &Path,
+    last: Animation,
+) -> bool {
     let scene_output = if args.output.is_some() {
         None
     } else {
@@ -96,7 +122,15 @@ fn last_frame_writes(args: &RenderArgs, first_image: &Path, last: Animation) -> 
             output_elsewhere: true,
             ..Options::default()
         };
-        match compile_file(&args.file, options) {
+        let compiled = match stdin {
+            Some(bytes) => Ok(compile_bytes(
+                Path::new(super::STDIN_NAME),
+                bytes.to_vec(),
+                options,
+            )),
+            None => compile_file(&args.file, options),
+        };
+        match compiled {
             Ok(c) if !c.diagnostics.has_errors() => c.output,
             _ => return false,
         }
@@ -111,6 +145,7 @@ fn last_frame_writes(args: &RenderArgs, first_image: &Path, last: Animation) -> 
 /// checked against the first frame's image before anything renders.
 fn render_frame(
     args: &RenderArgs,
+    stdin: Option<&[u8]>,
     farm: &FarmArgs,
     (animation, last): (Animation, Option<Animation>),
     signals: &Signals,
@@ -118,7 +153,7 @@ fn render_frame(
 ) -> u8 {
     let verbosity = args.verbosity();
     let t0 = Instant::now();
-    let compiled = match compile(args, None, animation, true) {
+    let compiled = match compile(args, stdin, None, animation, true) {
         Ok(c) => c,
         Err(e) => {
             eprintln!("error: cannot read {}: {e}", args.file.display());
@@ -139,9 +174,15 @@ fn render_frame(
             eprintln!("{warning}");
         }
     }
+    if stdin.is_some() && args.output.is_none() && compiled.output.is_none() {
+        eprintln!(
+            "error: a scene read from stdin has no name to give its image: add -o FILE (or `output \"FILE\"` to its render block)"
+        );
+        return EXIT_USAGE;
+    }
     let output = output_path(args, compiled.output.as_deref(), animation.frame);
     let clash = match last {
-        Some(last) if written.is_empty() && last_frame_writes(args, &output, last) => {
+        Some(last) if written.is_empty() && last_frame_writes(args, stdin, &output, last) => {
             Some((animation.frame, last.frame))
         }
         _ => (written.iter().find(|(_, p)| *p == output)).map(|(o, _)| (*o, animation.frame)),
@@ -198,7 +239,10 @@ fn render_frame(
         }
     };
     let summary = Summary {
-        file: &args.file,
+        file: match stdin {
+            Some(_) => Path::new(super::STDIN_NAME),
+            None => &args.file,
+        },
         output: &output,
         settings: &settings,
         pass: farm.pass,

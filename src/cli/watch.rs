@@ -33,6 +33,10 @@ const MAX_BATCH: Duration = Duration::from_millis(500);
 
 /// Runs `watch`; returns the exit code (after Ctrl-C).
 pub fn run(args: &RenderArgs) -> u8 {
+    if super::render::reads_stdin(args) {
+        eprintln!("error: watch needs a scene file to watch; stdin (`-`) is read once (`ptsc render -` renders it)");
+        return super::EXIT_USAGE;
+    }
     // A regular file only (a FIFO would wait for a writer at every compile).
     if let Err(e) = crate::source::open_regular(&args.file) {
         eprintln!("error: cannot watch {}: {e}", args.file.display());
@@ -173,7 +177,13 @@ impl State {
         // until this compile succeeds, and a job queued behind its tiles
         // would wait for them. Large files parse on rayon's global pool.
         let (loads, builds) = (self.cache.mesh_loads, self.cache.bvh_builds);
-        let compiled = match compile(&self.args, Some(&mut self.cache), self.animation, false) {
+        let compiled = match compile(
+            &self.args,
+            None,
+            Some(&mut self.cache),
+            self.animation,
+            false,
+        ) {
             Ok(c) => c,
             Err(e) => {
                 status(&format!(

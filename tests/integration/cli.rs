@@ -464,7 +464,13 @@ fn check_reads_a_scene_from_stdin_with_its_includes_beside_the_working_folder() 
 fn stdin_larger_than_a_scene_is_refused_before_it_is_held() {
     use std::io::Read;
     let dir = tempfile::tempdir().unwrap();
-    for args in [&["check", "-"][..], &["fmt", "-"], &["fmt", "--check", "-"]] {
+    let limited: [&[&str]; 4] = [
+        &["check", "-"],
+        &["fmt", "-"],
+        &["fmt", "--check", "-"],
+        &["render", "-", "-o", "never.png"],
+    ];
+    for args in limited {
         // One byte past the limit; the largest allowed size passes below.
         let past = std::io::repeat(b' ').take(ptsc::source::MAX_SCENE_BYTES + 1);
         let (code, out, err) = crate::ptsc_fed(dir.path(), args, past);
@@ -475,8 +481,45 @@ fn stdin_larger_than_a_scene_is_refused_before_it_is_held() {
             "{args:?}: {err}"
         );
     }
+    assert!(!dir.path().join("never.png").exists());
     let at_limit = std::io::repeat(b' ').take(ptsc::source::MAX_SCENE_BYTES);
     let (code, _, err) = crate::ptsc_fed(dir.path(), &["fmt", "--check", "-"], at_limit);
     assert_eq!(code, 1, "{err}");
     assert!(!err.contains("256 MiB"), "{err}");
+}
+
+#[test]
+fn render_reads_a_scene_from_stdin_and_asks_for_its_image_name() {
+    let dir = crate::temp_dir_with(&[("parts.ptsi", "material clay { diffuse rgb 0.5 }\n")]);
+    let scene = "include \"parts.ptsi\"\nrender { resolution <16, 12> samples 1 }\n\
+                 camera { position <0, 1, 5> look_at <0, 0, 0> }\n\
+                 point_light { position <0, 5, 0> intensity rgb 10 }\n\
+                 sphere { center <0, 0, 0> radius 1 material clay }\n";
+    let fed =
+        |args: &[&str], text: String| crate::ptsc_fed(dir.path(), args, std::io::Cursor::new(text));
+    // With -o: rendered, named `<stdin>` in the summary.
+    let (code, _, err) = fed(&["render", "-", "-o", "piped.png"], scene.to_string());
+    assert_eq!(code, 0, "{err}");
+    assert!(err.contains("<stdin>: 16×12"), "{err}");
+    assert!(dir.path().join("piped.png").is_file());
+    // Without: no `-.png`, a refusal that says what to add.
+    let (code, _, err) = fed(&["render", "-"], scene.to_string());
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("add -o FILE"), "{err}");
+    assert!(!dir.path().join("-.png").exists());
+    // The scene's own `output` names it.
+    let named = scene.replace("samples 1 }", "samples 1 output \"named.png\" }");
+    let (code, _, err) = fed(&["render", "-"], named);
+    assert_eq!(code, 0, "{err}");
+    assert!(dir.path().join("named.png").is_file());
+    // Errors point into `<stdin>`; watch refuses stdin outright.
+    let (code, _, err) = fed(
+        &["render", "-", "-o", "x.png"],
+        scene.replace("clay }", "caly }"),
+    );
+    assert_eq!(code, 1, "{err}");
+    assert!(err.contains("<stdin>:5:"), "{err}");
+    let (code, _, err) = fed(&["watch", "-"], scene.to_string());
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("stdin"), "{err}");
 }

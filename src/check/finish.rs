@@ -13,6 +13,9 @@ impl Checker<'_> {
         if self.syntax_failed {
             // The symbols are still what an editor reads on a broken file.
             self.pending_material_uses();
+            // A missing image is a mistake of its own, not an echo of the
+            // syntax error: said now, with it, as with any other error.
+            self.report_missing_images();
             return self.checked(None);
         }
         self.resolve_pending_materials();

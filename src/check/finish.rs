@@ -152,6 +152,62 @@ impl Checker<'_> {
         }
     }
 
+    /// A scene lit only by point and spot lights that give the point the
+    /// camera looks at almost no light: a POV-Ray habit, whose
+    /// `light_source` does not fall off with distance, where ptsc's lights
+    /// fall off with its square (a light of intensity 1 at 500 units gives
+    /// 4·10⁻⁶ of it). Said at the light that gives the most.
+    fn dim_point_lights(&mut self) {
+        /// Irradiance below which a diffuse surface renders all but black.
+        const DIM: f64 = 0.01;
+        // (A scene with errors does not render; a light out of range is
+        // one of them, and its distance no advice.)
+        let Some(camera) = self.camera.as_ref().filter(|_| !self.diags.has_errors()) else {
+            return;
+        };
+        let target = camera.look_at;
+        let given = |l: &Light| match l {
+            Light::Point {
+                position,
+                intensity,
+            }
+            | Light::Spot {
+                position,
+                intensity,
+                ..
+            } => {
+                let d2 = (*position - target).length_squared().max(1e-12);
+                Some((intensity.iter().fold(0.0f64, |a, &c| a.max(c)) / d2, d2))
+            }
+            Light::Directional { .. } => None,
+        };
+        let lit: Vec<(f64, f64, Span)> = (self.lights.iter())
+            .filter_map(|(l, span)| given(l).map(|(e, d2)| (e, d2, *span)))
+            .collect();
+        let total: f64 = lit.iter().map(|l| l.0).sum();
+        let Some(&(most, d2, span)) = lit.iter().max_by(|a, b| a.0.total_cmp(&b.0)) else {
+            return;
+        };
+        if total >= DIM || !total.is_finite() {
+            return;
+        }
+        self.diags.push(
+            Diagnostic::warning(
+                codes::DIM_LIGHT,
+                "the lights give almost no light where the camera looks: the image will be nearly black",
+                span,
+            )
+            .with_label(format!(
+                "{:.1} units from the camera's `look_at`, this light gives it an irradiance of {most:.1e} (a lit surface gets about 1)",
+                d2.sqrt()
+            ))
+            .with_help(format!(
+                "point and spot lights fall off with the square of the distance (POV-Ray's `light_source` does not): `intensity rgb {}` gives about 1 there; a far sun is a `directional_light`",
+                suggested_intensity(d2)
+            )),
+        );
+    }
+
     /// The warnings about the scene's light and the integrator that
     /// renders it: no light at all, media that `bdpt` and `ptlt` leave to
     /// the path integrator, an ambient term under the path integrator,
@@ -174,12 +230,16 @@ impl Checker<'_> {
             || (self.instances.iter())
                 .chain(self.groups.iter().flat_map(|g| &g.instances))
                 .any(|i| i.material.is_some_and(|m| self.materials[m].is_emissive()));
-        let has_light = has_emitter
+        let has_point_light = self.lights.iter().any(|(l, _)| match l {
+            Light::Point { intensity, .. } | Light::Spot { intensity, .. } => {
+                intensity.iter().any(|c| *c > 0.0)
+            }
+            Light::Directional { .. } => false,
+        });
+        let has_other_light = has_emitter
             || self.lights.iter().any(|(l, _)| match l {
-                Light::Point { intensity, .. } | Light::Spot { intensity, .. } => {
-                    intensity.iter().any(|c| *c > 0.0)
-                }
                 Light::Directional { irradiance, .. } => irradiance.iter().any(|c| *c > 0.0),
+                _ => false,
             })
             || background.iter().any(|c| *c > 0.0)
             || self
@@ -193,8 +253,13 @@ impl Checker<'_> {
             // `ambient` adds light only where it is applied: not by the
             // integrators that join light paths.
             || (render.settings.ambient.max_element() > 0.0 && !renders_with.is_bidirectional());
+        let has_light = has_point_light || has_other_light;
+        let debug_view = render.settings.integrator.is_debug_view();
+        if has_point_light && !has_other_light && !self.light_with_errors && !debug_view {
+            self.dim_point_lights();
+        }
         // (A light block with errors may be the light: its errors say so.)
-        if !has_light && !self.light_with_errors && !render.settings.integrator.is_debug_view() {
+        if !has_light && !self.light_with_errors && !debug_view {
             let at = self.camera_span.unwrap_or(Span::new(root, 0, 0));
             self.diags.push(
                 Diagnostic::warning(codes::NO_LIGHT, "the scene has no light: the image will be black", at)
@@ -448,4 +513,13 @@ impl Checker<'_> {
 /// other characters): what a whole-name search compares.
 pub(super) fn words(text: &str) -> impl Iterator<Item = &str> {
     text.split(|c: char| !(c.is_alphanumeric() || c == '_'))
+}
+
+/// The intensity that gives an irradiance of about 1 at distance² `d2`,
+/// as a scene would write it: whole below a million, else in e-notation.
+fn suggested_intensity(d2: f64) -> String {
+    match d2.max(1.0) {
+        i if i < 1e6 => format!("{:.0}", i.round()),
+        i => format!("{i:.1e}"),
+    }
 }

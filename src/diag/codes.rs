@@ -136,6 +136,8 @@ pub const UNUSED_MATERIAL: &str = "pts::check::unused_material";
 pub const UNUSED_CONSTANT: &str = "pts::check::unused_constant";
 /// Warning: nothing emits light.
 pub const NO_LIGHT: &str = "pts::check::no_light";
+/// Warning: point lights too far or too weak to light what the camera sees.
+pub const DIM_LIGHT: &str = "pts::check::dim_light";
 /// Warning: a material that would reflect more than it receives.
 pub const ENERGY_GAIN: &str = "pts::check::energy_gain";
 /// Warning: `let n = n + 1;` in a loop, a new constant read as a counter.
@@ -504,6 +506,12 @@ pub const CATALOGUE: &[Entry] = &[
         title: "Warning: nothing emits light",
         explanation: "The scene has no light, no emissive object and a black background: every integrator but the debug ones renders black.",
         example: "camera { position <0, 0, 5> look_at <0, 0, 0> }\nsphere { center <0, 0, 0> radius 1 }",
+    },
+    Entry {
+        code: DIM_LIGHT,
+        title: "Warning: lights too far or too weak for what the camera looks at",
+        explanation: "The scene is lit only by point and spot lights, and together they give the point the camera looks at an irradiance below 0.01 (intensity over distance squared): a diffuse surface there renders all but black. ptsc's lights fall off with the square of the distance, as physical lights do; POV-Ray's `light_source` does not (unless `fade_power 2`), so a POV-Ray light far away with `color rgb 1` is far too weak here. Raise the intensity to about the distance squared, move the light closer, or light the scene from far away with a `directional_light`.",
+        example: "camera { position <0, 1, -5> look_at <0, 0, 0> }\npoint_light { position <500, 500, -500> intensity rgb 1 }\nsphere { center <0, 0, 0> radius 1 }",
     },
     Entry {
         code: SHADOWED_IN_LOOP,

@@ -40,6 +40,8 @@ pub fn check_writable(path: &Path) -> Result<(), String> {
     if text.ends_with(std::path::is_separator) || text.ends_with("/.") || text.ends_with("/..") {
         return Err("it names a folder (it ends with a separator); name a file".into());
     }
+    // A link is written through: what is checked is the file it names.
+    let path = &link_target(path).map_err(|e| e.to_string())?;
     let name = path.file_name().ok_or("it names no file")?;
     if name.len() > MAX_FILE_NAME {
         return Err(format!(
@@ -53,6 +55,9 @@ pub fn check_writable(path: &Path) -> Result<(), String> {
         }
         if !meta.is_file() {
             return Err(format!("it is {}, not a file", kind_of(&meta)));
+        }
+        if meta.permissions().readonly() {
+            return Err(READ_ONLY.into());
         }
     }
     let dir = folder_of(path);
@@ -208,19 +213,61 @@ fn remove_stale_temporaries(path: &Path) {
     }
 }
 
+/// Why a read-only file is not replaced: its mode says to keep it.
+const READ_ONLY: &str = "it is read-only; make it writable (chmod u+w) or name another file";
+
+/// The most links followed from one path (as Linux's `ELOOP`).
+const MAX_LINKS: usize = 40;
+
+/// The file that `path` names once every symbolic link on it is followed
+/// (a link's relative target is relative to the link's folder); `path`
+/// itself when it is no link. The target need not exist (a dangling
+/// link's is where the file goes), but a cycle of links is an error.
+pub fn link_target(path: &Path) -> std::io::Result<PathBuf> {
+    let mut at = path.to_path_buf();
+    for _ in 0..MAX_LINKS {
+        match std::fs::symlink_metadata(&at) {
+            Ok(meta) if meta.file_type().is_symlink() => {
+                let to = std::fs::read_link(&at)?;
+                at = folder_of(&at).join(to);
+            }
+            _ => return Ok(at),
+        }
+    }
+    Err(std::io::Error::other(format!(
+        "{} is a link that leads through more than {MAX_LINKS} links (a cycle?)",
+        path.display()
+    )))
+}
+
 /// Writes a file atomically: `write` fills a temporary file beside `path`
 /// (buffered, so it may stream any size in bounded memory), which is
 /// synced and renamed over `path`; on failure the temporary file goes and
-/// `path` is untouched.
+/// `path` is untouched. A link at `path` stays: the file it names is the
+/// one replaced, keeping its mode; a read-only file is refused.
 pub fn write_atomically_with(
     path: &Path,
     write: impl FnOnce(&mut BufWriter<std::fs::File>) -> std::io::Result<()>,
 ) -> std::io::Result<()> {
+    let path = &link_target(path)?;
+    let kept_mode = match std::fs::metadata(path) {
+        Ok(meta) if meta.permissions().readonly() => {
+            return Err(std::io::Error::new(
+                std::io::ErrorKind::PermissionDenied,
+                READ_ONLY,
+            ))
+        }
+        Ok(meta) if meta.is_file() => Some(meta.permissions()),
+        _ => None,
+    };
     let tmp = temporary_beside(path)?;
     let result = (|| {
         let mut out = BufWriter::with_capacity(1 << 20, std::fs::File::create(&tmp)?);
         write(&mut out)?;
         let file = out.into_inner().map_err(|e| e.into_error())?;
+        if let Some(mode) = kept_mode {
+            file.set_permissions(mode)?;
+        }
         file.sync_all()?;
         std::fs::rename(&tmp, path)
     })();

@@ -125,3 +125,66 @@ fn temporary_files_of_dead_runs_are_removed_by_the_next_run() {
         assert!(dir.path().join(name).exists(), "{name} went");
     }
 }
+
+#[cfg(unix)]
+#[test]
+fn a_link_is_written_through_and_stays_a_link() {
+    use std::os::unix::fs::symlink;
+    let dir = tempfile::tempdir().unwrap();
+    let target = dir.path().join("real.png");
+    std::fs::write(&target, b"old").unwrap();
+    let link = dir.path().join("link.png");
+    symlink("real.png", &link).unwrap();
+    assert_eq!(check_writable(&link), Ok(()));
+    write_atomically(&link, b"new").unwrap();
+    assert!(std::fs::symlink_metadata(&link)
+        .unwrap()
+        .file_type()
+        .is_symlink());
+    assert_eq!(std::fs::read(&target).unwrap(), b"new");
+    // A dangling link's target is made where it points, in its own folder.
+    std::fs::create_dir(dir.path().join("elsewhere")).unwrap();
+    let dangling = dir.path().join("dangling.png");
+    symlink("elsewhere/made.png", &dangling).unwrap();
+    assert_eq!(check_writable(&dangling), Ok(()));
+    write_atomically(&dangling, b"made").unwrap();
+    assert!(std::fs::symlink_metadata(&dangling)
+        .unwrap()
+        .file_type()
+        .is_symlink());
+    assert_eq!(
+        std::fs::read(dir.path().join("elsewhere/made.png")).unwrap(),
+        b"made"
+    );
+    // A link into a missing folder is refused before any work, a cycle too.
+    let nowhere = dir.path().join("nowhere.png");
+    symlink("missing/x.png", &nowhere).unwrap();
+    assert!(check_writable(&nowhere)
+        .unwrap_err()
+        .contains("does not exist"));
+    symlink("loop_b.png", dir.path().join("loop_a.png")).unwrap();
+    symlink("loop_a.png", dir.path().join("loop_b.png")).unwrap();
+    let why = check_writable(&dir.path().join("loop_a.png")).unwrap_err();
+    assert!(why.contains("more than 40 links"), "{why}");
+    assert!(write_atomically(&dir.path().join("loop_a.png"), b"x").is_err());
+}
+
+#[cfg(unix)]
+#[test]
+fn a_replaced_file_keeps_its_mode_and_a_read_only_one_is_refused() {
+    use std::os::unix::fs::PermissionsExt;
+    let dir = tempfile::tempdir().unwrap();
+    let shared = dir.path().join("shared.png");
+    std::fs::write(&shared, b"old").unwrap();
+    std::fs::set_permissions(&shared, std::fs::Permissions::from_mode(0o640)).unwrap();
+    write_atomically(&shared, b"new").unwrap();
+    let mode = std::fs::metadata(&shared).unwrap().permissions().mode();
+    assert_eq!(mode & 0o777, 0o640);
+    let kept = dir.path().join("kept.png");
+    std::fs::write(&kept, b"keep me").unwrap();
+    std::fs::set_permissions(&kept, std::fs::Permissions::from_mode(0o444)).unwrap();
+    let why = check_writable(&kept).unwrap_err();
+    assert!(why.contains("read-only"), "{why}");
+    assert!(write_atomically(&kept, b"x").is_err());
+    assert_eq!(std::fs::read(&kept).unwrap(), b"keep me");
+}

@@ -52,6 +52,10 @@ pub struct Options<'a> {
     /// editor's newer text): checking stops early, the result is
     /// incomplete and is to be dropped.
     pub cancel: Option<std::sync::Arc<std::sync::atomic::AtomicBool>>,
+    /// The memory the process may hold in all (`--memory-limit`); `None`:
+    /// what the machine leaves free. A scene whose objects would need more
+    /// to load is refused before lowering starts ([`load_memory`]).
+    pub memory_limit: Option<u64>,
 }
 
 impl Default for Options<'_> {
@@ -68,6 +72,7 @@ impl Default for Options<'_> {
             output_elsewhere: false,
             files: &Disk,
             cancel: None,
+            memory_limit: None,
         }
     }
 }
@@ -157,7 +162,9 @@ fn compile_from(path: &Path, bytes: Vec<u8>, options: Options, start: Instant) -
         let mut one_off = LowerCache::one_off();
         let cache = options.cache.unwrap_or(&mut one_off);
         let mut warnings = crate::diag::Diagnostics::new();
-        if options.lower {
+        if let Some(refused) = load_memory(&scene, options.memory_limit) {
+            compiled.diagnostics.push(refused);
+        } else if options.lower {
             match crate::lower::lower(&scene, options.adjust, (cache, files), &mut warnings) {
                 Ok(ir) => compiled.ir = Some(ir),
                 Err(d) => compiled.diagnostics.extend(d),
@@ -202,6 +209,50 @@ fn compile_from(path: &Path, bytes: Vec<u8>, options: Options, start: Instant) -
     }
     compiled.dependencies = asked.paths();
     compiled
+}
+
+/// Memory a placed object takes while a scene loads, beyond what its check
+/// holds: its primitive record, its share of the BVH build and the wide
+/// tree (a million spheres, placed directly or by groups of groups, peak at
+/// about 470 and 650 MB in all).
+const LOAD_BYTES_PER_OBJECT: u64 = 500;
+
+/// Scenes whose objects need less than this to load are not measured
+/// against the free memory (no system query for an ordinary scene).
+const LOAD_BYTES_UNASKED: u64 = 64 << 20;
+
+/// The error of a scene whose objects would need more memory to load than
+/// is free (`limit`: `--memory-limit`), found before lowering allocates it
+/// (where the allocation would otherwise fail and end the process).
+fn load_memory(scene: &check::Scene, limit: Option<u64>) -> Option<Diagnostic> {
+    let placed = (scene.instances.iter())
+        .map(|i| scene.groups[i.group].placed_objects)
+        .fold(scene.objects.len() as u64, u64::saturating_add);
+    let need = placed.saturating_mul(LOAD_BYTES_PER_OBJECT);
+    if need < LOAD_BYTES_UNASKED {
+        return None;
+    }
+    let (free, which) = crate::render::memory::available(limit)?;
+    if need <= free {
+        return None;
+    }
+    use crate::render::memory::gigabytes;
+    Some(
+        Diagnostic::error(
+            codes::SCENE_MEMORY,
+            format!(
+                "loading this scene needs about {} of memory, more than the {} free ({which})",
+                gigabytes(need),
+                gigabytes(free)
+            ),
+            Span::new(FileId(0), 0, 0),
+        )
+        .with_label(format!(
+            "the scene places {} objects",
+            crate::diag::group_digits(placed)
+        ))
+        .with_help("place fewer objects (a mesh holds many triangles in far less memory), or give --memory-limit if the memory is there"),
+    )
 }
 
 /// The error of a scene without `output` whose image would go where it

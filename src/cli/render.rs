@@ -30,6 +30,7 @@ pub fn compile(
         animation,
         fingerprint,
         output_elsewhere: args.output.is_some(),
+        memory_limit: args.memory_limit,
         ..Options::default()
     };
     match stdin {

@@ -136,6 +136,8 @@ pub const UNUSED_MATERIAL: &str = "pts::check::unused_material";
 pub const UNUSED_CONSTANT: &str = "pts::check::unused_constant";
 /// Warning: nothing emits light.
 pub const NO_LIGHT: &str = "pts::check::no_light";
+/// A scene whose objects need more memory to load than is free.
+pub const SCENE_MEMORY: &str = "pts::lower::scene_memory";
 /// Warning: point lights too far or too weak to light what the camera sees.
 pub const DIM_LIGHT: &str = "pts::check::dim_light";
 /// Warning: a material that would reflect more than it receives.
@@ -506,6 +508,12 @@ pub const CATALOGUE: &[Entry] = &[
         title: "Warning: nothing emits light",
         explanation: "The scene has no light, no emissive object and a black background: every integrator but the debug ones renders black.",
         example: "camera { position <0, 0, 5> look_at <0, 0, 0> }\nsphere { center <0, 0, 0> radius 1 }",
+    },
+    Entry {
+        code: SCENE_MEMORY,
+        title: "A scene too large for the memory free",
+        explanation: "Loading a scene takes about 500 bytes for every object it places (its primitive and its share of the BVH), besides the check's own. When the objects that loops and groups of groups place would need more than the memory free (the machine's available memory, its control group's limit, `ulimit -v`, or `--memory-limit`), the scene is refused before loading starts, instead of the process ending when an allocation fails. Place fewer objects (a mesh holds many triangles in far less memory), free memory, or give `--memory-limit` when the memory is there after all.",
+        example: "// with --memory-limit 100M\ncamera { position <0, 0, 5> look_at <0, 0, 0> }\nfor i in 0..1000 { for j in 0..1000 { sphere { center <i, j, 0> radius 0.1 } } }",
     },
     Entry {
         code: DIM_LIGHT,

@@ -641,3 +641,44 @@ fn a_default_image_over_a_texture_is_refused_by_check_and_render_alike() {
     let (code, said) = ptsc_stderr(&args);
     assert_eq!(code, 0, "{said}");
 }
+
+#[test]
+fn a_scene_whose_objects_outgrow_the_memory_is_refused_before_it_loads() {
+    // A million spheres placed by twenty levels of groups placing groups:
+    // a few lines, checked in kilobytes, about half a gigabyte to load.
+    let mut scene = String::from(
+        "camera { position <0, 0, 5> look_at <0, 0, 0> }\nbackground rgb 1\n\
+         group g0 { sphere { center <0, 0, 0> radius 0.1 } }\n",
+    );
+    for k in 1..=20 {
+        scene += &format!(
+            "group g{k} {{ instance g{0} {{ }} instance g{0} {{ translate <0.001, 0, 0> }} }}\n",
+            k - 1
+        );
+    }
+    scene += "instance g20 { }\n";
+    let dir = temp_dir_with(&[("many.pts", &scene)]);
+    let scene = dir.path().join("many.pts");
+    let out = dir.path().join("many.png");
+    let render = |limit: &'static str| {
+        ptsc_stderr(&[
+            "render",
+            path_str(&scene),
+            "--resolution",
+            "16x16",
+            "--memory-limit",
+            limit,
+            "-o",
+            path_str(&out),
+        ])
+    };
+    let (code, err) = render("200M");
+    assert_eq!(code, 1, "{err}");
+    assert!(
+        err.contains("pts::lower::scene_memory")
+            && err.contains("needs about 0.52 GB")
+            && err.contains("1,048,576 objects"),
+        "{err}"
+    );
+    assert!(!out.exists());
+}

@@ -15,8 +15,8 @@ pub struct RenderArgs {
     /// Output image (.png, .exr or .pfm); default: the scene's `output`, else FILE with .png.
     #[arg(short, long)]
     pub output: Option<PathBuf>,
-    /// Samples per pixel (1 to 1000000, as the scene's `samples`).
-    #[arg(long, value_parser = parse_spp, allow_negative_numbers = true)]
+    /// Samples per pixel (1 to 1000000, as the scene's `samples`; `--samples` too).
+    #[arg(long, alias = "samples", value_parser = parse_spp, allow_negative_numbers = true)]
     pub spp: Option<u32>,
     /// A time budget, e.g. 90s, 5m or 1.5h: the render stops when it is
     /// spent (or at --spp, if given) and saves its state for --resume.

@@ -44,14 +44,31 @@ pub fn run(args: &RenderArgs) -> u8 {
     }
     // Flags of a batch render's end that a live render does not honour
     // (yet): said, not silently ignored.
+    // Each with why a live render has no use for it.
     let batch_only = [
-        ("--denoise", args.denoise),
-        ("--aov", args.aov.is_some()),
-        ("--time", args.time.is_some()),
-        ("--tev", args.tev.is_some()),
+        (
+            "--denoise",
+            args.denoise,
+            "its passes are written as they come, not denoised",
+        ),
+        (
+            "--aov",
+            args.aov.is_some(),
+            "it writes the image and its preview only, no other layers",
+        ),
+        (
+            "--time",
+            args.time.is_some(),
+            "it renders passes until the samples asked, not for a time",
+        ),
+        (
+            "--tev",
+            args.tev.is_some(),
+            "it writes its passes to the image file, which a viewer can watch",
+        ),
     ];
-    if let Some((flag, _)) = batch_only.iter().find(|(_, given)| *given) {
-        eprintln!("error: {flag} is for `ptsc render`: `ptsc watch` renders passes until the samples asked and does not take it");
+    if let Some((flag, _, why)) = batch_only.iter().find(|(_, given, _)| *given) {
+        eprintln!("error: {flag} is for `ptsc render`: `ptsc watch` does not take it ({why})");
         return super::EXIT_USAGE;
     }
     // One frame: --frame's, else the first of --frames.

@@ -19,7 +19,7 @@ const WORDS: &[(&str, &str)] = &[
     ("array", "a list is written `[a, b, c]` in ptsc, indexed `xs[0]`, measured `len(xs)`, walked `for x in xs { … }`"),
     ("srgb", "colours are linear `rgb <r, g, b>` in ptsc"),
     ("radiosity", "the `path` integrator (the default) computes all indirect light: `render { integrator path }`"),
-    ("location", "POV-Ray's camera `location` is `position` in ptsc"),
+    ("location", "POV-Ray's `location` (of a camera or a light) is `position` in ptsc"),
     ("angle", "POV-Ray's camera `angle` is `fov` in ptsc, and ptsc's `fov` is the vertical field of view (POV-Ray's is horizontal)"),
     ("orthographic", "ptsc's camera is a perspective one (pinhole, or a thin lens with `aperture`); an orthographic camera is planned"),
     ("right", "ptsc's image proportions come from `render { resolution <w, h> }`"),

@@ -682,3 +682,22 @@ fn a_scene_whose_objects_outgrow_the_memory_is_refused_before_it_loads() {
     );
     assert!(!out.exists());
 }
+
+#[test]
+fn samples_on_the_command_line_is_spp_as_in_the_scene() {
+    let dir = temp_dir_with(&[("s.pts", SPECK)]);
+    let scene = dir.path().join("s.pts");
+    let out = dir.path().join("s.pfm");
+    let (code, err) = ptsc_stderr(&[
+        "render",
+        path_str(&scene),
+        "--samples",
+        "3",
+        "--resolution",
+        "8x8",
+        "-o",
+        path_str(&out),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(err.contains("3 spp"), "{err}");
+}

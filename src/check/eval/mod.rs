@@ -290,8 +290,14 @@ fn name_value(name: &str, span: Span, env: &mut Env, diags: &mut Diagnostics) ->
     let texture = crate::check::schema::TEXTURE_KINDS.contains(&name).then(|| {
         format!("`{name}` is a texture, written with its block: `diffuse {name} {{ … }}` (POV-Ray's `pigment {{ {name} … }}`; docs/language.md, \"Textures\", lists its parameters)")
     });
+    // `RGB`, `True`: a ptsc word in other letters (POV-Ray's are case-blind).
+    let lower = name.to_ascii_lowercase();
+    let case = (lower != name && crate::syntax::words::KEYWORDS.contains(&lower.as_str()))
+        .then(|| format!("ptsc's words are lower case: `{lower}`"));
     d = match (
-        (crate::syntax::povray::hint(name).map(str::to_string)).or(texture),
+        (crate::syntax::povray::hint(name).map(str::to_string))
+            .or(texture)
+            .or(case),
         env.suggest_name(name, &[]),
     ) {
         (Some(hint), _) => d.with_help(hint),

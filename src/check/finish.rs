@@ -319,8 +319,19 @@ impl Checker<'_> {
     /// Warns of every definition no use resolved to, as the symbols have
     /// it ([`Symbols::unused`]).
     fn report_unused(&mut self) {
+        let written = self.written_in_untaken_code();
+        let mut warnings = Vec::new();
         for d in self.env.symbols.unused() {
             let (name, span) = (&d.name, d.name_span);
+            // Written where the code did not run this time: used there.
+            let elsewhere =
+                |at: &&(Span, usize)| at.0.file != span.file || at.1 != span.start as usize;
+            if written
+                .get(name.as_str())
+                .is_some_and(|at| at.iter().any(|a| elsewhere(&a)))
+            {
+                continue;
+            }
             let warning = match d.kind {
                 SymbolKind::Material => Diagnostic::warning(
                     codes::UNUSED_MATERIAL,
@@ -343,12 +354,53 @@ impl Checker<'_> {
                     "remove it, or start its name with `_` if that is intended: `_{name}`"
                 )),
             };
-            self.diags.push(warning);
+            warnings.push(warning);
+        }
+        for w in warnings {
+            self.diags.push(w);
         }
     }
 }
 
 impl Checker<'_> {
+    /// The names of the unused definitions that are written in code that
+    /// did not run (`Env::untaken`, and the bodies of functions never
+    /// called), with where: the file's span and the word's byte offset.
+    fn written_in_untaken_code(&self) -> HashMap<&str, Vec<(Span, usize)>> {
+        let unused: Vec<&crate::check::symbols::Definition> = self.env.symbols.unused().collect();
+        let mut written: HashMap<&str, Vec<(Span, usize)>> = HashMap::new();
+        if unused.is_empty() {
+            return written;
+        }
+        let names: HashSet<&str> = unused.iter().map(|d| d.name.as_str()).collect();
+        let uncalled = (unused.iter())
+            .filter(|d| d.kind == SymbolKind::Function)
+            .map(|d| d.span);
+        let mut spans: Vec<Span> = self.env.untaken.iter().copied().chain(uncalled).collect();
+        spans.sort_by_key(|s| (s.file.0, s.start, s.end));
+        let mut covered: Option<Span> = None;
+        for span in spans {
+            // A span inside the last one read adds no word.
+            if covered.is_some_and(|c| c.file == span.file && span.end <= c.end) {
+                continue;
+            }
+            covered = Some(span);
+            let text = &self.sources.get(span.file).text;
+            let Some(part) = text.get(span.start as usize..span.end as usize) else {
+                continue;
+            };
+            for word in words(part) {
+                if let Some(&name) = names.get(word) {
+                    // (The word's offset in `part`, from where it starts.)
+                    let at =
+                        span.start as usize + (word.as_ptr() as usize - part.as_ptr() as usize);
+                    written.entry(name).or_default().push((span, at));
+                }
+            }
+        }
+        written
+    }
+
     /// On a file with a syntax error: records the uses of materials
     /// declared after them, and reports the names that cannot be declared
     /// anywhere, not even in the statements that did not parse, since the

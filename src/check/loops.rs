@@ -195,7 +195,9 @@ impl Checker<'_> {
         let symbols = &mut self.env.symbols;
         let def = symbols.define(SymbolKind::LoopVariable, &var.name, var.span, span);
         self.enter_loop(range);
+        let mut ran = false;
         for item in items {
+            ran = true;
             // A spent work budget fails every expression silently: the
             // iterations left would do nothing but count statements.
             if self.loops_exhausted || self.env.spent() {
@@ -216,6 +218,9 @@ impl Checker<'_> {
             if self.diags.errors_pushed() > errors_before {
                 break;
             }
+        }
+        if !ran {
+            self.env.untaken.extend(super::statements::body_span(body));
         }
         self.leave_loop();
     }

@@ -189,10 +189,22 @@ impl Checker<'_> {
         // A branch's statements run in the enclosing scope, as
         // POV-Ray's `#if`: `if final { let spp = 1024; } else { let
         // spp = 16; }` defines `spp` for what follows.
-        for (cond, body) in arms {
+        for (k, (cond, body)) in arms.iter().enumerate() {
             match eval::condition(cond, &mut self.env, &mut self.diags) {
-                Some(true) => return self.statements(body, file),
-                Some(false) => {}
+                Some(true) => {
+                    let later = arms[k + 1..].iter().map(|(c, b)| (c.span, b.as_slice()));
+                    for (cond, body) in later {
+                        self.env.untaken.insert(cond);
+                        self.env.untaken.extend(body_span(body));
+                    }
+                    self.env
+                        .untaken
+                        .extend(otherwise.as_deref().and_then(body_span));
+                    return self.statements(body, file);
+                }
+                Some(false) => {
+                    self.env.untaken.extend(body_span(body));
+                }
                 None => return,
             }
         }
@@ -349,4 +361,10 @@ impl Checker<'_> {
             },
         );
     }
+}
+
+/// The text a list of statements covers, from the first to the last
+/// (`None`: empty).
+pub(super) fn body_span(body: &[Statement]) -> Option<Span> {
+    Some(body.first()?.span().join(body.last()?.span()))
 }

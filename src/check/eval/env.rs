@@ -61,6 +61,10 @@ pub struct Env {
     /// Names every scene sees unless it binds them itself (`frame`,
     /// `clock`).
     pub predefined: Vec<(&'static str, Value)>,
+    /// Code that did not run: an `if`'s arms not taken, a loop's body run
+    /// no time. A name written there is not reported as never used
+    /// (`if final { … final_spp … }` uses it in the final build).
+    pub untaken: std::collections::HashSet<Span>,
 }
 
 impl Env {

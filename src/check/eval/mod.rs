@@ -203,10 +203,16 @@ fn eval_inner(e: &Expr, env: &mut Env, diags: &mut Diagnostics) -> Option<Value>
         ExprKind::If { arms, otherwise } => {
             // Only the chosen arm is evaluated: a recursion ends in the arm
             // that does not call again.
-            for (cond, value) in arms {
+            for (k, (cond, value)) in arms.iter().enumerate() {
                 if condition(cond, env, diags)? {
+                    // What is not evaluated: its names are not unused.
+                    for (c, v) in &arms[k + 1..] {
+                        env.untaken.extend([c.span, v.span]);
+                    }
+                    env.untaken.insert(otherwise.span);
                     return eval(value, env, diags);
                 }
+                env.untaken.insert(value.span);
             }
             eval(otherwise, env, diags)
         }

@@ -53,7 +53,7 @@ impl Diagnostic {
         Diagnostic {
             severity: Severity::Error,
             code,
-            message: message.into(),
+            message: bounded(message.into()),
             span: Some(span),
             label: String::new(),
             secondary: Vec::new(),
@@ -73,13 +73,13 @@ impl Diagnostic {
 
     /// Sets the label under the span.
     pub fn with_label(mut self, label: impl Into<String>) -> Self {
-        self.label = label.into();
+        self.label = bounded(label.into());
         self
     }
 
     /// Sets the help line.
     pub fn with_help(mut self, help: impl Into<String>) -> Self {
-        self.help = Some(help.into());
+        self.help = Some(bounded(help.into()));
         self
     }
 
@@ -436,4 +436,24 @@ mod tests {
         assert_eq!(did_you_mean("centre", names), Some("center"));
         assert_eq!(did_you_mean("xyz", names), None);
     }
+}
+
+/// The most characters of a message, label or help line: a longer one
+/// (a name of five million letters written twice) keeps its start and end.
+const MAX_TEXT: usize = 600;
+
+/// `text`, or its start and end around an ellipsis when longer than
+/// [`MAX_TEXT`] characters, saying how long it was.
+fn bounded(text: String) -> String {
+    if text.len() <= MAX_TEXT {
+        return text;
+    }
+    let count = text.chars().count();
+    if count <= MAX_TEXT {
+        return text;
+    }
+    let keep = MAX_TEXT / 2 - 20;
+    let head: String = text.chars().take(keep).collect();
+    let tail: String = text.chars().skip(count - keep).collect();
+    format!("{head}…{tail} ({} characters)", group_digits(count as u64))
 }

@@ -731,3 +731,18 @@ fn povray_blocks_and_directives_at_the_largest_sizes() {
     );
     run_generated(&case, "long.pts", text.as_bytes());
 }
+
+/// A name of a million letters, written in a message and its help: each
+/// text keeps its start and end and says how long it was, so one warning
+/// is not megabytes of output.
+#[test]
+fn a_huge_name_is_shortened_in_messages() {
+    let name = "a".repeat(1_000_000);
+    let scene = format!("{}\nbackground rgb 1\nlet {name} = 1;\n", CAMERA.trim());
+    let dir = crate::temp_dir_with(&[("long_name.pts", &scene)]);
+    let (code, err) =
+        crate::ptsc_stderr(&["check", dir.path().join("long_name.pts").to_str().unwrap()]);
+    assert_eq!(code, 0, "{}", &err[..err.len().min(2000)]);
+    assert!(err.len() < 10_000, "{} bytes of output", err.len());
+    assert!(err.contains("(1,000,025 characters)"), "{err}");
+}

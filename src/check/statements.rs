@@ -63,9 +63,19 @@ impl Checker<'_> {
             Statement::Directive {
                 name,
                 binding,
+                parameters,
                 span,
             } => {
                 self.diags.push(povray::directive(name));
+                // A `#macro`'s parameters: its body's uses of them are the
+                // macro's, not unknown names.
+                for p in parameters {
+                    if self.name_taken(&p.name).is_none() {
+                        let named = (p.name.as_str(), p.span);
+                        let def = self.env.define(SymbolKind::Parameter, named, *span, None);
+                        self.env.symbols.excuse(def);
+                    }
+                }
                 // `#declare R = 1;` binds `R` as `let` would: its uses are
                 // fine. A name bound before is POV-Ray's redefinition (not
                 // an error there), a name without a value one whose uses

@@ -138,6 +138,9 @@ pub enum Statement {
         /// the line reads as one (`#declare R = 1;`), or a `#for`'s variable
         /// (no value).
         binding: Option<(Ident, Option<Expr>)>,
+        /// A `#macro`'s parameters, bound (without values) for the lines
+        /// of its body that ptsc reads.
+        parameters: Vec<Ident>,
         /// The whole line.
         span: Span,
     },

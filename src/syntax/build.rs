@@ -212,15 +212,26 @@ impl<'t> Builder<'t> {
             Rule::directive_stmt => {
                 let name = self.build_ident(inner.next().unwrap());
                 let rest = &pair_text[(name.span.end - span.start) as usize..];
-                let binding = super::povray::bound_name(&name.name, rest).map(|(at, bound)| {
+                let ident = |(at, bound): (usize, &str)| {
                     let start = name.span.end as usize + at;
                     let span = Span::new(self.file, start, start + bound.len());
-                    let name = bound.to_string();
-                    (Ident { name, span }, None)
-                });
+                    Ident {
+                        name: bound.to_string(),
+                        span,
+                    }
+                };
+                let binding = super::povray::bound_name(&name.name, rest).map(|b| (ident(b), None));
+                let parameters = match name.name.as_str() {
+                    "macro" => super::povray::macro_parameters(rest)
+                        .into_iter()
+                        .map(ident)
+                        .collect(),
+                    _ => Vec::new(),
+                };
                 Statement::Directive {
                     name,
                     binding,
+                    parameters,
                     span,
                 }
             }
@@ -240,6 +251,7 @@ impl<'t> Builder<'t> {
                 Statement::Directive {
                     name,
                     binding: Some((bound, Some(value))),
+                    parameters: Vec::new(),
                     span,
                 }
             }

@@ -256,6 +256,34 @@ pub(super) fn bound_name<'t>(word: &str, rest: &'t str) -> Option<(usize, &'t st
     (is_name && rest[next..].starts_with(closing)).then_some((at, name))
 }
 
+/// The parameters of a `#macro NAME(A, B)` line, each as its offset in
+/// `rest` (the line after the word) and its text; none where the line is
+/// not of that form.
+pub(super) fn macro_parameters(rest: &str) -> Vec<(usize, &str)> {
+    let (Some(open), Some(close)) = (rest.find('('), rest.find(')')) else {
+        return Vec::new();
+    };
+    if close < open {
+        return Vec::new();
+    }
+    let is_name = |w: &str| {
+        let first = w.chars().next();
+        first.is_some_and(|c| c.is_ascii_alphabetic() || c == '_')
+            && w.chars().all(|c| c.is_ascii_alphanumeric() || c == '_')
+            && !super::words::KEYWORDS.contains(&w)
+    };
+    let mut at = open + 1;
+    let mut names = Vec::new();
+    for part in rest[open + 1..close].split(',') {
+        let name = part.trim();
+        if is_name(name) {
+            names.push((at + (part.len() - part.trim_start().len()), name));
+        }
+        at += part.len() + 1;
+    }
+    names
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

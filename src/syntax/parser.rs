@@ -370,11 +370,24 @@ pub fn convert_error(
             .with_help(help_for(&expected, &found))
             .with_fix(at, ";");
     }
+    // `radius 1;` or `center <0, 0, 0>, radius 1` in a block: a separator
+    // where entries just follow each other.
+    if (found == "`;`" || found == "`,`") && expected.contains(&"`}`") {
+        let sep = &found[1..2];
+        return Diagnostic::error(codes::UNEXPECTED_TOKEN, message, span)
+            .with_label(label)
+            .with_help(format!(
+                "a block's entries follow each other without `{sep}` between them: remove it"
+            ))
+            .with_fix(span, "");
+    }
     let help = super::povray::hint(word)
         .map(str::to_string)
         .or_else(|| {
-            // `sphere { … glass }`: a name without a value.
+            // `sphere { … glass }`: a name without a value (not a number:
+            // `radius 1;` is told above).
             let named = previous.last().filter(|_| adjacent)?;
+            named.starts_with(|c: char| c.is_alphabetic() || c == '_').then_some(())?;
             expected.iter().any(|e| e.starts_with("a value")).then(|| match *named {
                 "background" => "`background` takes a colour without braces: `background rgb <0.5, 0.7, 1>` (a daylight sky is `sky { … }`)".to_string(),
                 _ => format!("`{named}` needs a value (e.g. `{named} 1`); a material is given as `material {named}`"),

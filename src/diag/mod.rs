@@ -381,6 +381,26 @@ pub fn edit_distance(a: &str, b: &str) -> usize {
     prev[b.len()]
 }
 
+/// The most characters of a message, label or help line: a longer one
+/// (a name of five million letters written twice) keeps its start and end.
+const MAX_TEXT: usize = 600;
+
+/// `text`, or its start and end around an ellipsis when longer than
+/// [`MAX_TEXT`] characters, saying how long it was.
+fn bounded(text: String) -> String {
+    if text.len() <= MAX_TEXT {
+        return text;
+    }
+    let count = text.chars().count();
+    if count <= MAX_TEXT {
+        return text;
+    }
+    let keep = MAX_TEXT / 2 - 20;
+    let head: String = text.chars().take(keep).collect();
+    let tail: String = text.chars().skip(count - keep).collect();
+    format!("{head}…{tail} ({} characters)", group_digits(count as u64))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -436,24 +456,4 @@ mod tests {
         assert_eq!(did_you_mean("centre", names), Some("center"));
         assert_eq!(did_you_mean("xyz", names), None);
     }
-}
-
-/// The most characters of a message, label or help line: a longer one
-/// (a name of five million letters written twice) keeps its start and end.
-const MAX_TEXT: usize = 600;
-
-/// `text`, or its start and end around an ellipsis when longer than
-/// [`MAX_TEXT`] characters, saying how long it was.
-fn bounded(text: String) -> String {
-    if text.len() <= MAX_TEXT {
-        return text;
-    }
-    let count = text.chars().count();
-    if count <= MAX_TEXT {
-        return text;
-    }
-    let keep = MAX_TEXT / 2 - 20;
-    let head: String = text.chars().take(keep).collect();
-    let tail: String = text.chars().skip(count - keep).collect();
-    format!("{head}…{tail} ({} characters)", group_digits(count as u64))
 }

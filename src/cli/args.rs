@@ -74,7 +74,8 @@ pub struct RenderArgs {
     /// --frames, `clock` runs from 0 at its first frame to 1 at its last).
     #[arg(long, value_name = "F", value_parser = parse_frame, allow_negative_numbers = true)]
     pub frame: Option<u32>,
-    /// The animation's frames, e.g. 1..240: each is rendered in turn (or
+    /// The animation's frames, e.g. 1..240 (both ends included, as
+    /// POV-Ray's +KFI/+KFF): each is rendered in turn (or
     /// only --frame's); name the images with a # pattern (frame_####.png).
     #[arg(long, value_name = "A..B", value_parser = parse_frames)]
     pub frames: Option<(u32, u32)>,
@@ -372,6 +373,17 @@ pub fn flag_warnings(args: &RenderArgs, scene: &crate::ir::Scene) -> Vec<String>
             "warning: --clamp has no effect with the {} integrator",
             integrator.name()
         ));
+    }
+    // Every pixel takes `min_samples` before it may stop: with no more
+    // samples than that, none stops early.
+    let settings = &scene.settings;
+    if let (Some(adaptive), Some(_)) = (settings.adaptive, args.noise) {
+        if settings.samples <= adaptive.min_samples && settings.time.is_none() {
+            warnings.push(format!(
+                "warning: --noise has no effect at {} spp: a pixel may stop only after {} samples (--min-samples); ask for more samples, or a lower --min-samples",
+                settings.samples, adaptive.min_samples
+            ));
+        }
     }
     warnings
 }

@@ -701,3 +701,33 @@ fn samples_on_the_command_line_is_spp_as_in_the_scene() {
     assert_eq!(code, 0, "{err}");
     assert!(err.contains("3 spp"), "{err}");
 }
+
+#[test]
+fn noise_at_no_more_samples_than_the_minimum_is_said_to_do_nothing() {
+    let dir = temp_dir_with(&[("s.pts", SPECK)]);
+    let scene = dir.path().join("s.pts");
+    let out = dir.path().join("s.pfm");
+    let render = |spp: &'static str| {
+        ptsc_stderr(&[
+            "render",
+            path_str(&scene),
+            "--noise",
+            "0.05",
+            "--spp",
+            spp,
+            "--resolution",
+            "8x8",
+            "-o",
+            path_str(&out),
+        ])
+    };
+    let (code, err) = render("8");
+    assert_eq!(code, 0, "{err}");
+    assert!(
+        err.contains("--noise has no effect at 8 spp: a pixel may stop only after 16 samples"),
+        "{err}"
+    );
+    let (code, err) = render("64");
+    assert_eq!(code, 0, "{err}");
+    assert!(!err.contains("no effect"), "{err}");
+}

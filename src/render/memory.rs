@@ -143,8 +143,14 @@ pub fn check(need: &Need, limit: Option<u64>) -> Result<(), String> {
     if need.to_allocate() <= free {
         return Ok(());
     }
+    // Lowering the resolution helps only where the film is what is large.
+    let advice = if need.film + need.aovs > WORKING_BYTES {
+        "lower the resolution, or give --memory-limit if the memory is there"
+    } else {
+        "the loaded scene holds the rest: give a higher --memory-limit if the memory is there"
+    };
     Err(format!(
-        "this render needs {} of memory ({}), more than the {} free ({which}); lower the resolution, or give --memory-limit if the memory is there",
+        "this render needs {} of memory ({}), more than the {} free ({which}); {advice}",
         gigabytes(need.to_allocate()),
         need.describe(),
         gigabytes(free),

@@ -33,6 +33,15 @@ pub fn compile(
         memory_limit: args.memory_limit,
         ..Options::default()
     };
+    compile_input(args, stdin, options)
+}
+
+/// Compiles FILE, or the scene read from stdin when `stdin` holds it.
+fn compile_input(
+    args: &RenderArgs,
+    stdin: Option<&[u8]>,
+    options: Options,
+) -> std::io::Result<Compiled> {
     match stdin {
         Some(bytes) => Ok(compile_bytes(
             Path::new(super::STDIN_NAME),
@@ -123,15 +132,7 @@ fn last_frame_writes(
             output_elsewhere: true,
             ..Options::default()
         };
-        let compiled = match stdin {
-            Some(bytes) => Ok(compile_bytes(
-                Path::new(super::STDIN_NAME),
-                bytes.to_vec(),
-                options,
-            )),
-            None => compile_file(&args.file, options),
-        };
-        match compiled {
+        match compile_input(args, stdin, options) {
             Ok(c) if !c.diagnostics.has_errors() => c.output,
             _ => return false,
         }

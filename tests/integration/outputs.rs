@@ -171,15 +171,12 @@ fn every_path_a_render_writes_is_checked_before_the_first_sample() {
 /// `ptsc render SCENE --resolution SIZE --spp 2 -q EXTRA…`: exit code and
 /// stderr.
 fn render_quietly(scene: &Path, size: &str, extra: &[&str]) -> (i32, String) {
-    let mut args = vec![
-        "render",
-        path_str(scene),
-        "--resolution",
-        size,
-        "--spp",
-        "2",
-        "-q",
-    ];
+    render_at(scene, size, &[&["--spp", "2", "-q"], extra].concat())
+}
+
+/// `ptsc render SCENE --resolution SIZE EXTRA…`: its exit code and stderr.
+fn render_at(scene: &Path, size: &str, extra: &[&str]) -> (i32, String) {
+    let mut args = vec!["render", path_str(scene), "--resolution", size];
     args.extend(extra);
     ptsc_stderr(&args)
 }
@@ -660,17 +657,12 @@ fn a_scene_whose_objects_outgrow_the_memory_is_refused_before_it_loads() {
     let dir = temp_dir_with(&[("many.pts", &scene)]);
     let scene = dir.path().join("many.pts");
     let out = dir.path().join("many.png");
-    let render = |limit: &'static str| {
-        ptsc_stderr(&[
-            "render",
-            path_str(&scene),
-            "--resolution",
+    let render = |limit: &str| {
+        render_quietly(
+            &scene,
             "16x16",
-            "--memory-limit",
-            limit,
-            "-o",
-            path_str(&out),
-        ])
+            &["--memory-limit", limit, "-o", path_str(&out)],
+        )
     };
     let (code, err) = render("200M");
     assert_eq!(code, 1, "{err}");
@@ -688,16 +680,7 @@ fn samples_on_the_command_line_is_spp_as_in_the_scene() {
     let dir = temp_dir_with(&[("s.pts", SPECK)]);
     let scene = dir.path().join("s.pts");
     let out = dir.path().join("s.pfm");
-    let (code, err) = ptsc_stderr(&[
-        "render",
-        path_str(&scene),
-        "--samples",
-        "3",
-        "--resolution",
-        "8x8",
-        "-o",
-        path_str(&out),
-    ]);
+    let (code, err) = render_at(&scene, "8x8", &["--samples", "3", "-o", path_str(&out)]);
     assert_eq!(code, 0, "{err}");
     assert!(err.contains("3 spp"), "{err}");
 }
@@ -707,19 +690,12 @@ fn noise_at_no_more_samples_than_the_minimum_is_said_to_do_nothing() {
     let dir = temp_dir_with(&[("s.pts", SPECK)]);
     let scene = dir.path().join("s.pts");
     let out = dir.path().join("s.pfm");
-    let render = |spp: &'static str| {
-        ptsc_stderr(&[
-            "render",
-            path_str(&scene),
-            "--noise",
-            "0.05",
-            "--spp",
-            spp,
-            "--resolution",
+    let render = |spp: &str| {
+        render_at(
+            &scene,
             "8x8",
-            "-o",
-            path_str(&out),
-        ])
+            &["--noise", "0.05", "--spp", spp, "-o", path_str(&out)],
+        )
     };
     let (code, err) = render("8");
     assert_eq!(code, 0, "{err}");

@@ -8,6 +8,7 @@ use super::*;
 impl Checker<'_> {
     /// Runs the whole-scene checks and assembles the result.
     pub(super) fn finish(mut self) -> Checked {
+        self.check_unrun();
         let render = self.render.take().map(|r| r.0).unwrap_or_default();
         // Warnings about the whole scene; a file that did not parse makes them noise.
         if self.syntax_failed {
@@ -443,7 +444,10 @@ impl Checker<'_> {
     /// The names of `uses` that the scene's text holds only at the places
     /// that use them (each place once, however many loop passes): no
     /// statement, parsed or not, declares them. One pass over the text.
-    fn written_only_at<'u>(&self, uses: &'u [crate::syntax::ast::Ident]) -> HashSet<&'u str> {
+    pub(super) fn written_only_at<'u>(
+        &self,
+        uses: &'u [crate::syntax::ast::Ident],
+    ) -> HashSet<&'u str> {
         let mut places: HashMap<&str, HashSet<Span>> = HashMap::new();
         for n in uses {
             places.entry(n.name.as_str()).or_default().insert(n.span);
@@ -506,7 +510,7 @@ impl Checker<'_> {
     /// The error for `name`, a material declared nowhere, with a
     /// did-you-mean (whose material then does not count as unused: the
     /// typo already explains it).
-    fn unknown_material(&mut self, name: &crate::syntax::ast::Ident) {
+    pub(super) fn unknown_material(&mut self, name: &crate::syntax::ast::Ident) {
         let names = self.material_names.keys().map(String::as_str);
         let suggestion = (self.env)
             .suggest(&name.name, self.material_names.len(), names)

@@ -219,8 +219,9 @@ impl Checker<'_> {
                 break;
             }
         }
-        if !ran {
-            self.env.untaken.extend(super::statements::body_span(body));
+        match ran {
+            true => self.env.ran.extend(super::statements::body_span(body)),
+            false => self.not_run(body),
         }
         self.leave_loop();
     }

@@ -628,6 +628,10 @@ fn options_checks(p: &Params, m: &mut Material, ignored: &[&str], diags: &mut Di
     }
 }
 
+/// A material's values written without names: a colour alone is
+/// POV-Ray's `pigment { rgb … }`, ptsc's `diffuse`.
+pub(super) const POSITIONAL: Option<super::schema::Positional> = Some((&["diffuse"], ""));
+
 /// A material block's parameters (inline or named), textures and all.
 pub fn collect(
     what: impl Into<std::borrow::Cow<'static, str>>,
@@ -636,7 +640,6 @@ pub fn collect(
     checking: (&mut Env, &mut Diagnostics),
 ) -> Params {
     let texture: CheckTexture = super::texture::check_texture;
-    // A colour alone is POV-Ray's `pigment { rgb … }`: ptsc's `diffuse`.
-    let order = (&[MATERIAL][..], Some((&["diffuse"][..], "")));
+    let order = (&[MATERIAL][..], POSITIONAL);
     Params::collect_ordered(what, head, block, order, checking, Some(texture))
 }

@@ -133,6 +133,49 @@ impl Params {
         collecting.run(block, env, diags)
     }
 
+    /// For code that did not run: checks only the names of `block`'s
+    /// entries against the schemas (as [`Params::collect_block`] does, with
+    /// the same errors: unknown, refused or repeated parameters, POV-Ray's
+    /// blocks), evaluating nothing; the entries that name a parameter,
+    /// with its row.
+    pub fn names_only<'b>(
+        (what, head): (&str, Span),
+        block: &'b Block,
+        (schemas, positional): (&[&'static [ParamSpec]], Option<Positional>),
+        takes_material: bool,
+        (env, diags): (&mut Env, &mut Diagnostics),
+    ) -> Vec<(&'static ParamSpec, &'b Entry)> {
+        let mut collecting = Collecting::new(what.to_string().into(), head, schemas, None);
+        collecting.positional = positional;
+        collecting.takes_material = takes_material;
+        let mut named = Vec::new();
+        for entry in &block.entries {
+            let (name, value) = match entry {
+                Entry::Foreign { name, span } => {
+                    diags.push(collecting.foreign(name, *span));
+                    continue;
+                }
+                Entry::Param { name, value, .. } => (name, Source::Value(value)),
+                Entry::Texture {
+                    name,
+                    kind,
+                    block,
+                    span,
+                } => (name, Source::Texture(kind, block, *span)),
+                Entry::Stop { word, span, .. } => (word, Source::Stop(*span)),
+                Entry::Materials { word, span, .. } => (word, Source::Materials(*span)),
+                // Read with their values (what a word takes, POV-Ray's
+                // order): left to the run.
+                Entry::Flag { .. } | Entry::Positional { .. } | Entry::Material { .. } => continue,
+            };
+            if let Some(spec) = collecting.spec(name, &value, diags) {
+                env.record_param(name.span, spec);
+                named.push((spec, entry));
+            }
+        }
+        named
+    }
+
     /// The value of an optional parameter.
     pub fn get(&self, name: &str) -> Option<&(Val, Span)> {
         self.values.iter().find(|(n, _)| *n == name).map(|(_, v)| v)
@@ -249,6 +292,12 @@ impl<'s> Collecting<'s> {
             .collect()
     }
 
+    /// The error for POV-Ray's block `name { … }` among the entries.
+    fn foreign(&self, name: &Ident, span: Span) -> Diagnostic {
+        let accepted = self.accepted();
+        super::povray::foreign_block(&self.params.what, name, span, (self.schemas, &accepted))
+    }
+
     /// Marks the parameter `name` (if the schemas have it) as meant: it is
     /// not reported missing after an error about it.
     fn suggest(&mut self, name: &str) {
@@ -288,12 +337,7 @@ impl<'s> Collecting<'s> {
         let what = self.params.what.clone();
         match entry {
             Entry::Foreign { name, span } => {
-                diags.push(super::povray::foreign_block(
-                    &what,
-                    name,
-                    *span,
-                    (self.schemas, &self.accepted()),
-                ));
+                diags.push(self.foreign(name, *span));
                 None
             }
             // `diffuse gradient y`: `y` after a word taken as a value is

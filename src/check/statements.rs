@@ -205,21 +205,29 @@ impl Checker<'_> {
                     let later = arms[k + 1..].iter().map(|(c, b)| (c.span, b.as_slice()));
                     for (cond, body) in later {
                         self.env.untaken.insert(cond);
-                        self.env.untaken.extend(body_span(body));
+                        self.not_run(body);
                     }
-                    self.env
-                        .untaken
-                        .extend(otherwise.as_deref().and_then(body_span));
+                    self.not_run(otherwise.as_deref().unwrap_or_default());
+                    self.env.ran.extend(body_span(body));
                     return self.statements(body, file);
                 }
-                Some(false) => {
-                    self.env.untaken.extend(body_span(body));
-                }
+                Some(false) => self.not_run(body),
                 None => return,
             }
         }
         if let Some(body) = otherwise {
+            self.env.ran.extend(body_span(body));
             self.statements(body, file);
+        }
+    }
+
+    /// Records `body` as not run this time (kept the first time for the
+    /// checks without values: `check::unrun`).
+    pub(super) fn not_run(&mut self, body: &[Statement]) {
+        if let Some(span) = body_span(body) {
+            if self.env.untaken.insert(span) {
+                (self.env.unrun).push(eval::Unrun::Statements(span, body.to_vec()));
+            }
         }
     }
 
@@ -268,6 +276,8 @@ impl Checker<'_> {
             body: body.clone(),
         };
         let value = Some(Value::Function(std::sync::Arc::new(f)));
+        // Checked without values if it is never called.
+        (self.env.unrun).push(eval::Unrun::Function(span, body.clone()));
         let named = (name.name.as_str(), name.span);
         self.env.define(SymbolKind::Function, named, span, value);
     }

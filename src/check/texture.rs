@@ -37,11 +37,32 @@ const CHECKER_SPACE: &str = "POV-Ray's cells are unit cubes of the object's own 
 /// POV-Ray's order of the texture `name`'s values written without names:
 /// a checker's two colours (`checker rgb 1, rgb 0`; POV-Ray's first colour
 /// fills the cell at the origin, as ptsc's `even`).
-fn povray_order(name: &str) -> Option<Positional> {
+pub(super) fn povray_order(name: &str) -> Option<Positional> {
     match name {
         "checker" => Some((&["even", "odd"], CHECKER_SPACE)),
         _ => None,
     }
+}
+
+/// The error for the texture kind `kind` that is not one: POV-Ray's
+/// word, a did-you-mean, or the textures there are.
+pub(super) fn unknown_texture(kind: &Ident) -> Diagnostic {
+    let povray = crate::syntax::povray::hint(&kind.name);
+    let help = match (
+        povray,
+        did_you_mean(&kind.name, TEXTURE_KINDS.iter().copied()),
+    ) {
+        (Some(hint), _) => hint.to_string(),
+        (None, Some(s)) => format!("did you mean `{s}`?"),
+        (None, None) => format!("the textures are: {}", TEXTURE_KINDS.join(", ")),
+    };
+    Diagnostic::error(
+        codes::UNKNOWN_TEXTURE,
+        format!("unknown texture `{}`", kind.name),
+        kind.span,
+    )
+    .with_label("not a texture")
+    .with_help(help)
 }
 
 /// The texture `kind { block }` written at `span`; `None` after reporting
@@ -54,24 +75,7 @@ pub fn check_texture(
     diags: &mut Diagnostics,
 ) -> Option<Texture> {
     let Some(schemas) = texture_schemas(&kind.name) else {
-        let povray = crate::syntax::povray::hint(&kind.name);
-        let help = match (
-            povray,
-            did_you_mean(&kind.name, TEXTURE_KINDS.iter().copied()),
-        ) {
-            (Some(hint), _) => hint.to_string(),
-            (None, Some(s)) => format!("did you mean `{s}`?"),
-            (None, None) => format!("the textures are: {}", TEXTURE_KINDS.join(", ")),
-        };
-        diags.push(
-            Diagnostic::error(
-                codes::UNKNOWN_TEXTURE,
-                format!("unknown texture `{}`", kind.name),
-                kind.span,
-            )
-            .with_label("not a texture")
-            .with_help(help),
-        );
+        diags.push(unknown_texture(kind));
         return None;
     };
     let (schema, is_image) = (schemas[0], kind.name == "image");

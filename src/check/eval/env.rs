@@ -65,6 +65,35 @@ pub struct Env {
     /// no time. A name written there is not reported as never used
     /// (`if final { … final_spp … }` uses it in the final build).
     pub untaken: std::collections::HashSet<Span>,
+    /// The code of `untaken`, each piece once (when first not run), for
+    /// the checks that need no values (`check::unrun`).
+    pub unrun: Vec<Unrun>,
+    /// The bodies and arms that ran at least once: a piece of `unrun` that
+    /// ran in another pass (a loop's iteration, a call) was checked there.
+    pub ran: std::collections::HashSet<Span>,
+}
+
+/// A piece of code that did not run, kept for the checks that need no
+/// values: its words, kinds and parameter names.
+#[derive(Debug, Clone)]
+pub enum Unrun {
+    /// Statements (an `if`'s arm, a loop's body) and the text they cover.
+    Statements(Span, Vec<crate::syntax::ast::Statement>),
+    /// The value of an `if` expression's arm.
+    Value(crate::syntax::ast::Expr),
+    /// A function's body, with its declaration's span: checked when the
+    /// function is never called.
+    Function(Span, Arc<crate::syntax::ast::Expr>),
+}
+
+impl Unrun {
+    /// The text the piece covers.
+    pub fn span(&self) -> Span {
+        match self {
+            Unrun::Statements(span, _) | Unrun::Function(span, _) => *span,
+            Unrun::Value(e) => e.span,
+        }
+    }
 }
 
 impl Env {

@@ -21,7 +21,7 @@ mod value;
 
 pub use budget::{MAX_SUGGESTIONS, MAX_WORK};
 pub use builtins::{random, FUNCTIONS, FUNCTION_DOCS};
-pub use env::{Binding, Env};
+pub use env::{Binding, Env, Unrun};
 pub use limits::*;
 pub use povray::written;
 pub use value::{shown, Function, List, Value, MAX_LIST_DEPTH};
@@ -207,13 +207,16 @@ fn eval_inner(e: &Expr, env: &mut Env, diags: &mut Diagnostics) -> Option<Value>
                 if condition(cond, env, diags)? {
                     // What is not evaluated: its names are not unused.
                     for (c, v) in &arms[k + 1..] {
-                        env.untaken.extend([c.span, v.span]);
+                        env.untaken.insert(c.span);
+                        not_evaluated(v, env);
                     }
-                    env.untaken.insert(otherwise.span);
+                    not_evaluated(otherwise, env);
+                    env.ran.insert(value.span);
                     return eval(value, env, diags);
                 }
-                env.untaken.insert(value.span);
+                not_evaluated(value, env);
             }
+            env.ran.insert(otherwise.span);
             eval(otherwise, env, diags)
         }
         ExprKind::Chain { first, rest } if matches!(rest[0].0, BinOp::And | BinOp::Or) => {
@@ -286,12 +289,53 @@ fn color(inner: &Expr, env: &mut Env, diags: &mut Diagnostics) -> Option<Value> 
     }
 }
 
+/// The error for a call of `func`, which is neither built in nor declared:
+/// POV-Ray's word for it, a did-you-mean, or the built-in functions.
+pub fn unknown_function(func: &Ident, env: &mut Env) -> Diagnostic {
+    let built_in: Vec<&str> = FUNCTIONS.iter().map(|(n, _)| *n).collect();
+    let pov = crate::syntax::povray::function(&func.name);
+    let help = match pov
+        .map(str::to_string)
+        .or_else(|| env.suggest_name(&func.name, &built_in))
+    {
+        Some(hint) if pov.is_some() => hint,
+        Some(s) => format!("did you mean `{s}`?"),
+        None => format!(
+            "the built-in functions are {}; declare your own with `fn {}(x) = …;`",
+            built_in.join(", "),
+            func.name
+        ),
+    };
+    Diagnostic::error(
+        codes::UNKNOWN_FUNCTION,
+        format!("unknown function `{}`", func.name),
+        func.span,
+    )
+    .with_label("no such function")
+    .with_help(help)
+}
+
+/// Records the arm `value` of an `if` expression as not evaluated (kept
+/// the first time for the checks without values: `check::unrun`).
+fn not_evaluated(value: &Expr, env: &mut Env) {
+    if env.untaken.insert(value.span) {
+        env.unrun.push(Unrun::Value(value.clone()));
+    }
+}
+
 /// The value of `name`, used at `span`, or why there is none.
 fn name_value(name: &str, span: Span, env: &mut Env, diags: &mut Diagnostics) -> Option<Value> {
     if let Some(v) = env.lookup(name, span) {
         return v;
     }
-    let mut d = Diagnostic::error(codes::UNKNOWN_NAME, format!("unknown name `{name}`"), span)
+    diags.push(unknown_name(name, span, env));
+    None
+}
+
+/// The error for the name `name`, used at `span`, that nothing defines:
+/// the ptsc word for a POV-Ray one, or a did-you-mean.
+pub fn unknown_name(name: &str, span: Span, env: &mut Env) -> Diagnostic {
+    let d = Diagnostic::error(codes::UNKNOWN_NAME, format!("unknown name `{name}`"), span)
         .with_label("not defined");
     let texture = crate::check::schema::TEXTURE_KINDS.contains(&name).then(|| {
         format!("`{name}` is a texture, written with its block: `diffuse {name} {{ … }}` (POV-Ray's `pigment {{ {name} … }}`; docs/language.md, \"Textures\", lists its parameters)")
@@ -300,7 +344,7 @@ fn name_value(name: &str, span: Span, env: &mut Env, diags: &mut Diagnostics) ->
     let lower = name.to_ascii_lowercase();
     let case = (lower != name && crate::syntax::words::KEYWORDS.contains(&lower.as_str()))
         .then(|| format!("ptsc's words are lower case: `{lower}`"));
-    d = match (
+    match (
         (crate::syntax::povray::hint(name).map(str::to_string))
             .or(texture)
             .or(case),
@@ -309,9 +353,7 @@ fn name_value(name: &str, span: Span, env: &mut Env, diags: &mut Diagnostics) ->
         (Some(hint), _) => d.with_help(hint),
         (None, Some(s)) => d.with_help(format!("did you mean `{s}`?")),
         (None, None) => d.with_help(format!("define it first with `let {name} = …;`")),
-    };
-    diags.push(d);
-    None
+    }
 }
 
 /// `-value` at `span`: a number, vector or colour negated.
@@ -408,29 +450,7 @@ fn call(
         _ => {}
     }
     let Some(&(_, (least, most))) = builtin else {
-        let built_in: Vec<&str> = FUNCTIONS.iter().map(|(n, _)| *n).collect();
-        let pov = crate::syntax::povray::function(&func.name);
-        let help = match pov
-            .map(str::to_string)
-            .or_else(|| env.suggest_name(&func.name, &built_in))
-        {
-            Some(hint) if pov.is_some() => hint,
-            Some(s) => format!("did you mean `{s}`?"),
-            None => format!(
-                "the built-in functions are {}; declare your own with `fn {}(x) = …;`",
-                built_in.join(", "),
-                func.name
-            ),
-        };
-        diags.push(
-            Diagnostic::error(
-                codes::UNKNOWN_FUNCTION,
-                format!("unknown function `{}`", func.name),
-                func.span,
-            )
-            .with_label("no such function")
-            .with_help(help),
-        );
+        diags.push(unknown_function(func, env));
         return None;
     };
     if !(least..=most).contains(&args.len()) {

@@ -206,8 +206,9 @@ pub fn parse_ply(bytes: &[u8]) -> Result<MeshData, String> {
         .windows(10)
         .position(|w| w == b"end_header")
         .ok_or("not a PLY file: no `end_header`")?;
-    let header =
-        std::str::from_utf8(&bytes[..header_end]).map_err(|_| "the PLY header is not text")?;
+    // A `comment` or `obj_info` line in Latin-1 does not make the file
+    // unreadable: the words ptsc reads are ASCII.
+    let header = String::from_utf8_lossy(&bytes[..header_end]);
     let mut lines = header.lines();
     if lines.next().map(str::trim) != Some("ply") {
         return Err("not a PLY file: it does not start with `ply`".into());
@@ -410,6 +411,19 @@ mod tests {
             assert_eq!(m.positions[1], Vec3::X);
             assert_eq!(m.triangles, vec![[0, 1, 2]]);
         }
+    }
+
+    #[test]
+    fn latin1_comments_and_names_are_read() {
+        // As exporters on Windows write them: `Cr\xe9\xe9` is not UTF-8.
+        let obj = b"# Cr\xe9\xe9 par Blender\no caf\xe9\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+        let m = parse(Path::new("t.obj"), obj).unwrap();
+        assert_eq!(m.triangles, [[0, 1, 2]]);
+        let ply = ASCII.replace("format ascii 1.0\n", "format ascii 1.0\ncomment \u{1}\n");
+        let mut bytes = ply.into_bytes();
+        let at = bytes.iter().position(|&b| b == 1).unwrap();
+        bytes[at] = 0xe9;
+        assert_eq!(parse_ply(&bytes).unwrap().triangles.len(), 2);
     }
 
     #[test]

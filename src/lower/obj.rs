@@ -29,7 +29,12 @@ pub(super) fn parse_obj(
     let reader = std::cell::RefCell::new(library);
     let libraries = std::cell::RefCell::new(Vec::new());
     let library_errors = std::cell::RefCell::new(Vec::new());
-    let (models, materials) = tobj::load_obj_buf(&mut std::io::Cursor::new(bytes), &opts, |name| {
+    // A byte that is not UTF-8 (a Latin-1 comment or name from an older
+    // exporter) would fail `tobj`'s whole read: it becomes U+FFFD, as in
+    // the libraries (`mtl::readable`); the lines keep their numbers.
+    let text = String::from_utf8_lossy(bytes);
+    let mut cursor = std::io::Cursor::new(text.as_bytes());
+    let (models, materials) = tobj::load_obj_buf(&mut cursor, &opts, |name| {
         let path = folder.join(name);
         let failed = |e: String| {
             (library_errors.borrow_mut()).push(format!("cannot read `{}`: {e}", name.display()));

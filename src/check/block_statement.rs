@@ -96,10 +96,27 @@ impl Checker<'_> {
                     }
                 }
                 let at = self.object(shape, material, &material_entries, (&p, kind_span, span));
-                for (k, name) in pending.into_iter().filter(|_| at.is_some()) {
+                let Some(at) = at else {
+                    // Not kept (its shape had an error): the names of its
+                    // materials are still looked up, so that an unknown one
+                    // is not news only once the shape is fixed.
+                    let named = match material_entries.first() {
+                        Some((MaterialRef::Named(name), _))
+                            if material == Some(PENDING_MATERIAL) =>
+                        {
+                            Some((*name).clone())
+                        }
+                        _ => None,
+                    };
+                    let swapped = pending.into_iter().map(|(_, name)| name);
+                    self.unplaced_materials
+                        .extend(named.into_iter().chain(swapped));
+                    return;
+                };
+                for (k, name) in pending {
                     let at = ObjectRef {
                         swap: Some(k),
-                        ..at.unwrap()
+                        ..at
                     };
                     self.pending_materials.push((at, name));
                 }

@@ -409,7 +409,9 @@ impl Checker<'_> {
     /// otherwise hide behind a missing `}` elsewhere).
     fn pending_material_uses(&mut self) {
         let mut unknown = Vec::new();
-        for (_, name) in std::mem::take(&mut self.pending_materials) {
+        let pending = std::mem::take(&mut self.pending_materials).into_iter();
+        let unplaced = std::mem::take(&mut self.unplaced_materials);
+        for name in pending.map(|(_, name)| name).chain(unplaced) {
             match self.material_names.get(&name.name) {
                 Some(m) => self.env.symbols.record_use(m.def, name.span, true),
                 None => unknown.push(name),
@@ -467,6 +469,12 @@ impl Checker<'_> {
     /// Gives the objects that named a material before its declaration
     /// their material, and reports the names never declared.
     fn resolve_pending_materials(&mut self) {
+        for name in std::mem::take(&mut self.unplaced_materials) {
+            match self.material_names.get(&name.name) {
+                Some(m) => self.env.symbols.record_use(m.def, name.span, true),
+                None => self.unknown_material(&name),
+            }
+        }
         for (at, name) in std::mem::take(&mut self.pending_materials) {
             let objects = match at.group {
                 Some(g) => &mut self.groups[g].objects,

@@ -304,6 +304,9 @@ struct Checker<'f> {
     /// Objects whose material was named before its declaration: the
     /// object (its group, if any, and index) and the name as written.
     pending_materials: Vec<(ObjectRef, crate::syntax::ast::Ident)>,
+    /// Material names of objects not kept (their shape had an error) that
+    /// were not declared before them: looked up at the end all the same.
+    unplaced_materials: Vec<crate::syntax::ast::Ident>,
     /// The names of instances' groups not declared before them (each
     /// reported at once; taken back at the end where a statement that did
     /// not parse may declare it).
@@ -378,6 +381,7 @@ impl<'f> Checker<'f> {
             material_names: HashMap::new(),
             default_material: None,
             pending_materials: Vec::new(),
+            unplaced_materials: Vec::new(),
             unknown_groups: Vec::new(),
             shadow_examined: Default::default(),
             meant_materials: Vec::new(),

@@ -134,6 +134,18 @@ pub fn rename(
             source.path.display()
         ));
     }
+    // A predefined name (`x`, `pi`, `frame`) would be hidden wherever the
+    // renamed one is seen, and a built-in function cannot be declared.
+    if namespace(d.kind) == 0 && crate::check::PREDEFINED.contains(&new_name) {
+        return Err(format!(
+            "`{new_name}` is a predefined name: renaming to it would hide it where the scene uses it"
+        ));
+    }
+    if d.kind == SymbolKind::Function
+        && (crate::check::eval::FUNCTIONS.iter()).any(|(f, _)| *f == new_name)
+    {
+        return Err(format!("`{new_name}` is a built-in function"));
+    }
     let spans = std::iter::once(d.name_span).chain(d.uses.iter().copied());
     Ok(spans
         .filter_map(|s| location(view, s))

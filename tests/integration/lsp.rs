@@ -769,6 +769,16 @@ fn rename_edits_the_definition_and_every_use() {
     let e = &refused_keyword["error"];
     assert!(e["message"].as_str().unwrap().contains("keyword"), "{e}");
     assert!(refused_keyword.get("result").is_none());
+
+    // A predefined name would be hidden where the scene uses it (`x.x`).
+    for predefined in ["x", "pi", "frame"] {
+        let refused = c.request(
+            "textDocument/rename",
+            json!({ "textDocument": doc, "position": at, "newName": predefined }),
+        );
+        let e = &refused["error"];
+        assert!(e["message"].as_str().unwrap().contains("predefined"), "{e}");
+    }
 }
 
 #[test]

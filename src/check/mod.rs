@@ -32,6 +32,7 @@ pub mod texture_input;
 mod unrun;
 
 pub use blocks::{MAX_NOISE, MAX_PIXELS, MAX_SIDE, MIN_SAMPLES, SAMPLES, SEED};
+pub use foreign_file::{not_a_scene, not_a_scene_error};
 pub use objects::non_uniform;
 pub use reader::WholeSetting;
 pub use scene::*;

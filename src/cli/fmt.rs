@@ -75,15 +75,32 @@ fn expand(args: &[PathBuf]) -> Vec<Result<PathBuf, String>> {
 /// Formats one file in place (or checks it); returns its exit code.
 fn one_file(path: &Path, check: bool) -> u8 {
     // As `check` reads a scene: a regular file within the size limit.
-    let read = crate::check::read_scene_file(&crate::source::Disk, path);
-    let text = match read.map(String::from_utf8) {
-        Ok(Ok(text)) => text,
-        Ok(Err(_)) => {
-            eprintln!("error: {} is not UTF-8 text", path.display());
-            return EXIT_USAGE;
-        }
+    let bytes = match crate::check::read_scene_file(&crate::source::Disk, path) {
+        Ok(bytes) => bytes,
         Err(e) => {
             eprintln!("error: cannot read {}: {e}", path.display());
+            return EXIT_USAGE;
+        }
+    };
+    // A model or an image is `check`'s one error, not a syntax error.
+    if let Some(kind) = crate::check::not_a_scene(path, &bytes) {
+        let mut sources = SourceMap::new();
+        let file = sources.add(path, String::new());
+        let d = crate::check::not_a_scene_error(path, kind, crate::span::Span::new(file, 0, 0));
+        let d: crate::diag::Diagnostics = std::iter::once(d).collect();
+        eprint!("{}", d.render_human(&sources, super::stderr_is_terminal()));
+        eprintln!("{}: not formatted", path.display());
+        return EXIT_SCENE_ERROR;
+    }
+    let text = match String::from_utf8(bytes) {
+        Ok(text) => text,
+        Err(e) => {
+            let at = e.utf8_error().valid_up_to();
+            let line = e.as_bytes()[..at].iter().filter(|&&b| b == b'\n').count() + 1;
+            eprintln!(
+                "error: {} is not UTF-8 text (byte {at}, line {line}): save it as UTF-8 to format it",
+                path.display()
+            );
             return EXIT_USAGE;
         }
     };

@@ -322,6 +322,24 @@ fn fmt_refuses_a_syntax_error_and_leaves_the_file() {
 }
 
 #[test]
+fn fmt_refuses_a_model_as_check_does_and_says_where_a_text_is_not_utf8() {
+    let obj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+    let dir = crate::temp_dir_with(&[("tri.obj", obj)]);
+    let model = dir.path().join("tri.obj");
+    let (code, err) = crate::ptsc_stderr(&["fmt", model.to_str().unwrap()]);
+    assert_eq!(code, 1, "{err}");
+    assert!(err.contains("pts::check::not_a_scene"), "{err}");
+    assert!(err.contains("an OBJ model, not a scene"), "{err}");
+    assert_eq!(std::fs::read_to_string(&model).unwrap(), obj);
+
+    let latin1 = dir.path().join("latin1.pts");
+    std::fs::write(&latin1, b"// ok\n// caf\xe9\nlet a = 1;\n").unwrap();
+    let (code, err) = crate::ptsc_stderr(&["fmt", latin1.to_str().unwrap()]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("not UTF-8 text (byte 12, line 2)"), "{err}");
+}
+
+#[test]
 fn fmt_reads_stdin_and_writes_stdout() {
     let run = |args: &[&str], input: &str| {
         let input = std::io::Cursor::new(input.to_string());

@@ -182,8 +182,8 @@ pub const CATALOGUE: &[Entry] = &[
     Entry {
         code: RESERVED_WORD,
         title: "A keyword used as a name",
-        explanation: "Words of the language (`let`, `for`, `in`, `material`, block names, `rgb`, `true`, …) cannot name constants or materials.",
-        example: "let sphere = 2;",
+        explanation: "The language's own words (`let`, `for`, `in`, `if`, `material`, `group`, `rgb`, `true`, …) cannot name constants or materials. The kinds of blocks (`sphere`, `camera`) are not reserved.",
+        example: "let material = 2;",
     },
     Entry {
         code: TOO_DEEP,

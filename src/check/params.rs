@@ -612,7 +612,15 @@ fn typed_value(
             return Some(Val::Word(w.clone()));
         }
         let metal = (words == METAL_PRESETS).then(|| other_metal(w));
-        let help = match (metal.flatten(), did_you_mean(w, words.iter().copied())) {
+        // Mitsuba's plugin names as a material's `type` (`roughconductor`).
+        let foreign = || {
+            let hint = (spec.name == "type").then(|| crate::syntax::povray::hint(w));
+            hint.flatten().map(str::to_string)
+        };
+        let help = match (
+            metal.flatten().or_else(foreign),
+            did_you_mean(w, words.iter().copied()),
+        ) {
             (Some(help), _) => help,
             (None, Some(s)) => format!("did you mean `{s}`?"),
             (None, None) => format!("use one of {}", words.join(", ")),

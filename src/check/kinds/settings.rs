@@ -36,7 +36,7 @@ pub const ENVIRONMENT: Kind = Kind {
     params: schema::ENVIRONMENT,
     role: Role::Setting(Setting::Environment),
     positional: None,
-    povray: &[],
+    povray: &[("envmap", "Mitsuba's `envmap` emitter is `environment { file \"sky.exr\" }` in ptsc (its `scale` is `intensity`)")],
 };
 
 /// `sky { }`

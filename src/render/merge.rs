@@ -130,7 +130,7 @@ fn read_descriptions(paths: &[PathBuf]) -> Result<(Parts, (u32, u32)), String> {
                 ))
             };
             if let Some(why) = reference.mismatch(&info) {
-                return foreign(why);
+                return foreign(why.between_parts(&first.display().to_string()));
             }
             if (info.samples, info.pass.n) != (reference.samples, reference.pass.n) {
                 return foreign(format!(

@@ -173,10 +173,16 @@ fn what_adaptive_sampling_cannot_make_exact_is_refused() {
         .err()
         .unwrap()
         .to_string();
-    assert!(why.contains("noise_threshold is 0.02"), "{why}");
+    assert!(
+        why.contains("with adaptive sampling (--noise 0.02)"),
+        "{why}"
+    );
     let why = session(scene("samples 32"), batch(&out, resume))
         .err()
         .unwrap()
         .to_string();
-    assert!(why.contains("this render has none"), "{why}");
+    assert!(
+        why.contains("this render without adaptive sampling (--noise)"),
+        "{why}"
+    );
 }

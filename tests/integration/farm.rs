@@ -139,13 +139,13 @@ fn merge_refuses_duplicate_foreign_and_missing_parts_by_name() {
         (
             &["p1.exr", "seed.exr", "p3.exr"],
             "seed.exr",
-            &["seed is 9", "seed is 0"],
+            &["it was rendered with seed 9, "],
         ),
         (&["p1.exr", "four.exr", "p3.exr"], "four.exr", &["2/4"]),
         (
             &["p1.exr", "edited.exr", "p3.exr"],
             "edited.exr",
-            &["scene differs"],
+            &["it is a part of t.pts, "],
         ),
         (
             &["p1.exr", "p3.exr"],
@@ -158,6 +158,8 @@ fn merge_refuses_duplicate_foreign_and_missing_parts_by_name() {
         assert_eq!(code, 2, "{parts:?}: {err}");
         assert!(err.contains(named), "{parts:?}: {err}");
         assert!(words.iter().any(|w| err.contains(w)), "{parts:?}: {err}");
+        // Each value beside its own file, none in Rust's words.
+        assert!(!err.contains("this render"), "{parts:?}: {err}");
         assert!(!Path::new(&out).exists(), "{parts:?}: nothing written");
     }
     // The image would replace a part.
@@ -348,9 +350,29 @@ fn samples_added_to_a_finished_render_equal_a_render_of_them_all() {
     let (code, err) = run(text(SCENE), &["--spp", "512", "--integrator", "whitted"]);
     assert_eq!(code, 2);
     assert!(
-        err.contains("its integrator is path, this render's is whitted"),
+        err.contains(
+            "it was rendered with the path integrator, this render with the whitted integrator"
+        ),
         "{err}"
     );
+    // Settings said as the flags spell them, never as Rust's values.
+    for (flags, says) in [
+        (
+            &["--clamp", "1"][..],
+            "it was rendered without --clamp, this render with --clamp 1",
+        ),
+        (
+            &["--light-selection", "uniform"],
+            "it was rendered with light selection auto, this render with light selection uniform",
+        ),
+    ] {
+        let (code, err) = run(text(SCENE), &[&["--spp", "512"][..], flags].concat());
+        assert_eq!(code, 2, "{flags:?}: {err}");
+        assert!(err.contains(says), "{flags:?}: {err}");
+        for debug in ["None", "Some(", "Auto", "Uniform"] {
+            assert!(!err.contains(debug), "{flags:?}: {err}");
+        }
+    }
     let (code, err) = run(
         text(&SCENE.replace("rgb 0.3", "rgb 0.31")),
         &["--spp", "512"],

@@ -143,7 +143,7 @@ fn unreadable(state: &Path, claim: String, why: String, resume: bool) -> Result<
 fn resumed(state: &Path, saved: &StateInfo, now: &StateInfo) -> Result<Start, String> {
     let refuse = |why: String| Err(format!("cannot resume from {}: {why}", state.display()));
     if let Some(why) = saved.mismatch(now) {
-        return refuse(why);
+        return refuse(why.for_resume());
     }
     if saved.pass != now.pass {
         return refuse(format!(

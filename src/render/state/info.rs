@@ -2,6 +2,7 @@
 //! and pass its samples belong to ([`StateInfo`]), written as JSON in the
 //! state file's header and checked before a pixel is read.
 
+use super::mismatch::Mismatch;
 use crate::ir::settings::Settings;
 
 /// The `format` of the JSON attribute.
@@ -138,49 +139,54 @@ impl StateInfo {
     /// Why a state saved as `self` cannot hold samples of the render
     /// described by `now` (the first difference found), ignoring the pass
     /// and samples per pixel (the caller decides those).
-    pub fn mismatch(&self, now: &StateInfo) -> Option<String> {
+    pub fn mismatch(&self, now: &StateInfo) -> Option<Mismatch> {
         if self.ptsc != now.ptsc {
-            return Some(format!(
-                "it was made by ptsc {}, this is ptsc {}",
-                self.ptsc, now.ptsc
-            ));
+            return Some(Mismatch::Ptsc {
+                saved: self.ptsc.clone(),
+                now: now.ptsc.clone(),
+            });
         }
         if self.fingerprint != now.fingerprint {
-            return Some(format!(
-                "its scene differs: {} (objects, materials, lights, camera or data files) changed since",
-                self.scene
-            ));
+            return Some(Mismatch::Scene {
+                saved: self.scene.clone(),
+                now: now.scene.clone(),
+            });
         }
+        let setting = |name: &str, saved: Option<String>, now: Option<String>| {
+            Some(Mismatch::Setting {
+                name: name.into(),
+                saved,
+                now,
+            })
+        };
         // The image's size in one phrase: "its height is 128" alone hid
         // that the widths differ too.
-        let size = |info: &StateInfo| {
-            let get = |name: &str| {
-                info.settings
-                    .iter()
-                    .find(|(n, _)| n == name)
-                    .map(|(_, v)| v.clone())
-            };
-            (get("width"), get("height"))
+        let size = |info: &StateInfo| match (info.get("width"), info.get("height")) {
+            (Some(w), Some(h)) => Some(format!("{w}×{h}")),
+            _ => None,
         };
-        if let ((Some(w0), Some(h0)), (Some(w1), Some(h1))) = (size(self), size(now)) {
-            if (&w0, &h0) != (&w1, &h1) {
-                return Some(format!("its size is {w0}×{h0}, this render's is {w1}×{h1}"));
+        if let (Some(saved), Some(then)) = (size(self), size(now)) {
+            if saved != then {
+                return setting("size", Some(saved), Some(then));
             }
         }
         for (name, value) in &now.settings {
-            let saved = self.settings.iter().find(|(n, _)| n == name);
-            match saved {
-                Some((_, v)) if v == value => {}
-                Some((_, v)) => {
-                    return Some(format!("its {name} is {v}, this render's is {value}"));
-                }
-                None => return Some(format!("it has no {name}, this render's is {value}")),
+            let saved = self.get(name);
+            if saved.as_ref() != Some(value) {
+                return setting(name, saved, Some(value.clone()));
             }
         }
-        // A setting only some renders name (adaptive sampling's).
+        // A setting only some renders name (the half images, a light film).
         let only_saved =
             (self.settings.iter()).find(|(n, _)| now.settings.iter().all(|m| m.0 != *n));
-        only_saved.map(|(name, v)| format!("its {name} is {v}, this render has none"))
+        only_saved.and_then(|(name, v)| setting(name, Some(v.clone()), None))
+    }
+
+    /// A setting's stored value.
+    fn get(&self, name: &str) -> Option<String> {
+        (self.settings.iter())
+            .find(|(n, _)| n == name)
+            .map(|(_, v)| v.clone())
     }
 
     /// Whether its render samples adaptively: its film then holds the
@@ -353,10 +359,17 @@ pub(crate) mod tests {
         let mut b = info();
         assert_eq!(a.mismatch(&b), None);
         b.settings.iter_mut().find(|(k, _)| k == "seed").unwrap().1 = "7".into();
-        assert_eq!(a.mismatch(&b).unwrap(), "its seed is 0, this render's is 7");
+        assert_eq!(
+            a.mismatch(&b).unwrap().for_resume(),
+            "it was rendered with seed 0, this render with seed 7"
+        );
         let mut c = info();
         c.fingerprint += 1;
-        assert!(a.mismatch(&c).unwrap().contains("scene differs"));
+        assert!(a
+            .mismatch(&c)
+            .unwrap()
+            .for_resume()
+            .contains("scene differs"));
     }
 
     #[test]

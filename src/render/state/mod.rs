@@ -20,9 +20,11 @@
 mod file;
 mod info;
 mod light;
+mod mismatch;
 
 pub use file::{
     add_state, held_state, read_state, read_state_bytes, read_state_header, read_state_info,
     refuse_to_replace, write_state, HeldState, STATE_PART,
 };
 pub use info::{sample_settings, Pass, StateInfo};
+pub use mismatch::Mismatch;

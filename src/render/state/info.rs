@@ -170,6 +170,11 @@ impl StateInfo {
                 return setting("size", Some(saved), Some(then));
             }
         }
+        // Adaptive sampling on one side only: said as such, before its
+        // `min_samples` (which sorts first) is found missing.
+        if self.adaptive() != now.adaptive() {
+            return setting(ADAPTIVE_KEY, self.get(ADAPTIVE_KEY), now.get(ADAPTIVE_KEY));
+        }
         for (name, value) in &now.settings {
             let saved = self.get(name);
             if saved.as_ref() != Some(value) {
@@ -370,6 +375,22 @@ pub(crate) mod tests {
             .unwrap()
             .for_resume()
             .contains("scene differs"));
+        // A render without adaptive sampling against one with it: named
+        // by its threshold, not by the `min_samples` it also lacks.
+        let adaptive = Settings {
+            adaptive: Some(crate::ir::settings::Adaptive {
+                threshold: 0.1,
+                min_samples: 16,
+            }),
+            ..Settings::default()
+        };
+        let d = StateInfo {
+            settings: sample_settings(&adaptive),
+            ..info()
+        };
+        let why = a.mismatch(&d).unwrap().for_resume();
+        assert!(why.contains("without adaptive sampling (--noise)"), "{why}");
+        assert!(!why.contains("min_samples"), "{why}");
     }
 
     #[test]

@@ -16,7 +16,7 @@ pub use crate::ir::settings::{MAX_PIXELS, MAX_SIDE, MAX_TIME};
 pub const SAMPLES: WholeSetting = WholeSetting {
     name: "samples",
     min: 1,
-    max: 1_000_000,
+    max: crate::ir::settings::MAX_SAMPLES as u64,
 };
 /// Samples before adaptive sampling may stop a pixel (`min_samples`,
 /// `--min-samples`): at least two, to compare its two halves.

@@ -138,6 +138,10 @@ pub struct Adaptive {
 /// `min_samples` when a scene names only `noise_threshold`.
 pub const DEFAULT_MIN_SAMPLES: u32 = 16;
 
+/// The most samples per pixel a render takes (`samples`, `--spp`): also
+/// what a time budget without samples is given.
+pub const MAX_SAMPLES: u32 = 1_000_000;
+
 /// The longest time budget accepted, in seconds (a year).
 pub const MAX_TIME: f64 = 365.0 * 24.0 * 3600.0;
 

@@ -368,11 +368,17 @@ fn samples_added_to_a_finished_render_equal_a_render_of_them_all() {
             &["--light-selection", "uniform"],
             "it was rendered with light selection auto, this render with light selection uniform",
         ),
+        // A uniform render resumed with --noise: adaptive sampling is
+        // named, not the --min-samples the user never gave.
+        (
+            &["--noise", "0.1"],
+            "it was rendered without adaptive sampling (--noise), this render with adaptive sampling (--noise 0.1)",
+        ),
     ] {
         let (code, err) = run(text(SCENE), &[&["--spp", "512"][..], flags].concat());
         assert_eq!(code, 2, "{flags:?}: {err}");
         assert!(err.contains(says), "{flags:?}: {err}");
-        for debug in ["None", "Some(", "Auto", "Uniform"] {
+        for debug in ["None", "Some(", "Auto", "Uniform", "min_samples"] {
             assert!(!err.contains(debug), "{flags:?}: {err}");
         }
     }

@@ -171,12 +171,9 @@ fn resumed(state: &Path, saved: &StateInfo, now: &StateInfo) -> Result<Start, St
         Ok(_) => return refuse("its image size differs".into()),
         Err(why) => return refuse(why),
     };
-    let most = film.sample_counts().1;
+    let (least, most, _) = film.sample_counts();
     if most > now.samples {
-        return refuse(format!(
-            "it already has {most} samples per pixel, more than the {} asked",
-            now.samples
-        ));
+        return refuse(too_many(least, most, saved.samples, now.samples));
     }
     let note = format!("resuming {}", describe(&film, saved));
     Ok(Start {
@@ -184,6 +181,28 @@ fn resumed(state: &Path, saved: &StateInfo, now: &StateInfo) -> Result<Start, St
         had_state: true,
         note: Some(note),
     })
+}
+
+/// Why a state with `least` to `most` samples in its pixels, of a render
+/// started for `started` per pixel, cannot be resumed to `asked`: an
+/// interrupted render's pixels differ, and the way on is the samples it
+/// was started for.
+fn too_many(least: u32, most: u32, started: u32, asked: u32) -> String {
+    let has = match least == most {
+        true => format!("it already has {most} samples in every pixel"),
+        false => format!("some of its pixels already have {most} samples"),
+    };
+    // A budget's render asks no samples (it is given the most there are).
+    let way_on = match started {
+        s if s == crate::ir::settings::MAX_SAMPLES => {
+            " (it was started with a time budget: repeat its --time to go on)".to_string()
+        }
+        s if s > asked && s > least => {
+            format!(" (it was started for {s}: repeat --spp {s} to go on)")
+        }
+        _ => String::new(),
+    };
+    format!("{has}, more than the {asked} asked{way_on}")
 }
 
 /// The image size a state description's settings name.
@@ -228,5 +247,20 @@ mod tests {
             state_path(Path::new("p1.exr"), pass),
             PathBuf::from("p1.exr")
         );
+    }
+
+    #[test]
+    fn a_state_with_too_many_samples_says_which_pixels_and_how_to_go_on() {
+        // Interrupted at 256 to 512 spp of a render of 5000.
+        assert_eq!(
+            too_many(256, 512, 5000, 300),
+            "some of its pixels already have 512 samples, more than the 300 asked (it was started for 5000: repeat --spp 5000 to go on)"
+        );
+        assert_eq!(
+            too_many(256, 256, 256, 100),
+            "it already has 256 samples in every pixel, more than the 100 asked"
+        );
+        let budget = too_many(40, 40, crate::ir::settings::MAX_SAMPLES, 16);
+        assert!(budget.contains("repeat its --time"), "{budget}");
     }
 }

@@ -460,9 +460,17 @@ impl Summary<'_> {
         if interrupted && most > 0 {
             eprintln!("add --resume to the same command to continue");
         } else if let (Some(t), Some(_), None) = (s.time, &report.state, self.pass) {
-            eprintln!(
-                "time budget of {t} s spent: add --resume to the same command to add samples"
-            );
+            // Only a budget that ran out was spent: a render that reached
+            // --spp first is told how to add samples past them.
+            match report.budget_spent {
+                true => eprintln!(
+                    "time budget of {t} s spent: add --resume to the same command to add samples"
+                ),
+                false => eprintln!(
+                    "reached the {} spp asked within the time budget of {t} s: add --resume and a higher --spp to add samples",
+                    s.samples
+                ),
+            }
         }
     }
 }

@@ -330,16 +330,34 @@ fn a_time_budget_stops_the_render_with_even_counts_and_resumes() {
     let (again, _) = read_state(&state).unwrap();
     let (l2, m2, _) = again.sample_counts();
     assert!(l2 > least && l2 == m2, "{least} then {l2}..{m2}");
-    // The samples asked bound a budget too: 4 spp end well within 60 s.
+    // The samples asked bound a budget too: 4 spp end well within 60 s,
+    // the budget not spent, and the state kept all the same (as --help
+    // and the README say), for --resume to add samples.
     let bounded = dir.path().join("bounded.exr");
-    let o = Command::new(env!("CARGO_BIN_EXE_ptsc"))
-        .args(["render", "--time", "1m", "--spp", "4", "-o"])
-        .arg(&bounded)
-        .arg(&scene)
-        .output()
-        .unwrap();
-    assert!(o.status.success());
-    assert!(!dir.path().join("bounded.exr.state.exr").exists());
+    let bounded_run = |extra: &[&str]| {
+        let o = Command::new(env!("CARGO_BIN_EXE_ptsc"))
+            .args(["render", "-o"])
+            .arg(&bounded)
+            .arg(&scene)
+            .args(extra)
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&o.stderr).to_string();
+        assert!(o.status.success(), "{err}");
+        err
+    };
+    let said = bounded_run(&["--time", "1m", "--spp", "4"]);
+    let bounded_state = dir.path().join("bounded.exr.state.exr");
+    assert!(bounded_state.exists(), "{said}");
+    assert!(!said.contains("spent"), "{said}");
+    assert!(said.contains("reached the 4 spp asked"), "{said}");
+    // Resumed to more samples within a budget: the samples end it, and
+    // nothing claims the budget was spent.
+    let said = bounded_run(&["--time", "1m", "--spp", "8", "--resume"]);
+    assert!(!said.contains("spent"), "{said}");
+    assert!(said.contains("reached the 8 spp asked"), "{said}");
+    let (film, _) = read_state(&bounded_state).unwrap();
+    assert_eq!(film.sample_counts().0, 8);
 }
 
 #[test]

@@ -88,7 +88,10 @@ fn check_and_render_give_one_verdict_on_every_scene() {
             s.spawn(move || loop {
                 let i = next.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
                 let Some(scene) = all.get(i) else { break };
-                let out = dir.join(format!("out{worker}.png"));
+                // One image per scene: a scene with a time budget keeps
+                // its state beside its image, which another render into
+                // the same file would refuse to replace.
+                let out = dir.join(format!("out{worker}_{i}.png"));
                 if let Some(why) = disagreement(scene, &out) {
                     failures.lock().unwrap().push(why);
                 }

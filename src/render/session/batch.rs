@@ -162,6 +162,8 @@ struct Passes {
     interrupted: bool,
     /// Whether the state is saved at the end (a checkpoint made one).
     keep_state: bool,
+    /// Whether the time budget ran out before the samples asked.
+    budget_spent: bool,
     /// The last image write between passes that failed.
     write_error: Option<std::io::Error>,
 }
@@ -245,6 +247,7 @@ pub(super) fn run(
         write_time: t1.elapsed().saturating_sub(render_time),
         render_time,
         state: state_written,
+        budget_spent: passes.budget_spent,
     })
 }
 
@@ -366,15 +369,16 @@ fn render_passes(
         }
     };
     viewer.finish(&film, observer);
-    // A budget spent before the samples asked: the state is kept, for
-    // --resume to add more.
+    // A time budget's state is kept, spent or not (README, `--time`):
+    // `--resume` adds more, for another budget or to a higher --spp.
     let short = film.least_active().is_some_and(|c| c < target);
-    keep_state |= budget.is_some() && short && !interrupted;
+    keep_state |= budget.is_some() && !interrupted;
     Ok(Passes {
         film,
         rays,
         interrupted,
         keep_state,
+        budget_spent: budget.is_some() && short && !interrupted,
         write_error,
     })
 }

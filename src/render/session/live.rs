@@ -149,6 +149,7 @@ pub(super) fn run(
         write_time: Duration::ZERO,
         image_written: written,
         state: None,
+        budget_spent: false,
     }
 }
 
@@ -163,6 +164,7 @@ fn stopped_early(render_time: Duration) -> Report {
         write_time: Duration::ZERO,
         image_written: false,
         state: None,
+        budget_spent: false,
     }
 }
 

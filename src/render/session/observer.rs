@@ -116,4 +116,7 @@ pub struct Report {
     /// The state file written at the end, if one was (a pass's part file
     /// is its image).
     pub state: Option<PathBuf>,
+    /// Whether a time budget ran out before the samples asked (a render
+    /// that reached them, or was stopped, did not spend it).
+    pub budget_spent: bool,
 }

@@ -379,8 +379,15 @@ pub fn flag_warnings(args: &RenderArgs, scene: &crate::ir::Scene) -> Vec<String>
     let settings = &scene.settings;
     if let (Some(adaptive), Some(_)) = (settings.adaptive, args.noise) {
         if settings.samples <= adaptive.min_samples && settings.time.is_none() {
+            // A lower --min-samples helps only where one below the samples
+            // is allowed: not at the least there is.
+            let least = crate::check::MIN_SAMPLES.min as u32;
+            let advice = match settings.samples > least {
+                true => "ask for more samples, or a lower --min-samples",
+                false => "ask for more samples",
+            };
             warnings.push(format!(
-                "warning: --noise has no effect at {} spp: a pixel may stop only after {} samples (--min-samples); ask for more samples, or a lower --min-samples",
+                "warning: --noise has no effect at {} spp: a pixel may stop only after {} samples (--min-samples); {advice}",
                 settings.samples, adaptive.min_samples
             ));
         }

@@ -703,7 +703,29 @@ fn noise_at_no_more_samples_than_the_minimum_is_said_to_do_nothing() {
         err.contains("--noise has no effect at 8 spp: a pixel may stop only after 16 samples"),
         "{err}"
     );
+    assert!(err.contains("or a lower --min-samples"), "{err}");
     let (code, err) = render("64");
     assert_eq!(code, 0, "{err}");
     assert!(!err.contains("no effect"), "{err}");
+    // At the least --min-samples there is, only more samples help.
+    let (code, err) = render_at(
+        &scene,
+        "8x8",
+        &[
+            "--noise",
+            "0.05",
+            "--spp",
+            "2",
+            "--min-samples",
+            "2",
+            "-o",
+            path_str(&out),
+        ],
+    );
+    assert_eq!(code, 0, "{err}");
+    assert!(
+        err.contains("--noise has no effect at 2 spp: a pixel may stop only after 2 samples (--min-samples); ask for more samples\n"),
+        "{err}"
+    );
+    assert!(!err.contains("lower"), "{err}");
 }

@@ -195,7 +195,10 @@ fn usage_note(args: &[String], kind: clap::error::ErrorKind) -> Option<String> {
     }
     args.windows(2).find_map(|pair| {
         let (option, value) = (&pair[0], &pair[1]);
-        let negative = value.starts_with('-') && value[1..].parse::<f64>().is_ok();
+        // A number with or without a unit (`-1`, `-5s`, `-.5`, `-2G`):
+        // clap reads `-5s` as short options, whatever the option takes.
+        let negative = (value.strip_prefix('-'))
+            .is_some_and(|rest| rest.starts_with(|c: char| c.is_ascii_digit() || c == '.'));
         // (Not `--` itself: `--spp -- -1` ends the options.)
         (option.starts_with("--") && option != "--" && negative).then(|| {
             format!("`{option}` takes no negative number (`{value}`): `{help}` says what it takes")
@@ -301,6 +304,18 @@ mod tests {
         assert!(said.contains("--resolution"), "{said}");
         let said = note(&["render", "s.pts", "--seed", "-1"]).unwrap();
         assert!(said.contains("`--seed` takes no negative number"), "{said}");
+        // A duration or a size: a number with its unit.
+        for (flag, value) in [
+            ("--time", "-5s"),
+            ("--memory-limit", "-2G"),
+            ("--time", "-.5h"),
+        ] {
+            let said = note(&["render", "s.pts", flag, value]).unwrap();
+            assert!(
+                said.contains(&format!("`{flag}` takes no negative number (`{value}`)")),
+                "{said}"
+            );
+        }
         assert_eq!(note(&["render", "s.pts", "--spp", "4", "-o"]), None);
         assert!(note(&["render", "+W320"]).unwrap().contains("--resolution"));
         // `--` ends the options: it takes no value to be told about.

@@ -541,3 +541,17 @@ fn render_reads_a_scene_from_stdin_and_asks_for_its_image_name() {
     assert_eq!(code, 2, "{err}");
     assert!(err.contains("stdin"), "{err}");
 }
+
+/// A negative duration is told as a negative `--checkpoint` is: clap's own
+/// tip (`-- -5`) would not help.
+#[test]
+fn a_negative_time_is_told_in_ptscs_words() {
+    let dir = crate::temp_dir_with(&[("s.pts", "sphere { center <0, 0, 0> radius 1 }\n")]);
+    let scene = dir.path().join("s.pts");
+    let (code, err) = crate::ptsc_stderr(&["render", scene.to_str().unwrap(), "--time", "-5s"]);
+    assert_eq!(code, 2, "{err}");
+    assert!(
+        err.contains("note: `--time` takes no negative number (`-5s`)"),
+        "{err}"
+    );
+}

@@ -103,6 +103,16 @@ pub enum Command {
     /// to NAME.preview.png beside the image NAME.png (same format, replaced
     /// atomically), then full-resolution passes of 1, 2, 4, … spp to the image
     /// itself: the image only ever holds full-resolution results.
+    // The flags of a batch render's end are hidden (each is refused with
+    // why), and those watch reads otherwise are described as it reads them.
+    #[command(
+        mut_arg("file", |a| a.help("The scene file to watch (not stdin, which is read once)")),
+        mut_arg("frames", |a| a.help("An animation's frames A..B, for its `clock`: watch renders one of them, --frame's, else the first")),
+        mut_arg("time", |a| a.hide(true)),
+        mut_arg("denoise", |a| a.hide(true)),
+        mut_arg("aov", |a| a.hide(true)),
+        mut_arg("tev", |a| a.hide(true)),
+    )]
     Watch(render::RenderArgs),
     /// Rewrite scenes in the canonical layout (docs/language.md, "Formatting").
     ///

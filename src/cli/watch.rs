@@ -79,6 +79,13 @@ pub fn run(args: &RenderArgs) -> u8 {
             return super::EXIT_USAGE;
         }
     };
+    // --frames alone named more than the one frame rendered: said, not
+    // silently narrowed.
+    if let (Some((a, b)), None) = (args.frames, args.frame) {
+        if a < b && !args.quiet {
+            eprintln!("warning: watch renders one frame: frame {a} of --frames {a}..{b} (add --frame F for another; `ptsc render` renders them all)");
+        }
+    }
     // An image named on the command line is checked once, as `render`
     // does: a folder that does not exist is refused before watching.
     if args.output.is_some() {

@@ -447,6 +447,53 @@ fn watch_refuses_the_flags_of_a_batch_renders_end() {
     }
 }
 
+/// `watch --help` lists what watch takes: not the flags it refuses, nor
+/// stdin, and --frames as watch reads it (one frame).
+#[test]
+fn watch_help_lists_only_what_watch_takes() {
+    let (code, help, _) = crate::ptsc(&["watch", "--help"]);
+    assert_eq!(code, 0);
+    for refused in [
+        "--time",
+        "--denoise",
+        "--aov",
+        "--tev",
+        "reads it from stdin",
+    ] {
+        assert!(!help.contains(refused), "{refused} in\n{help}");
+    }
+    for taken in ["--spp", "--frame ", "--output", "watch renders one of them"] {
+        assert!(help.contains(taken), "no {taken} in\n{help}");
+    }
+    // `render --help` keeps them all.
+    let (_, help, _) = crate::ptsc(&["render", "--help"]);
+    for flag in ["--time", "--denoise", "--aov", "--tev", "stdin"] {
+        assert!(help.contains(flag), "no {flag} in\n{help}");
+    }
+}
+
+/// `watch --frames A..B` renders one frame, and says so.
+#[test]
+fn watch_of_several_frames_says_it_renders_one() {
+    let (_dir, pts, png) = setup();
+    std::fs::write(&pts, scene(40, "")).unwrap();
+    let w = Watch::start_with(
+        &pts,
+        &[
+            "--threads",
+            "2",
+            "--frames",
+            "1..3",
+            "-o",
+            png.to_str().unwrap(),
+        ],
+    );
+    w.wait_for(
+        "warning: watch renders one frame: frame 1 of --frames 1..3",
+        0,
+    );
+}
+
 #[test]
 fn light_paths_land_in_the_preview_as_in_the_render() {
     // bdpt and ptlt splat their light paths' joins to the camera into other

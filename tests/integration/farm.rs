@@ -515,6 +515,17 @@ fn a_pass_needs_an_exr_and_at_least_a_sample() {
     let (code, err) = ptsc(&["render", &scene, "--pass", "3/2", "-o", &exr]);
     assert_eq!(code, 2);
     assert!(err.contains("K must be at most N"), "{err}");
+    // A part holds the colour alone: AOVs or a denoised image asked of a
+    // part are refused before the render, not dropped after it.
+    for asked in [&["--aov", "albedo,normal"][..], &["--denoise"]] {
+        let args = [&["render", &scene, "--pass", "1/2", "-o", &exr][..], asked].concat();
+        let (code, err) = ptsc(&args);
+        assert_eq!(code, 2, "{err}");
+        // (A build without the denoiser refuses `--denoise` before that.)
+        let refused = err.contains(&format!("does not carry {}", asked[0]));
+        assert!(refused || err.contains("built without denoising"), "{err}");
+        assert!(!dir.path().join("p.exr").exists());
+    }
 }
 
 /// The Kubernetes manifest: its Indexed Job's completions, the pass its

@@ -98,6 +98,17 @@ pub(super) fn prepare(
                 "--pass {pass} renders a fixed share of the samples for `ptsc merge`: drop the time budget (--time, or `time` in the scene's render block)"
             )));
         }
+        // A part file holds the colour's samples alone, which `merge` adds
+        // up; the AOVs and the denoised image belong to the merged render.
+        if !aovs.is_empty() || denoise {
+            let asked = match denoise {
+                true => "--denoise",
+                false => "--aov",
+            };
+            return Err(Error::Refused(format!(
+                "--pass {pass} writes the colour's samples alone for `ptsc merge`, which does not carry {asked} yet: leave {asked} out of the parts (`ptsc denoise merged.exr` denoises the merged colour), or render the AOVs in one whole render"
+            )));
+        }
         if pass.n > s.samples {
             return Err(Error::Refused(format!(
                 "--pass {pass}: {} parts of {} samples per pixel would leave some empty; split into at most {} (or raise --spp)",

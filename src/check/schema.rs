@@ -334,7 +334,7 @@ pub const MATERIAL: &[ParamSpec] = &[
     p("opacity_cutoff", Ty::Num, "0.5")
         .doc("with `opacity`: the surface is there where the opacity is at least this, and not at all elsewhere (a sharp cutout, glTF's `MASK`). Default none: fractions pass at random"),
     p("vertex_color", Ty::Bool, "true")
-        .doc("multiplies the diffuse colour (a principled's `base_color`) by the mesh's vertex colours (a glTF's `COLOR_0`), white where a surface has none. Default `false` (`true` for a glTF material whose primitives have colours)"),
+        .doc("multiplies the diffuse colour (a principled's `base_color`) by the mesh's vertex colours (a glTF's `COLOR_0`, an OBJ's `v x y z r g b`, a PLY's `red green blue` as sRGB), white where a surface has none. Default `false` (`true` for a glTF material whose primitives have colours)"),
     p(
         "normal_map",
         Ty::Texture,

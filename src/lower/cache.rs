@@ -121,6 +121,8 @@ impl LowerCache {
         for obj in &scene.objects {
             // A cut-out object's primitives stay out of the BVH's blocks.
             scene.materials[obj.material].is_cut_out().hash(&mut h);
+            // A mesh keeps its file's vertex colours where they are read.
+            scene.materials[obj.material].vertex_color.hash(&mut h);
             obj.transform
                 .to_cols_array()
                 .into_iter()

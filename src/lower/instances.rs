@@ -219,7 +219,8 @@ pub fn gather(
     let mut uneven: Vec<((usize, usize), Vec<Span>)> = Vec::new();
     let mut uneven_at: HashMap<(usize, usize), usize> = HashMap::new();
     let mut uneven_count: HashMap<(usize, usize), usize> = HashMap::new();
-    let cut = cut_group_objects(scene, shared, groups);
+    let cut = group_objects_where(scene, (shared, groups), check::Material::is_cut_out);
+    let colored = group_objects_where(scene, (shared, groups), |m| m.vertex_color);
     for leaf in shared {
         let group = &groups[leaf.group];
         for (k, object) in group.objects.iter().enumerate() {
@@ -249,7 +250,7 @@ pub fn gather(
                 scene.camera.shutter,
                 (cache, files),
                 Default::default(),
-                cut[leaf.group].clone(),
+                (cut[leaf.group].clone(), colored[leaf.group].clone()),
             ) {
                 Ok(g) => {
                     out.bounds.push(g.bounds());
@@ -315,20 +316,21 @@ pub fn gather(
 
 /// Each object's material in a group's prototype: its own, or
 /// [`INHERITED`] when it names none.
-/// Whether each object of each group is cut out under any of its shared
-/// placements (an object that names no material takes each placement's);
-/// empty for a group with no cut-out object.
-fn cut_group_objects(
+/// Whether each object of each group has a material with `property`
+/// (cut out, vertex colours) under any of its shared placements (an object
+/// that names no material takes each placement's); empty for a group with
+/// no such object.
+fn group_objects_where(
     scene: &check::Scene,
-    shared: &[Leaf],
-    groups: &[check::Group],
+    (shared, groups): (&[Leaf], &[check::Group]),
+    property: impl Fn(&check::Material) -> bool,
 ) -> Vec<Vec<bool>> {
     let mut cut: Vec<Vec<bool>> = vec![Vec::new(); groups.len()];
     for leaf in shared {
         let group = &groups[leaf.group];
         let objects = group.objects.iter().zip(&group.unmaterialled);
         let here: Vec<bool> = objects
-            .map(|(o, &u)| scene.materials[material_under(o, u, leaf)].is_cut_out())
+            .map(|(o, &u)| property(&scene.materials[material_under(o, u, leaf)]))
             .collect();
         if here.contains(&true) {
             let all = &mut cut[leaf.group];

@@ -317,6 +317,10 @@ pub fn parse_ply(bytes: &[u8]) -> Result<MeshData, String> {
         ]
         .iter()
         .find_map(|(u, v)| Some((idx(u)?, idx(v)?)));
+        // Colours, by the names exporters use (Blender, MeshLab: `red`).
+        let irgb = [("red", "green", "blue"), ("r", "g", "b")]
+            .iter()
+            .find_map(|(r, g, b)| Some([idx(r)?, idx(g)?, idx(b)?]));
         let is_vertex = el.name == "vertex";
         let is_face = el.name == "face";
         if is_vertex {
@@ -377,10 +381,30 @@ pub fn parse_ply(bytes: &[u8]) -> Result<MeshData, String> {
                 if let Some((iu, iv)) = iuv {
                     out.uvs.push(Vec2::new(vals[iu] as f32, vals[iv] as f32));
                 }
+                if let Some(channels) = irgb {
+                    let color = channels.map(|k| match &el.props[k] {
+                        Prop::Scalar(_, t) => vertex_color(vals[k], *t),
+                        Prop::List(..) => 1.0,
+                    });
+                    out.colors.push(Vec3::from_array(color));
+                }
             }
         }
     }
     Ok(out)
+}
+
+/// A PLY vertex colour channel as linear [0, 1]: whole numbers (`uchar`, as
+/// exporters write them) are the 8- or 16-bit sRGB a viewer shows, decoded;
+/// floating-point ones are taken as linear already.
+fn vertex_color(value: f64, t: Scalar) -> f32 {
+    let most = match t {
+        Scalar::F32 | Scalar::F64 => return value.clamp(0.0, 1.0) as f32,
+        Scalar::U16 | Scalar::I16 => 65535.0,
+        Scalar::U32 | Scalar::I32 => u32::MAX as f64,
+        Scalar::U8 | Scalar::I8 => 255.0,
+    };
+    crate::texture::image::srgb_to_linear((value / most).clamp(0.0, 1.0) as f32)
 }
 
 #[cfg(test)]

@@ -209,7 +209,10 @@ fn prepare(
             flat.camera.shutter,
             (cache, files),
             reads,
-            cut_objects(flat),
+            (
+                objects_where(flat, check::Material::is_cut_out),
+                objects_where(flat, |m| m.vertex_color),
+            ),
         )
         .map(|g| Shapes::Gathered(g, key))
         .map_err(|d| diags.extend(d)),
@@ -283,10 +286,11 @@ fn used_opacities(
     opacities
 }
 
-/// Whether each object of `scene` is cut out (its material's opacity).
-fn cut_objects(scene: &check::Scene) -> Vec<bool> {
+/// Whether each object of `scene` has a material with `property` (cut
+/// out, vertex colours); empty when none has.
+fn objects_where(scene: &check::Scene, property: impl Fn(&check::Material) -> bool) -> Vec<bool> {
     let cut: Vec<bool> = (scene.objects.iter())
-        .map(|o| scene.materials[o.material].is_cut_out())
+        .map(|o| property(&scene.materials[o.material]))
         .collect();
     match cut.contains(&true) {
         true => cut,

@@ -85,6 +85,15 @@ pub(super) fn parse_obj(
                     .map(|c| Vec3::new(c[0], c[1], c[2])),
             );
         }
+        // `v x y z r g b` (an extension Blender and MeshLab write): the
+        // sRGB a viewer shows, decoded.
+        if mesh.vertex_color.len() == mesh.positions.len() {
+            let decode = |c: f32| crate::texture::image::srgb_to_linear(c.clamp(0.0, 1.0));
+            out.colors.extend(
+                (mesh.vertex_color.chunks_exact(3))
+                    .map(|c| Vec3::new(decode(c[0]), decode(c[1]), decode(c[2]))),
+            );
+        }
         // `vt` has (0, 0) at the image's bottom-left, as ptsc.
         if 3 * mesh.texcoords.len() == 2 * mesh.positions.len() {
             out.uvs.extend(
@@ -117,6 +126,9 @@ pub(super) fn parse_obj(
     }
     if out.uvs.len() != out.positions.len() {
         out.uvs.clear();
+    }
+    if out.colors.len() != out.positions.len() {
+        out.colors.clear();
     }
     Ok(out)
 }

@@ -103,6 +103,9 @@ struct Gathering<'a> {
     /// The meshes read so far by path: an object copied by many
     /// placements reads its file once.
     meshes: MeshReads,
+    /// Whether each object's material reads vertex colours (empty: none
+    /// does): an OBJ's or PLY's colours are kept only for those.
+    colored_objects: Vec<bool>,
     /// The world vertices of meshes split by their materials, by path and
     /// transform: one copy for all the groups.
     positions: HashMap<(PathBuf, [u64; 16]), Arc<Vec<Vec3>>>,
@@ -136,7 +139,7 @@ pub fn gather(
     (t0, t1): (f64, f64),
     (cache, files): (&mut LowerCache, &dyn Files),
     reads: MeshReads,
-    cut_objects: Vec<bool>,
+    (cut_objects, colored_objects): (Vec<bool>, Vec<bool>),
 ) -> Result<Gathered, Diagnostics> {
     let mut g = Gathering {
         out: Gathered {
@@ -147,6 +150,7 @@ pub fn gather(
         too_small: None,
         wanted: 0,
         meshes: reads,
+        colored_objects,
         positions: HashMap::new(),
         diags: Diagnostics::new(),
         cache,
@@ -403,7 +407,10 @@ impl Gathering<'_> {
         }
         // A static mesh without vertex attributes keeps its triangles
         // as vertex indices: most of them will never need a record.
-        let use_colors = view.colors.len() == view.positions.len() && !view.colors.is_empty();
+        // A glTF's materials ask for its colours themselves.
+        let wanted = self.colored_objects.get(o) == Some(&true) || super::mesh_data::is_gltf(path);
+        let use_colors =
+            wanted && view.colors.len() == view.positions.len() && !view.colors.is_empty();
         let colors = if use_colors { view.colors } else { &[] };
         let plain =
             !use_normals && !use_uvs && !use_tangents && !use_colors && velocity == Vec3::ZERO;

@@ -242,3 +242,51 @@ sky { sun_elevation 50 }
         assert!(red > 100, "the square is red in {red} pixels");
     }
 }
+
+/// An OBJ's `v x y z r g b` and a PLY's `red green blue` are read as the
+/// sRGB a viewer shows (decoded: 0.5 is 0.214 linear, `uchar` 128 is
+/// 0.216) where the material asks for vertex colours, and left out where
+/// it does not.
+#[test]
+fn obj_and_ply_vertex_colours_multiply_the_diffuse_colour() {
+    let stage = "camera { position <0, 0.5, 2> look_at <0, 0.5, 0> fov 50 }
+render { resolution <32, 24> samples 8 integrator albedo }
+background rgb 1
+";
+    let quad = |rgb: f32| {
+        format!("{stage}quad {{ corner <-0.5, 0, 0> edge1 <1, 0, 0> edge2 <0, 1, 0> material {{ diffuse rgb {rgb} }} }}")
+    };
+    let obj = "v -0.5 0 0 0.5 0.5 0.5\nv 0.5 0 0 0.5 0.5 0.5\nv 0.5 1 0 0.5 0.5 0.5\nv -0.5 1 0 0.5 0.5 0.5\nf 1 2 3 4\n";
+    let ply = "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\nproperty uchar red\nproperty uchar green\nproperty uchar blue\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n-0.5 0 0 128 128 128\n0.5 0 0 128 128 128\n0.5 1 0 128 128 128\n-0.5 1 0 128 128 128\n4 0 1 2 3\n";
+    let dir = crate::temp_dir_with(&[
+        ("c.obj", obj),
+        ("c.ply", ply),
+        ("dark_obj.pts", &quad(0.214_041_14)),
+        ("dark_ply.pts", &quad(0.215_860_53)),
+        ("white.pts", &quad(1.0)),
+    ]);
+    let render = |name: &str| {
+        let path = dir.path().join(name);
+        let c = compile_file(&path, Options::default()).unwrap();
+        let ir =
+            c.ir.as_ref()
+                .unwrap_or_else(|| panic!("{}", c.diagnostics.render_human(&c.sources, false)));
+        crate::render_pixels(ir)
+    };
+    for (file, reference) in [("c.obj", "dark_obj.pts"), ("c.ply", "dark_ply.pts")] {
+        for (flag, reference) in [("true", reference), ("false", "white.pts")] {
+            let scene = format!(
+                "{stage}mesh {{ file \"{file}\" material {{ diffuse rgb 1 vertex_color {flag} }} }}"
+            );
+            std::fs::write(dir.path().join("s.pts"), scene).unwrap();
+            let (pixels, reference) = (render("s.pts"), render(reference));
+            let differing = (pixels.iter().zip(&reference))
+                .filter(|(p, q)| (0..3).any(|k| (p[k] - q[k]).abs() > 1e-3))
+                .count();
+            assert!(
+                differing <= 6,
+                "{file}, vertex_color {flag}: {differing} pixels differ"
+            );
+        }
+    }
+}

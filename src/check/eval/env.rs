@@ -64,13 +64,13 @@ pub struct Env {
     /// Code that did not run: an `if`'s arms not taken, a loop's body run
     /// no time. A name written there is not reported as never used
     /// (`if final { … final_spp … }` uses it in the final build).
-    pub untaken: std::collections::HashSet<Span>,
+    pub untaken: crate::span::SpanSet,
     /// The code of `untaken`, each piece once (when first not run), for
     /// the checks that need no values (`check::unrun`).
     pub unrun: Vec<Unrun>,
     /// The bodies and arms that ran at least once: a piece of `unrun` that
     /// ran in another pass (a loop's iteration, a call) was checked there.
-    pub ran: std::collections::HashSet<Span>,
+    pub ran: crate::span::SpanSet,
 }
 
 /// A piece of code that did not run, kept for the checks that need no

@@ -25,6 +25,7 @@ impl Checker<'_> {
                 self.env.symbols.excuse(m.def);
             }
         }
+        self.defined_elsewhere();
         self.report_unused();
         let background = self.background.map(|b| b.0).unwrap_or([0.0; 3]);
         self.light_warnings(&render, background);

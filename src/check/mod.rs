@@ -4,6 +4,7 @@
 
 mod block_statement;
 mod blocks;
+mod defined_elsewhere;
 pub mod domain;
 pub mod eval;
 mod finish;

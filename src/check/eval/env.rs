@@ -71,7 +71,15 @@ pub struct Env {
     /// The bodies and arms that ran at least once: a piece of `unrun` that
     /// ran in another pass (a loop's iteration, a call) was checked there.
     pub ran: crate::span::SpanSet,
+    /// Names reported unknown, where (the first [`MAX_UNKNOWN_KEPT`]): one
+    /// defined elsewhere in the scene, later or in another block, is told
+    /// where at the end.
+    pub unknown_names: Vec<(String, Span)>,
 }
+
+/// Most unknown names kept in [`Env::unknown_names`] (a loop repeats its
+/// error; a scene with more has other problems first).
+pub const MAX_UNKNOWN_KEPT: usize = 1000;
 
 /// A piece of code that did not run, kept for the checks that need no
 /// values: its words, kinds and parameter names.

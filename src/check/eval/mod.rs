@@ -329,6 +329,9 @@ fn name_value(name: &str, span: Span, env: &mut Env, diags: &mut Diagnostics) ->
         return v;
     }
     diags.push(unknown_name(name, span, env));
+    if env.unknown_names.len() < env::MAX_UNKNOWN_KEPT {
+        env.unknown_names.push((name.to_string(), span));
+    }
     None
 }
 

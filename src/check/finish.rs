@@ -451,6 +451,9 @@ impl Checker<'_> {
         &self,
         uses: &'u [crate::syntax::ast::Ident],
     ) -> HashSet<&'u str> {
+        if uses.is_empty() {
+            return HashSet::new();
+        }
         let mut places: HashMap<&str, HashSet<Span>> = HashMap::new();
         for n in uses {
             places.entry(n.name.as_str()).or_default().insert(n.span);

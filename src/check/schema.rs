@@ -220,6 +220,7 @@ pub const RENDER: &[ParamSpec] = &[
         .doc("with `noise_threshold`: samples every pixel takes before it may stop, 2..1000000. Default 16"),
     p("exposure", Ty::Num, "0")
         .doc("scales the image by 2^exposure before PNG encoding (stops). Default 0"),
+    povray("spp", "samples", "Mitsuba's `spp` (of its sampler) is `samples` in ptsc (and `--spp` on the command line)"),
 ];
 
 /// `camera { }`
@@ -243,6 +244,16 @@ pub const CAMERA: &[ParamSpec] = &[
     p("shutter", Ty::Vec2, "<0, 1>")
         .of(Magnitude)
         .doc("the time interval of the exposure, for motion blur. Default `<0, 0>`"),
+    povray(
+        "origin",
+        "position",
+        "Mitsuba's `origin` (of its camera's `look_at`) is `position` in ptsc",
+    ),
+    povray(
+        "target",
+        "look_at",
+        "Mitsuba's `target` (of its camera's `look_at`) is `look_at` in ptsc",
+    ),
 ];
 
 /// `environment { }`
@@ -334,7 +345,7 @@ pub const MATERIAL: &[ParamSpec] = &[
     p("opacity_cutoff", Ty::Num, "0.5")
         .doc("with `opacity`: the surface is there where the opacity is at least this, and not at all elsewhere (a sharp cutout, glTF's `MASK`). Default none: fractions pass at random"),
     p("vertex_color", Ty::Bool, "true")
-        .doc("multiplies the diffuse colour (a principled's `base_color`) by the mesh's vertex colours (a glTF's `COLOR_0`, an OBJ's `v x y z r g b`, a PLY's `red green blue` as sRGB), white where a surface has none. Default `false` (`true` for a glTF material whose primitives have colours)"),
+        .doc("multiplies the diffuse colour (a principled's `base_color`) by the mesh's vertex colours (a glTF's `COLOR_0`, an OBJ's `v x y z r g b`, a PLY's `red green blue`: whole numbers as sRGB, floats as linear), white where a surface has none. Default `false` (`true` for a glTF material whose primitives have colours)"),
     p(
         "normal_map",
         Ty::Texture,

@@ -276,8 +276,10 @@ impl Checker<'_> {
             body: body.clone(),
         };
         let value = Some(Value::Function(std::sync::Arc::new(f)));
-        // Checked without values if it is never called.
-        (self.env.unrun).push(eval::Unrun::Function(span, body.clone()));
+        // Checked without values if it is never called (kept once).
+        if self.env.functions_kept.insert(span) {
+            (self.env.unrun).push(eval::Unrun::Function(span, body.clone()));
+        }
         let named = (name.name.as_str(), name.span);
         self.env.define(SymbolKind::Function, named, span, value);
     }

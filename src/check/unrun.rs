@@ -30,20 +30,31 @@ impl Checker<'_> {
         if pieces.is_empty() {
             return;
         }
-        let uncalled: HashSet<Span> = (self.env.symbols.iter())
-            .filter(|(_, d)| d.kind == SymbolKind::Function && d.uses.is_empty())
-            .map(|(_, d)| d.span)
+        // A `fn` in a loop defines a function per pass: called if any was.
+        let functions: Vec<&Definition> = (self.env.symbols.iter())
+            .map(|(_, d)| d)
+            .filter(|d| d.kind == SymbolKind::Function)
+            .collect();
+        let called: HashSet<Span> = (functions.iter())
+            .filter(|d| !d.uses.is_empty())
+            .map(|d| d.span)
+            .collect();
+        let uncalled: HashSet<Span> = (functions.iter())
+            .map(|d| d.span)
+            .filter(|s| !called.contains(s))
             .collect();
         let mut uses = Uses::default();
         for piece in &pieces {
             match piece {
+                // Called or not is the symbols' to say (a loop's body of
+                // one `fn` statement has its span, and ran).
+                Unrun::Function(span, body) if uncalled.contains(span) => names_in(body, &mut uses),
+                Unrun::Function(..) => {}
                 // Ran in another pass (a loop's iteration, another call):
                 // checked there.
                 _ if self.env.ran.contains(&piece.span()) => {}
                 Unrun::Statements(_, body) => self.unrun_statements(body, &mut uses),
                 Unrun::Value(value) => names_in(value, &mut uses),
-                Unrun::Function(span, body) if uncalled.contains(span) => names_in(body, &mut uses),
-                Unrun::Function(..) => {}
             }
         }
         self.report_undefined(uses);
@@ -301,6 +312,12 @@ mod tests {
         assert!(
             errors("if false { render { integrator path } sphere { center x * pi } }").is_empty()
         );
+    }
+
+    #[test]
+    fn a_function_declared_in_a_loop_is_checked_once() {
+        let e = errors("for i in 0..3 { fn _f(a) = a + nope; }");
+        assert_eq!(e, ["pts::check::unknown_name: unknown name `nope`"]);
     }
 
     #[test]

@@ -59,14 +59,7 @@ const MITSUBA: &[(&str, &str)] = &[
     ("roughplastic", "Mitsuba's `roughplastic` is `material { type plastic diffuse rgb … gloss 0.3 }` in ptsc"),
     ("bsdf", "a Mitsuba `bsdf` is a `material name { … }` in ptsc, given to objects as `material name`"),
     ("to_world", "Mitsuba's `to_world` is an object's `translate`, `rotate`, `scale` or `matrix` in ptsc"),
-    ("spp", "Mitsuba's `spp` (of its sampler) is `samples` in ptsc's `render { … }` (and `--spp` on the command line)"),
-    ("origin", "Mitsuba's `origin` (of the camera's `look_at`) is the camera's `position` in ptsc"),
-    ("target", "Mitsuba's `target` (of the camera's `look_at`) is the camera's `look_at` in ptsc"),
     ("filename", "Mitsuba's `filename` is `file` in ptsc"),
-    ("width", "ptsc's image size is `render { resolution <width, height> }`"),
-    ("height", "ptsc's image size is `render { resolution <width, height> }`"),
-    ("envmap", "Mitsuba's `envmap` emitter is `environment { file \"sky.exr\" }` in ptsc (its `scale` is `intensity`)"),
-    ("rectangle", "Mitsuba's `rectangle` is `quad { corner <-1, -1, 0> edge1 <2, 0, 0> edge2 <0, 2, 0> }` in ptsc"),
 ];
 
 /// POV-Ray's `#` directives, each with the ptsc statement that does its job.
@@ -199,12 +192,7 @@ const PARAMETERS: &[(&str, &str)] = &[
     ("alpha", "roughness"),
     ("alpha_u", "roughness"),
     ("radiance", "emission"),
-    ("spp", "samples"),
-    ("origin", "position"),
-    ("target", "look_at"),
     ("filename", "file"),
-    ("width", "resolution"),
-    ("height", "resolution"),
 ];
 
 /// The ptsc parameter that does the job of POV-Ray's parameter `word`

@@ -71,6 +71,9 @@ pub struct Env {
     /// The bodies and arms that ran at least once: a piece of `unrun` that
     /// ran in another pass (a loop's iteration, a call) was checked there.
     pub ran: crate::span::SpanSet,
+    /// The `fn` statements whose bodies `unrun` holds: one run again (in
+    /// a loop, a file included twice) is kept once.
+    pub functions_kept: crate::span::SpanSet,
     /// Names reported unknown, where (the first [`MAX_UNKNOWN_KEPT`]): one
     /// defined elsewhere in the scene, later or in another block, is told
     /// where at the end.

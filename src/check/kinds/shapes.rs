@@ -80,7 +80,7 @@ pub const QUAD: Kind = Kind {
     positional: None,
     povray: &[
         ("polygon", "use `quad { corner … edge1 … edge2 … }` or `triangle { v0 … v1 … v2 … }`"),
-        ("rectangle", "Mitsuba's `rectangle` (from -1 to 1 in x and y, placed by `to_world`) is `quad { corner <-1, -1, 0> edge1 <2, 0, 0> edge2 <0, 2, 0> }` in ptsc"),
+        ("rectangle", "Mitsuba's `rectangle` (from -1 to 1 in x and y, placed by `to_world`) is `quad { corner <-1, -1, 0> edge1 <2, 0, 0> edge2 <0, 2, 0> }` in ptsc, placed by `translate`, `rotate` and `scale`"),
     ],
 };
 

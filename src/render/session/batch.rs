@@ -101,12 +101,13 @@ pub(super) fn prepare(
         // A part file holds the colour's samples alone, which `merge` adds
         // up; the AOVs and the denoised image belong to the merged render.
         if !aovs.is_empty() || denoise {
-            let asked = match denoise {
-                true => "--denoise",
-                false => "--aov",
+            let asked = match (aovs.is_empty(), denoise) {
+                (false, true) => "--aov and --denoise",
+                (true, _) => "--denoise",
+                (false, false) => "--aov",
             };
             return Err(Error::Refused(format!(
-                "--pass {pass} writes the colour's samples alone for `ptsc merge`, which does not carry {asked} yet: leave {asked} out of the parts (`ptsc denoise merged.exr` denoises the merged colour), or render the AOVs in one whole render"
+                "--pass {pass} writes the colour's samples alone for `ptsc merge`, which does not carry {asked} yet: leave {asked} out of the parts (`ptsc denoise merged.exr -o clean.png` denoises the merged colour), or render the AOVs in one whole render"
             )));
         }
         if pass.n > s.samples {

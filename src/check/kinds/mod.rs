@@ -246,7 +246,14 @@ mod tests {
         assert_eq!(refused, 14);
         // Editors highlight parameters only: no word that is only refused.
         let names = all_parameter_names();
-        for word in ["falloff", "tightness", "point_at", "color0", "spp", "origin"] {
+        for word in [
+            "falloff",
+            "tightness",
+            "point_at",
+            "color0",
+            "spp",
+            "origin",
+        ] {
             assert!(!names.contains(&word), "{word}");
         }
     }

@@ -213,14 +213,7 @@ sky { sun_elevation 50 }
             material {{ type principled base_color rgb <0.8, 0.2, 0.2> roughness 0.5 }} }}"
     );
     let dir = crate::temp_dir_with(&[("written.pts", &written)]);
-    let render = |name: &str| {
-        let path = dir.path().join(name);
-        let c = compile_file(&path, Options::default()).unwrap();
-        let ir =
-            c.ir.as_ref()
-                .unwrap_or_else(|| panic!("{}", c.diagnostics.render_human(&c.sources, false)));
-        crate::render_pixels(ir)
-    };
+    let render = |name: &str| render_scene(&dir.path().join(name));
     let reference = render("written.pts");
     for bytes in [false, true] {
         std::fs::write(
@@ -265,14 +258,7 @@ background rgb 1
         ("dark_ply.pts", &quad(0.215_860_53)),
         ("white.pts", &quad(1.0)),
     ]);
-    let render = |name: &str| {
-        let path = dir.path().join(name);
-        let c = compile_file(&path, Options::default()).unwrap();
-        let ir =
-            c.ir.as_ref()
-                .unwrap_or_else(|| panic!("{}", c.diagnostics.render_human(&c.sources, false)));
-        crate::render_pixels(ir)
-    };
+    let render = |name: &str| render_scene(&dir.path().join(name));
     for (file, reference) in [("c.obj", "dark_obj.pts"), ("c.ply", "dark_ply.pts")] {
         for (flag, reference) in [("true", reference), ("false", "white.pts")] {
             let scene = format!(
@@ -289,4 +275,13 @@ background rgb 1
             );
         }
     }
+}
+
+/// The pixels of the scene at `path`, compiled as `ptsc render` would.
+fn render_scene(path: &std::path::Path) -> Vec<[f32; 3]> {
+    let c = compile_file(path, Options::default()).unwrap();
+    let ir =
+        c.ir.as_ref()
+            .unwrap_or_else(|| panic!("{}", c.diagnostics.render_human(&c.sources, false)));
+    crate::render_pixels(ir)
 }

@@ -89,10 +89,13 @@ impl Checker<'_> {
                 let mut pending = Vec::new();
                 if row.param("materials").is_some() {
                     let swaps = self.swaps(block, material_entries.first().map(|m| m.1));
-                    if let (Some(Shape::Mesh { swaps: slot, .. }), Some(swaps)) =
-                        (&mut shape, swaps)
-                    {
-                        (*slot, pending) = swaps;
+                    // The names not declared yet are looked up at the end
+                    // even when the shape has an error (then unplaced).
+                    if let Some((slots, names)) = swaps {
+                        pending = names;
+                        if let Some(Shape::Mesh { swaps: slot, .. }) = &mut shape {
+                            *slot = slots;
+                        }
                     }
                 }
                 let at = self.object(shape, material, &material_entries, (&p, kind_span, span));

@@ -3,6 +3,7 @@
 pub mod ast;
 mod build;
 mod hand_over;
+mod nested_comment;
 pub mod parser;
 pub mod povray;
 mod recover;

@@ -140,6 +140,23 @@ pub fn convert_error(
             InputLocation::Pos(p) => p,
             InputLocation::Span((s, _)) => s,
         };
+    let d = diagnose(err, file, (text, kinds), base);
+    super::nested_comment::explain(d, text, pos.min(text.len()), file)
+}
+
+/// The diagnostic for a pest error, from the token it failed at and the
+/// text around it.
+fn diagnose(
+    err: pest::error::Error<Rule>,
+    file: FileId,
+    (text, kinds): (&str, &[&str]),
+    base: usize,
+) -> Diagnostic {
+    let pos = base
+        + match err.location {
+            InputLocation::Pos(p) => p,
+            InputLocation::Span((s, _)) => s,
+        };
     let rest = &text[pos.min(text.len())..];
     let token_len = rest
         .chars()

@@ -137,6 +137,11 @@ fn finite(v: Value, span: Span, literal: bool, diags: &mut Diagnostics) -> Optio
 fn eval_inner(e: &Expr, env: &mut Env, diags: &mut Diagnostics) -> Option<Value> {
     match &e.kind {
         ExprKind::Number(x) => Some(Value::Num(*x)),
+        ExprKind::Str(s) if s.len() > limits::MAX_STRING => {
+            // The bound of a string built by `+` holds for one written out.
+            diags.push(env::too_large(format!("{} bytes", s.len()), e.span));
+            None
+        }
         ExprKind::Str(s) => {
             // A literal run again is copied again: a long one costs by its size.
             let v = Value::Str(s.as_str().into());

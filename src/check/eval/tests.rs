@@ -500,3 +500,16 @@ fn povray_forms_that_ptsc_refuses_name_what_to_write() {
     let d = evaluate(super::MAX_WORK, "", "vlength(<1, 0, 0>)").unwrap_err();
     assert!(d.help.unwrap().contains("length(v)"));
 }
+
+#[test]
+fn a_string_written_out_has_the_bound_of_one_built() {
+    // A literal of 5,000 bytes passed where `"" + it` was refused.
+    let at = |n: usize| format!("\"{}\"", "a".repeat(n));
+    let most = super::limits::MAX_STRING;
+    assert!(value("", &at(most)).is_ok());
+    assert_eq!(value("", &at(most + 1)), Err(codes::VALUE_TOO_LARGE.into()));
+    assert_eq!(
+        value("", &format!("{} + \"\"", at(most + 1))),
+        Err(codes::VALUE_TOO_LARGE.into())
+    );
+}

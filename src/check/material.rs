@@ -399,7 +399,7 @@ fn kind(r: &mut Reader) -> MaterialKind {
                     k: [0.0; 3],
                 };
             }
-            if !(p.given("preset") || eta && k) {
+            if !(p.meant("preset") || eta && k) {
                 let missing = if eta { "k" } else { "eta" };
                 r.diags.push(
                     Diagnostic::error(

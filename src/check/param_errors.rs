@@ -2,8 +2,8 @@
 //! or repeated parameter, a texture or a transform where none goes, a
 //! POV-Ray word the row refuses, a value that is not a material.
 
-use super::schema::ParamSpec;
-use crate::diag::{codes, Diagnostic};
+use super::schema::{metal_preset, ParamSpec, METAL_PRESETS};
+use crate::diag::{codes, did_you_mean, Diagnostic};
 use crate::span::Span;
 use crate::syntax::ast::Ident;
 
@@ -75,6 +75,67 @@ pub(super) fn not_a_material(span: Span) -> Diagnostic {
     )
     .with_label("not a material")
     .with_help("write `material white` (a declared name) or `material { diffuse rgb 0.8 }`")
+}
+
+/// `material "Au"`: Mitsuba's conductor names its metal so; ptsc's
+/// `preset` does (`entry` is the whole `material "Au"`).
+pub(super) fn metal_as_material(entry: Span, preset: &str, what: &str) -> Diagnostic {
+    let in_material = what == "material" || what.starts_with("material ");
+    let d = Diagnostic::error(
+        codes::TYPE_MISMATCH,
+        "`material` takes a material name or an inline material block",
+        entry,
+    )
+    .with_label("Mitsuba's name of a conductor's metal");
+    if in_material {
+        d.with_help(format!(
+            "Mitsuba's `material` of a conductor is `preset {preset}` in ptsc (of a `type conductor` material)"
+        ))
+        .with_fix(entry, format!("preset {preset}"))
+    } else {
+        d.with_help(format!(
+            "Mitsuba's `material` of a conductor is `preset {preset}` in ptsc: `material {{ type conductor preset {preset} }}`"
+        ))
+    }
+}
+
+/// A parameter that takes a word given a string (`type "conductor"`,
+/// `preset "Au"`, as Mitsuba's files write them): the word it means, if
+/// one fits, is the fix.
+pub(super) fn word_as_string(
+    spec: &ParamSpec,
+    text: &str,
+    span: Span,
+    words: &[&str],
+) -> Diagnostic {
+    let fit = words
+        .iter()
+        .find(|w| **w == text)
+        .copied()
+        .or_else(|| {
+            (words == METAL_PRESETS)
+                .then(|| metal_preset(text))
+                .flatten()
+        })
+        .or_else(|| did_you_mean(text, words.iter().copied()));
+    let d = Diagnostic::error(
+        codes::TYPE_MISMATCH,
+        format!("`{}` takes a word, not a string", spec.name),
+        span,
+    )
+    .with_label("a string");
+    match fit {
+        Some(word) => d
+            .with_help(format!("write `{} {word}`, without quotes", spec.name))
+            .with_fix(span, word),
+        None => {
+            let foreign = (spec.name == "type").then(|| crate::syntax::povray::hint(text));
+            d.with_help(foreign.flatten().map_or_else(
+                || format!("write one of {} without quotes", words.join(", ")),
+                str::to_string,
+            ))
+        }
+    }
 }
 
 /// A parameter the block `what` does not have, with `help`.

@@ -186,6 +186,12 @@ impl Params {
         self.given.contains(&name)
     }
 
+    /// Whether the parameter `name` was written, or a word the block was
+    /// told stands for it (Mitsuba's `material "Au"` for `preset`).
+    pub fn meant(&self, name: &str) -> bool {
+        self.given(name) || self.suggested.contains(&name)
+    }
+
     /// Whether the parameter `name` was written but its value refused (and
     /// reported): it is there for the warnings that ask for it, so that
     /// "`gloss` has no effect without `reflection`" does not follow
@@ -400,7 +406,21 @@ impl<'s> Collecting<'s> {
     ) -> Option<&'static ParamSpec> {
         let what = self.params.what.clone();
         if name.name == "material" {
-            diags.push(not_a_material(value.span()));
+            let metal = match value {
+                Source::Value(e) => match &e.kind {
+                    ExprKind::Str(s) => metal_preset(s),
+                    _ => None,
+                },
+                _ => None,
+            };
+            diags.push(match metal {
+                Some(preset) => {
+                    // So the conductor is not also told it lacks one.
+                    self.params.suggested.push("preset");
+                    metal_as_material(name.span.join(value.span()), preset, &what)
+                }
+                None => not_a_material(value.span()),
+            });
             return None;
         }
         let found = (self.schemas.iter().flat_map(|s| s.iter())).find(|s| s.name == name.name);
@@ -596,6 +616,10 @@ fn typed_value(
     diags: &mut Diagnostics,
 ) -> Option<Val> {
     if let Ty::Word(words) = spec.ty {
+        if let ExprKind::Str(text) = &value.kind {
+            diags.push(word_as_string(spec, text, value.span, words));
+            return None;
+        }
         let ExprKind::Name(w) = &value.kind else {
             diags.push(
                 Diagnostic::error(
@@ -614,7 +638,11 @@ fn typed_value(
         let metal = (words == METAL_PRESETS).then(|| other_metal(w));
         // Mitsuba's plugin names as a material's `type` (`roughconductor`).
         let foreign = || {
-            let hint = (spec.name == "type").then(|| crate::syntax::povray::hint(w));
+            let hint = (spec.name == "type").then(|| match w.as_str() {
+                // A ptsc parameter's name, so not among the global hints.
+                "diffuse" => Some("Mitsuba's `diffuse` BSDF is ptsc's default material, `type mix` (or no `type`), with `diffuse rgb …`"),
+                _ => crate::syntax::povray::hint(w),
+            });
             hint.flatten().map(str::to_string)
         };
         let help = match (

@@ -496,28 +496,38 @@ pub const TEXTURE_TRANSFORMS: &[ParamSpec] = &[
     t("scale", Ty::NumOrVec3, "0.25").of(Quantity::Scale),
 ];
 
-/// The help for a metal `name` that is not one of the presets: the
-/// preset it is another name for, or how to give a metal's constants.
-pub fn other_metal(name: &str) -> Option<String> {
-    let preset = match name {
-        "chrome" | "chromium_metal" => "chromium",
-        "aluminum" | "aluminum_metal" | "alu" => "aluminium",
+/// The preset that a metal's other name stands for: the preset in any
+/// case (`Gold`), Mitsuba's element symbols (`Au`, as its conductor's
+/// `material "Au"` writes them), the American spelling.
+pub fn metal_preset(name: &str) -> Option<&'static str> {
+    let lower = name.to_ascii_lowercase();
+    if let Some(preset) = METAL_PRESETS.iter().find(|p| **p == lower) {
+        return Some(preset);
+    }
+    Some(match lower.as_str() {
+        "chrome" | "chromium_metal" | "cr" => "chromium",
+        "aluminum" | "aluminum_metal" | "alu" | "al" => "aluminium",
         "au" => "gold",
         "ag" => "silver",
         "cu" => "copper",
-        "cr" => "chromium",
-        "al" => "aluminium",
-        _ => {
-            let look = match name {
-                "brass" | "bronze" => " (`preset gold` or `preset copper` looks close)",
-                "steel" | "iron" | "stainless" | "nickel" | "titanium" | "platinum" | "tin"
-                | "zinc" => " (`preset chromium` or `preset aluminium` looks close)",
-                _ => return None,
-            };
-            return Some(format!(
-                "`{name}` is not a preset{look}; for any metal, remove `preset` and give its complex index of refraction per channel: `eta rgb <…> k rgb <…>` (tables of n and k: refractiveindex.info, or Mitsuba 3's data/ior)"
-            ));
+        _ => return None,
+    })
+}
+
+/// The help for a metal `name` that is not one of the presets: the
+/// preset it is another name for, or how to give a metal's constants.
+pub fn other_metal(name: &str) -> Option<String> {
+    if let Some(preset) = metal_preset(name) {
+        return Some(format!("did you mean `{preset}`?"));
+    }
+    let look = match name.to_ascii_lowercase().as_str() {
+        "brass" | "bronze" => " (`preset gold` or `preset copper` looks close)",
+        "steel" | "iron" | "stainless" | "nickel" | "titanium" | "platinum" | "tin" | "zinc" => {
+            " (`preset chromium` or `preset aluminium` looks close)"
         }
+        _ => return None,
     };
-    Some(format!("did you mean `{preset}`?"))
+    Some(format!(
+        "`{name}` is not a preset{look}; for any metal, remove `preset` and give its complex index of refraction per channel: `eta rgb <…> k rgb <…>` (tables of n and k: refractiveindex.info, or Mitsuba 3's data/ior)"
+    ))
 }

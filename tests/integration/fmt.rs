@@ -357,3 +357,17 @@ fn fmt_reads_stdin_and_writes_stdout() {
     );
     assert_eq!(run(&["fmt", "-"], "box{"), (Some(1), "box{".to_string()));
 }
+
+#[test]
+fn the_examples_are_in_the_canonical_layout() {
+    // A newcomer learns the layout from the examples (the bench scenes
+    // are generated copies of shared/bench's, one object a line).
+    let (examples, parts) = (root().join("examples"), root().join("examples/parts"));
+    let (code, out, err) = ptsc(&[
+        "fmt",
+        "--check",
+        examples.to_str().unwrap(),
+        parts.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "`ptsc fmt` would change:\n{out}{err}");
+}

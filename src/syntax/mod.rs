@@ -2,6 +2,8 @@
 
 pub mod ast;
 mod build;
+mod error_context;
+mod grammar;
 mod hand_over;
 mod nested_comment;
 pub mod parser;

@@ -30,6 +30,7 @@ mod swaps;
 pub mod symbols;
 pub mod texture;
 pub mod texture_input;
+mod typed_value;
 mod unrun;
 
 pub use blocks::{MAX_NOISE, MAX_PIXELS, MAX_SIDE, MIN_SAMPLES, SAMPLES, SEED};

@@ -30,6 +30,21 @@ pub fn unreadable(path: &Path, span: Span, why: String, help: &str) -> Diagnosti
     .with_help(help)
 }
 
+/// The error for an image that a model file names (`origin`: an MTL
+/// library's map, a glTF's image) and that cannot be read: the message
+/// says which entry of which file asked for it, and the help what its path
+/// is relative to (the model file, not the scene). Its code and span
+/// (where the scene places the model) are the other images'.
+pub fn unreadable_in_model(origin: &crate::diag::NamedIn, span: Span, why: String) -> Diagnostic {
+    Diagnostic::error(
+        codes::IMAGE_FILE,
+        format!("cannot load image {}", origin.named),
+        span,
+    )
+    .with_label(why)
+    .with_help(origin.help.clone())
+}
+
 /// The image files a scene's materials and environment name, each once, in
 /// source order: the path, where it is written and the help for it.
 pub fn named_images<'s>(

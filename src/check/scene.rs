@@ -79,6 +79,9 @@ pub enum TextureKind {
         /// The channel read where one number is wanted (`None`: the
         /// luminance).
         channel: Option<crate::texture::image::Channel>,
+        /// Where a model file (an MTL library, a glTF) names the image,
+        /// for its errors; `None`: the scene does.
+        origin: Option<std::sync::Arc<crate::diag::NamedIn>>,
     },
 }
 

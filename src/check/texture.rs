@@ -121,6 +121,7 @@ pub fn check_texture(
                 // A word checked against `Channel::WORDS` (the row's `Ty::Word`).
                 channel: word("channel")
                     .and_then(|w| crate::texture::image::Channel::from_name(&w)),
+                origin: None,
             }
         }
         "checker" => TextureKind::Checker,

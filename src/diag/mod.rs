@@ -313,6 +313,26 @@ pub fn group_digits(n: u64) -> String {
     out
 }
 
+/// Where a model file (an MTL library, a glTF) names another file, said in
+/// the errors about that file: its path is relative to the model file,
+/// not to the scene. Message text, kept here rather than in the checked
+/// scene, whose values are typed.
+#[derive(Debug, Clone, PartialEq)]
+pub struct NamedIn {
+    /// The file as the model names it and where, written for a message:
+    /// `` `tex/a.png` of `images[0]` in `sub/a.gltf` ``.
+    pub named: String,
+    /// What its path is relative to, and how to mend it.
+    pub help: String,
+}
+
+/// `n` and its noun, singular for one: `1 vertex`, `2 vertices` (a
+/// message's count of anything a file holds may be one).
+pub fn count(n: impl Into<u64>, one: &str, many: &str) -> String {
+    let n = n.into();
+    format!("{} {}", group_digits(n), if n == 1 { one } else { many })
+}
+
 /// Line and column lookups that remember the last one: diagnostics come in
 /// source order, so many on one long line cost that line once, not once each.
 #[derive(Default)]
@@ -447,6 +467,13 @@ mod tests {
         // Settled: what comes later is kept as it comes.
         d.push(Diagnostic::error("e", "late", at(3)));
         assert_eq!(d.items.len(), 6);
+    }
+
+    #[test]
+    fn a_count_of_one_is_singular() {
+        assert_eq!(count(1u32, "vertex", "vertices"), "1 vertex");
+        assert_eq!(count(0u32, "vertex", "vertices"), "0 vertices");
+        assert_eq!(count(12_000u64, "face", "faces"), "12,000 faces");
     }
 
     #[test]

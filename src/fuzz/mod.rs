@@ -160,7 +160,7 @@ pub fn mtl(bytes: &[u8]) -> bool {
         return false;
     };
     for m in &materials {
-        let mapped = crate::lower::mtl::material(m, Path::new("models"), Default::default());
+        let mapped = crate::lower::mtl::material(m, Path::new("models/m.mtl"), Default::default());
         let out = &mapped.material;
         let unit = |x: f64| (0.0..=1.0).contains(&x);
         let colour = |c: [f64; 3]| c.iter().all(|x| x.is_finite() && *x >= 0.0);

@@ -63,6 +63,7 @@ pub(super) fn parse_gltf(
     let buffers = read_buffers(doc, gltf.blob.as_deref(), (folder, library), &mut out)?;
     notes_on_the_file(doc, &mut scene.notes);
     scene.nodes = nodes(doc, &mut scene.notes)?;
+    super::gltf_nodes::hierarchy(&scene.nodes)?;
     let default = (doc.default_scene()).or_else(|| doc.scenes().next());
     scene.roots = default.map_or(Vec::new(), |s| {
         s.nodes().map(|n| n.index() as u32).collect()
@@ -643,9 +644,8 @@ fn read_primitive(
         None => (0..count as u32).collect(),
     };
     if let Some(bad) = indices.iter().find(|&&i| i as usize >= count) {
-        return Err(format!(
-            "an index is {bad}, but the primitive has {count} vertices"
-        ));
+        let has = crate::diag::count(count as u64, "vertex", "vertices");
+        return Err(format!("an index is {bad}, but the primitive has {has}"));
     }
     let triangles = match mode {
         Mode::TriangleStrip => (0..indices.len().saturating_sub(2))

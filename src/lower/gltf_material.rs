@@ -32,6 +32,7 @@ use crate::check::domain::{MAX_MAGNITUDE, MAX_RADIANCE};
 use crate::check::scene::{
     Material, MaterialKind, PrincipledParams, Rgb, Texture, TextureInput, TextureKind, TextureSpace,
 };
+use crate::diag::NamedIn;
 use crate::span::Span;
 use crate::texture::image::{Channel, Wrap};
 use glam::{DMat4, DVec4};
@@ -46,6 +47,15 @@ pub fn read(doc: &gltf::Document, path: &Path, buffers: &Buffers, scene: &mut Fi
         .images()
         .map(|image| image_path(doc, &image, (path, buffers), scene))
         .collect();
+    // Which image a texture reads, said when it cannot be read: its path
+    // is the glTF's, not the scene's.
+    let origins: std::collections::HashMap<&Path, Arc<NamedIn>> = (images.iter())
+        .enumerate()
+        .filter_map(|(k, p)| {
+            let p = p.as_deref()?;
+            Some((p, Arc::new(origin(doc, k, p, path))))
+        })
+        .collect();
     // A set: a hostile file's many materials and primitives would make a
     // list's search quadratic.
     let colored: std::collections::HashSet<u32> = scene.colored_materials.iter().copied().collect();
@@ -53,6 +63,11 @@ pub fn read(doc: &gltf::Document, path: &Path, buffers: &Buffers, scene: &mut Fi
         let mut mapped = material(&m, &images, &mut scene.material_notes);
         // glTF multiplies the base colour by `COLOR_0` where a primitive has it.
         mapped.vertex_color = m.index().is_some_and(|k| colored.contains(&(k as u32)));
+        for (_, t) in &mut mapped.textures {
+            if let TextureKind::Image { path, origin, .. } = &mut t.kind {
+                *origin = origins.get(path.as_path()).cloned();
+            }
+        }
         scene.materials.push(mapped);
         scene
             .material_names
@@ -134,6 +149,26 @@ fn image_path(
     let inside = PathBuf::from(name);
     scene.embedded.push((inside.clone(), Arc::new(bytes)));
     Some(inside)
+}
+
+/// Where image `k` of the glTF file `gltf` is, for an error about it
+/// (read from `path`): a file its `uri` names relative to the glTF file, or
+/// bytes inside it.
+fn origin(doc: &gltf::Document, k: usize, path: &Path, gltf: &Path) -> NamedIn {
+    let uri = (doc.as_json().images[k].uri.as_deref()).filter(|u| !u.starts_with("data:"));
+    match uri {
+        Some(uri) => NamedIn {
+            named: format!("`{uri}` of `images[{k}]` in `{}`", gltf.display()),
+            help: format!(
+                "a glTF file's images are read relative to the glTF file (here `{}`): put the image there, or mend the image's `uri`",
+                path.display()
+            ),
+        },
+        None => NamedIn {
+            named: format!("`images[{k}]` held inside `{}`", gltf.display()),
+            help: "the image is held inside the glTF file: export the model again, or mend the image in an image editor".into(),
+        },
+    }
 }
 
 /// The media type a data URI states (`data:image/png;base64,…`).
@@ -455,6 +490,8 @@ fn texture(
             resolved: true,
             factor,
             channel,
+            // Set by `read`, which knows the image's index.
+            origin: None,
         },
         colors: vec![(0.0, [1.0; 3]), (1.0, [0.0; 3])],
         space: TextureSpace::Uv,

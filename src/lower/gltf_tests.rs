@@ -309,15 +309,32 @@ fn hostile_files_are_refused_with_a_sentence() {
                 r#""scenes": [{"nodes": [0]}], "nodes": [{"children": [1]}, {"children": [0], "mesh": 0}]"#,
                 GOOD_ACCESSOR,
             ),
-            "reached twice",
+            "the node hierarchy has a cycle: nodes[",
+        ),
+        // A cycle no scene reaches (every node a child: no root), named
+        // rather than "places no triangles".
+        (
+            triangle_file(
+                r#""scenes": [{"nodes": [2]}], "nodes": [{"name": "A", "children": [1]}, {"name": "B", "children": [0], "mesh": 0}, {}]"#,
+                GOOD_ACCESSOR,
+            ),
+            "cycle: `A` (nodes[0]) → `B` (nodes[1]) → `A` (nodes[0])",
         ),
         // A node under two parents.
+        (
+            triangle_file(
+                r#""scenes": [{"nodes": [0, 1]}], "nodes": [{"children": [2]}, {"children": [2]}, {"mesh": 0}]"#,
+                GOOD_ACCESSOR,
+            ),
+            "nodes[2] is a child of both nodes[0] and nodes[1]",
+        ),
+        // A scene that lists a node and its parent.
         (
             triangle_file(
                 r#""scenes": [{"nodes": [0, 1]}], "nodes": [{"children": [1]}, {"mesh": 0}]"#,
                 GOOD_ACCESSOR,
             ),
-            "reached twice",
+            "is placed twice: the scene lists it twice, or lists it and a node above it",
         ),
         (
             triangle_file(

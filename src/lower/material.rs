@@ -284,6 +284,7 @@ fn lower_texture(
             color_space,
             factor,
             channel,
+            origin,
             ..
         } => {
             let read = match channel {
@@ -298,8 +299,15 @@ fn lower_texture(
                     channel: *channel,
                 },
                 Err(e) => {
-                    let help = check::image_files::TEXTURE_HELP;
-                    diags.push(check::image_files::unreadable(path, *path_span, e, help));
+                    diags.push(match origin {
+                        Some(origin) => {
+                            check::image_files::unreadable_in_model(origin, *path_span, e)
+                        }
+                        None => {
+                            let help = check::image_files::TEXTURE_HELP;
+                            check::image_files::unreadable(path, *path_span, e, help)
+                        }
+                    });
                     return None;
                 }
             }

@@ -56,8 +56,9 @@ pub fn parse_with(
     }
     let n = mesh.positions.len() as u32;
     if let Some(bad) = mesh.triangles.iter().flatten().find(|&&i| i >= n) {
+        let has = crate::diag::count(n, "vertex", "vertices");
         return Err(format!(
-            "a face refers to vertex {bad}, but the mesh has {n} vertices"
+            "a face refers to vertex {bad}, but the mesh has {has}"
         ));
     }
     if mesh.positions.iter().any(|p| !p.is_finite()) {
@@ -68,21 +69,26 @@ pub fn parse_with(
     }
     if !mesh.uvs.is_empty() && mesh.uvs.len() != mesh.positions.len() {
         return Err(format!(
-            "the file has {} texture coordinates for {} vertices",
-            mesh.uvs.len(),
-            mesh.positions.len()
+            "the file has {} for {}",
+            count(mesh.uvs.len(), "texture coordinate", "texture coordinates"),
+            count(mesh.positions.len(), "vertex", "vertices"),
         ));
     }
     // Normals go with positions one to one (the renderer indexes both by
     // vertex), or there are none.
     if !mesh.normals.is_empty() && mesh.normals.len() != mesh.positions.len() {
         return Err(format!(
-            "the file has {} vertex normals for {} vertices",
-            mesh.normals.len(),
-            mesh.positions.len()
+            "the file has {} for {}",
+            count(mesh.normals.len(), "vertex normal", "vertex normals"),
+            count(mesh.positions.len(), "vertex", "vertices"),
         ));
     }
     Ok(mesh)
+}
+
+/// `n` things, singular for one.
+fn count(n: usize, one: &str, many: &str) -> String {
+    crate::diag::count(n as u64, one, many)
 }
 
 #[derive(Clone, Copy, PartialEq)]

@@ -37,6 +37,9 @@ pub struct MeshData {
     pub face_material: Vec<u32>,
     /// The materials of the OBJ's libraries (`mtllib`), as `tobj` reads them.
     pub materials: Vec<tobj::Material>,
+    /// Per material, the library that holds it (an index into
+    /// `libraries`): its maps are read relative to that file.
+    pub material_libraries: Vec<u32>,
     /// The libraries read (to watch and to revalidate a cached mesh): an
     /// OBJ's `.mtl` files, a glTF's external buffers.
     pub libraries: Vec<PathBuf>,
@@ -137,12 +140,13 @@ impl FileScene {
         let mut seen = vec![false; self.nodes.len()];
         let mut stack: Vec<(u32, DMat4)> = starts.into_iter().rev().collect();
         let (mut out, mut lights) = (Vec::new(), Vec::new());
-        // Each node once: a node reached twice is a cycle or a second parent.
+        // Each node once: the file's nodes are trees (`gltf_nodes`), so a
+        // node reached twice is one a scene lists twice.
         while let Some((k, transform)) = stack.pop() {
             let node = (self.nodes.get(k as usize)).ok_or("a child index past the nodes")?;
             if std::mem::replace(&mut seen[k as usize], true) {
                 return Err(format!(
-                    "node `{}` is reached twice: the node graph is not a tree",
+                    "node `{}` is placed twice: the scene lists it twice, or lists it and a node above it (a scene lists the roots of its trees)",
                     node.name
                 ));
             }

@@ -24,6 +24,7 @@
 use crate::check::scene::{
     Material, MaterialKind, PrincipledParams, Texture, TextureInput, TextureKind, TextureSpace,
 };
+use crate::diag::NamedIn;
 use crate::span::Span;
 use crate::texture::image::{Channel, Wrap};
 use glam::DMat4;
@@ -140,7 +141,7 @@ fn texture_ref(text: &str) -> Option<TextureRef> {
 /// An emitting surface stays whole (a light is not cut out).
 fn opacity(
     m: &tobj::Material,
-    folder: &Path,
+    library: &Path,
     span: Span,
     out: &mut Material,
     left_out: &mut Vec<String>,
@@ -171,7 +172,7 @@ fn opacity(
                     r.ignored.join(" ")
                 ));
             }
-            let mut t = image(&r, folder, span);
+            let mut t = image(&r, ("map_d", &m.name, library), span);
             if let TextureKind::Image {
                 factor, channel, ..
             } = &mut t.kind
@@ -187,10 +188,24 @@ fn opacity(
     }
 }
 
-/// An image texture of `file` in `folder`, read at the surface's (u, v)
-/// scaled by `-s` and shifted by `-o`: the pattern reads s·uv + o, so the
-/// texture's transform (which lowering inverts) is the inverse of that.
-fn image(r: &TextureRef, folder: &Path, span: Span) -> Texture {
+/// An image texture of `file`, which map `key` of material `name` of the
+/// MTL file `library` names (relative to that file's folder, as Blender
+/// reads it), read at the surface's (u, v) scaled by `-s` and shifted by
+/// `-o`: the pattern reads s·uv + o, so the texture's transform (which
+/// lowering inverts) is the inverse of that.
+fn image(r: &TextureRef, (key, name, library): (&str, &str, &Path), span: Span) -> Texture {
+    let folder = library.parent().unwrap_or(Path::new(""));
+    let origin = NamedIn {
+        named: format!(
+            "`{}` of `{key}` of material `{name}` in `{}`",
+            r.file,
+            library.display()
+        ),
+        help: format!(
+            "an MTL file's maps are read relative to the MTL file (here `{}`): put the image there, or mend the `{key}` line",
+            folder.join(&r.file).display()
+        ),
+    };
     let to_pattern = DMat4::from_translation(r.offset.unwrap_or([0.0; 3]).into())
         * DMat4::from_scale(r.scale.unwrap_or([1.0; 3]).into());
     Texture {
@@ -202,6 +217,7 @@ fn image(r: &TextureRef, folder: &Path, span: Span) -> Texture {
             resolved: true,
             factor: [1.0; 3],
             channel: None,
+            origin: Some(std::sync::Arc::new(origin)),
         },
         colors: vec![(0.0, [1.0; 3]), (1.0, [0.0; 3])],
         space: TextureSpace::Uv,
@@ -268,9 +284,9 @@ fn rgb(c: [f32; 3]) -> [f64; 3] {
     })
 }
 
-/// The material `m` of an MTL file in `folder`, its diagnostics' span the
+/// The material `m` of the MTL file `library`, its diagnostics' span the
 /// mesh statement's `span`.
-pub fn material(m: &tobj::Material, folder: &Path, span: Span) -> Mapped {
+pub fn material(m: &tobj::Material, library: &Path, span: Span) -> Mapped {
     let mut left_out = Vec::new();
     let unit = |x: f64| x.clamp(0.0, 1.0);
     let mut out = Material::default_at(span);
@@ -310,7 +326,8 @@ pub fn material(m: &tobj::Material, folder: &Path, span: Span) -> Mapped {
                         r.ignored.join(" ")
                     ));
                 }
-                out.textures.push((input, image(&r, folder, span)));
+                out.textures
+                    .push((input, image(&r, (key, &m.name, library), span)));
                 Some(r)
             }
             None => {
@@ -359,7 +376,7 @@ pub fn material(m: &tobj::Material, folder: &Path, span: Span) -> Mapped {
     {
         p.metallic = 1.0;
     }
-    opacity(m, folder, span, &mut out, &mut left_out);
+    opacity(m, library, span, &mut out, &mut left_out);
     Mapped {
         material: out,
         left_out,

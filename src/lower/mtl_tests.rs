@@ -9,7 +9,7 @@ fn parse(text: &str) -> Vec<tobj::Material> {
 
 fn mapped(text: &str) -> Mapped {
     let m = parse(text);
-    material(&m[0], Path::new("models"), Span::default())
+    material(&m[0], Path::new("models/a.mtl"), Span::default())
 }
 
 fn principled(m: &Material) -> PrincipledParams {
@@ -203,7 +203,7 @@ fn texture_statements_parse_their_options() {
     // Shifted, then scaled: the pattern reads 3·uv + 0.25.
     let both = image(
         &texture_ref("-o 0.25 0.25 -s 3 3 t.png").unwrap(),
-        Path::new(""),
+        ("map_Kd", "A", Path::new("a.mtl")),
         Span::default(),
     );
     let uv = glam::DVec3::new(0.1, 0.2, 0.0);
@@ -249,4 +249,25 @@ fn an_obj_names_a_bounded_number_of_libraries() {
     assert_eq!(reads, MAX_LIBRARIES);
     assert_eq!(m.libraries.len(), MAX_LIBRARIES);
     assert_eq!(m.library_errors.len(), 1, "{:?}", m.library_errors);
+}
+
+#[test]
+fn a_map_is_read_beside_its_library_and_says_where_it_is_named() {
+    let m = parse("newmtl Wood\nmap_Kd tex/grain.png\n");
+    let mapped = material(&m[0], Path::new("models/mats/wood.mtl"), Span::default());
+    let TextureKind::Image { path, origin, .. } = &mapped.material.textures[0].1.kind else {
+        panic!("not an image")
+    };
+    // Relative to the MTL file, as Blender reads it, not to the OBJ.
+    assert_eq!(path, Path::new("models/mats/tex/grain.png"));
+    let origin = origin.as_ref().expect("named by the library");
+    assert_eq!(
+        origin.named,
+        "`tex/grain.png` of `map_Kd` of material `Wood` in `models/mats/wood.mtl`"
+    );
+    assert!(
+        origin.help.starts_with("an MTL file's maps are read relative to the MTL file (here `models/mats/tex/grain.png`)"),
+        "{}",
+        origin.help
+    );
 }

@@ -29,11 +29,15 @@ pub(super) fn parse_obj(
     let reader = std::cell::RefCell::new(library);
     let libraries = std::cell::RefCell::new(Vec::new());
     let library_errors = std::cell::RefCell::new(Vec::new());
+    // `tobj` appends each library's materials in turn: the owners line up.
+    let owners = std::cell::RefCell::new(Vec::new());
     // A byte that is not UTF-8 (a Latin-1 comment or name from an older
     // exporter) would fail `tobj`'s whole read: it becomes U+FFFD, as in
     // the libraries (`mtl::readable`); the lines keep their numbers.
     let text = String::from_utf8_lossy(bytes);
-    let mut cursor = std::io::Cursor::new(text.as_bytes());
+    let read = super::obj_lines::faces_and_polylines(&text)?;
+    let polylines = matches!(read, std::borrow::Cow::Owned(_));
+    let mut cursor = std::io::Cursor::new(read.as_bytes());
     let (models, materials) = tobj::load_obj_buf(&mut cursor, &opts, |name| {
         let path = folder.join(name);
         let failed = |e: String| {
@@ -60,11 +64,22 @@ pub(super) fn parse_obj(
                 "its line `{line}` is not a colour ptsc reads (three numbers, or one)"
             ));
         }
-        tobj::load_mtl_buf(&mut std::io::Cursor::new(text)).inspect_err(|e| failed(e.to_string()))
+        let owner = libraries.borrow().len() as u32 - 1;
+        tobj::load_mtl_buf(&mut std::io::Cursor::new(text))
+            .inspect(|(read, _)| {
+                owners
+                    .borrow_mut()
+                    .extend(std::iter::repeat_n(owner, read.len()))
+            })
+            .inspect_err(|e| failed(e.to_string()))
     })
-    .map_err(|e| match super::obj_faces::locate(bytes, &e) {
-        Some(at) => format!("cannot read the OBJ file: {e} at {at}"),
-        None => format!("cannot read the OBJ file: {e}"),
+    .map_err(|e| {
+        let at = (super::obj_faces::locate(bytes, &e))
+            .or_else(|| super::obj_lines::locate_vertex(&text, Some(&e)));
+        match at {
+            Some(at) => format!("cannot read the OBJ file: {e} at {at}"),
+            None => format!("cannot read the OBJ file: {e}"),
+        }
     })?;
     let (mut libraries, library_errors) = (libraries.into_inner(), library_errors.into_inner());
     libraries.retain(|p| !p.as_os_str().is_empty());
@@ -114,10 +129,21 @@ pub(super) fn parse_obj(
         out.face_material.resize(before, u32::MAX);
         out.face_material.resize(out.triangles.len(), id);
     }
+    if out.triangles.is_empty() && polylines {
+        return Err("the mesh has no faces, only lines (`l`), which have no surface".into());
+    }
+    // `tobj` reads `nan` and `inf`; the line is looked for only then.
+    let finite = out.positions.iter().all(|p| p.is_finite());
+    if !(finite && out.uvs.iter().all(|uv| uv.is_finite())) {
+        if let Some(at) = super::obj_lines::locate_vertex(&text, None) {
+            return Err(format!("cannot read the OBJ file at {at}"));
+        }
+    }
     if out.face_material.iter().all(|&m| m == u32::MAX) {
         out.face_material.clear();
     }
     out.materials = materials;
+    out.material_libraries = owners.into_inner();
     out.libraries = libraries;
     out.library_errors = library_errors;
     // Attributes only when every object of the file has them.

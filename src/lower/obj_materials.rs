@@ -199,7 +199,13 @@ fn map_file(
         let material = match (file_material, replaced) {
             (_, Some(scene_material)) => scene_material,
             (Some(m), None) => {
-                let mapped = mtl::material(m, folder, *path_span);
+                // Always found (`MeshData::material_libraries`); the OBJ's
+                // folder otherwise, as a library beside it.
+                let library = (data.material_libraries.get(group as usize))
+                    .and_then(|&k| data.libraries.get(k as usize))
+                    .cloned()
+                    .unwrap_or_else(|| folder.join("?.mtl"));
+                let mapped = mtl::material(m, &library, *path_span);
                 for note in &mapped.left_out {
                     warnings.push(
                         Diagnostic::warning(

@@ -459,7 +459,11 @@ impl Gathering<'_> {
                     "every triangle of this mesh has zero area",
                     path_span,
                 )
-                .with_label(format!("{degenerate} degenerate triangles"))
+                .with_label(crate::diag::count(
+                    degenerate as u64,
+                    "degenerate triangle",
+                    "degenerate triangles",
+                ))
                 .with_help("check the mesh file and the transform's scale"),
             );
         } else if plain {

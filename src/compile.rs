@@ -280,7 +280,7 @@ fn check_default_output(
         .iter()
         .find(|(p, ..)| real(p).as_ref() == Some(&target));
     // Where the file is named; else (an OBJ's texture) the scene's start.
-    let span = named.map_or(Span::new(FileId(0), 0, 0), |(_, span, _)| *span);
+    let span = named.map_or(Span::new(FileId(0), 0, 0), |(_, _, span, _)| *span);
     Some(
         Diagnostic::error(
             codes::OUTPUT_FILE,

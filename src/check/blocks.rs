@@ -224,7 +224,8 @@ pub fn environment(
     let mut r = Reader { p, diags };
     let intensity = r.color("intensity", [1.0; 3]);
     Some(Environment {
-        path: base.join(file),
+        path: base.join(&file),
+        named: file,
         path_span,
         intensity,
         rotation,

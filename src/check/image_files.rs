@@ -18,12 +18,15 @@ pub const TEXTURE_HELP: &str =
 pub const ENVIRONMENT_HELP: &str =
     "an environment is an .hdr or .exr file (or .png, .jpg), relative to the scene";
 
-/// The error for the image at `path` (written at `span`) that cannot be
+/// The error for the image `named` (written at `span`) that cannot be
 /// read or decoded (`why`): the checker's and lowering's, word for word.
-pub fn unreadable(path: &Path, span: Span, why: String, help: &str) -> Diagnostic {
+/// It names the file as the scene writes it, not as resolved: the resolved
+/// path depends on the folder the scene was opened from (`ptsc check s.pts`
+/// or an editor's absolute path), and the verdict must not.
+pub fn unreadable(named: &str, span: Span, why: String, help: &str) -> Diagnostic {
     Diagnostic::error(
         codes::IMAGE_FILE,
-        format!("cannot load image `{}`", path.display()),
+        format!("cannot load image `{named}`"),
         span,
     )
     .with_label(why)
@@ -45,29 +48,34 @@ pub fn unreadable_in_model(origin: &crate::diag::NamedIn, span: Span, why: Strin
     .with_help(origin.help.clone())
 }
 
+/// An image file a scene names: its resolved path, the name as written,
+/// where it is written and the help for it.
+pub type NamedImage<'s> = (&'s Path, &'s str, Span, &'static str);
+
 /// The image files a scene's materials and environment name, each once, in
-/// source order: the path, where it is written and the help for it.
+/// source order.
 pub fn named_images<'s>(
     materials: &'s [Material],
     environment: Option<&'s Environment>,
-) -> Vec<(&'s Path, Span, &'static str)> {
+) -> Vec<NamedImage<'s>> {
     let textures = (materials.iter()).flat_map(|m| m.textures.iter().map(|(_, t)| t));
-    let mut named: Vec<(&Path, Span, &str)> = textures
+    let mut named: Vec<NamedImage> = textures
         .filter_map(|t| match &t.kind {
             TextureKind::Image {
                 path,
+                named,
                 path_span,
                 resolved: true,
                 ..
-            } => Some((path.as_path(), *path_span, TEXTURE_HELP)),
+            } => Some((path.as_path(), named.as_str(), *path_span, TEXTURE_HELP)),
             _ => None,
         })
         .collect();
     if let Some(e) = environment {
-        named.push((e.path.as_path(), e.path_span, ENVIRONMENT_HELP));
+        named.push((e.path.as_path(), &e.named, e.path_span, ENVIRONMENT_HELP));
     }
-    named.sort_by_key(|(_, span, _)| (span.file.0, span.start));
-    named.dedup_by_key(|(_, span, _)| *span);
+    named.sort_by_key(|(_, _, span, _)| (span.file.0, span.start));
+    named.dedup_by_key(|(_, _, span, _)| *span);
     named
 }
 
@@ -77,10 +85,10 @@ impl Checker<'_> {
     pub(super) fn report_missing_images(&mut self) {
         let named = named_images(&self.materials, self.environment.as_ref());
         let missing: Vec<Diagnostic> = (named.into_iter())
-            .filter_map(|(path, span, help)| {
+            .filter_map(|(path, named, span, help)| {
                 let why = self.files.exists(path).err()?;
                 Some(unreadable(
-                    path,
+                    named,
                     span,
                     format!("cannot read the file: {why}"),
                     help,

@@ -65,6 +65,9 @@ pub enum TextureKind {
     Image {
         /// The image file (relative to the scene file once resolved).
         path: PathBuf,
+        /// The file as the scene (or the mesh file naming it) writes it:
+        /// what messages say, whatever folder the scene was opened from.
+        named: String,
         /// Where its name is written.
         path_span: Span,
         /// `repeat`, `clamp` or `mirror`.
@@ -375,6 +378,9 @@ pub enum Shape {
     Mesh {
         /// Resolved path.
         path: PathBuf,
+        /// The file as the scene writes it (what messages say, whatever
+        /// folder the scene was opened from).
+        named: String,
         /// Where the file name is written.
         path_span: Span,
         /// Interpolate vertex normals when the file has them.
@@ -565,6 +571,8 @@ pub struct Sky {
 pub struct Environment {
     /// The image (relative to the scene file's folder once resolved).
     pub path: PathBuf,
+    /// The file as the scene writes it (what messages say).
+    pub named: String,
     /// Where its name is written.
     pub path_span: Span,
     /// The radiance scale (per channel).

@@ -109,7 +109,8 @@ pub fn check_texture(
                 _ => return None,
             };
             TextureKind::Image {
-                path: file.into(),
+                path: (&file).into(),
+                named: file,
                 path_span,
                 // A word checked against `Wrap::WORDS` (the row's `Ty::Word`).
                 wrap: word("wrap")

@@ -483,6 +483,9 @@ fn texture(
     };
     Ok(Texture {
         kind: TextureKind::Image {
+            // The image's own name: the folder it was read from depends
+            // on where the scene was opened, which messages leave out.
+            named: (path.file_name()).map_or(String::new(), |n| n.to_string_lossy().into_owned()),
             path,
             path_span: Span::default(),
             wrap: wrap(sampler.wrap_s()),

@@ -112,7 +112,7 @@ pub fn place(
                 warnings.push(
                     Diagnostic::warning(
                         codes::NO_EFFECT,
-                        format!("the {} lights of `{}` are not placed: it is inside a group", lights.len(), object_path(object).display()),
+                        format!("the {} lights of `{}` are not placed: it is inside a group", lights.len(), object_named(object)),
                         *path_span,
                     )
                     .with_label("lights left out")
@@ -165,7 +165,7 @@ fn placements(object: &Object, data: &MeshData, errors: &mut Diagnostics) -> Opt
     let (
         Some(scene),
         check::Shape::Mesh {
-            path,
+            named,
             path_span,
             node,
             ..
@@ -181,7 +181,7 @@ fn placements(object: &Object, data: &MeshData, errors: &mut Diagnostics) -> Opt
         Ok(placed) => Some(placed),
         Err(e) => {
             errors.push(
-                Diagnostic::error(codes::MESH_FILE, format!("cannot place `{}`", path.display()), span)
+                Diagnostic::error(codes::MESH_FILE, format!("cannot place `{named}`"), span)
                     .with_label(e)
                     .with_help(match name {
                         Some(_) => "name a node of the file that holds meshes (`node \"Name\"`), or leave `node` out to place its default scene",
@@ -212,6 +212,14 @@ fn object_path(object: &Object) -> &Path {
     }
 }
 
+/// The file a mesh object reads, as the scene writes it (for messages).
+fn object_named(object: &Object) -> &str {
+    match &object.shape {
+        check::Shape::Mesh { named, .. } => named,
+        _ => "",
+    }
+}
+
 /// The file's notes as warnings at the statement: its general ones at the
 /// file's `first` statement, its materials' at the first that uses them
 /// (a statement that gives a material does not), listed in `warned`.
@@ -224,7 +232,10 @@ fn warn(
     let (
         Some(scene),
         check::Shape::Mesh {
-            path, path_span, ..
+            path,
+            named,
+            path_span,
+            ..
         },
     ) = (&data.scene, &object.shape)
     else {
@@ -236,7 +247,7 @@ fn warn(
         warnings.push(
             Diagnostic::warning(
                 codes::NO_EFFECT,
-                format!("`{}`: {note}", path.display()),
+                format!("`{named}`: {note}"),
                 *path_span,
             )
             .with_label("not followed")
@@ -277,14 +288,15 @@ fn swapped(
     data: &MeshData,
     warnings: &mut Diagnostics,
 ) -> Vec<usize> {
-    let (Some(scene), check::Shape::Mesh { swaps, path, .. }) = (&data.scene, &object.shape) else {
+    let (Some(scene), check::Shape::Mesh { swaps, named, .. }) = (&data.scene, &object.shape)
+    else {
         return mapped.to_vec();
     };
     if swaps.is_empty() {
         return mapped.to_vec();
     }
     let names = scene.material_names.iter().map(String::as_str);
-    super::swaps::warn_unmatched(swaps, names, path, warnings);
+    super::swaps::warn_unmatched(swaps, names, named, warnings);
     (mapped.iter().zip(&scene.material_names))
         .map(|(&m, name)| super::swaps::replacing(swaps, name).unwrap_or(m))
         .collect()
@@ -300,6 +312,7 @@ fn parts_of(
 ) -> Vec<Object> {
     let check::Shape::Mesh {
         path,
+        named,
         path_span,
         smooth,
         ..
@@ -312,6 +325,7 @@ fn parts_of(
         .map(|(k, part)| Object {
             shape: check::Shape::Mesh {
                 path: path.clone(),
+                named: named.clone(),
                 path_span: *path_span,
                 smooth: *smooth,
                 node: None,
@@ -412,6 +426,7 @@ fn place_in_group(
 fn placeholder() -> check::Shape {
     check::Shape::Mesh {
         path: PathBuf::new(),
+        named: String::new(),
         path_span: Span::default(),
         smooth: false,
         node: None,

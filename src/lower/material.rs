@@ -279,6 +279,7 @@ fn lower_texture(
         },
         check::TextureKind::Image {
             path,
+            named,
             path_span,
             wrap,
             color_space,
@@ -305,7 +306,7 @@ fn lower_texture(
                         }
                         None => {
                             let help = check::image_files::TEXTURE_HELP;
-                            check::image_files::unreadable(path, *path_span, e, help)
+                            check::image_files::unreadable(named, *path_span, e, help)
                         }
                     });
                     return None;

@@ -211,6 +211,7 @@ fn image(r: &TextureRef, (key, name, library): (&str, &str, &Path), span: Span) 
     Texture {
         kind: TextureKind::Image {
             path: folder.join(&r.file),
+            named: r.file.clone(),
             path_span: span,
             wrap: if r.clamp { Wrap::Clamp } else { Wrap::Repeat },
             color_space: None,

@@ -112,6 +112,7 @@ fn split(
 ) -> Option<Vec<check::Object>> {
     let check::Shape::Mesh {
         path,
+        named,
         path_span,
         smooth,
         swaps,
@@ -137,6 +138,7 @@ fn split(
     let parts = groups.iter().map(|&(group, material)| check::Object {
         shape: check::Shape::Mesh {
             path: path.clone(),
+            named: named.clone(),
             path_span: *path_span,
             smooth: *smooth,
             node: None,
@@ -162,6 +164,7 @@ fn map_file(
 ) -> Option<Vec<(u32, usize)>> {
     let check::Shape::Mesh {
         path,
+        named,
         path_span,
         swaps,
         ..
@@ -171,12 +174,12 @@ fn map_file(
     };
     let data = read_mesh(reads, (cache, files), path).ok()?;
     let names = data.materials.iter().map(|m| m.name.as_str());
-    super::swaps::warn_unmatched(swaps, names, path, warnings);
+    super::swaps::warn_unmatched(swaps, names, named, warnings);
     for error in &data.library_errors {
         warnings.push(
             Diagnostic::warning(
                 codes::MESH_FILE,
-                format!("a material library of `{}` could not be read in full", path.display()),
+                format!("a material library of `{named}` could not be read in full"),
                 *path_span,
             )
             .with_label(error.clone())
@@ -210,7 +213,7 @@ fn map_file(
                     warnings.push(
                         Diagnostic::warning(
                             codes::NO_EFFECT,
-                            format!("material `{}` of `{}`: {note}", m.name, path.display()),
+                            format!("material `{}` of `{named}`: {note}", m.name),
                             *path_span,
                         )
                         .with_label("left out")

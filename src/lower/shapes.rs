@@ -297,11 +297,12 @@ impl Gathering<'_> {
         match &obj.shape {
             check::Shape::Mesh {
                 path,
+                named,
                 path_span,
                 smooth,
                 group,
                 ..
-            } => return self.mesh(o, obj, (path, *path_span), (*smooth, *group)),
+            } => return self.mesh(o, obj, (path, named, *path_span), (*smooth, *group)),
             check::Shape::Plane { point, normal } => shapes.push(Shape::Plane {
                 point: pt(*point),
                 normal: unit_f32(m.inverse().transpose().transform_vector3(*normal)),
@@ -347,13 +348,13 @@ impl Gathering<'_> {
         }
     }
 
-    /// Adds the triangles of mesh object `o` read from `path` (named at
-    /// `path_span`), with their vertex normals when `smooth`.
+    /// Adds the triangles of mesh object `o` read from `path` (written
+    /// `named` at `path_span`), with their vertex normals when `smooth`.
     fn mesh(
         &mut self,
         o: usize,
         obj: &check::Object,
-        (path, path_span): (&std::path::Path, crate::span::Span),
+        (path, named, path_span): (&std::path::Path, &str, crate::span::Span),
         (smooth, group): (bool, Option<u32>),
     ) {
         let data = match self.read_mesh(path) {
@@ -362,7 +363,7 @@ impl Gathering<'_> {
                 self.diags.push(
                     Diagnostic::error(
                         codes::MESH_FILE,
-                        format!("cannot load mesh `{}`", path.display()),
+                        format!("cannot load mesh `{named}`"),
                         path_span,
                     )
                     .with_label(e)

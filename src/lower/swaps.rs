@@ -5,7 +5,6 @@
 
 use crate::check::MaterialSwap;
 use crate::diag::{codes, did_you_mean, Diagnostic, Diagnostics};
-use std::path::Path;
 
 /// The scene's material that replaces the file's material `name`, if the
 /// statement replaces it.
@@ -14,11 +13,12 @@ pub fn replacing(swaps: &[MaterialSwap], name: &str) -> Option<usize> {
 }
 
 /// Warns of each replaced name that none of the file's materials (`names`)
-/// has, with the closest name it has.
+/// has, with the closest name it has; the file is called what the scene
+/// calls it (`named`).
 pub fn warn_unmatched<'a>(
     swaps: &[MaterialSwap],
     names: impl Iterator<Item = &'a str> + Clone,
-    path: &Path,
+    named: &str,
     warnings: &mut Diagnostics,
 ) {
     for swap in swaps {
@@ -27,7 +27,7 @@ pub fn warn_unmatched<'a>(
         }
         let d = Diagnostic::warning(
             codes::NO_EFFECT,
-            format!("`{}` has no material `{}`", path.display(), swap.name),
+            format!("`{named}` has no material `{}`", swap.name),
             swap.span,
         )
         .with_label("replaces nothing");
@@ -70,12 +70,7 @@ mod tests {
         assert_eq!(replacing(&swaps, "Bark"), Some(5));
         assert_eq!(replacing(&swaps, "leaf"), None);
         let mut w = Diagnostics::new();
-        warn_unmatched(
-            &swaps,
-            ["Leaves", "Bark"].into_iter(),
-            Path::new("t.obj"),
-            &mut w,
-        );
+        warn_unmatched(&swaps, ["Leaves", "Bark"].into_iter(), "t.obj", &mut w);
         assert_eq!(w.items.len(), 1, "{:?}", w.items);
         let text = format!("{:?}", w.items[0]);
         assert!(

@@ -432,6 +432,11 @@ fn mesh(s: &mut ShapeInput) -> Option<Shape> {
             .with_label(format!("{} is {kind}", path.display()))
             .with_help("a mesh is read from an OBJ, PLY or glTF file"),
         ),
+        Err(ReadError::Unsaved) => Some(
+            Diagnostic::error(codes::MESH_FILE, format!("mesh file `{f}` not found"), at)
+                .with_label(ReadError::Unsaved.to_string())
+                .with_help("save the document, or open the folder it belongs to as the workspace"),
+        ),
         Err(_) => Some(
             Diagnostic::error(codes::MESH_FILE, format!("mesh file `{f}` not found"), at)
                 .with_label(format!("looked for {}", path.display()))
@@ -461,6 +466,7 @@ fn mesh(s: &mut ShapeInput) -> Option<Shape> {
     }
     Some(Shape::Mesh {
         path,
+        named: f,
         path_span: at,
         smooth: s.boolean("smooth", gltf),
         node,

@@ -52,49 +52,7 @@ impl Checker<'_> {
         let bytes = match self.files.read(&target, room) {
             Ok(b) => b,
             Err(e) => {
-                let (reason, help) = match &e {
-                    // `colors.inc`, `textures.inc`: a POV-Ray scene's first lines.
-                    ReadError::NotFound if path.to_ascii_lowercase().ends_with(".inc") => (
-                        "not found".to_string(),
-                        "POV-Ray's own include files (colors.inc, textures.inc, …) have no ptsc version: write colours as `rgb <r, g, b>`"
-                            .to_string(),
-                    ),
-                    ReadError::NotFound => (
-                        "not found".to_string(),
-                        "include paths are relative to the file that contains the `include`"
-                            .to_string(),
-                    ),
-                    ReadError::NotRegular(FileKind::Folder) => (
-                        "it is a folder, not a file".to_string(),
-                        "include a `.pts` or `.ptsi` file".to_string(),
-                    ),
-                    ReadError::NotRegular(kind) => (
-                        format!("not a regular file: it is {kind}"),
-                        "devices, pipes and sockets are never read: include a file".to_string(),
-                    ),
-                    ReadError::TooLarge { size, .. } if *size <= MAX_SCENE_BYTES => (
-                        format!(
-                            "the scene's files would hold more than {} of text together",
-                            crate::source::human_bytes(MAX_SCENE_BYTES)
-                        ),
-                        "large generated geometry belongs in a mesh file (`mesh { file \"…\" }`)"
-                            .to_string(),
-                    ),
-                    other => (
-                        other.to_string(),
-                        "large generated geometry belongs in a mesh file (`mesh { file \"…\" }`)"
-                            .to_string(),
-                    ),
-                };
-                self.diags.push(
-                    Diagnostic::error(
-                        codes::INCLUDE_NOT_FOUND,
-                        format!("cannot include `{path}`: {reason}"),
-                        path_span,
-                    )
-                    .with_label(format!("looked for {}", target.display()))
-                    .with_help(help),
-                );
+                self.diags.push(not_included(path, &target, &e, path_span));
                 return;
             }
         };
@@ -116,4 +74,61 @@ impl Checker<'_> {
         self.run_file(id);
         self.include_stack.pop();
     }
+}
+
+/// The error for an include of `path` (resolved to `target`) that could
+/// not be read (`e`).
+fn not_included(path: &str, target: &Path, e: &ReadError, path_span: Span) -> Diagnostic {
+    let (reason, help) = match &e {
+            // `colors.inc`, `textures.inc`: a POV-Ray scene's first lines.
+            ReadError::NotFound if path.to_ascii_lowercase().ends_with(".inc") => (
+                "not found".to_string(),
+                "POV-Ray's own include files (colors.inc, textures.inc, …) have no ptsc version: write colours as `rgb <r, g, b>`"
+                    .to_string(),
+            ),
+            ReadError::Unsaved => {
+            // No folder, so no "looked for" path: one made up would name
+            // a place that holds nothing.
+            return Diagnostic::error(
+                codes::INCLUDE_NOT_FOUND,
+                format!("cannot include `{path}`: an unsaved document cannot include relative files"),
+                path_span,
+            )
+            .with_label("the document has no folder yet")
+            .with_help("save the document, or open the folder it belongs to as the workspace, and its includes are read from there");
+        }
+        ReadError::NotFound => (
+                "not found".to_string(),
+                "include paths are relative to the file that contains the `include`"
+                    .to_string(),
+            ),
+            ReadError::NotRegular(FileKind::Folder) => (
+                "it is a folder, not a file".to_string(),
+                "include a `.pts` or `.ptsi` file".to_string(),
+            ),
+            ReadError::NotRegular(kind) => (
+                format!("not a regular file: it is {kind}"),
+                "devices, pipes and sockets are never read: include a file".to_string(),
+            ),
+            ReadError::TooLarge { size, .. } if *size <= MAX_SCENE_BYTES => (
+                format!(
+                    "the scene's files would hold more than {} of text together",
+                    crate::source::human_bytes(MAX_SCENE_BYTES)
+                ),
+                "large generated geometry belongs in a mesh file (`mesh { file \"…\" }`)"
+                    .to_string(),
+            ),
+            other => (
+                other.to_string(),
+                "large generated geometry belongs in a mesh file (`mesh { file \"…\" }`)"
+                    .to_string(),
+            ),
+        };
+    Diagnostic::error(
+        codes::INCLUDE_NOT_FOUND,
+        format!("cannot include `{path}`: {reason}"),
+        path_span,
+    )
+    .with_label(format!("looked for {}", target.display()))
+    .with_help(help)
 }

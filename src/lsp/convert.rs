@@ -7,9 +7,17 @@ use lsp_types as lsp;
 use std::path::{Path, PathBuf};
 use std::str::FromStr;
 
+/// The made-up folder of a document that has no path (`untitled:`) when
+/// there is no workspace: nothing is read from it
+/// ([`crate::source::MemoryFiles::unsaved_folder`]), so its includes are
+/// "unsaved", not "not found" in a folder that does not exist.
+pub const UNSAVED_FOLDER: &str = "/untitled";
+
 /// The path a document's URI names: a `file:` URI's path, else a made-up
-/// path under `/untitled/` (its includes are not found).
-pub fn uri_to_path(uri: &str) -> PathBuf {
+/// name in the workspace's folder `root` (its includes are read from
+/// there, as `ptsc check -` reads them from the working folder), or in
+/// [`UNSAVED_FOLDER`] without one.
+pub fn uri_to_path(uri: &str, root: Option<&Path>) -> PathBuf {
     if let Ok(url) = url::Url::parse(uri) {
         if url.scheme() == "file" {
             if let Ok(path) = url.to_file_path() {
@@ -27,7 +35,7 @@ pub fn uri_to_path(uri: &str) -> PathBuf {
             }
         })
         .collect();
-    PathBuf::from("/untitled").join(name)
+    crate::ide::normal(&root.unwrap_or(Path::new(UNSAVED_FOLDER)).join(name))
 }
 
 /// The `file:` URI of a path.

@@ -5,7 +5,7 @@
 //! and the server goes on; a malformed message is reported in the log.
 
 use super::checker::{Checker, Done, Job, DEBOUNCE};
-use super::convert::{diagnostic, uri_to_path, Lines};
+use super::convert::{diagnostic, Lines, UNSAVED_FOLDER};
 use super::position::{Encoding, LineIndex};
 use super::state::{Document, Server};
 use super::transport::MALFORMED;
@@ -31,31 +31,26 @@ pub enum Ending {
 
 /// Serves `connection` until `exit` or the end of its input.
 pub fn serve(connection: &Connection) -> Ending {
-    let Some((encoding, messages)) = initialize(connection) else {
+    let Some((encoding, root)) = initialize(connection) else {
         return Ending::Abrupt;
     };
     let (done_tx, done_rx) = unbounded::<Done>();
     let mut server = Server {
         sender: connection.sender.clone(),
         encoding,
+        root,
         documents: HashMap::new(),
         checks: HashMap::new(),
         published: HashMap::new(),
         checker: Checker::start(done_tx),
         shutdown: false,
     };
-    for m in messages {
-        if let Some(end) = server.message(m) {
-            return end;
-        }
-    }
     server.run(&connection.receiver, &done_rx)
 }
 
 /// Waits for `initialize` (answering anything else before it with an
-/// error) and answers it: the encoding chosen, and the messages that came
-/// with it to handle next.
-fn initialize(connection: &Connection) -> Option<(Encoding, Vec<Message>)> {
+/// error) and answers it: the encoding chosen, and the workspace's folder.
+fn initialize(connection: &Connection) -> Option<(Encoding, Option<PathBuf>)> {
     loop {
         let message = connection.receiver.recv().ok()?;
         match message {
@@ -70,6 +65,7 @@ fn initialize(connection: &Connection) -> Option<(Encoding, Vec<Message>)> {
                 } else {
                     Encoding::Utf16
                 };
+                let root = workspace_root(&params);
                 let result = lsp::InitializeResult {
                     capabilities: super::handlers::capabilities(encoding),
                     server_info: Some(lsp::ServerInfo {
@@ -80,7 +76,7 @@ fn initialize(connection: &Connection) -> Option<(Encoding, Vec<Message>)> {
                 let _ = connection
                     .sender
                     .send(Response::new_ok(req.id, result).into());
-                return Some((encoding, Vec::new()));
+                return Some((encoding, root));
             }
             Message::Request(req) => {
                 let e = Response::new_err(
@@ -94,6 +90,18 @@ fn initialize(connection: &Connection) -> Option<(Encoding, Vec<Message>)> {
             _ => {}
         }
     }
+}
+
+/// The workspace's folder: the first workspace folder, else the root URI
+/// (a `file:` URI; another names no folder).
+#[allow(deprecated)] // `root_uri`: older editors send only it.
+fn workspace_root(params: &lsp::InitializeParams) -> Option<PathBuf> {
+    let first = (params.workspace_folders.iter().flatten()).map(|f| f.uri.as_str());
+    let root = params.root_uri.as_ref().map(|u| u.as_str());
+    first
+        .chain(root)
+        .find_map(|u| url::Url::parse(u).ok()?.to_file_path().ok())
+        .map(|p| crate::ide::normal(&p))
 }
 
 impl Server {
@@ -202,7 +210,7 @@ impl Server {
                     serde_json::from_value(n.params).map_err(bad)?;
                 let d = p.text_document;
                 let key = d.uri.as_str().to_string();
-                let path = uri_to_path(&key);
+                let path = self.path_of(&key);
                 let index = LineIndex::new(&d.text);
                 let doc = Document {
                     uri: d.uri,
@@ -243,7 +251,7 @@ impl Server {
                     self.publish(&uri, Vec::new(), None);
                 }
                 // The scenes that include it read it from the disk again.
-                self.recheck_readers(&uri_to_path(&key));
+                self.recheck_readers(&self.path_of(&key));
                 // Open files it included are reported by their own checks again.
                 let included: Vec<PathBuf> = (closed.iter())
                     .flat_map(|(_, c)| c.sources.files().iter().skip(1))
@@ -261,7 +269,7 @@ impl Server {
                 let p: lsp::DidChangeWatchedFilesParams =
                     serde_json::from_value(n.params).map_err(bad)?;
                 for change in p.changes {
-                    self.recheck_readers(&uri_to_path(change.uri.as_str()));
+                    self.recheck_readers(&self.path_of(change.uri.as_str()));
                 }
             }
             _ => {}
@@ -304,6 +312,7 @@ impl Server {
             return;
         };
         let mut files = MemoryFiles::over_disk();
+        files.unsaved_folder(UNSAVED_FOLDER);
         for d in self.documents.values() {
             files.insert(d.path.clone(), d.text.as_bytes().to_vec());
         }

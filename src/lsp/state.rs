@@ -34,6 +34,9 @@ pub struct Document {
 pub struct Server {
     pub(super) sender: crossbeam_channel::Sender<Message>,
     pub(super) encoding: Encoding,
+    /// The workspace's folder, if the editor named one: where a document
+    /// without a path (`untitled:`) reads its includes from.
+    pub(super) root: Option<PathBuf>,
     pub(super) documents: HashMap<String, Document>,
     /// The last check of each open document, with the version it read.
     pub(super) checks: HashMap<String, (i32, Arc<Compiled>)>,
@@ -53,6 +56,11 @@ impl Server {
         let _ = self
             .sender
             .send(Notification::new(method.to_string(), params).into());
+    }
+
+    /// The path of the document `uri` ([`super::convert::uri_to_path`]).
+    pub(super) fn path_of(&self, uri: &str) -> PathBuf {
+        super::convert::uri_to_path(uri, self.root.as_deref())
     }
 
     pub(super) fn log(&self, typ: lsp::MessageType, message: String) {

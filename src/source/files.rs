@@ -82,6 +82,9 @@ impl Files for Disk {
 pub struct MemoryFiles {
     files: HashMap<PathBuf, Arc<[u8]>>,
     disk: Option<Disk>,
+    /// The made-up folder of documents that have none (see
+    /// [`MemoryFiles::unsaved_folder`]).
+    unsaved: Option<PathBuf>,
 }
 
 impl MemoryFiles {
@@ -95,7 +98,16 @@ impl MemoryFiles {
         MemoryFiles {
             files: HashMap::new(),
             disk: Some(Disk),
+            unsaved: None,
         }
+    }
+
+    /// Names `folder` as the made-up folder of documents that have none
+    /// (an editor's unsaved buffers): the files held there are read, and
+    /// any other path below it is [`ReadError::Unsaved`], never asked of
+    /// the disk (whatever lies at that path is not beside the document).
+    pub fn unsaved_folder(&mut self, folder: impl Into<PathBuf>) {
+        self.unsaved = Some(lexically_normal(&folder.into()));
     }
 
     /// Holds `bytes` as the file `path` (replacing what it held).
@@ -115,47 +127,62 @@ impl MemoryFiles {
     fn held(&self, path: &Path) -> Option<&Arc<[u8]>> {
         self.files.get(&lexically_normal(path))
     }
+
+    /// The disk below the held files, unless `path` lies in the unsaved
+    /// documents' made-up folder (`Err`: nothing can be read there).
+    fn disk_for(&self, path: &Path) -> Result<Option<&Disk>, ReadError> {
+        match &self.unsaved {
+            Some(folder) if lexically_normal(path).starts_with(folder) => Err(ReadError::Unsaved),
+            _ => Ok(self.disk.as_ref()),
+        }
+    }
 }
 
 impl Files for MemoryFiles {
     fn read(&self, path: &Path, limit: u64) -> Result<Vec<u8>, ReadError> {
-        match (self.held(path), &self.disk) {
-            (Some(bytes), _) => read_stream(&bytes[..], bytes.len() as u64, limit),
-            (None, Some(disk)) => disk.read(path, limit),
-            (None, None) => Err(self.missing(path)),
+        match self.held(path) {
+            Some(bytes) => read_stream(&bytes[..], bytes.len() as u64, limit),
+            None => match self.disk_for(path)? {
+                Some(disk) => disk.read(path, limit),
+                None => Err(self.missing(path)),
+            },
         }
     }
 
     fn open(&self, path: &Path, limit: u64) -> Result<Box<dyn Read + '_>, ReadError> {
-        match (self.held(path), &self.disk) {
-            (Some(bytes), _) if bytes.len() as u64 > limit => Err(ReadError::TooLarge {
+        match self.held(path) {
+            Some(bytes) if bytes.len() as u64 > limit => Err(ReadError::TooLarge {
                 limit,
                 size: bytes.len() as u64,
             }),
-            (Some(bytes), _) => Ok(Box::new(&bytes[..])),
-            (None, Some(disk)) => disk.open(path, limit),
-            (None, None) => Err(self.missing(path)),
+            Some(bytes) => Ok(Box::new(&bytes[..])),
+            None => match self.disk_for(path)? {
+                Some(disk) => disk.open(path, limit),
+                None => Err(self.missing(path)),
+            },
         }
     }
 
     fn exists(&self, path: &Path) -> Result<(), ReadError> {
-        match (self.held(path), &self.disk) {
-            (Some(_), _) => Ok(()),
-            (None, Some(disk)) => disk.exists(path),
-            (None, None) => Err(self.missing(path)),
+        match self.held(path) {
+            Some(_) => Ok(()),
+            None => match self.disk_for(path)? {
+                Some(disk) => disk.exists(path),
+                None => Err(self.missing(path)),
+            },
         }
     }
 
     fn canonical(&self, path: &Path) -> PathBuf {
-        match (self.held(path), &self.disk) {
-            (None, Some(disk)) => disk.canonical(path),
+        match (self.held(path), self.disk_for(path)) {
+            (None, Ok(Some(disk))) => disk.canonical(path),
             _ => lexically_normal(path),
         }
     }
 
     fn stamp(&self, path: &Path) -> Option<Stamp> {
-        match (self.held(path), &self.disk) {
-            (None, Some(disk)) => disk.stamp(path),
+        match (self.held(path), self.disk_for(path)) {
+            (None, Ok(Some(disk))) => disk.stamp(path),
             _ => None,
         }
     }

@@ -99,6 +99,10 @@ pub enum ReadError {
     },
     /// Any other I/O error.
     Io(std::io::Error),
+    /// Named relative to a document that has no folder (an editor's
+    /// unsaved buffer, with no workspace to stand for its folder): there
+    /// is no place to look, rather than a made-up one that holds nothing.
+    Unsaved,
 }
 
 impl fmt::Display for ReadError {
@@ -113,6 +117,9 @@ impl fmt::Display for ReadError {
                 human_bytes(*size)
             ),
             ReadError::Io(e) => write!(f, "{e}"),
+            ReadError::Unsaved => {
+                f.write_str("the document is not saved, so it has no folder to read files from")
+            }
         }
     }
 }

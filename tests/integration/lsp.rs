@@ -17,6 +17,9 @@ use std::process::{Child, ChildStdin, Command, Stdio};
 use std::sync::mpsc;
 use std::time::Duration;
 
+/// The agreement of what the editor shows with `ptsc check`.
+mod verdict;
+
 /// How long one wait for the server may take before the test fails.
 const TIMEOUT: Duration = Duration::from_secs(20);
 

@@ -15,7 +15,8 @@ impl Checker<'_> {
         file: FileId,
     ) {
         let Some(row) = kinds::find(&kind.name) else {
-            self.diags.push(kinds::unknown_statement(kind, span));
+            self.diags
+                .push(kinds::unknown_statement(kind, span, Some(block)));
             self.light_with_errors |= kinds::may_be_a_light(&kind.name);
             return;
         };
@@ -38,12 +39,12 @@ impl Checker<'_> {
             (row.name, kind_span),
             block,
             (&row.schemas(), row.positional),
-            row.is_shape(),
+            row.takes_material(),
             (&mut self.env, &mut self.diags),
         );
         self.meant_materials.extend(p.meant_material.clone());
         let material_entries = material_entries(block);
-        if !row.is_shape() {
+        if !row.takes_material() {
             for (_, s) in &material_entries {
                 self.diags.push(
                     Diagnostic::error(

@@ -354,7 +354,9 @@ impl Checker<'_> {
                 .with_label("defined here")
                 .with_help(format!(
                     "remove it, or start its name with `_` if that is intended: `_{name}`"
-                )),
+                ))
+                // Nothing uses it, so its definition is the whole rename.
+                .with_fix(span, format!("_{name}")),
             };
             warnings.push(warning);
         }

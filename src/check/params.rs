@@ -302,6 +302,15 @@ impl<'s> Collecting<'s> {
                 continue;
             };
             let Some(spec) = self.spec(name, &value, diags) else {
+                // An unknown, refused or repeated parameter's value is not
+                // evaluated, but the names it reads are the ones in scope:
+                // uses (hover, references and rename find them; a constant
+                // used only there is not "unused").
+                if let Source::Value(v) = &value {
+                    v.each_name(&mut |name, at, _| {
+                        env.lookup(name, at);
+                    });
+                }
                 continue;
             };
             env.record_param(name.span, spec);

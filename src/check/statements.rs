@@ -57,7 +57,7 @@ impl Checker<'_> {
             // error (see `syntax::parse_each`).
             Statement::Foreign { name, .. } if kinds::find(&name.name).is_some() => {}
             Statement::Foreign { name, span } => {
-                self.diags.push(kinds::unknown_statement(name, *span));
+                self.diags.push(kinds::unknown_statement(name, *span, None));
                 self.light_with_errors |= kinds::may_be_a_light(&name.name);
             }
             Statement::Directive {

@@ -100,12 +100,14 @@ impl Checker<'_> {
                         let head = (row.name, kind.span);
                         self.unrun_block(head, block, schemas, row.is_shape(), uses);
                     }
-                    None => self.diags.push(kinds::unknown_statement(kind, *span)),
+                    None => self
+                        .diags
+                        .push(kinds::unknown_statement(kind, *span, Some(block))),
                 },
                 // A kind's block that did not parse: a syntax error already.
                 Statement::Foreign { name, .. } if kinds::find(&name.name).is_some() => {}
                 Statement::Foreign { name, span } => {
-                    self.diags.push(kinds::unknown_statement(name, *span))
+                    self.diags.push(kinds::unknown_statement(name, *span, None))
                 }
                 Statement::Directive { name, .. } => self.diags.push(povray::directive(name)),
                 Statement::Include { .. } => uses.include = true,
@@ -224,41 +226,18 @@ impl Checker<'_> {
     }
 }
 
-/// Every name and function an expression uses (an explicit stack: an
-/// expression may nest deeply).
+/// Every name and function an expression uses.
 fn names_in(e: &Expr, uses: &mut Uses) {
-    let mut stack = vec![e];
-    while let Some(e) = stack.pop() {
-        match &e.kind {
-            ExprKind::Name(name) => uses.names.push(Ident {
-                name: name.clone(),
-                span: e.span,
-            }),
-            ExprKind::Call { func, args } => {
-                uses.functions.push(func.clone());
-                stack.extend(args);
-            }
-            ExprKind::Number(_) | ExprKind::Str(_) | ExprKind::Bool(_) => {}
-            ExprKind::Vector(items) | ExprKind::List(items) => stack.extend(items),
-            ExprKind::Color(inner) | ExprKind::Neg(inner) | ExprKind::Not(inner) => {
-                stack.push(inner)
-            }
-            ExprKind::FilterColor { value, .. } => stack.push(value),
-            ExprKind::Member { base, .. } => stack.push(base),
-            ExprKind::Index { base, indexes } => {
-                stack.push(base);
-                stack.extend(indexes);
-            }
-            ExprKind::If { arms, otherwise } => {
-                stack.extend(arms.iter().flat_map(|(c, v)| [c, v]));
-                stack.push(otherwise);
-            }
-            ExprKind::Chain { first, rest } => {
-                stack.push(first);
-                stack.extend(rest.iter().map(|r| &r.2));
-            }
+    e.each_name(&mut |name, span, function| {
+        let ident = Ident {
+            name: name.to_string(),
+            span,
+        };
+        match function {
+            true => uses.functions.push(ident),
+            false => uses.names.push(ident),
         }
-    }
+    });
 }
 
 #[cfg(test)]

@@ -1,6 +1,6 @@
 //! Completion: what may be written at the cursor. Block kinds and
 //! statement keywords where a statement starts; inside a block, its
-//! parameters (those not given yet first, with snippets for vectors and
+//! parameters not given yet (with snippets for vectors and
 //! colours); at a parameter's value, its words, the names of the right
 //! kind (a `material` offers materials) or textures; in expressions, the
 //! names in scope and the built-in functions; in a string after `include`
@@ -10,7 +10,7 @@ use super::context::{context, Opener, Place};
 use super::docs::{param_markdown, param_snippet, KEYWORD_DOCS, PREDEFINED_DOCS};
 use super::View;
 use crate::check::eval::FUNCTION_DOCS;
-use crate::check::kinds::{Role, KINDS};
+use crate::check::kinds::KINDS;
 use crate::check::schema::{ParamSpec, Ty, TEXTURE_KINDS};
 use crate::check::SymbolKind;
 use std::ops::Range;
@@ -76,6 +76,10 @@ pub fn complete(view: View, offset: usize, list: ListFolder) -> Vec<Item> {
         items: Vec::new(),
         replace,
     };
+    if let Some(base) = member_base(view.text, cx.typed.start) {
+        member_items(&mut out, view, base);
+        return out.items;
+    }
     match cx.place {
         Place::Statement => statement_items(&mut out),
         Place::Entry { opener, given } => entry_items(&mut out, opener, &given),
@@ -93,7 +97,44 @@ pub fn complete(view: View, offset: usize, list: ListFolder) -> Vec<Item> {
         }
         Place::Comment => {}
     }
+    // A word offered twice (`rgb` as a colour's form and as a keyword of
+    // expressions) is listed once, as it was first offered.
+    let mut seen = std::collections::HashSet::new();
+    out.items.retain(|i| seen.insert(i.label.clone()));
     out.items
+}
+
+/// The name before `base.` when the word being typed (from `start`)
+/// follows a dot after a name (`v.`; not a number's `1.`).
+fn member_base(text: &str, start: usize) -> Option<&str> {
+    let before = text.get(..start)?.strip_suffix('.')?;
+    let from = before
+        .rfind(|c: char| !super::tokens::is_word_char(c))
+        .map_or(0, |i| {
+            i + before[i..].chars().next().map_or(1, char::len_utf8)
+        });
+    let name = &before[from..];
+    let first = name.chars().next()?;
+    (first.is_alphabetic() || first == '_').then_some(name)
+}
+
+/// The components `base.` may name: a vector's (as many as it has) or a
+/// colour's, by the constant's value; a vector's when that is not known.
+fn member_items(out: &mut Out, view: View, base: &str) {
+    let value = (view.compiled)
+        .and_then(|c| super::hover::by_name(c, base))
+        .and_then(|d| d.value.as_deref());
+    // A constant's value as a scene writes it: `rgb <…>` or `<a, b, c>`.
+    let (color, len) = match value {
+        Some(v) if v.starts_with("rgb") => (true, None),
+        Some(v) if v.starts_with('<') => (false, Some(v.matches(',').count() + 1)),
+        _ => (false, None),
+    };
+    let names = crate::check::eval::component_names(color, len);
+    let what = if color { "colour" } else { "vector" };
+    for name in names {
+        out.push(name, ItemKind::Value, "0", None).detail = Some(format!("a {what}'s component"));
+    }
 }
 
 struct Out {
@@ -170,31 +211,26 @@ fn entry_items(out: &mut Out, opener: Opener, given: &[String]) {
         .flatten()
         .filter(|p| p.povray.is_none())
     {
+        // A parameter given once may not be given again (check refuses it).
         let done = given.iter().any(|g| g == spec.name) && !spec.repeat;
-        let sort = if done { "2" } else { "0" };
-        if out.items.iter().any(|i| i.label == spec.name) {
+        if done || out.items.iter().any(|i| i.label == spec.name) {
             continue;
         }
         let item = out.push(
             spec.name,
             ItemKind::Parameter,
-            sort,
+            "0",
             Some((param_snippet(spec), true)),
         );
         item.detail = Some(spec.ty.describe());
         item.documentation = Some(param_markdown(spec, block));
     }
-    let takes_material = matches!(opener, Opener::Kind(k) if matches!(k.role, Role::Shape(_)));
-    if takes_material {
-        let sort = if given.iter().any(|g| g == "material") {
-            "2"
-        } else {
-            "0"
-        };
+    let takes_material = matches!(opener, Opener::Kind(k) if k.takes_material());
+    if takes_material && !given.iter().any(|g| g == "material") {
         let item = out.push(
             "material",
             ItemKind::Parameter,
-            sort,
+            "0",
             Some(("material ${1:name}".to_string(), true)),
         );
         item.detail = Some("a material's name or `material { … }`".to_string());

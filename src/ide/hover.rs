@@ -126,23 +126,23 @@ fn block_name(text: &str, offset: usize) -> String {
     }
 }
 
-/// A block kind: its summary and its parameters.
+/// A block kind: its summary and its parameters (those check's help
+/// lists, `material` included where the block takes one).
 pub fn kind_markdown(kind: &'static Kind) -> String {
     let mut out = format!("**{}** — {}", kind.name, kind.summary);
-    let rows = Opener::Kind(kind).schemas();
-    out.push_str(&param_list(&rows));
+    out.push_str(&param_list(kind.accepted()));
     out
 }
 
 fn texture_markdown(name: &str, rows: &[&'static [ParamSpec]]) -> String {
-    format!("**{name}** (texture){}", param_list(rows))
+    let names = (rows.iter().copied().flatten())
+        .filter(|p| p.povray.is_none())
+        .map(|p| p.name);
+    format!("**{name}** (texture){}", param_list(names.collect()))
 }
 
-fn param_list(rows: &[&'static [ParamSpec]]) -> String {
-    let names: Vec<String> = (rows.iter().copied().flatten())
-        .filter(|p| p.povray.is_none())
-        .map(|p| format!("`{}`", p.name))
-        .collect();
+fn param_list(names: Vec<&str>) -> String {
+    let names: Vec<String> = names.iter().map(|n| format!("`{n}`")).collect();
     if names.is_empty() {
         String::new()
     } else {
@@ -186,10 +186,19 @@ pub fn definition_markdown(compiled: &Compiled, def: &Definition) -> String {
         .count()
         + 1;
     out.push_str(&format!(
-        "\n\ndefined in `{name}`, line {line}; used {} times",
-        def.uses.len()
+        "\n\ndefined in `{name}`, line {line}; {}",
+        used(def.uses.len())
     ));
     out
+}
+
+/// How often a name is used, in words.
+fn used(n: usize) -> String {
+    match n {
+        0 => "not used".to_string(),
+        1 => "used once".to_string(),
+        n => format!("used {n} times"),
+    }
 }
 
 /// At most `lines` lines of `text`, each at most 120 characters.

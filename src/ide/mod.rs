@@ -58,3 +58,6 @@ impl<'a> View<'a> {
 /// path is its scene's folder joined with what the scene wrote): the
 /// source seam's own rule, so that a document and an include compare equal.
 pub use crate::source::lexically_normal as normal;
+
+#[cfg(test)]
+mod tests;

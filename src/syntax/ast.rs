@@ -291,6 +291,44 @@ pub struct Expr {
     pub span: Span,
 }
 
+impl Expr {
+    /// Calls `f` with every name the expression reads and where, and
+    /// whether it is a called function's (an explicit stack: an expression
+    /// may nest deeply). Expressions bind no names, so each is looked up
+    /// in the scope around the expression.
+    pub fn each_name(&self, f: &mut dyn FnMut(&str, Span, bool)) {
+        let mut stack = vec![self];
+        while let Some(e) = stack.pop() {
+            match &e.kind {
+                ExprKind::Name(name) => f(name, e.span, false),
+                ExprKind::Call { func, args } => {
+                    f(&func.name, func.span, true);
+                    stack.extend(args);
+                }
+                ExprKind::Number(_) | ExprKind::Str(_) | ExprKind::Bool(_) => {}
+                ExprKind::Vector(items) | ExprKind::List(items) => stack.extend(items),
+                ExprKind::Color(inner) | ExprKind::Neg(inner) | ExprKind::Not(inner) => {
+                    stack.push(inner)
+                }
+                ExprKind::FilterColor { value, .. } => stack.push(value),
+                ExprKind::Member { base, .. } => stack.push(base),
+                ExprKind::Index { base, indexes } => {
+                    stack.push(base);
+                    stack.extend(indexes);
+                }
+                ExprKind::If { arms, otherwise } => {
+                    stack.extend(arms.iter().flat_map(|(c, v)| [c, v]));
+                    stack.push(otherwise);
+                }
+                ExprKind::Chain { first, rest } => {
+                    stack.push(first);
+                    stack.extend(rest.iter().map(|r| &r.2));
+                }
+            }
+        }
+    }
+}
+
 /// Binary operators.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum BinOp {

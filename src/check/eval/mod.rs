@@ -23,7 +23,7 @@ pub use budget::{MAX_SUGGESTIONS, MAX_WORK};
 pub use builtins::{random, FUNCTIONS, FUNCTION_DOCS};
 pub use env::{Binding, Env, Unrun};
 pub use limits::*;
-pub use povray::written;
+pub use povray::{component_names, written};
 pub use value::{shown, Function, List, Value, MAX_LIST_DEPTH};
 
 use crate::diag::codes;

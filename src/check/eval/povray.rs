@@ -24,6 +24,27 @@ const COLOR_COMPONENTS: &[(&str, usize)] = &[
     ("z", 2),
 ];
 
+/// The names of the components of a vector of `len` items (`None`: of
+/// any length), or of a colour: what `base.` may be followed by.
+pub fn component_names(color: bool, len: Option<usize>) -> Vec<&'static str> {
+    let table = if color {
+        COLOR_COMPONENTS
+    } else {
+        VECTOR_COMPONENTS
+    };
+    let mut names: Vec<&str> = (table.iter())
+        .filter(|(_, i)| len.is_none_or(|n| *i < n))
+        .map(|(n, _)| *n)
+        .collect();
+    // `x y z` of a colour are POV-Ray's spellings; a 3-vector's `u v` too.
+    match (color, len) {
+        (true, _) => names.retain(|n| !matches!(*n, "x" | "y" | "z")),
+        (false, Some(2)) => {}
+        (false, _) => names.retain(|n| !matches!(*n, "u" | "v")),
+    }
+    names
+}
+
 /// `base.member`: a component of a vector or colour. `at` is the whole
 /// expression, `base_span` where the vector is written.
 pub(super) fn member(

@@ -75,6 +75,23 @@ impl Kind {
         [self.params, common]
     }
 
+    /// Whether its block takes a `material` (an object's shape), read by
+    /// the checker beside the rows.
+    pub fn takes_material(&self) -> bool {
+        self.is_shape()
+    }
+
+    /// Every name its block accepts, in order: its rows' parameters (not
+    /// the refused POV-Ray words), then `material` where it takes one. The
+    /// list check's help gives for a misspelt name, and hover's.
+    pub fn accepted(&self) -> Vec<&'static str> {
+        (self.schemas().into_iter().flatten())
+            .filter(|p| p.povray.is_none())
+            .map(|p| p.name)
+            .chain(self.takes_material().then_some("material"))
+            .collect()
+    }
+
     /// Its parameter `name`, if it has one (common ones included).
     pub fn param(&self, name: &str) -> Option<&'static ParamSpec> {
         self.schemas()

@@ -15,7 +15,7 @@ pub mod shapes;
 use super::schema::SHAPE_COMMON;
 use crate::diag::{codes, did_you_mean, Diagnostic};
 use crate::span::Span;
-use crate::syntax::ast::Ident;
+use crate::syntax::ast::{Block, Entry, Ident};
 pub use kind::{Kind, Role, Setting, ShapeInput};
 
 /// Every kind of block statement, in the order the docs list them: the
@@ -114,9 +114,24 @@ pub fn may_be_a_light(word: &str) -> bool {
     })
 }
 
+/// Whether `block`, read as a block of `kind`, names only parameters the
+/// kind has: then putting the kind's name in place of another word is the
+/// whole rewrite (POV-Ray's `light_source { <0, 4, 0> color rgb 1 }` is
+/// not: its values are unnamed and its colour has another name).
+fn fits(kind: &Kind, block: &Block) -> bool {
+    block.entries.iter().all(|entry| match entry {
+        Entry::Param { name, .. } | Entry::Texture { name, .. } => kind.param(&name.name).is_some(),
+        Entry::Material { .. } => kind.takes_material(),
+        _ => false,
+    })
+}
+
 /// The error for `name { … }` where a statement goes, at `span`: the ptsc
-/// statement for POV-Ray's word, or the closest ptsc word.
-pub fn unknown_statement(name: &Ident, span: Span) -> Diagnostic {
+/// statement for POV-Ray's word, or the closest ptsc word. `block` is its
+/// block where it parsed as one: the fix that renames a POV-Ray word is
+/// offered only where the block then fits the kind (a fix that leaves
+/// errors behind is not one; the help gives the whole form).
+pub fn unknown_statement(name: &Ident, span: Span, block: Option<&Block>) -> Diagnostic {
     let word = name.name.as_str();
     if word == "background" {
         return Diagnostic::error(
@@ -142,8 +157,8 @@ pub fn unknown_statement(name: &Ident, span: Span) -> Diagnostic {
         .with_help(hint);
         // The kind that stands for the POV-Ray word: its name replaces it.
         return match povray_kind(word) {
-            Some(k) => d.with_fix(name.span, k.name),
-            None => d,
+            Some(k) if block.is_some_and(|b| fits(k, b)) => d.with_fix(name.span, k.name),
+            _ => d,
         };
     }
     let words = (crate::syntax::parser::KEYWORDS.iter().copied()).chain(names());

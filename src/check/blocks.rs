@@ -225,7 +225,7 @@ pub fn environment(
     let intensity = r.color("intensity", [1.0; 3]);
     Some(Environment {
         path: base.join(&file),
-        named: file,
+        name: file,
         path_span,
         intensity,
         rotation,

@@ -72,7 +72,7 @@ pub fn named_images<'s>(
         })
         .collect();
     if let Some(e) = environment {
-        named.push((e.path.as_path(), &e.named, e.path_span, ENVIRONMENT_HELP));
+        named.push((e.path.as_path(), &e.name, e.path_span, ENVIRONMENT_HELP));
     }
     named.sort_by_key(|(_, _, span, _)| (span.file.0, span.start));
     named.dedup_by_key(|(_, _, span, _)| *span);

@@ -571,8 +571,8 @@ pub struct Sky {
 pub struct Environment {
     /// The image (relative to the scene file's folder once resolved).
     pub path: PathBuf,
-    /// The file as the scene writes it (what messages say).
-    pub named: String,
+    /// The file's name as the scene writes it (what messages say).
+    pub name: String,
     /// Where its name is written.
     pub path_span: Span,
     /// The radiance scale (per channel).

@@ -36,7 +36,7 @@ pub fn lower_environment(
             diags.push(
                 Diagnostic::error(
                     codes::IMAGE_FILE,
-                    format!("`{}` has one row of texels", e.named),
+                    format!("`{}` has one row of texels", e.name),
                     e.path_span,
                 )
                 .with_label("an environment map needs two rows at least")
@@ -47,7 +47,7 @@ pub fn lower_environment(
         Err(why) => {
             let help = crate::check::image_files::ENVIRONMENT_HELP;
             diags.push(crate::check::image_files::unreadable(
-                &e.named,
+                &e.name,
                 e.path_span,
                 why,
                 help,

@@ -53,7 +53,7 @@ pub fn read(doc: &gltf::Document, path: &Path, buffers: &Buffers, scene: &mut Fi
         .enumerate()
         .filter_map(|(k, p)| {
             let p = p.as_deref()?;
-            Some((p, Arc::new(origin(doc, k, p, path))))
+            Some((p, Arc::new(origin(doc, k, path))))
         })
         .collect();
     // A set: a hostile file's many materials and primitives would make a
@@ -151,21 +151,23 @@ fn image_path(
     Some(inside)
 }
 
-/// Where image `k` of the glTF file `gltf` is, for an error about it
-/// (read from `path`): a file its `uri` names relative to the glTF file, or
-/// bytes inside it.
-fn origin(doc: &gltf::Document, k: usize, path: &Path, gltf: &Path) -> NamedIn {
+/// Where image `k` of the glTF file `gltf` is, for an error about it: a
+/// file its `uri` names relative to the glTF file, or bytes inside it.
+fn origin(doc: &gltf::Document, k: usize, gltf: &Path) -> NamedIn {
+    // The glTF by its file name, not its resolved path: that depends on
+    // the folder the scene was opened from, and check and the editor say
+    // the same.
+    let file_name = gltf.file_name().unwrap_or_default().to_string_lossy();
     let uri = (doc.as_json().images[k].uri.as_deref()).filter(|u| !u.starts_with("data:"));
     match uri {
         Some(uri) => NamedIn {
-            named: format!("`{uri}` of `images[{k}]` in `{}`", gltf.display()),
+            named: format!("`{uri}` of `images[{k}]` in `{file_name}`"),
             help: format!(
-                "a glTF file's images are read relative to the glTF file (here `{}`): put the image there, or mend the image's `uri`",
-                path.display()
+                "a glTF file's images are read relative to the glTF file: put `{uri}` beside `{file_name}`, or mend the image's `uri`"
             ),
         },
         None => NamedIn {
-            named: format!("`images[{k}]` held inside `{}`", gltf.display()),
+            named: format!("`images[{k}]` held inside `{file_name}`"),
             help: "the image is held inside the glTF file: export the model again, or mend the image in an image editor".into(),
         },
     }

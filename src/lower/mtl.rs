@@ -195,15 +195,15 @@ fn opacity(
 /// lowering inverts) is the inverse of that.
 fn image(r: &TextureRef, (key, name, library): (&str, &str, &Path), span: Span) -> Texture {
     let folder = library.parent().unwrap_or(Path::new(""));
+    // The library by its file name, not its resolved path: that depends
+    // on the folder the scene was opened from, and check and the editor
+    // say the same.
+    let file_name = library.file_name().unwrap_or_default().to_string_lossy();
     let origin = NamedIn {
-        named: format!(
-            "`{}` of `{key}` of material `{name}` in `{}`",
-            r.file,
-            library.display()
-        ),
+        named: format!("`{}` of `{key}` of material `{name}` in `{file_name}`", r.file),
         help: format!(
-            "an MTL file's maps are read relative to the MTL file (here `{}`): put the image there, or mend the `{key}` line",
-            folder.join(&r.file).display()
+            "an MTL file's maps are read relative to the MTL file: put `{}` beside `{file_name}`, or mend the `{key}` line",
+            r.file
         ),
     };
     let to_pattern = DMat4::from_translation(r.offset.unwrap_or([0.0; 3]).into())

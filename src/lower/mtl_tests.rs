@@ -263,10 +263,10 @@ fn a_map_is_read_beside_its_library_and_says_where_it_is_named() {
     let origin = origin.as_ref().expect("named by the library");
     assert_eq!(
         origin.named,
-        "`tex/grain.png` of `map_Kd` of material `Wood` in `models/mats/wood.mtl`"
+        "`tex/grain.png` of `map_Kd` of material `Wood` in `wood.mtl`"
     );
     assert!(
-        origin.help.starts_with("an MTL file's maps are read relative to the MTL file (here `models/mats/tex/grain.png`)"),
+        origin.help.starts_with("an MTL file's maps are read relative to the MTL file: put `tex/grain.png` beside `wood.mtl`"),
         "{}",
         origin.help
     );

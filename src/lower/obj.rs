@@ -35,7 +35,17 @@ pub(super) fn parse_obj(
     // exporter) would fail `tobj`'s whole read: it becomes U+FFFD, as in
     // the libraries (`mtl::readable`); the lines keep their numbers.
     let text = String::from_utf8_lossy(bytes);
-    let read = super::obj_lines::faces_and_polylines(&text)?;
+    // The lines are read by ptsc's rules (`obj_lines`, a pass over every
+    // line: 9 % of checking a 1M-triangle OBJ) only where the file may
+    // hold what `tobj` reads otherwise: an `l` line (a line that starts
+    // with `l` or a blank), or (looked for after `tobj`) a face of fewer
+    // than three vertices.
+    let may_have_polylines = text.starts_with(|c: char| c == 'l' || c.is_ascii_whitespace())
+        || ["\nl", "\n ", "\n\t"].iter().any(|p| text.contains(p));
+    let read = match may_have_polylines {
+        true => super::obj_lines::faces_and_polylines(&text)?,
+        false => std::borrow::Cow::Borrowed(&*text),
+    };
     let polylines = matches!(read, std::borrow::Cow::Owned(_));
     let mut cursor = std::io::Cursor::new(read.as_bytes());
     let (models, materials) = tobj::load_obj_buf(&mut cursor, &opts, |name| {
@@ -128,6 +138,12 @@ pub(super) fn parse_obj(
             .map_or(u32::MAX, |i| i as u32);
         out.face_material.resize(before, u32::MAX);
         out.face_material.resize(out.triangles.len(), id);
+    }
+    // `tobj` makes a face of one or two vertices a triangle that repeats
+    // one: only then are the faces counted, for the line to blame.
+    let repeats = |t: &[u32; 3]| t[0] == t[1] || t[1] == t[2] || t[0] == t[2];
+    if !may_have_polylines && out.triangles.iter().any(repeats) {
+        super::obj_lines::faces_and_polylines(&text)?;
     }
     if out.triangles.is_empty() && polylines {
         return Err("the mesh has no faces, only lines (`l`), which have no surface".into());

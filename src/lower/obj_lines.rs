@@ -18,10 +18,16 @@ pub(super) fn faces_and_polylines(text: &str) -> Result<Cow<'_, str>, String> {
     let mut polylines = Vec::new();
     let mut start = 0;
     for (i, line) in text.split('\n').enumerate() {
-        let mut words = line.split_whitespace();
-        match words.next() {
-            Some("f") => {
-                let n = words.take(3).count();
+        // Most lines are vertices: two byte tests each, no word split.
+        let body = line.trim_start_matches(|c: char| c.is_ascii_whitespace());
+        let word = match body.as_bytes() {
+            [w @ (b'f' | b'l')] => *w,
+            [w @ (b'f' | b'l'), blank, ..] if blank.is_ascii_whitespace() => *w,
+            _ => 0,
+        };
+        match word {
+            b'f' => {
+                let n = body[1..].split_ascii_whitespace().take(3).count();
                 if n < 3 {
                     let shown = shown(line);
                     let has = crate::diag::count(n as u32, "vertex", "vertices");
@@ -31,7 +37,7 @@ pub(super) fn faces_and_polylines(text: &str) -> Result<Cow<'_, str>, String> {
                     ));
                 }
             }
-            Some("l") => polylines.push(start + line.len() - line.trim_start().len()),
+            b'l' => polylines.push(start + line.len() - body.len()),
             _ => {}
         }
         start += line.len() + 1;

@@ -161,6 +161,23 @@ mod tests {
     }
 
     #[test]
+    fn a_whole_file_is_read_by_these_rules_wherever_its_lines_stand() {
+        // The lines are counted only where a file may need it: an `l`
+        // line anywhere (indented too) and a short face found after tobj.
+        let parse =
+            |t: &str| crate::lower::mesh::parse(std::path::Path::new("t.obj"), t.as_bytes());
+        let quad = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\n";
+        for polyline in ["l 1 2 4\n", "  l 1 2 4\n", "\tl 2 3 4\n"] {
+            let m = parse(&format!("{quad}{polyline}")).unwrap();
+            assert_eq!(m.triangles.len(), 1, "{polyline:?}");
+        }
+        let e = parse(&format!("{quad}f 2 3\n")).unwrap_err();
+        assert!(e.contains("line 6 (`f 2 3`) has 2 vertices"), "{e}");
+        assert_eq!(parse(&format!("l 1 2\n{quad}")).unwrap().triangles.len(), 1);
+        assert!(parse("v 0 0 0\nv 1 0 0\nv 0 1 0\nl 1 2 3\n").is_err());
+    }
+
+    #[test]
     fn a_refused_vertex_line_is_found() {
         let at = |text: &str, e| locate_vertex(text, e).unwrap();
         let v = "v 0 0 0\nv 1 x 0\n";

@@ -129,12 +129,22 @@ pub(super) fn word_as_string(
             .with_help(format!("write `{} {word}`, without quotes", spec.name))
             .with_fix(span, word),
         None => {
-            let foreign = (spec.name == "type").then(|| crate::syntax::povray::hint(text));
+            let foreign = (spec.name == "type").then(|| foreign_type(text));
             d.with_help(foreign.flatten().map_or_else(
                 || format!("write one of {} without quotes", words.join(", ")),
                 str::to_string,
             ))
         }
+    }
+}
+
+/// What ptsc writes for another renderer's material type (Mitsuba's
+/// plugin names: `roughconductor`, `diffuse`), given as a `type`.
+pub(super) fn foreign_type(word: &str) -> Option<&'static str> {
+    match word {
+        // A ptsc parameter's name, so not among the global hints.
+        "diffuse" => Some("Mitsuba's `diffuse` BSDF is ptsc's default material, `type mix` (or no `type`), with `diffuse rgb …`"),
+        _ => crate::syntax::povray::hint(word),
     }
 }
 

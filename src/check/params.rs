@@ -275,11 +275,7 @@ impl<'s> Collecting<'s> {
     /// Every parameter of the schemas that is not only a refused POV-Ray
     /// word, and `material` where the block takes one.
     fn accepted(&self) -> Vec<&'static str> {
-        (self.schemas.iter().flat_map(|s| s.iter()))
-            .filter(|p| p.povray.is_none())
-            .map(|p| p.name)
-            .chain(self.takes_material.then_some("material"))
-            .collect()
+        accepted_names(self.schemas, self.takes_material)
     }
 
     /// The error for POV-Ray's block `name { … }` among the entries.

@@ -496,6 +496,17 @@ pub const TEXTURE_TRANSFORMS: &[ParamSpec] = &[
     t("scale", Ty::NumOrVec3, "0.25").of(Quantity::Scale),
 ];
 
+/// The parameters a block of `schemas` accepts, as its errors and hover
+/// list them: the rows but POV-Ray's refused words, then `material` where
+/// the block takes one.
+pub fn accepted_names(schemas: &[&'static [ParamSpec]], takes_material: bool) -> Vec<&'static str> {
+    (schemas.iter().flat_map(|s| s.iter()))
+        .filter(|p| p.povray.is_none())
+        .map(|p| p.name)
+        .chain(takes_material.then_some("material"))
+        .collect()
+}
+
 /// The preset that a metal's other name stands for: the preset in any
 /// case (`Gold`), Mitsuba's element symbols (`Au`, as its conductor's
 /// `material "Au"` writes them), the American spelling.

@@ -2,7 +2,7 @@
 //! word list, numbers, vectors, colours, strings and flags.
 
 use super::eval::{eval, Env, Value};
-use super::param_errors::word_as_string;
+use super::param_errors::{foreign_type, word_as_string};
 use super::schema::*;
 use crate::diag::codes;
 use crate::diag::{did_you_mean, Diagnostic, Diagnostics};
@@ -126,11 +126,7 @@ fn word_value(
     let metal = (words == METAL_PRESETS).then(|| other_metal(w));
     // Mitsuba's plugin names as a material's `type` (`roughconductor`).
     let foreign = || {
-        let hint = (spec.name == "type").then(|| match w.as_str() {
-            // A ptsc parameter's name, so not among the global hints.
-            "diffuse" => Some("Mitsuba's `diffuse` BSDF is ptsc's default material, `type mix` (or no `type`), with `diffuse rgb …`"),
-            _ => crate::syntax::povray::hint(w),
-        });
+        let hint = (spec.name == "type").then(|| foreign_type(w));
         hint.flatten().map(str::to_string)
     };
     let help = match (

@@ -10,6 +10,16 @@ use std::path::{Path, PathBuf};
 /// once per name, and a hostile file could name one a million times.
 pub const MAX_LIBRARIES: usize = 16;
 
+/// How `tobj` reads an OBJ for ptsc: faces as triangles, one index per
+/// vertex (the tests that locate `tobj`'s errors load with these too).
+pub(super) fn tobj_options() -> tobj::LoadOptions {
+    tobj::LoadOptions {
+        triangulate: true,
+        single_index: true,
+        ..Default::default()
+    }
+}
+
 /// The mesh of an OBJ file's bytes, its libraries read by `library`
 /// relative to `folder`.
 pub(super) fn parse_obj(
@@ -17,11 +27,7 @@ pub(super) fn parse_obj(
     folder: &Path,
     library: &mut LibraryReader,
 ) -> Result<MeshData, String> {
-    let opts = tobj::LoadOptions {
-        triangulate: true,
-        single_index: true,
-        ..Default::default()
-    };
+    let opts = tobj_options();
     // Material libraries are read through `library` (the scene's files);
     // one that cannot be read leaves its faces without a material.
     // (tobj asks through an `Fn`: the reader and the lists are borrowed

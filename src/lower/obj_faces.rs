@@ -141,11 +141,7 @@ mod tests {
     #[test]
     fn the_located_errors_are_tobjs() {
         // Each case above is refused by tobj with the error located.
-        let opts = tobj::LoadOptions {
-            triangulate: true,
-            single_index: true,
-            ..Default::default()
-        };
+        let opts = crate::lower::obj::tobj_options();
         for (obj, expected) in [
             (
                 &b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n"[..],

@@ -204,11 +204,7 @@ mod tests {
 
     #[test]
     fn the_located_errors_are_tobjs() {
-        let opts = tobj::LoadOptions {
-            triangulate: true,
-            single_index: true,
-            ..Default::default()
-        };
+        let opts = crate::lower::obj::tobj_options();
         for obj in [
             "v 0 0 0\nv 1 x 0\nf 1 1 1\n",
             "v 0 0\nf 1 1 1\n",

@@ -85,11 +85,7 @@ impl Kind {
     /// the refused POV-Ray words), then `material` where it takes one. The
     /// list check's help gives for a misspelt name, and hover's.
     pub fn accepted(&self) -> Vec<&'static str> {
-        (self.schemas().into_iter().flatten())
-            .filter(|p| p.povray.is_none())
-            .map(|p| p.name)
-            .chain(self.takes_material().then_some("material"))
-            .collect()
+        super::super::schema::accepted_names(&self.schemas(), self.takes_material())
     }
 
     /// Its parameter `name`, if it has one (common ones included).

@@ -135,7 +135,7 @@ fn entry(p: &mut Printer, e: &Entry, after: bool) {
             p.space();
             // `stop a (c)` would call `a`: the colour came from signs that
             // cancelled (`!!(c)` is `(c)`), keep two.
-            if ends_with_name(p.text, position) && parenthesised(p.text, color) {
+            if ends_with_name(p.text, position) && starts_with_paren(p.text, color) {
                 p.write("!!");
             }
             apart(p, color, true);
@@ -194,6 +194,13 @@ fn positional(p: &mut Printer, values: &[Expr], after: bool) {
     if starts_with_word(p.text, head) && !bare_name {
         p.write("!!");
         expr(p, head);
+    } else if after && starts_with_paren(p.text, head) {
+        // After an entry that ends with a name (`radius r`, a stop's
+        // colour `c`) a parenthesis would call it: it came from signs
+        // that cancelled (`!!(2)`), keep two. Positional values are an
+        // error the checker reports, so the rare extra pair costs nothing.
+        p.write("!!");
+        expr(p, head);
     } else {
         apart(p, head, after);
     }
@@ -232,6 +239,19 @@ fn leftmost<'e>(text: &str, e: &'e Expr) -> Option<&'e Expr> {
 /// Whether `e` is written starting with a list's `[`.
 fn starts_with_list(text: &str, e: &Expr) -> bool {
     leftmost(text, e).is_some_and(|l| matches!(l.kind, ExprKind::List(_)))
+}
+
+/// Whether `e` is written starting with a parenthesis (itself, or the
+/// first operand of its chain, index or member).
+fn starts_with_paren(text: &str, e: &Expr) -> bool {
+    parenthesised(text, e)
+        || match &e.kind {
+            ExprKind::Chain { first, .. } => starts_with_paren(text, first),
+            ExprKind::Index { base, .. } | ExprKind::Member { base, .. } => {
+                starts_with_paren(text, base)
+            }
+            _ => false,
+        }
 }
 
 /// Whether `e` is written starting with a `-`.

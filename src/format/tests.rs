@@ -113,6 +113,25 @@ fn a_block_that_does_not_fit_is_broken_and_nested_ones_decide_alone() {
 }
 
 #[test]
+fn a_parenthesis_after_a_name_keeps_the_signs_that_part_them() {
+    // Written without `!!`, each `(…)` would call the name before it.
+    for text in [
+        "sphere { stop 1 - !\"s\" stop !!(2) xs }\n",
+        "sphere { radius r !!(2) }\n",
+        "sphere { radius 1 - r !!(2) + 1 }\n",
+        "sphere { stop 1 x !!(2), 3 }\n",
+        "sphere { stop a !!(2) + x }\n",
+        "sphere { stop a !!(2)[0] }\n",
+    ] {
+        let out = fmt(text);
+        assert!(out.contains("!!("), "{text} -> {out}");
+    }
+    // A first value needs none, nor does a colour after a number.
+    assert_eq!(fmt("sphere { (2) }\n"), "sphere { (2) }\n");
+    assert_eq!(fmt("sphere { stop 1 (c) }\n"), "sphere { stop 1 (c) }\n");
+}
+
+#[test]
 fn literals_keep_their_spelling() {
     assert_eq!(
         fmt("let a = .5 + 1. + 1e3 + 2.50E-2;\nlet s = \"a\\\"b\\\\ // no\";\n"),

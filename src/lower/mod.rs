@@ -27,6 +27,7 @@ mod obj;
 mod obj_faces;
 mod obj_lines;
 mod obj_materials;
+mod ply;
 mod shapes;
 mod swaps;
 mod tangents;

@@ -87,6 +87,11 @@ pub struct ParamSpec {
     /// What it means, its default and its range, in a line or two: the
     /// text of hover and of the docs' tables (empty where not written yet).
     pub doc: &'static str,
+    /// The parameters of its block that do its job another way (`sun_direction`
+    /// and `sun_elevation`): the checker refuses the two together, and
+    /// completion leaves them out once one is given. Listed on one side
+    /// of each pair; [`excludes`] reads both.
+    pub excludes: &'static [&'static str],
 }
 
 impl ParamSpec {
@@ -100,6 +105,14 @@ impl ParamSpec {
         ParamSpec { doc, ..self }
     }
 
+    /// The same parameter, refused together with `names` ([`ParamSpec::excludes`]).
+    const fn excludes(self, names: &'static [&'static str]) -> ParamSpec {
+        ParamSpec {
+            excludes: names,
+            ..self
+        }
+    }
+
     /// The same parameter, which may be given a texture.
     const fn textured(self) -> ParamSpec {
         ParamSpec {
@@ -107,6 +120,15 @@ impl ParamSpec {
             ..self
         }
     }
+}
+
+/// Whether `spec` and the parameter `other` of its block (whose rows are
+/// `schemas`) may not be given together ([`ParamSpec::excludes`], read
+/// from either side).
+pub fn excludes(spec: &ParamSpec, other: &str, schemas: &[&[ParamSpec]]) -> bool {
+    spec.excludes.contains(&other)
+        || (schemas.iter().copied().flatten())
+            .any(|o| o.name == other && o.excludes.contains(&spec.name))
 }
 
 /// A parameter given once.
@@ -120,6 +142,7 @@ pub(super) const fn p(name: &'static str, ty: Ty, example: &'static str) -> Para
         texture: false,
         povray: None,
         doc: "",
+        excludes: &[],
     }
 }
 
@@ -134,6 +157,7 @@ pub(super) const fn t(name: &'static str, ty: Ty, example: &'static str) -> Para
         texture: false,
         povray: None,
         doc: "",
+        excludes: &[],
     }
 }
 
@@ -270,6 +294,7 @@ pub const ENVIRONMENT: &[ParamSpec] = &[
 pub const SKY: &[ParamSpec] = &[
     p("sun_direction", Ty::Vec3, "<0.3, 0.6, -1>")
         .of(Direction)
+        .excludes(&["sun_elevation", "sun_azimuth"])
         .doc("towards the sun, instead of the two angles (y ≥ 0)"),
     p("sun_elevation", Ty::Num, "35")
         .doc("the sun's height above the horizon in degrees, 0..90. Default 45"),
@@ -297,6 +322,7 @@ pub const ATMOSPHERE: &[ParamSpec] = &[
     p("anisotropy", Ty::Num, "0.7")
         .doc("Henyey–Greenstein g, −0.999..0.999: 0 scatters evenly, > 0 forward (haze), < 0 back. Default 0"),
     p("density", Ty::Num, "0.05")
+        .excludes(&["absorption", "scattering"])
         .doc("light stopped per scene unit (σt, 0..1e6), split by `medium_color`; instead of `absorption` and `scattering`"),
     p("medium_color", Ty::Color, "rgb 1")
         .doc("with `density`: the share of stopped light that scatters, per channel 0..1. Default white"),
@@ -323,6 +349,7 @@ pub const MATERIAL: &[ParamSpec] = &[
     p("ior_outside", Ty::Num, "1.33")
         .doc("index of refraction of the medium outside (≥ 1; water 1.33). Default 1"),
     p("roughness", Ty::NumOrVec2, "<0.05, 0.3>")
+        .excludes(&["gloss"])
         .doc("a metal's GGX α itself instead of `gloss`: one number, or `<α along u, α along v>`"),
     p("absorption", Ty::Color, "rgb <0.5, 0.1, 0.1>")
         .of(Magnitude)
@@ -333,6 +360,7 @@ pub const MATERIAL: &[ParamSpec] = &[
     p("anisotropy", Ty::Num, "0.6")
         .doc("the medium's Henyey–Greenstein g, −0.999..0.999: 0 scatters evenly, > 0 forward (haze, water), < 0 back. Default 0"),
     p("density", Ty::Num, "0.5")
+        .excludes(&["absorption", "scattering"])
         .doc("the medium inside: light stopped per scene unit (σt, 0..1e6), split by `medium_color` between scattering and absorption; instead of `absorption` and `scattering`"),
     p("medium_color", Ty::Color, "rgb <0.9, 0.95, 1>")
         .doc("with `density`: the share of stopped light that scatters, per channel 0..1 (the single-scattering albedo; 1 a white fog, lower absorbs). Default white"),
@@ -362,6 +390,7 @@ pub const MATERIAL: &[ParamSpec] = &[
     p("type", Ty::Word(MATERIAL_TYPES), "plastic")
         .doc("the scattering model: `mix`, `conductor`, `plastic`, `dielectric`, `thin_dielectric`, `principled`, or `none` (no surface: the boundary of the medium inside). Default `mix`"),
     p("preset", Ty::Word(METAL_PRESETS), "gold")
+        .excludes(&["eta", "k"])
         .doc("a named metal of `type conductor`: gold, silver, copper, aluminium, chromium"),
     p("eta", Ty::Color, "rgb <0.2, 0.92, 1.1>").of(Magnitude)
         .doc("a metal's index of refraction per channel (with `k`, instead of `preset`)"),
@@ -374,6 +403,7 @@ pub const MATERIAL: &[ParamSpec] = &[
     p("metallic", Ty::Num, "1").textured()
         .doc("`type principled`: how much of it is metal, 0..1 or a texture. Default 0"),
     p("specular", Ty::Num, "0.5")
+        .excludes(&["ior"])
         .doc("`type principled`: its dielectric reflectance head-on, 0..1 (0.5 is 4 %, η 1.5; instead of `ior`). Default 0.5"),
     p("specular_tint", Ty::Num, "0.5")
         .doc("`type principled`: how much of its dielectric reflection takes the base colour's hue, 0..1. Default 0"),

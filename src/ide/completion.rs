@@ -205,15 +205,13 @@ fn entry_items(out: &mut Out, opener: Opener, given: &[String]) {
         Opener::Instance => "instance",
         Opener::Body | Opener::Opaque => return,
     };
-    for spec in opener
-        .schemas()
-        .into_iter()
-        .flatten()
-        .filter(|p| p.povray.is_none())
-    {
-        // A parameter given once may not be given again (check refuses it).
+    let schemas = opener.schemas();
+    for spec in (schemas.iter().copied().flatten()).filter(|p| p.povray.is_none()) {
+        // A parameter given once may not be given again, nor one that does
+        // the job of one given another way (check refuses both).
         let done = given.iter().any(|g| g == spec.name) && !spec.repeat;
-        if done || out.items.iter().any(|i| i.label == spec.name) {
+        let excluded = (given.iter()).any(|g| crate::check::schema::excludes(spec, g, &schemas));
+        if done || excluded || out.items.iter().any(|i| i.label == spec.name) {
             continue;
         }
         let item = out.push(

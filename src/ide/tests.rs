@@ -103,6 +103,16 @@ fn completion_leaves_out_the_parameters_given() {
     assert!(l.contains(&"sun_azimuth".to_string()), "{l:?}");
     let l = labels("sphere { material m | }");
     assert!(!l.contains(&"material".to_string()), "{l:?}");
+    // Nor one that does the job of one given another way.
+    let l = labels("sky { sun_elevation 30 | }");
+    assert!(!l.contains(&"sun_direction".to_string()), "{l:?}");
+    let l = labels("sky { sun_direction <0, 1, -1> | }");
+    assert!(!l.contains(&"sun_azimuth".to_string()), "{l:?}");
+    let l = labels("material m { type conductor preset gold | }");
+    assert!(
+        !l.contains(&"eta".to_string()) && l.contains(&"gloss".to_string()),
+        "{l:?}"
+    );
     // Transforms repeat.
     let l = labels("sphere { rotate <0, 1, 0> | }");
     assert!(l.contains(&"rotate".to_string()), "{l:?}");

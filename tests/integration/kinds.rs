@@ -79,3 +79,42 @@ fn an_unknown_kind_is_answered_from_the_table() {
     let d = check("let sphere = 0.5;\nsphere { center <0, 1, 0> radius sphere }\n");
     assert!(d.iter().all(|(m, _)| !m.contains("reserved")), "{d:?}");
 }
+
+/// Every pair of parameters the table says do one job two ways
+/// (`ParamSpec::excludes`, which completion reads to leave one out) is
+/// refused together by the checker: in its own block, and for a
+/// material's pairs in at least one `type`.
+#[test]
+fn every_pair_the_table_excludes_is_a_conflict_the_checker_reports() {
+    use ptsc::check::schema::{ParamSpec, MATERIAL, MATERIAL_TYPES};
+    let conflicts = |text: &str| {
+        let c = ptsc::check::check_str(std::path::Path::new("pair.pts"), text);
+        (c.diagnostics.items.iter()).any(|d| d.code == ptsc::diag::codes::CONFLICTING_PARAMS)
+    };
+    let both =
+        |a: &ParamSpec, b: &ParamSpec| format!("{} {} {} {}", a.name, a.example, b.name, b.example);
+    let find =
+        |rows: &[&'static ParamSpec], name: &str| *rows.iter().find(|r| r.name == name).unwrap();
+    let mut pairs = 0;
+    for kind in KINDS {
+        let rows: Vec<&ParamSpec> = kind.schemas().into_iter().flatten().collect();
+        for a in &rows {
+            for other in a.excludes {
+                let text = format!("{} {{ {} }}\n", kind.name, both(a, find(&rows, other)));
+                assert!(conflicts(&text), "{text}");
+                pairs += 1;
+            }
+        }
+    }
+    let rows: Vec<&ParamSpec> = MATERIAL.iter().collect();
+    for a in &rows {
+        for other in a.excludes {
+            let b = find(&rows, other);
+            let refused = (MATERIAL_TYPES.iter())
+                .any(|t| conflicts(&format!("material m {{ type {t} {} }}\n", both(a, b))));
+            assert!(refused, "{} and {other} in no material type", a.name);
+            pairs += 1;
+        }
+    }
+    assert!(pairs >= 10, "{pairs}");
+}

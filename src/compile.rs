@@ -206,9 +206,32 @@ fn compile_from(path: &Path, bytes: Vec<u8>, options: Options, start: Instant) -
         // the same problem more than once: it is one mistake.
         compiled.diagnostics.dedup();
         compiled.lower_seconds = start.elapsed().as_secs_f64() - check_seconds;
+    } else if let Some(unbuilt) = &checked.unbuilt {
+        files_of_unbuilt(&mut compiled, unbuilt, (options.cache, files));
     }
     compiled.dependencies = asked.paths();
     compiled
+}
+
+/// Adds the errors of the image and mesh files that a scene with errors
+/// names ([`crate::lower::validate_files`]), but for those the check said
+/// already (a missing image), and keeps the diagnostics in source order.
+fn files_of_unbuilt(
+    compiled: &mut Compiled,
+    unbuilt: &check::unbuilt::Unbuilt,
+    (cache, files): (Option<&mut LowerCache>, &dyn Files),
+) {
+    let mut one_off = LowerCache::one_off();
+    let cache = cache.unwrap_or(&mut one_off);
+    let found = crate::lower::validate_files(unbuilt, (cache, files));
+    let said = |d: &Diagnostic| {
+        (compiled.diagnostics.items.iter()).any(|o| o.code == d.code && o.span == d.span)
+    };
+    let new: Vec<Diagnostic> = found.items.into_iter().filter(|d| !said(d)).collect();
+    if !new.is_empty() {
+        new.into_iter().for_each(|d| compiled.diagnostics.push(d));
+        compiled.diagnostics.sort();
+    }
 }
 
 /// Memory a placed object takes while a scene loads, beyond what its check

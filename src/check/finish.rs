@@ -3,6 +3,7 @@
 //! camera and render defaults, duplicate removal and source order, the
 //! symbols settled.
 
+use super::unbuilt::Unbuilt;
 use super::*;
 
 impl Checker<'_> {
@@ -17,7 +18,8 @@ impl Checker<'_> {
             // A missing image is a mistake of its own, not an echo of the
             // syntax error: said now, with it, as with any other error.
             self.report_missing_images();
-            return self.checked(None);
+            let unbuilt = self.unbuilt();
+            return self.checked(None, Some(unbuilt));
         }
         self.resolve_pending_materials();
         for meant in std::mem::take(&mut self.meant_materials) {
@@ -63,12 +65,20 @@ impl Checker<'_> {
             }),
             _ => None,
         };
-        self.checked(scene)
+        let unbuilt = scene.is_none().then(|| self.unbuilt());
+        self.checked(scene, unbuilt)
     }
 
-    /// The result of the check with `scene`: the diagnostics with their
+    /// What the scene names for lowering to read, taken (it is not built).
+    fn unbuilt(&mut self) -> Unbuilt {
+        let (materials, environment) = (&mut self.materials, &mut self.environment);
+        Unbuilt::take(materials, environment, (&self.objects, &self.groups))
+    }
+
+    /// The result of the check with `scene` (or, without one, what the
+    /// scene names for lowering to read): the diagnostics with their
     /// chains of includes, folded and in source order, the symbols settled.
-    fn checked(mut self, scene: Option<Scene>) -> Checked {
+    fn checked(mut self, scene: Option<Scene>, unbuilt: Option<Unbuilt>) -> Checked {
         self.show_include_chains();
         self.diags.settle();
         self.take_back_unknown_groups();
@@ -80,6 +90,7 @@ impl Checker<'_> {
             scene,
             diagnostics: self.diags,
             symbols,
+            unbuilt,
         }
     }
 
@@ -554,28 +565,6 @@ impl Checker<'_> {
             );
         }
         self.diags.push(d);
-    }
-}
-
-impl Checker<'_> {
-    /// Adds to every diagnostic in an included file the chain of includes
-    /// that led to it ("included from"), nearest first.
-    fn show_include_chains(&mut self) {
-        for d in &mut self.diags.items {
-            let Some(span) = d.span else { continue };
-            let mut file = span.file;
-            let mut depth = 0;
-            while let Some(&site) = self.included_from.get(&file) {
-                if !d.secondary.iter().any(|(s, _)| *s == site) {
-                    d.secondary.push((site, "included from".to_string()));
-                }
-                file = site.file;
-                depth += 1;
-                if depth > MAX_INCLUDE_DEPTH {
-                    break;
-                }
-            }
-        }
     }
 }
 

@@ -1,8 +1,9 @@
 //! The image files a scene names, looked at by the checker when the scene
 //! has other errors: lowering reads them (and says what is wrong with each)
-//! only once the check is clean, so without this look a missing image
-//! would show only after every other mistake is fixed. Only the path's
-//! kind is asked (a `stat`): the reading and decoding stay lowering's.
+//! only once the check is clean, and the compile driver then reads them
+//! for a scene with errors (`check::unbuilt`); this look is the checker's
+//! own, for callers of `check` alone. Only the path's kind is asked (a
+//! `stat`): the reading and decoding stay lowering's.
 
 use super::scene::{Environment, Material, TextureKind};
 use super::Checker;

@@ -4,6 +4,26 @@
 use super::*;
 
 impl Checker<'_> {
+    /// Adds to every diagnostic in an included file the chain of includes
+    /// that led to it ("included from"), nearest first.
+    pub(super) fn show_include_chains(&mut self) {
+        for d in &mut self.diags.items {
+            let Some(span) = d.span else { continue };
+            let mut file = span.file;
+            let mut depth = 0;
+            while let Some(&site) = self.included_from.get(&file) {
+                if !d.secondary.iter().any(|(s, _)| *s == site) {
+                    d.secondary.push((site, "included from".to_string()));
+                }
+                file = site.file;
+                depth += 1;
+                if depth > MAX_INCLUDE_DEPTH {
+                    break;
+                }
+            }
+        }
+    }
+
     pub(super) fn include(&mut self, path: &str, path_span: Span, file: FileId) {
         let target = folder_of(&self.sources, file).join(path);
         let canonical = self.files.canonical(&target);

@@ -31,6 +31,7 @@ pub mod symbols;
 pub mod texture;
 pub mod texture_input;
 mod typed_value;
+pub mod unbuilt;
 mod unrun;
 
 pub use blocks::{MAX_NOISE, MAX_PIXELS, MAX_SIDE, MIN_SAMPLES, SAMPLES, SEED};
@@ -109,6 +110,9 @@ pub struct Checked {
     /// Every name the scene defines and where each is used, as far as the
     /// check went (a scene with errors has them too).
     pub symbols: Symbols,
+    /// When there were errors: the files the scene names, which lowering
+    /// would read.
+    pub unbuilt: Option<unbuilt::Unbuilt>,
 }
 
 /// Reads, parses and checks the scene at `path` and everything it includes.

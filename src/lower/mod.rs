@@ -101,6 +101,44 @@ pub fn validate(
     })
 }
 
+/// The problems lowering would find in the files that a scene with errors
+/// names (`unbuilt`: its check built no scene, so [`validate`] does not
+/// run): its images read and decoded and its meshes read and parsed, as
+/// lowering reads them, and only the files' own errors kept. The compile
+/// driver reports them beside the check's, so that a corrupt image or
+/// mesh shows at once, not after every other mistake is fixed.
+pub fn validate_files(
+    unbuilt: &check::unbuilt::Unbuilt,
+    (cache, files): (&mut LowerCache, &dyn Files),
+) -> Diagnostics {
+    let (mut diags, mut textures) = (Diagnostics::new(), Vec::new());
+    let mut coats = material::Coats::for_checking();
+    let mut one_off_images = Images::default();
+    let images = if cache.is_one_off() {
+        &mut one_off_images
+    } else {
+        &mut cache.images
+    };
+    for m in &unbuilt.materials {
+        lower_material(m, &mut textures, (images, files), &mut coats, &mut diags);
+        material::lower_opacity(m, &mut textures, (images, files), &mut diags);
+    }
+    if let Some(e) = &unbuilt.environment {
+        let mut warnings = Diagnostics::new();
+        environment::lower_environment(e, (images, files), &mut diags, &mut warnings);
+    }
+    images.keep_only_used();
+    for (path, named, span) in &unbuilt.meshes {
+        if let Err(why) = cache.mesh(files, path) {
+            diags.push(shapes::unloadable_mesh((path, named, *span), why));
+        }
+    }
+    diags
+        .items
+        .retain(|d| [codes::IMAGE_FILE, codes::MESH_FILE].contains(&d.code));
+    diags
+}
+
 /// What [`lower`] and [`validate`] share: glTF files become their objects
 /// and placements (each mesh file read once: the reads go on to the
 /// gathering), placements of groups placed once become the scene's objects

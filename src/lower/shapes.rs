@@ -119,6 +119,21 @@ struct Gathering<'a> {
 pub type MeshReads = HashMap<PathBuf, Result<Arc<MeshData>, String>>;
 
 /// The mesh at `path` from `reads`, read through `cache` the first time.
+/// The error for the mesh file at `path` (written `named` at `span`)
+/// that cannot be read or parsed (`why`): lowering's, and the compile
+/// driver's for a scene with other errors, word for word.
+pub fn unloadable_mesh(
+    (path, named, span): (&std::path::Path, &str, crate::span::Span),
+    why: String,
+) -> Diagnostic {
+    Diagnostic::error(codes::MESH_FILE, format!("cannot load mesh `{named}`"), span)
+        .with_label(why)
+        .with_help(match super::mesh_data::is_gltf(path) {
+            true => "ptsc reads glTF 2.0 (a .gltf with its buffers beside it or inside it, or a .glb); the Khronos glTF validator tells what else is wrong with the file",
+            false => "meshes are OBJ, PLY or glTF files with at least one triangle",
+        })
+}
+
 pub fn read_mesh(
     reads: &mut MeshReads,
     (cache, files): (&mut LowerCache, &dyn Files),
@@ -360,18 +375,8 @@ impl Gathering<'_> {
         let data = match self.read_mesh(path) {
             Ok(d) => d,
             Err(e) => {
-                self.diags.push(
-                    Diagnostic::error(
-                        codes::MESH_FILE,
-                        format!("cannot load mesh `{named}`"),
-                        path_span,
-                    )
-                    .with_label(e)
-                    .with_help(match super::mesh_data::is_gltf(path) {
-                        true => "ptsc reads glTF 2.0 (a .gltf with its buffers beside it or inside it, or a .glb); the Khronos glTF validator tells what else is wrong with the file",
-                        false => "meshes are OBJ, PLY or glTF files with at least one triangle",
-                    }),
-                );
+                self.diags
+                    .push(unloadable_mesh((path, named, path_span), e));
                 return;
             }
         };

@@ -115,3 +115,49 @@ fn a_group_placed_twice_reports_its_broken_mesh_once() {
     assert_eq!(code, 1);
     assert_eq!(err.matches("cannot load mesh").count(), 1, "{err}");
 }
+
+/// A corrupt image or mesh is reported beside the scene's other errors
+/// (a typo, a syntax error), with the words lowering uses once the rest is
+/// fixed: not found only after every other mistake is.
+#[test]
+fn broken_files_are_reported_beside_the_other_errors() {
+    let data = crate::root().join("tests/diagnostics/data");
+    let tmp = crate::temp_dir_with(&[]);
+    let dir = tmp.path();
+    for name in ["truncated.ply", "not_an_image.png", "cyclic.gltf"] {
+        std::fs::copy(data.join(name), dir.join(name)).unwrap();
+    }
+    let clean = "camera { position <0, 1, 5> look_at <0, 0, 0> }\n\
+         point_light { position <0, 5, 5> intensity rgb 10 }\n\
+         material m { diffuse image { file \"not_an_image.png\" } }\n\
+         mesh { file \"truncated.ply\" material m }\n\
+         group g { mesh { file \"cyclic.gltf\" } }\n\
+         instance g { }\n";
+    let run = |text: &str| {
+        let scene = dir.join("s.pts");
+        std::fs::write(&scene, text).unwrap();
+        let (code, _, err) = crate::ptsc(&["check", scene.to_str().unwrap()]);
+        assert_eq!(code, 1, "{err}");
+        err
+    };
+    let files_only = run(clean);
+    for mistake in [
+        "sphere { center <0, 0, 0> radius 1 radus 2 }\n",
+        "sphere { center <0, 0, 0> radius 1\n",
+        "let x = ;\n",
+    ] {
+        let err = run(&format!("{clean}{mistake}"));
+        for line in files_only
+            .lines()
+            .filter(|l| l.contains('×') || l.contains("╰──"))
+        {
+            assert!(err.contains(line), "{mistake}: {line} missing from\n{err}");
+        }
+    }
+    for said in [
+        "cannot load image `not_an_image.png`",
+        "cannot load mesh `truncated.ply`",
+    ] {
+        assert_eq!(files_only.matches(said).count(), 1, "{files_only}");
+    }
+}

@@ -25,8 +25,8 @@
 //! - a sampler's `wrapS` → `wrap` (`wrapT` is read as the same); `KHR_texture_transform` → the texture's
 //!   transform.
 
-use super::gltf::{data_uri, relative_path};
 use super::gltf_accessor::Buffers;
+use super::gltf_buffers::{data_uri, relative_path};
 use super::mesh_data::FileScene;
 use crate::check::domain::{MAX_MAGNITUDE, MAX_RADIANCE};
 use crate::check::scene::{

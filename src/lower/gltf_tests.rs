@@ -3,6 +3,7 @@
 
 use super::*;
 use crate::check::scene::{MaterialKind, TextureInput, TextureKind};
+use crate::lower::gltf_buffers::{data_uri, relative_path};
 use crate::lower::gltf_material::{material, uv_transform};
 use crate::texture::image::{Channel, Wrap};
 use glam::{DMat4, DQuat, DVec3};

@@ -12,6 +12,7 @@ pub mod fingerprint;
 mod geometry;
 pub mod gltf;
 mod gltf_accessor;
+mod gltf_buffers;
 mod gltf_material;
 mod gltf_nodes;
 mod gltf_place;

@@ -1,6 +1,6 @@
 //! What the text around a syntax error says about it: blocks never
 //! closed, the words before it, other languages' habits. The parser's
-//! error translation ([`super::parser::convert_error`]) reads these.
+//! error translation ([`super::hints::convert_error`]) reads these.
 
 use crate::diag::{codes, Diagnostic};
 use crate::source::FileId;

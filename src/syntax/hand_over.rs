@@ -10,7 +10,7 @@
 
 use super::ast;
 use super::build;
-use super::parser::{self, PtsParser, Rule};
+use super::parser::{PtsParser, Rule};
 use super::recover::{parse_from, Break, Parsed};
 use super::scan::bom_len;
 use crate::diag::{codes, Diagnostic};
@@ -195,7 +195,7 @@ fn later_error(
 ) -> Diagnostic {
     match PtsParser::parse(Rule::file, &text[from..seen]) {
         Err(e) => shifted(
-            super::parser::convert_error(e, file, (&text[from..], kinds), 0),
+            super::hints::convert_error(e, file, (&text[from..], kinds), 0),
             from,
         ),
         Ok(_) => disagreed(file),
@@ -242,7 +242,7 @@ pub(super) fn parse_whole(
 ) -> Result<ast::File, Diagnostic> {
     let bom = bom_len(text);
     let mut pairs = PtsParser::parse(Rule::file, &text[bom..])
-        .map_err(|e| parser::convert_error(e, file, (text, kinds), bom))?;
+        .map_err(|e| super::hints::convert_error(e, file, (text, kinds), bom))?;
     let builder = build::Builder::new(file, text, kinds, bom);
     let ast = builder.build_file(pairs.next().expect("a file pair"));
     match builder.reserved.into_inner() {

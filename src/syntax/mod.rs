@@ -2,9 +2,12 @@
 
 pub mod ast;
 mod build;
+mod build_expr;
+mod build_statement;
 mod error_context;
 mod grammar;
 mod hand_over;
+mod hints;
 mod nested_comment;
 pub mod parser;
 pub mod povray;

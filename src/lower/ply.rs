@@ -182,15 +182,22 @@ fn read_element(el: &Element, r: &mut Reader, out: &mut MeshData) -> Result<(), 
     if is_face {
         out.triangles.reserve(el.count);
     }
+    // Which of its lists are a face's vertices: decided once, not per face.
+    let corners: Vec<bool> = (el.props.iter())
+        .map(|p| {
+            is_face
+                && matches!(p, Prop::List(n, ..) if n == "vertex_indices" || n == "vertex_index")
+        })
+        .collect();
     let mut vals = vec![0.0f64; el.props.len()];
     let mut list: Vec<u32> = Vec::new();
     for entry in 0..el.count {
         for (k, p) in el.props.iter().enumerate() {
             match p {
                 Prop::Scalar(_, t) => vals[k] = r.read(*t)?,
-                Prop::List(name, c, t) => {
+                Prop::List(_, c, t) => {
                     read_list(r, (*c, *t), &mut list)?;
-                    if is_face && (name == "vertex_indices" || name == "vertex_index") {
+                    if corners[k] {
                         fan(entry, &list, out)?;
                     }
                 }

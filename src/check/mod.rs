@@ -32,6 +32,7 @@ pub mod texture;
 pub mod texture_input;
 mod typed_value;
 pub mod unbuilt;
+mod undeclared;
 mod unrun;
 
 pub use blocks::{MAX_NOISE, MAX_PIXELS, MAX_SIDE, MIN_SAMPLES, SAMPLES, SEED};

@@ -140,7 +140,7 @@ impl Checker<'_> {
         }
         let text = &self.sources.get(value.span.file).text;
         let written = text.get(value.span.start as usize..value.span.end as usize);
-        if written.is_none_or(|w| !finish::words(w).any(|w| w == name.name)) {
+        if written.is_none_or(|w| !undeclared::words(w).any(|w| w == name.name)) {
             return;
         }
         let outer_at = self.env.symbols.get(outer.def).name_span;

@@ -17,6 +17,7 @@ use crate::lower::cache::LowerCache;
 use crate::source::{Asked, Disk, FileId, Files, SourceMap};
 use crate::span::Span;
 use std::path::{Path, PathBuf};
+use std::sync::atomic::Ordering;
 use std::time::Instant;
 
 /// How far to compile, and what to change on the way.
@@ -207,7 +208,12 @@ fn compile_from(path: &Path, bytes: Vec<u8>, options: Options, start: Instant) -
         compiled.diagnostics.dedup();
         compiled.lower_seconds = start.elapsed().as_secs_f64() - check_seconds;
     } else if let Some(unbuilt) = &checked.unbuilt {
-        files_of_unbuilt(&mut compiled, unbuilt, (options.cache, files));
+        // A check cancelled (an editor's, overtaken by an edit) reads no
+        // files: its result is thrown away.
+        let cancelled = (options.cancel.as_ref()).is_some_and(|c| c.load(Ordering::Relaxed));
+        if !cancelled {
+            files_of_unbuilt(&mut compiled, unbuilt, (options.cache, files));
+        }
     }
     compiled.dependencies = asked.paths();
     compiled

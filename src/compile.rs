@@ -220,8 +220,8 @@ fn compile_from(path: &Path, bytes: Vec<u8>, options: Options, start: Instant) -
 }
 
 /// Adds the errors of the image and mesh files that a scene with errors
-/// names ([`crate::lower::validate_files`]), but for those the check said
-/// already (a missing image), and keeps the diagnostics in source order.
+/// names ([`crate::lower::validate_files`]; the check reads none of them)
+/// and keeps the diagnostics in source order, each once.
 fn files_of_unbuilt(
     compiled: &mut Compiled,
     unbuilt: &check::unbuilt::Unbuilt,
@@ -230,13 +230,10 @@ fn files_of_unbuilt(
     let mut one_off = LowerCache::one_off();
     let cache = cache.unwrap_or(&mut one_off);
     let found = crate::lower::validate_files(unbuilt, (cache, files));
-    let said = |d: &Diagnostic| {
-        (compiled.diagnostics.items.iter()).any(|o| o.code == d.code && o.span == d.span)
-    };
-    let new: Vec<Diagnostic> = found.items.into_iter().filter(|d| !said(d)).collect();
-    if !new.is_empty() {
-        new.into_iter().for_each(|d| compiled.diagnostics.push(d));
+    if !found.items.is_empty() {
+        compiled.diagnostics.extend(found);
         compiled.diagnostics.sort();
+        compiled.diagnostics.dedup();
     }
 }
 

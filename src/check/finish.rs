@@ -16,9 +16,8 @@ impl Checker<'_> {
         if self.syntax_failed {
             // The symbols are still what an editor reads on a broken file.
             self.pending_material_uses();
-            // A missing image is a mistake of its own, not an echo of the
-            // syntax error: said now, with it, as with any other error.
-            self.report_missing_images();
+            // A broken image or mesh is a mistake of its own, not an echo
+            // of the syntax error: the driver reads the files all the same.
             let unbuilt = self.unbuilt();
             return self.checked(None, Some(unbuilt));
         }
@@ -44,10 +43,6 @@ impl Checker<'_> {
                 .with_label("the scene starts here")
                 .with_help("add `camera { position <0, 1, 5> look_at <0, 0, 0> }`"),
             );
-        }
-        if self.diags.has_errors() {
-            // Lowering, which reads them, will not run: say now.
-            self.report_missing_images();
         }
         let scene = match camera {
             Some(camera) if !self.diags.has_errors() => Some(Scene {

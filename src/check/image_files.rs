@@ -1,12 +1,9 @@
-//! The image files a scene names, looked at by the checker when the scene
-//! has other errors: lowering reads them (and says what is wrong with each)
-//! only once the check is clean, and the compile driver then reads them
-//! for a scene with errors (`check::unbuilt`); this look is the checker's
-//! own, for callers of `check` alone. Only the path's kind is asked (a
-//! `stat`): the reading and decoding stay lowering's.
+//! The image files a scene names and the errors for those that cannot be
+//! read: lowering reads them (`lower/material.rs`, `lower/environment.rs`),
+//! for a scene with errors too (`lower::validate_files`, through
+//! `check::unbuilt`); the words are here, shared by both.
 
 use super::scene::{Environment, Material, TextureKind};
-use super::Checker;
 use crate::diag::{codes, Diagnostic};
 use crate::span::Span;
 use std::path::Path;
@@ -78,26 +75,4 @@ pub fn named_images<'s>(
     named.sort_by_key(|(_, _, span, _)| (span.file.0, span.start));
     named.dedup_by_key(|(_, _, span, _)| *span);
     named
-}
-
-impl Checker<'_> {
-    /// Reports every image texture and environment map whose file cannot
-    /// be opened, as lowering would.
-    pub(super) fn report_missing_images(&mut self) {
-        let named = named_images(&self.materials, self.environment.as_ref());
-        let missing: Vec<Diagnostic> = (named.into_iter())
-            .filter_map(|(path, named, span, help)| {
-                let why = self.files.exists(path).err()?;
-                Some(unreadable(
-                    named,
-                    span,
-                    format!("cannot read the file: {why}"),
-                    help,
-                ))
-            })
-            .collect();
-        for d in missing {
-            self.diags.push(d);
-        }
-    }
 }

@@ -112,23 +112,15 @@ pub fn validate_files(
     unbuilt: &check::unbuilt::Unbuilt,
     (cache, files): (&mut LowerCache, &dyn Files),
 ) -> Diagnostics {
-    let (mut diags, mut textures) = (Diagnostics::new(), Vec::new());
-    let mut coats = material::Coats::for_checking();
-    let mut one_off_images = Images::default();
-    let images = if cache.is_one_off() {
-        &mut one_off_images
-    } else {
-        &mut cache.images
-    };
-    for m in &unbuilt.materials {
-        lower_material(m, &mut textures, (images, files), &mut coats, &mut diags);
-        material::lower_opacity(m, &mut textures, (images, files), &mut diags);
-    }
-    if let Some(e) = &unbuilt.environment {
-        let mut warnings = Diagnostics::new();
-        environment::lower_environment(e, (images, files), &mut diags, &mut warnings);
-    }
-    images.keep_only_used();
+    let mut diags = Diagnostics::new();
+    let looks = (&unbuilt.materials[..], unbuilt.environment.as_ref());
+    let coats = &mut material::Coats::for_checking();
+    read_looks(
+        looks,
+        (&mut *cache, files, coats),
+        &mut diags,
+        &mut Diagnostics::new(),
+    );
     for (path, named, span) in &unbuilt.meshes {
         if let Err(why) = cache.mesh(files, path) {
             diags.push(shapes::unloadable_mesh((path, named, *span), why));
@@ -139,6 +131,39 @@ pub fn validate_files(
         .retain(|d| [codes::IMAGE_FILE, codes::MESH_FILE].contains(&d.code));
     diags
 }
+
+/// The materials (with their opacities and the textures both read) and
+/// the environment map of a scene: every image read, through `cache`'s
+/// images (or for this compile alone), each file once. Problems go to
+/// `diags`, notes to `warnings`. What [`prepare`] and [`validate_files`]
+/// share.
+fn read_looks(
+    (materials, environment): (&[check::Material], Option<&check::Environment>),
+    (cache, files, coats): (&mut LowerCache, &dyn Files, &mut material::Coats),
+    diags: &mut Diagnostics,
+    warnings: &mut Diagnostics,
+) -> (Looks, Option<Arc<EnvironmentMap>>) {
+    let mut textures = Vec::new();
+    let mut one_off_images = Images::default();
+    let images = if cache.is_one_off() {
+        &mut one_off_images
+    } else {
+        &mut cache.images
+    };
+    let lowered: Vec<Material> = (materials.iter())
+        .map(|m| lower_material(m, &mut textures, (images, files), coats, diags))
+        .collect();
+    let opacities = (materials.iter())
+        .map(|m| material::lower_opacity(m, &mut textures, (images, files), diags))
+        .collect();
+    let environment = environment
+        .and_then(|e| environment::lower_environment(e, (images, files), diags, warnings));
+    images.keep_only_used();
+    ((lowered, opacities, textures), environment)
+}
+
+/// A scene's materials, their opacities and the textures they read.
+type Looks = (Vec<Material>, Vec<Option<Opacity>>, Vec<Texture>);
 
 /// What [`lower`] and [`validate`] share: glTF files become their objects
 /// and placements (each mesh file read once: the reads go on to the
@@ -198,7 +223,7 @@ enum Shapes {
 /// no problem can be found.
 struct Prepared {
     settings: Settings,
-    materials: (Vec<Material>, Vec<Option<Opacity>>, Vec<Texture>),
+    materials: Looks,
     environment: Option<Arc<EnvironmentMap>>,
     shapes: Shapes,
     placements: instances::Gathered,
@@ -224,22 +249,14 @@ fn prepare(
 ) -> Result<Prepared, Diagnostics> {
     let mut settings = flat.render.settings.clone();
     adjust(&mut settings);
-    let (mut textures, mut diags) = (Vec::new(), Diagnostics::new());
-    let mut one_off_images = Images::default();
-    let images = if cache.is_one_off() {
-        &mut one_off_images
-    } else {
-        &mut cache.images
-    };
-    let materials: Vec<Material> = (flat.materials.iter())
-        .map(|m| lower_material(m, &mut textures, (images, files), &mut coats, &mut diags))
-        .collect();
-    let opacities = (flat.materials.iter())
-        .map(|m| material::lower_opacity(m, &mut textures, (images, files), &mut diags))
-        .collect();
-    let environment = (flat.environment.as_ref())
-        .and_then(|e| environment::lower_environment(e, (images, files), &mut diags, warnings));
-    images.keep_only_used();
+    let mut diags = Diagnostics::new();
+    let looks = (&flat.materials[..], flat.environment.as_ref());
+    let (materials, environment) = read_looks(
+        looks,
+        (&mut *cache, files, &mut coats),
+        &mut diags,
+        warnings,
+    );
     let placements =
         instances::gather(original, split, (cache, files)).map_err(|d| diags.extend(d));
     let key = (!cache.is_one_off()).then(|| cache.geometry_key(files, flat));
@@ -272,7 +289,7 @@ fn prepare(
     warn_missing_texcoords(flat, without_uvs, warnings);
     Ok(Prepared {
         settings,
-        materials: (materials, opacities, textures),
+        materials,
         environment,
         shapes,
         placements,
